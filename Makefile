@@ -1,0 +1,24 @@
+# Road Sign Inventory: the two commands of the README, and a few helpers.
+#   make demo   set everything up, run the chain on the bundled sample
+#   make test   set everything up, run all tests
+VENV ?= .venv
+PY := $(VENV)/bin/python
+export QT_QPA_PLATFORM := offscreen
+export PROJ_DATA := /usr/share/proj
+
+.PHONY: setup test test-core demo clean
+
+setup:
+	bash scripts/setup.sh
+
+test: setup
+	$(PY) -m pytest
+
+test-core: setup
+	$(PY) -m pytest tests/core
+
+demo: setup
+	$(PY) scripts/demo.py
+
+clean:
+	rm -rf demo_out build dist

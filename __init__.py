@@ -1,0 +1,11 @@
+"""Road Sign Inventory: a QGIS Processing plugin (package ``roadsigns``).
+
+Importing this package imports nothing from QGIS; ``classFactory`` (QGIS desktop and
+``qgis_process``) loads the plugin class, whose ``initProcessing`` registers the
+provider ``roadsigns`` and whose ``initGui`` adds nothing else for now.
+"""
+
+
+def classFactory(iface):  # noqa: N802 (QGIS's name)
+    from .plugin import RoadSignsPlugin
+    return RoadSignsPlugin(iface)

@@ -1,0 +1,1 @@
+"""Processing algorithms, one per module named after its id; each a thin adapter over core."""

@@ -1,0 +1,86 @@
+"""What every Road Sign Inventory algorithm shares: tr, icon, help, core error handling.
+
+Adapters read parameters, call ``core`` with a :class:`~roadsigns.core.errors.Progress`
+bound to the Processing feedback, turn :class:`InputError` into a translated
+``QgsProcessingException`` and write outputs only once core has finished.
+"""
+from contextlib import contextmanager
+
+from qgis.core import Qgis, QgsProcessingAlgorithm, QgsProcessingException
+from qgis.PyQt.QtGui import QIcon
+
+from ..core.errors import Cancelled, InputError, Progress
+from ..dependencies import missing_message
+from ..provider.i18n import tr
+from ..provider.provider import ICON_PATH
+
+
+class RoadSignsAlgorithm(QgsProcessingAlgorithm):
+    """Base class: subclasses set ``ALGORITHM_ID``, ``DISPLAY_NAME``, ``HELP``, ``REQUIRES``."""
+
+    ALGORITHM_ID = ""
+    DISPLAY_NAME = ""
+    GROUP = "Road sign inventory"
+    GROUP_ID = "roadsigns"
+    HELP = ""
+    #: one line for the Toolbox tooltip
+    SHORT_DESCRIPTION = ""
+    #: import names of the third-party packages the algorithm needs
+    REQUIRES = ("numpy", "scipy", "pyproj")
+
+    def tr(self, text):
+        return tr(text)
+
+    def createInstance(self):  # noqa: N802
+        return type(self)()
+
+    def name(self):
+        return self.ALGORITHM_ID
+
+    def displayName(self):  # noqa: N802
+        return self.tr(self.DISPLAY_NAME)
+
+    def group(self):
+        return self.tr(self.GROUP)
+
+    def groupId(self):  # noqa: N802
+        return self.GROUP_ID
+
+    def shortHelpString(self):  # noqa: N802
+        return self.tr(self.HELP)
+
+    def shortDescription(self):  # noqa: N802
+        return self.tr(self.SHORT_DESCRIPTION)
+
+    def icon(self):
+        return QIcon(ICON_PATH)
+
+    # --- helpers for subclasses -------------------------------------------------------
+
+    def add(self, parameter, help_text, advanced=False):
+        """Add a parameter with its help text (tooltip and help panel)."""
+        parameter.setHelp(self.tr(help_text))
+        if advanced:
+            parameter.setFlags(parameter.flags() | Qgis.ProcessingParameterFlag.Advanced)
+        self.addParameter(parameter)
+        return parameter
+
+    def check_dependencies(self):
+        message = missing_message(self.REQUIRES)
+        if message:
+            raise QgsProcessingException(self.tr(message))
+
+    def progress(self, feedback):
+        """A core Progress that forwards to ``feedback`` (percent, log, cancel)."""
+        return Progress(on_progress=feedback.setProgress, is_cancelled=feedback.isCanceled,
+                        on_info=feedback.pushInfo, on_warning=feedback.pushWarning)
+
+    @contextmanager
+    def core_errors(self):
+        """Turn core exceptions into translated QgsProcessingException messages."""
+        try:
+            yield
+        except InputError as error:
+            raise QgsProcessingException(self.tr(error.template).format(**error.fields))
+        except Cancelled:
+            raise QgsProcessingException(self.tr("Cancelled: nothing was written."))

@@ -1,0 +1,7 @@
+"""The engine of Road Sign Inventory: plain Python, numpy arrays in and out, no qgis import.
+
+Modules, one concern each: ``geometry`` (frames, rotations, pixel <-> ray), ``crs``
+(pyproj transforms, meridian convergence), ``tables`` (delimited text input),
+``trajectory`` (trajectory/SBET/poses -> panorama stations), ``panorama`` (image files),
+``errors`` (the exceptions and the progress/cancel protocol every stage takes).
+"""

@@ -1,0 +1,72 @@
+"""Exceptions and the progress/cancel protocol shared by the engine.
+
+Core code never imports qgis; the Processing adapters turn :class:`InputError` into a
+``QgsProcessingException`` (translating ``template`` with ``tr``) and pass a
+:class:`Progress` that forwards to ``QgsProcessingFeedback``.
+"""
+from __future__ import annotations
+
+from typing import Callable, Optional
+
+
+class InputError(ValueError):
+    """Bad user input. ``template`` is an English message with ``{named}`` fields.
+
+    Messages name the file, line and field and say what was expected.
+    """
+
+    def __init__(self, template: str, **fields):
+        self.template = template
+        self.fields = fields
+        super().__init__(template.format(**fields))
+
+
+class Cancelled(RuntimeError):
+    """The user cancelled; nothing must be written."""
+
+
+class Progress:
+    """Progress in percent, a log and a cancel flag, for long loops in ``core``.
+
+    ``report(fraction)`` takes 0..1 of the current step; ``check()`` raises
+    :class:`Cancelled` when cancel was asked for. All callbacks are optional.
+    """
+
+    def __init__(self,
+                 on_progress: Optional[Callable[[float], None]] = None,
+                 is_cancelled: Optional[Callable[[], bool]] = None,
+                 on_info: Optional[Callable[[str], None]] = None,
+                 on_warning: Optional[Callable[[str], None]] = None,
+                 start: float = 0.0, span: float = 100.0):
+        self._on_progress = on_progress
+        self._is_cancelled = is_cancelled
+        self._on_info = on_info
+        self._on_warning = on_warning
+        self._start, self._span = start, span
+
+    def sub(self, start_fraction: float, end_fraction: float) -> "Progress":
+        """A child reporting into ``[start, end]`` of this one's range."""
+        return Progress(self._on_progress, self._is_cancelled, self._on_info, self._on_warning,
+                        self._start + self._span * start_fraction,
+                        self._span * (end_fraction - start_fraction))
+
+    def report(self, fraction: float) -> None:
+        self.check()
+        if self._on_progress is not None:
+            self._on_progress(self._start + self._span * min(max(fraction, 0.0), 1.0))
+
+    def check(self) -> None:
+        if self._is_cancelled is not None and self._is_cancelled():
+            raise Cancelled("cancelled")
+
+    def info(self, message: str) -> None:
+        if self._on_info is not None:
+            self._on_info(message)
+
+    def warning(self, message: str) -> None:
+        if self._on_warning is not None:
+            self._on_warning(message)
+
+
+#: A Progress that reports nothing and never cancels.
+SILENT = Progress()

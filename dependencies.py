@@ -1,0 +1,74 @@
+"""Which third-party Python packages the plugin needs, which are missing, how to install them.
+
+No qgis import: the check runs before anything heavy is imported, so a missing package
+gives a clear message and the exact command to install it instead of a traceback.
+"""
+from __future__ import annotations
+
+import importlib.util
+import os
+import sys
+from typing import Iterable, List
+
+#: import name -> pip requirement
+PACKAGES = {
+    "numpy": "numpy",
+    "scipy": "scipy",
+    "pyproj": "pyproj",
+    "PIL": "pillow",
+    "cv2": "opencv-python-headless",
+    "onnxruntime": "onnxruntime",
+    "shapely": "shapely>=2",
+    "laspy": "laspy[lazrs]",
+    "lazrs": "laspy[lazrs]",
+}
+
+
+def _installed(module: str) -> bool:
+    try:
+        if importlib.util.find_spec(module) is None:
+            return False
+    except (ImportError, ValueError):
+        return False
+    if module == "shapely":
+        try:
+            from importlib.metadata import version
+            return int(version("shapely").split(".")[0]) >= 2
+        except Exception:
+            return True
+    return True
+
+
+def missing(modules: Iterable[str] = PACKAGES) -> List[str]:
+    """Import names among ``modules`` that cannot be imported (shapely 1.x counts as missing)."""
+    return [m for m in modules if not _installed(m)]
+
+
+def pip_requirements(modules: Iterable[str]) -> List[str]:
+    out: List[str] = []
+    for m in modules:
+        req = PACKAGES.get(m, m)
+        if req not in out:
+            out.append(req)
+    return out
+
+
+def install_command(modules: Iterable[str], platform: str = sys.platform) -> str:
+    """The command a user runs to install ``modules`` into the Python that QGIS uses."""
+    reqs = " ".join('"{}"'.format(r) if any(c in r for c in "[>=<") else r
+                    for r in pip_requirements(modules))
+    if platform.startswith("win"):
+        return "python -m pip install --upgrade {}   (in the OSGeo4W Shell, as administrator)".format(reqs)
+    if platform == "darwin":
+        python = os.path.join(sys.exec_prefix, "bin", "python3")
+        return "{} -m pip install --upgrade {}".format(python, reqs)
+    return "python3 -m pip install --user --break-system-packages --upgrade {}".format(reqs)
+
+
+def missing_message(modules: Iterable[str]) -> str:
+    """'' when all are present, else one sentence naming them and the command."""
+    absent = missing(modules)
+    if not absent:
+        return ""
+    return ("Road Sign Inventory needs the Python package(s) {}, not found in QGIS's Python. "
+            "Install with: {}").format(", ".join(pip_requirements(absent)), install_command(absent))

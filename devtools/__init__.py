@@ -1,0 +1,1 @@
+"""Developer tools of Road Sign Inventory (never shipped in the plugin zip)."""

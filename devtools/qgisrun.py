@@ -1,0 +1,95 @@
+"""Run ``qgis_process`` with the plugin from this checkout in a throw-away QGIS profile.
+
+Shared by the tests, the demo and the benchmarks. The checkout is exposed as the package
+``roadsigns`` through a symlink in a temporary plugin folder (``QGIS_PLUGINPATH``); the
+venv's site-packages go on ``PYTHONPATH`` so QGIS's Python finds the dependencies.
+"""
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from dataclasses import dataclass
+
+REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+@dataclass
+class Run:
+    returncode: int
+    stdout: str
+    stderr: str
+    wall_s: float = 0.0
+    peak_rss_mb: float = 0.0
+
+    @property
+    def json(self):
+        return json.loads(self.stdout)
+
+    @property
+    def text(self):
+        return self.stdout + self.stderr
+
+
+def make_plugin_path(plugin_path: str = None) -> str:
+    """A folder holding ``roadsigns`` -> this checkout (made once per process)."""
+    plugin_path = plugin_path or tempfile.mkdtemp(prefix="roadsigns-pluginpath-")
+    link = os.path.join(plugin_path, "roadsigns")
+    if not os.path.exists(link):
+        os.symlink(REPO_ROOT, link)
+    return plugin_path
+
+
+class QgisProcess:
+    """``qgis_process`` bound to one plugin folder and one throw-away profile."""
+
+    def __init__(self, plugin_path: str = None, profile: str = None):
+        self.executable = shutil.which("qgis_process")
+        if self.executable is None:
+            raise RuntimeError("qgis_process is not installed: run `make setup` (scripts/setup.sh)")
+        self.profile = profile or tempfile.mkdtemp(prefix="roadsigns-qgis-profile-")
+        env = dict(os.environ)
+        site = [p for p in sys.path if p.endswith("site-packages") and os.path.isdir(p)]
+        env.update({
+            "QGIS_PLUGINPATH": make_plugin_path(plugin_path),
+            "QGIS_CUSTOM_CONFIG_PATH": self.profile,
+            "QT_QPA_PLATFORM": "offscreen",
+            "PYTHONPATH": os.pathsep.join(site + [env.get("PYTHONPATH", "")]).strip(os.pathsep),
+            "PROJ_DATA": env.get("PROJ_DATA", "/usr/share/proj"),
+            "XDG_RUNTIME_DIR": env.get("XDG_RUNTIME_DIR", tempfile.gettempdir()),
+        })
+        self.env = env
+        enabled = self("plugins", "enable", "roadsigns")
+        if enabled.returncode != 0:
+            raise RuntimeError("qgis_process could not enable the plugin:\n" + enabled.text)
+
+    def __call__(self, *args, timeout=3600) -> Run:
+        """Run ``qgis_process ARGS``; wall time and this run's own peak RSS are measured."""
+        import time
+        with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
+            start = time.perf_counter()
+            p = subprocess.Popen([self.executable, *args], env=self.env, stdout=out, stderr=err,
+                                 stdin=subprocess.DEVNULL, text=True)
+            while True:  # os.wait4 gives this child's own rusage (peak RSS)
+                pid, status, usage = os.wait4(p.pid, os.WNOHANG)
+                if pid:
+                    break
+                if time.perf_counter() - start > timeout:
+                    p.kill()
+                    os.wait4(p.pid, 0)
+                    raise subprocess.TimeoutExpired(args, timeout)
+                time.sleep(0.02)
+            p.returncode = os.waitstatus_to_exitcode(status)
+            wall_s = time.perf_counter() - start
+            out.seek(0)
+            err.seek(0)
+            return Run(p.returncode, out.read(), err.read(), wall_s, usage.ru_maxrss / 1024.0)
+
+    def run(self, algorithm: str, timeout=3600, **parameters) -> Run:
+        """``qgis_process --json run algorithm -- NAME=value ...``."""
+        args = ["--json", "run", algorithm, "--"]
+        args += ["{}={}".format(k, v) for k, v in parameters.items()]
+        return self(*args, timeout=timeout)

@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# Set up everything the plugin, its tests and its demo need on a fresh Debian 12 machine:
+# QGIS 3.40 LTR from bookworm-backports and a venv on Debian's Python 3.11 with numpy
+# pinned to the system's. Idempotent: a second run only checks and returns in seconds.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+VENV="${ROADSIGNS_VENV:-$here/.venv}"
+SUDO=""
+if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
+
+log() { printf '[setup] %s\n' "$*"; }
+
+# --- 1. QGIS 3.40 LTR and Debian's scientific Python --------------------------------
+apt_pkgs=(qgis python3-qgis qgis-providers python3-venv python3-pip python3-scipy python3-pyproj python3-numpy)
+need_apt=0
+if ! command -v qgis_process >/dev/null 2>&1; then need_apt=1; fi
+for p in "${apt_pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || need_apt=1
+done
+if [ "$need_apt" = 1 ]; then
+  src=/etc/apt/sources.list.d/bookworm-backports.sources
+  if [ ! -f "$src" ]; then
+    log "adding the bookworm-backports apt source (that suite only)"
+    $SUDO tee "$src" >/dev/null <<'SRC'
+Types: deb
+URIs: http://deb.debian.org/debian
+Suites: bookworm-backports
+Components: main
+Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
+SRC
+  fi
+  log "installing QGIS 3.40 LTR (about a minute)"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq -t bookworm-backports \
+    --no-install-recommends "${apt_pkgs[@]}" >/dev/null
+fi
+log "$(QT_QPA_PLATFORM=offscreen qgis_process --version 2>/dev/null | grep -m1 QGIS || echo 'qgis_process: not found')"
+
+# --- 2. venv on Debian's Python with the system numpy pinned -------------------------
+if [ ! -x "$VENV/bin/python" ]; then
+  log "creating venv $VENV"
+  /usr/bin/python3 -m venv --system-site-packages "$VENV"
+fi
+stamp="$VENV/.roadsigns-requirements"
+want="$(cat "$here/requirements.txt" "$here/requirements-dev.txt" | sha1sum | cut -c1-40)"
+if [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
+  sys_numpy="$(/usr/bin/python3 -c 'import numpy; print(numpy.__version__)')"
+  constraints="$VENV/constraints.txt"
+  echo "numpy==$sys_numpy" > "$constraints"
+  log "installing Python dependencies (numpy pinned to $sys_numpy)"
+  "$VENV/bin/python" -m pip install -q --disable-pip-version-check \
+    -c "$constraints" -r "$here/requirements.txt" -r "$here/requirements-dev.txt"
+  echo "$want" > "$stamp"
+fi
+log "python deps ok: $("$VENV/bin/python" -c 'import numpy, scipy, pyproj; print("numpy", numpy.__version__, "scipy", scipy.__version__, "pyproj", pyproj.__version__)')"

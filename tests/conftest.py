@@ -1,0 +1,26 @@
+"""Test set-up: make the checkout importable as the package ``roadsigns``.
+
+The checkout folder may have any name; a symlink ``<tmp>/roadsigns -> checkout`` is put
+on ``sys.path`` (core tests import ``roadsigns.core``) and serves as ``QGIS_PLUGINPATH``
+for the ``qgis_process`` tests (see ``tests/qgis/conftest.py``).
+"""
+import os
+import sys
+import tempfile
+
+import pytest
+
+if os.path.isdir("/usr/share/proj"):  # pyproj inside a venv looks under the venv otherwise
+    os.environ.setdefault("PROJ_DATA", "/usr/share/proj")
+REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+PLUGIN_PATH = tempfile.mkdtemp(prefix="roadsigns-pluginpath-")
+os.symlink(REPO_ROOT, os.path.join(PLUGIN_PATH, "roadsigns"))
+sys.path.insert(0, PLUGIN_PATH)
+sys.path.append(REPO_ROOT)  # dev tools: ``import devtools.trajsample``
+sys.path.append(os.path.join(REPO_ROOT, "tests"))  # shared test helpers: ``import helpers.contract``
+
+
+@pytest.fixture(scope="session")
+def plugin_path():
+    """Folder holding ``roadsigns`` (a symlink to the checkout), for QGIS_PLUGINPATH."""
+    return PLUGIN_PATH

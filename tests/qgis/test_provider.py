@@ -1,0 +1,32 @@
+"""The provider loads in qgis_process, lists its algorithms, and every algorithm and
+parameter carries help text."""
+import pytest
+
+EXPECTED_ALGORITHMS = {"roadsigns:importtrajectory"}
+
+
+@pytest.fixture(scope="module")
+def listing(qgis_process):
+    run = qgis_process("--json", "list")
+    assert run.returncode == 0, run.text
+    return run.json["providers"]
+
+
+def test_provider_is_listed_with_its_algorithms(listing):
+    provider = listing["roadsigns"]
+    assert provider["name"] == "Road sign inventory"
+    assert provider["is_active"]
+    assert EXPECTED_ALGORITHMS <= set(provider["algorithms"])
+
+
+def test_every_algorithm_and_parameter_has_help(qgis_process, listing):
+    for algorithm_id in listing["roadsigns"]["algorithms"]:
+        run = qgis_process("--json", "help", algorithm_id)
+        assert run.returncode == 0, run.text
+        info = run.json
+        assert info["algorithm_details"]["short_description"], algorithm_id
+        for name, parameter in info["parameters"].items():
+            assert parameter.get("help"), "{}: parameter {} has no help text".format(algorithm_id, name)
+        text = qgis_process("help", algorithm_id).stdout
+        description = text.split("Description")[1].split("Arguments")[0]
+        assert len(description.strip("-\n ")) > 80, algorithm_id
