@@ -1,4 +1,6 @@
 """The QGIS plugin object: registers the Processing provider and checks dependencies."""
+import sys
+
 from qgis.core import Qgis, QgsApplication, QgsMessageLog
 
 from .dependencies import PACKAGES, missing_message
@@ -19,6 +21,9 @@ class RoadSignsPlugin:
         message = missing_message(PACKAGES)
         if message:
             QgsMessageLog.logMessage(message, tr("Road Sign Inventory"), Qgis.MessageLevel.Warning)
+            if self.iface is None and not getattr(self, "_told", False):  # qgis_process: stderr
+                sys.stderr.write(message + "\n")
+                self._told = True
         return message
 
     def initGui(self):  # noqa: N802

@@ -26,6 +26,7 @@ class RoadSignsProvider(QgsProcessingProvider):
         return ICON_PATH
 
     def loadAlgorithms(self):  # noqa: N802
+        from ..algorithms.evaluate import Evaluate
         from ..algorithms.importtrajectory import ImportTrajectory
-        for algorithm in (ImportTrajectory(),):
+        for algorithm in (ImportTrajectory(), Evaluate()):
             self.addAlgorithm(algorithm)

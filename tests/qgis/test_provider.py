@@ -2,7 +2,7 @@
 parameter carries help text."""
 import pytest
 
-EXPECTED_ALGORITHMS = {"roadsigns:importtrajectory"}
+EXPECTED_ALGORITHMS = {"roadsigns:importtrajectory", "roadsigns:evaluate"}
 
 
 @pytest.fixture(scope="module")
@@ -30,3 +30,18 @@ def test_every_algorithm_and_parameter_has_help(qgis_process, listing):
         text = qgis_process("help", algorithm_id).stdout
         description = text.split("Description")[1].split("Arguments")[0]
         assert len(description.strip("-\n ")) > 80, algorithm_id
+
+
+def test_provider_loads_without_the_optional_packages(qgis_process):
+    """Without the venv (onnxruntime, cv2, laspy, shapely missing) the provider still loads
+    and qgis_process says what is missing and how to install it."""
+    import subprocess
+    env = dict(qgis_process.env)
+    env["PYTHONPATH"] = ""
+    p = subprocess.run([qgis_process.executable, "list"], env=env, capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    assert "roadsigns:importtrajectory" in p.stdout
+    assert "needs the Python package(s)" in p.stderr
+    for package in ("onnxruntime", "opencv-python-headless", "laspy[lazrs]"):
+        assert package in p.stderr
+    assert "pip install" in p.stderr

@@ -1,0 +1,166 @@
+"""roadsigns:evaluate - a sign layer against reference sign panels: precision, recall,
+position, height and azimuth errors, and an HTML report."""
+import math
+import os
+
+import numpy as np
+from qgis.core import (Qgis, QgsCoordinateTransform, QgsFeatureRequest, QgsProcessingException,
+                       QgsProcessingOutputNumber, QgsProcessingParameterFeatureSource,
+                       QgsProcessingParameterFile, QgsProcessingParameterFileDestination,
+                       QgsProcessingParameterNumber, QgsVectorLayer)
+
+from ..core.evaluate import OUTPUT_NAMES, SignSet, evaluate, read_reference_csv, write_html_report
+from .base import RoadSignsAlgorithm
+
+EXTRA_OUTPUTS = ("MEDIAN_HORIZONTAL_ERROR", "MEDIAN_VERTICAL_ERROR")
+OUTPUT_LABELS = {
+    "TP": "True positives (matched signs)", "FP": "False positives (unmatched signs)",
+    "FN": "False negatives (missed reference panels)", "PRECISION": "Precision",
+    "RECALL": "Recall", "F1": "F1 score", "CLASS_ACCURACY": "Class accuracy of matches",
+    "MEDIAN_ERROR": "Median 3D position error (m)", "P95_ERROR": "95th percentile 3D error (m)",
+    "MEDIAN_HEIGHT_ERROR": "Median height error (m)",
+    "MEDIAN_AZIMUTH_ERROR": "Median azimuth error (°)",
+    "MEDIAN_HORIZONTAL_ERROR": "Median horizontal position error (m)",
+    "MEDIAN_VERTICAL_ERROR": "Median vertical position error (m)",
+}
+CSV_EXTENSIONS = (".csv", ".txt")
+
+
+def _field_values(layer_fields, feature, name, default):
+    index = layer_fields.lookupField(name)
+    if index < 0:
+        return default
+    value = feature.attribute(index)
+    return default if value is None or (hasattr(value, "isNull") and value.isNull()) else value
+
+
+def _number_or_nan(value):
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        return math.nan
+    return number
+
+
+def sign_set_from_features(features, fields, transform, label, id_field="sign_id"):
+    """A core SignSet from point features (PointZ geometry, or x, y, z fields)."""
+    if fields.lookupField("class") < 0:
+        raise QgsProcessingException(
+            "{}: no field 'class'; fields found: {}".format(label, ", ".join(fields.names())))
+    ids, classes, xyz, height, azimuth, width, panel_height, images = [], [], [], [], [], [], [], []
+    for k, feature in enumerate(features):
+        geometry = feature.geometry()
+        if geometry.isNull() or geometry.isEmpty():
+            point = [_number_or_nan(_field_values(fields, feature, c, None)) for c in "xyz"]
+        else:
+            if transform is not None:
+                geometry.transform(transform)
+            vertex = geometry.vertexAt(0)  # the point (the first one of a multipoint)
+            z = vertex.z() if vertex.is3D() else _number_or_nan(_field_values(fields, feature, "z", None))
+            point = [vertex.x(), vertex.y(), z]
+        ids.append(str(_field_values(fields, feature, id_field, k + 1)))
+        classes.append(str(_field_values(fields, feature, "class", "")))
+        xyz.append(point)
+        height.append(_number_or_nan(_field_values(fields, feature, "height", None)))
+        azimuth.append(_number_or_nan(_field_values(fields, feature, "azimuth", None)))
+        width.append(_number_or_nan(_field_values(fields, feature, "width", None)))
+        panel_height.append(_number_or_nan(_field_values(fields, feature, "panel_height", None)))
+        images.append(str(_field_values(fields, feature, "best_image", "")))
+    return SignSet(ids, classes, np.array(xyz, float).reshape(-1, 3), np.array(height),
+                   np.array(azimuth), np.array(width), np.array(panel_height), images)
+
+
+class Evaluate(RoadSignsAlgorithm):
+    ALGORITHM_ID = "evaluate"
+    DISPLAY_NAME = "Evaluate signs against reference"
+    REQUIRES = ("numpy", "scipy")
+    SHORT_DESCRIPTION = "Scores a sign layer against reference sign panels and writes an HTML report."
+    HELP = (
+        "Matches each sign to at most one reference panel by optimal assignment (Hungarian "
+        "method) on the 3D distance between panel centres, within the match radius and "
+        "ignoring class, then reports precision (matches / signs), recall (matches / "
+        "reference panels), F1, the class accuracy of the matches, and the median and 95th "
+        "percentile position error, the median height error and the median azimuth error."
+        "<br><br>The <b>reference</b> is a CSV <i>sign_id,class,x,y,z,height,width,"
+        "panel_height,azimuth</i> in the sign layer's CRS, or a point layer with those fields "
+        "(reprojected to the sign layer's CRS).<br><br>The HTML report has the summary and one "
+        "row per sign: matched (with its errors), missed or false.")
+
+    def initAlgorithm(self, config=None):  # noqa: N802
+        self.add(QgsProcessingParameterFeatureSource(
+            "SIGNS", self.tr("Sign layer"), [Qgis.ProcessingSourceType.VectorPoint]),
+            "The sign layer to score (PointZ at the panel centres, e.g. the output of Refine "
+            "signs), with the fields sign_id, class and optionally height, azimuth, best_image.")
+        self.add(QgsProcessingParameterFile(
+            "REFERENCE", self.tr("Reference signs (CSV or point layer)"),
+            behavior=Qgis.ProcessingFileParameterBehavior.File,
+            fileFilter=self.tr("Reference signs (*.csv *.txt *.gpkg *.shp *.geojson);;All files (*.*)")),
+            "Ground truth: a CSV sign_id,class,x,y,z,height,width,panel_height,azimuth in the sign "
+            "layer's CRS, or a point layer with those fields (reprojected if its CRS differs).")
+        self.add(QgsProcessingParameterNumber(
+            "MATCH_RADIUS", self.tr("Match radius (m)"), type=Qgis.ProcessingNumberParameterType.Double,
+            defaultValue=1.0, minValue=0.001),
+            "A sign and a reference panel farther apart than this (3D distance between panel "
+            "centres, metres) are never matched.")
+        self.add(QgsProcessingParameterFileDestination(
+            "OUTPUT_REPORT", self.tr("Evaluation report"), self.tr("HTML files (*.html)")),
+            "HTML report: the summary and one row per sign and reference panel.")
+        for name in OUTPUT_NAMES + EXTRA_OUTPUTS:
+            self.addOutput(QgsProcessingOutputNumber(name, self.tr(OUTPUT_LABELS[name])))
+
+    def _reference(self, path, signs_crs, context, feedback):
+        if not path or not os.path.isfile(path):
+            raise QgsProcessingException(self.tr("Reference file not found: {}").format(path))
+        if os.path.splitext(path)[1].lower() in CSV_EXTENSIONS:
+            feedback.pushInfo(self.tr("Reference CSV {}: coordinates taken in the sign layer's CRS "
+                                      "({})").format(path, signs_crs.authid() or signs_crs.description()))
+            with self.core_errors():
+                return read_reference_csv(path)
+        layer = QgsVectorLayer(path, "reference", "ogr")
+        if not layer.isValid():
+            raise QgsProcessingException(self.tr(
+                "Cannot read the reference {}: expected a CSV or a point layer").format(path))
+        transform = None
+        if layer.crs().isValid() and signs_crs.isValid() and layer.crs() != signs_crs:
+            feedback.pushInfo(self.tr("Reprojecting the reference from {} to {}").format(
+                layer.crs().authid(), signs_crs.authid()))
+            transform = QgsCoordinateTransform(layer.crs(), signs_crs, context.transformContext())
+        return sign_set_from_features(layer.getFeatures(), layer.fields(), transform,
+                                      "Reference {}".format(path))
+
+    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+        self.check_dependencies()
+        source = self.parameterAsSource(parameters, "SIGNS", context)
+        if source is None:
+            raise QgsProcessingException(self.invalidSourceError(parameters, "SIGNS"))
+        radius_m = self.parameterAsDouble(parameters, "MATCH_RADIUS", context)
+        report_path = self.parameterAsFileOutput(parameters, "OUTPUT_REPORT", context)
+        signs = sign_set_from_features(source.getFeatures(QgsFeatureRequest()), source.fields(), None,
+                                       self.tr("Sign layer"))
+        if len(signs) == 0:
+            raise QgsProcessingException(self.tr("The sign layer is empty: nothing to evaluate."))
+        reference_path = self.parameterAsFile(parameters, "REFERENCE", context)
+        reference = self._reference(reference_path, source.sourceCrs(), context, feedback)
+        if len(reference) == 0:
+            raise QgsProcessingException(self.tr("The reference {} has no sign: nothing to evaluate against.")
+                                         .format(reference_path))
+        feedback.setProgress(30)
+        with self.core_errors():
+            result = evaluate(signs, reference, radius_m)
+            write_html_report(result, report_path, title=self.tr("Road sign evaluation"),
+                              sign_label=source.sourceName(), reference_label=reference_path)
+        feedback.setProgress(100)
+        outputs = dict(result.as_outputs())
+        outputs["MEDIAN_HORIZONTAL_ERROR"] = result.median_horizontal_error_m
+        outputs["MEDIAN_VERTICAL_ERROR"] = result.median_vertical_error_m
+        outputs = {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in outputs.items()}
+        feedback.pushInfo(self.tr("{} signs, {} reference panels: TP {}, FP {}, FN {}; precision {}, "
+                                  "recall {}, median error {} m").format(
+            len(signs), len(reference), outputs["TP"], outputs["FP"], outputs["FN"],
+            _fmt(outputs["PRECISION"]), _fmt(outputs["RECALL"]), _fmt(outputs["MEDIAN_ERROR"])))
+        outputs["OUTPUT_REPORT"] = report_path
+        return outputs
+
+
+def _fmt(value):
+    return "n/a" if value is None else "{:.3f}".format(value)
