@@ -24,3 +24,17 @@ sys.path.append(os.path.join(REPO_ROOT, "tests"))  # shared test helpers: ``impo
 def plugin_path():
     """Folder holding ``roadsigns`` (a symlink to the checkout), for QGIS_PLUGINPATH."""
     return PLUGIN_PATH
+
+
+@pytest.fixture(scope="session")
+def drive_projected(tmp_path_factory):
+    """A small analytic drive in EPSG:32633 (devtools/trajsample.py): CSV, SBET, poses, images."""
+    from devtools import trajsample
+    return trajsample.make_sample(str(tmp_path_factory.mktemp("drive_projected")))
+
+
+@pytest.fixture(scope="session")
+def drive_geographic(tmp_path_factory):
+    """The same drive with lon/lat positions (EPSG:4326)."""
+    from devtools import trajsample
+    return trajsample.make_sample(str(tmp_path_factory.mktemp("drive_geographic")), crs="geographic")

@@ -20,14 +20,14 @@ LEVER = MOUNT.lever_arm_m
 BORESIGHT = (MOUNT.boresight_roll_deg, MOUNT.boresight_pitch_deg, MOUNT.boresight_yaw_deg)
 
 
-@pytest.fixture(scope="module")
-def sample(tmp_path_factory):
-    return trajsample.make_sample(str(tmp_path_factory.mktemp("drive")))
+@pytest.fixture
+def sample(drive_projected):
+    return drive_projected
 
 
-@pytest.fixture(scope="module")
-def sample_geo(tmp_path_factory):
-    return trajsample.make_sample(str(tmp_path_factory.mktemp("drive_geo")), crs="geographic")
+@pytest.fixture
+def sample_geo(drive_geographic):
+    return drive_geographic
 
 
 def check_against_truth(result, sample, position_tol_m=1e-3, angle_tol_deg=1e-3):

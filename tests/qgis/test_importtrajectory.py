@@ -31,14 +31,14 @@ def read_stations(path):
     return names, rows, epsg
 
 
-@pytest.fixture(scope="module")
-def projected(tmp_path_factory):
-    return trajsample.make_sample(str(tmp_path_factory.mktemp("proj")))
+@pytest.fixture
+def projected(drive_projected):
+    return drive_projected
 
 
-@pytest.fixture(scope="module")
-def geographic(tmp_path_factory):
-    return trajsample.make_sample(str(tmp_path_factory.mktemp("geo")), crs="geographic")
+@pytest.fixture
+def geographic(drive_geographic):
+    return drive_geographic
 
 
 def check_output(path, sample, with_time=True):

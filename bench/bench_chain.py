@@ -1,0 +1,164 @@
+"""Run the whole chain through qgis_process on a generated scene and print its figures.
+
+For each stage: wall time and the peak memory of its qgis_process run (RSS, from
+``wait4``), plus the stage's own accuracy where the scene's truth allows (station poses
+against the true poses, ground classes against the true classes) and the accuracy of the
+final sign layer from ``roadsigns:evaluate``. Stages the provider does not have yet are
+reported as missing, and the stages that need their output as blocked.
+
+    python bench/bench_chain.py --preset default --seed 7 [--scene DIR] [--json out.json]
+
+Prints a table, then the same figures as JSON (also written to ``--json`` if given).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+
+REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, REPO_ROOT)
+
+from devtools.qgisrun import QgisProcess  # noqa: E402
+
+
+def load_scene(args):
+    scene_dir = args.scene or os.path.join(REPO_ROOT, "bench", "out",
+                                           "scene-{}-{}".format(args.preset, args.seed))
+    if not os.path.exists(os.path.join(scene_dir, "scene.json")):
+        from devtools.scenegen import generate_scene
+        start = time.perf_counter()
+        generate_scene(args.preset, args.seed, scene_dir)
+        print("generated scene {} in {:.1f} s".format(scene_dir, time.perf_counter() - start))
+    with open(os.path.join(scene_dir, "scene.json")) as f:
+        return scene_dir, json.load(f)
+
+
+def stage_plan(scene_dir, meta, work):
+    """(stage id, parameters, output key, what it needs) in chain order."""
+    p = lambda name: os.path.join(scene_dir, name)  # noqa: E731
+    w = lambda name: os.path.join(work, name)  # noqa: E731
+    lever = meta.get("lever_arm_m", [0, 0, 0])
+    bore = meta.get("boresight_deg", [0, 0, 0])
+    return [
+        ("importtrajectory", dict(TRAJECTORY=p("trajectory.csv"), IMAGE_TIMES=p("image_times.csv"),
+                                  IMAGES=p("images"), TRAJECTORY_CRS=meta.get("trajectory_crs", "EPSG:32633"),
+                                  TARGET_CRS=meta.get("target_crs", "EPSG:32633"),
+                                  LEVER_ARM_X=lever[0], LEVER_ARM_Y=lever[1], LEVER_ARM_Z=lever[2],
+                                  BORESIGHT_ROLL=bore[0], BORESIGHT_PITCH=bore[1], BORESIGHT_YAW=bore[2],
+                                  OUTPUT=w("stations.gpkg")), "OUTPUT", []),
+        ("detectsigns", dict(STATIONS=w("stations.gpkg"), CONFIDENCE=0.4, OUTPUT=w("detections.gpkg")),
+         "OUTPUT", ["importtrajectory"]),
+        ("groundfilter", dict(INPUT=p("cloud.laz"), CROP_BUFFER=0, METHOD=0, ENGINE=0,
+                              OUTPUT=w("ground.laz")), "OUTPUT", []),
+        ("projectdetections", dict(DETECTIONS=w("detections.gpkg"), POINT_CLOUD=w("ground.laz"),
+                                   MAX_RANGE=40, OUTPUT=w("candidates.gpkg")), "OUTPUT",
+         ["detectsigns", "groundfilter"]),
+        ("refinesigns", dict(CANDIDATES=w("candidates.gpkg"), POINT_CLOUD=w("ground.laz"),
+                             MERGE_RADIUS=1.0, OUTPUT=w("signs.gpkg")), "OUTPUT",
+         ["projectdetections", "groundfilter"]),
+        ("evaluate", dict(SIGNS=w("signs.gpkg"), REFERENCE=p("reference_signs.csv"), MATCH_RADIUS=1.0,
+                          OUTPUT_REPORT=w("evaluation.html")), "OUTPUT_REPORT", ["refinesigns"]),
+    ]
+
+
+def station_accuracy(stations_path, meta):
+    """Largest position (m) and orientation (deg) difference against scene.json's true poses."""
+    truth = {s["image"]: s for s in meta.get("stations", [])}
+    if not truth:
+        return {}
+    import numpy as np
+    from osgeo import ogr
+    sys.path.insert(0, os.path.join(REPO_ROOT, "tests"))
+    from helpers.contract import angle_between_deg, quat_to_matrix
+    dataset = ogr.Open(stations_path)
+    position_errors, angle_errors = [], []
+    for feature in dataset.GetLayer(0):
+        t = truth.get(feature["image"])
+        if t is None:
+            continue
+        position_errors.append(np.linalg.norm(np.array([feature["x"], feature["y"], feature["z"]])
+                                              - np.array(t["xyz_world"])))
+        R = quat_to_matrix([feature["qw"], feature["qx"], feature["qy"], feature["qz"]])
+        angle_errors.append(float(angle_between_deg(R, quat_to_matrix(t["q_world_from_pano_wxyz"]))))
+    return {"max_position_error_m": float(max(position_errors)),
+            "max_orientation_error_deg": float(max(angle_errors))}
+
+
+def ground_accuracy(ground_path, meta):
+    """Share of points whose ground / non-ground class agrees with the scene's true class."""
+    truth_dim = meta.get("true_class_dimension")
+    if not truth_dim:
+        return {}
+    import laspy
+    import numpy as np
+    agree = total = 0
+    ground_codes = set(meta.get("ground_true_classes", [2]))
+    with laspy.open(ground_path) as reader:
+        for chunk in reader.chunk_iterator(2_000_000):
+            truth = np.isin(np.asarray(chunk[truth_dim]), list(ground_codes))
+            agree += int(np.count_nonzero(truth == (np.asarray(chunk.classification) == 2)))
+            total += len(chunk)
+    return {"ground_agreement": agree / max(total, 1)}
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--preset", default="default")
+    parser.add_argument("--seed", type=int, default=7)
+    parser.add_argument("--scene", help="an existing scene folder (else generated into bench/out)")
+    parser.add_argument("--json", help="also write the figures to this file")
+    args = parser.parse_args(argv)
+
+    scene_dir, meta = load_scene(args)
+    work = os.path.join(REPO_ROOT, "bench", "out", "chain-{}-{}".format(args.preset, args.seed))
+    os.makedirs(work, exist_ok=True)
+    qgis = QgisProcess()
+    listing = qgis("--json", "list")
+    available = set(listing.json["providers"]["roadsigns"]["algorithms"])
+
+    figures = {"scene": scene_dir, "preset": args.preset, "seed": args.seed, "stages": {}}
+    done = set()
+    for stage, parameters, output_key, needs in stage_plan(scene_dir, meta, work):
+        record = {"status": "missing"}
+        if "roadsigns:" + stage not in available:
+            pass
+        elif any(n not in done for n in needs):
+            record["status"] = "blocked"
+            record["needs"] = [n for n in needs if n not in done]
+        else:
+            run = qgis.run("roadsigns:" + stage, **parameters)
+            record.update(status="ok" if run.returncode == 0 else "failed",
+                          wall_s=round(run.wall_s, 2), peak_rss_mb=round(run.peak_rss_mb, 1))
+            if run.returncode == 0:
+                done.add(stage)
+                results = run.json.get("results", {})
+                if stage == "importtrajectory":
+                    record.update(station_accuracy(results[output_key], meta))
+                elif stage == "groundfilter":
+                    record.update(ground_accuracy(results[output_key], meta))
+                elif stage == "evaluate":
+                    record.update({k: v for k, v in results.items() if k != output_key})
+                    record["report"] = results[output_key]
+            else:
+                record["error"] = run.text.strip().splitlines()[-1:] if run.text.strip() else []
+        figures["stages"][stage] = record
+
+    print("\n{:<18} {:>8} {:>9} {:>11}  {}".format("stage", "status", "wall s", "peak MB", "accuracy"))
+    for stage, r in figures["stages"].items():
+        extra = {k: v for k, v in r.items() if k not in ("status", "wall_s", "peak_rss_mb", "report")}
+        print("{:<18} {:>8} {:>9} {:>11}  {}".format(
+            stage, r["status"], r.get("wall_s", "-"), r.get("peak_rss_mb", "-"),
+            ", ".join("{}={}".format(k, round(v, 4) if isinstance(v, float) else v)
+                      for k, v in extra.items())))
+    text = json.dumps(figures, indent=2)
+    print(text)
+    if args.json:
+        with open(args.json, "w") as f:
+            f.write(text)
+
+
+if __name__ == "__main__":
+    main()
