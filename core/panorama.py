@@ -1,12 +1,20 @@
-"""Panorama image files: sizes read from headers, checks of the equirectangular shape.
+"""Panorama images: sizes read from headers, the equirectangular check, decoding, and the
+perspective views the detector runs on.
 
 Pillow opens images lazily: ``Image.open(path).size`` reads the header only, never the
-pixels, so importing thousands of panoramas stays quick.
+pixels, so importing thousands of panoramas stays quick. OpenCV (decoding, ``cv2.remap``)
+is imported inside the functions that use it: the trajectory import does not need it.
 """
 from __future__ import annotations
 
+import functools
+import os
+from dataclasses import dataclass, field
 from typing import Tuple
 
+import numpy as np
+
+from . import geometry
 from .errors import InputError
 
 
@@ -30,3 +38,234 @@ def check_equirectangular(path: str, width_px: int, height_px: int) -> None:
         raise InputError("The panorama {path} is {width} x {height} pixels: an equirectangular "
                          "panorama must be twice as wide as it is high",
                          path=path, width=width_px, height=height_px)
+
+
+# --- pixels and perspective views -----------------------------------------------------
+#
+# A perspective view is a pinhole camera at the panorama centre, looking along the ray of
+# azimuth ``yaw_deg`` (the contract's azimuth: 0 = centre column, clockwise +) and
+# elevation ``pitch_deg`` (up +), without roll. Its image has x to the right and y down,
+# square pixels, continuous coordinates with pixel centres at +0.5 (as the panorama's).
+# In the panorama frame (x forward, y right, z down) its axes are
+#   forward = angles_to_ray(yaw, pitch),  right = angles_to_ray(yaw + 90 deg, 0),
+#   down = forward x right,
+# and view pixel (x, y) sees the ray  forward + (x - w/2)/f * right + (y - h/2)/f * down,
+# f = (w/2) / tan(hfov/2). Rays go to panorama pixels through ``core.geometry``.
+
+#: Box edges are sampled at this many points each when mapped to the panorama: straight
+#: view edges bend in the equirectangular image, and the extremes of azimuth and elevation
+#: over a box (away from the poles) lie on its boundary.
+BOX_EDGE_SAMPLES = 33
+
+
+def read_panorama(path: str, require_equirectangular: bool = True) -> np.ndarray:
+    """Decode a panorama to an ``H x W x 3`` BGR uint8 array (OpenCV's order).
+
+    :class:`InputError` naming the file when it is missing, not a decodable image, or (by
+    default) not W = 2H. Reads through ``np.fromfile`` so non-ASCII paths work on Windows.
+    """
+    import cv2
+
+    if not os.path.isfile(path):
+        raise InputError("Panorama not found: {path}", path=path)
+    try:
+        data = np.fromfile(path, dtype=np.uint8)
+        image = cv2.imdecode(data, cv2.IMREAD_COLOR) if data.size else None
+    except (OSError, cv2.error) as e:
+        raise InputError("Cannot read the panorama {path}: {error}", path=path, error=str(e))
+    if image is None:
+        raise InputError("Cannot read the panorama {path}: the file is not a JPEG or PNG "
+                         "image or is corrupt", path=path)
+    if require_equirectangular:
+        check_equirectangular(path, image.shape[1], image.shape[0])
+    return image
+
+
+@dataclass(frozen=True)
+class PerspectiveView:
+    """One pinhole view cut from the panorama (see the module comment for the convention)."""
+
+    yaw_deg: float
+    pitch_deg: float = 0.0
+    hfov_deg: float = 80.0
+    width_px: int = 640
+    height_px: int = 640
+
+    @property
+    def focal_px(self) -> float:
+        return 0.5 * self.width_px / np.tan(np.radians(0.5 * self.hfov_deg))
+
+    @property
+    def vfov_deg(self) -> float:
+        return float(2.0 * np.degrees(np.arctan(0.5 * self.height_px / self.focal_px)))
+
+    def axes(self) -> np.ndarray:
+        """``3 x 3`` matrix whose columns are the view's right, down and forward rays in the
+        panorama frame (an OpenCV camera frame: maps camera vectors to panorama vectors)."""
+        yaw, pitch = np.radians(self.yaw_deg), np.radians(self.pitch_deg)
+        forward = geometry.angles_to_ray(yaw, pitch)
+        right = geometry.angles_to_ray(yaw + 0.5 * np.pi, 0.0)
+        return np.stack([right, np.cross(forward, right), forward], axis=1)
+
+    def pixel_to_ray(self, x_px, y_px) -> np.ndarray:
+        """Continuous view pixel(s) -> unit rays ``(..., 3)`` in the panorama frame."""
+        f = self.focal_px
+        cam = np.stack(np.broadcast_arrays((np.asarray(x_px, float) - 0.5 * self.width_px) / f,
+                                           (np.asarray(y_px, float) - 0.5 * self.height_px) / f,
+                                           1.0), axis=-1)
+        d = cam @ self.axes().T
+        return d / np.linalg.norm(d, axis=-1, keepdims=True)
+
+    def ray_to_pixel(self, d):
+        """Panorama-frame ray(s) -> continuous view pixel ``(x, y)`` and an in-front mask."""
+        cam = np.asarray(d, float) @ self.axes()
+        z = cam[..., 2]
+        zs = np.where(z > 0, z, np.nan)
+        f = self.focal_px
+        return 0.5 * self.width_px + f * cam[..., 0] / zs, 0.5 * self.height_px + f * cam[..., 1] / zs, z > 0
+
+    def centre_u_px(self, pano_width_px: int) -> float:
+        """Panorama column of the view's forward ray, in [0, W)."""
+        return float(np.mod((self.yaw_deg / 360.0 + 0.5) * pano_width_px, pano_width_px))
+
+    def remap_maps(self, pano_width_px: int, pano_height_px: int):
+        """``cv2.remap`` maps (fixed-point pair) cutting this view from a W x H panorama; cached."""
+        return _remap_maps(self, int(pano_width_px), int(pano_height_px))
+
+    def cut(self, pano: np.ndarray) -> np.ndarray:
+        """The view's image from a panorama array (no reduction; see :meth:`ViewSet.cut_all`)."""
+        import cv2
+
+        m1, m2 = self.remap_maps(pano.shape[1], pano.shape[0])
+        # BORDER_WRAP joins the columns across the +-180 deg seam; rows never leave the image
+        # (map_y is clamped), so wrapping never joins top and bottom.
+        return cv2.remap(pano, m1, m2, cv2.INTER_LINEAR, borderMode=cv2.BORDER_WRAP)
+
+    def boxes_to_pano(self, boxes_xyxy, pano_width_px: int, pano_height_px: int) -> np.ndarray:
+        """View boxes ``(n, 4)`` x0, y0, x1, y1 -> panorama boxes ``(n, 4)`` u0, v0, u1, v1.
+
+        The contract's form: u0 in [0, W) and u1 > u0, unwrapped past W for a box across
+        the +-180 deg seam. A box holding the zenith (nadir) spans all columns and reaches
+        row 0 (row H).
+        """
+        b = np.asarray(boxes_xyxy, float).reshape(-1, 4)
+        W, H = pano_width_px, pano_height_px
+        t = np.linspace(0.0, 1.0, BOX_EDGE_SAMPLES)
+        x0, y0, x1, y1 = (b[:, k:k + 1] for k in range(4))
+        xs = np.concatenate([x0 + t * (x1 - x0), np.broadcast_to(x1, (len(b), t.size)),
+                             x1 + t * (x0 - x1), np.broadcast_to(x0, (len(b), t.size))], axis=1)
+        ys = np.concatenate([np.broadcast_to(y0, (len(b), t.size)), y0 + t * (y1 - y0),
+                             np.broadcast_to(y1, (len(b), t.size)), y1 + t * (y0 - y1)], axis=1)
+        u, v = geometry.ray_to_pixel(self.pixel_to_ray(xs, ys), W, H)
+        # Unwrap the columns around the view's centre column: a view sees less than 180 deg
+        # either side of it, so this makes the boundary continuous.
+        uc = self.centre_u_px(W)
+        u = uc + np.mod(u - uc + 0.5 * W, W) - 0.5 * W
+        out = np.stack([u.min(axis=1), v.min(axis=1), u.max(axis=1), v.max(axis=1)], axis=1)
+        shift = np.floor(out[:, 0] / W) * W
+        out[:, 0] -= shift
+        out[:, 2] -= shift
+        for pole, row in ((np.array([0.0, 0.0, -1.0]), 0.0), (np.array([0.0, 0.0, 1.0]), float(H))):
+            px, py, front = self.ray_to_pixel(pole)
+            if front:
+                inside = (b[:, 0] <= px) & (px <= b[:, 2]) & (b[:, 1] <= py) & (py <= b[:, 3])
+                out[inside, 0], out[inside, 2] = 0.0, float(W)
+                out[inside, 1 if row == 0.0 else 3] = row
+        return out
+
+    def centrality(self, boxes_xyxy) -> np.ndarray:
+        """1 at the view's centre, 0 at the middle of its left/right edge (angle of the box
+        centre's ray off the forward axis over hfov/2; negative in the corners)."""
+        b = np.asarray(boxes_xyxy, float).reshape(-1, 4)
+        d = self.pixel_to_ray(0.5 * (b[:, 0] + b[:, 2]), 0.5 * (b[:, 1] + b[:, 3]))
+        off = np.degrees(np.arccos(np.clip(d @ self.axes()[:, 2], -1.0, 1.0)))
+        return 1.0 - off / (0.5 * self.hfov_deg)
+
+    def touches_edge(self, boxes_xyxy, margin_px: float = None) -> np.ndarray:
+        """Boxes within ``margin_px`` (default 1 % of the view size, at least 2) of the border:
+        likely cut by the view edge."""
+        b = np.asarray(boxes_xyxy, float).reshape(-1, 4)
+        m = max(2.0, 0.01 * max(self.width_px, self.height_px)) if margin_px is None else margin_px
+        return ((b[:, 0] <= m) | (b[:, 1] <= m)
+                | (b[:, 2] >= self.width_px - m) | (b[:, 3] >= self.height_px - m))
+
+    def max_density_px_per_rad(self) -> float:
+        """Highest sampling density of the view along its horizontal (at its left/right edge)."""
+        return self.focal_px / np.cos(np.radians(0.5 * self.hfov_deg)) ** 2
+
+
+@functools.lru_cache(maxsize=48)
+def _remap_maps(view: PerspectiveView, W: int, H: int):
+    import cv2
+
+    ys, xs = np.mgrid[0:view.height_px, 0:view.width_px].astype(float) + 0.5
+    u, v = geometry.ray_to_pixel(view.pixel_to_ray(xs, ys), W, H)
+    map_x = (u - 0.5).astype(np.float32)  # cv2 samples pixel centres at integer coordinates
+    map_y = np.clip(v - 0.5, 0.0, H - 1.0).astype(np.float32)
+    return cv2.convertMaps(map_x, map_y, cv2.CV_16SC2)
+
+
+@dataclass(frozen=True)
+class ViewSet:
+    """The perspective views a panorama is cut into (hashable: cached maps key on it)."""
+
+    views: tuple = field(default_factory=tuple)
+
+    @classmethod
+    def ring(cls, n_views: int = 8, pitch_deg: float = 0.0, hfov_deg: float = 80.0,
+             size_px=640, first_yaw_deg: float = 0.0) -> "ViewSet":
+        """``n_views`` views at equal yaw steps from ``first_yaw_deg`` (0 = forward), one pitch.
+
+        ``size_px``: an int (square) or ``(width, height)``.
+        """
+        w, h = (size_px, size_px) if np.isscalar(size_px) else size_px
+        return cls(tuple(PerspectiveView(float(first_yaw_deg + k * 360.0 / n_views), float(pitch_deg),
+                                         float(hfov_deg), int(w), int(h)) for k in range(n_views)))
+
+    @classmethod
+    def default(cls, size_px=640, upward: bool = True) -> "ViewSet":
+        """Horizon ring: 8 views of 80 deg (35 deg overlap, elevations -40..+40 deg at their
+        centres, about +-33 deg at their edges); upward ring for overhead and gantry signs:
+        6 views of 90 deg at pitch +35 deg (elevations -10..+80 deg at their centres)."""
+        views = cls.ring(8, 0.0, 80.0, size_px)
+        return views + cls.ring(6, 35.0, 90.0, size_px) if upward else views
+
+    def __add__(self, other: "ViewSet") -> "ViewSet":
+        return ViewSet(self.views + other.views)
+
+    def __len__(self) -> int:
+        return len(self.views)
+
+    def __iter__(self):
+        return iter(self.views)
+
+    def __getitem__(self, index: int) -> PerspectiveView:
+        return self.views[index]
+
+    def working_width(self, pano_width_px: int) -> int:
+        """Width the panorama is reduced to before cutting, so views of 8K panoramas are not
+        aliased: W / k for the largest whole k that keeps at least the densest view's
+        sampling (INTER_AREA by a whole factor is fast); W when k = 1."""
+        need = 2.0 * np.pi * max(v.max_density_px_per_rad() for v in self.views)
+        k = int(pano_width_px // need)
+        return int(pano_width_px) if k < 2 else int(pano_width_px) // k
+
+    def prepare(self, pano: np.ndarray) -> np.ndarray:
+        """The panorama as the views are cut from it (see :meth:`working_width`).
+
+        Boxes map to the panorama by angles, so they come back in the original pixels
+        whatever the reduction: pass the original W, H to :meth:`PerspectiveView.boxes_to_pano`.
+        """
+        import cv2
+
+        W, H = pano.shape[1], pano.shape[0]
+        w = self.working_width(W)
+        if w == W:
+            return pano
+        return cv2.resize(pano, (w, max(1, round(w * H / W))), interpolation=cv2.INTER_AREA)
+
+    def cut_all(self, pano: np.ndarray):
+        """Every view's image, in order (a generator; prepares the panorama once)."""
+        work = self.prepare(pano)
+        for view in self.views:
+            yield view.cut(work)

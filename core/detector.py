@@ -1,0 +1,559 @@
+"""Sign detection with an ONNX model (onnxruntime), on images and on whole panoramas.
+
+Models: YOLO-family detectors as Ultralytics, YOLOv5/v7 and NMS-exporting tools write
+them. Input: one ``[batch, 3, h, w]`` float tensor, RGB in 0..1, letterboxed (aspect
+kept, grey 114 padding, centred). Output: the first output, one of the layouts in
+:data:`LAYOUTS` (``nc`` = number of class names, ``N`` = number of candidates)::
+
+    yolov8  [1, 4+nc, N]  cx, cy, w, h, nc class scores (YOLOv8/11, no objectness)
+    yolov5  [1, N, 5+nc]  cx, cy, w, h, objectness, nc class probabilities (YOLOv5/7);
+                          score = objectness x class probability
+    nms     [1, N, 6]     x1, y1, x2, y2, score, class id (NMS built in, or an NMS-free
+                          head such as YOLOv10/YOLO26 end-to-end)
+
+Box coordinates are in model-input pixels. The layout is chosen by which axis fits
+``nc``; when two fit: the longer axis is the candidate axis (yolov8 against the others),
+and ``[1, N, 6]`` with a single class (yolov5 with nc = 1 has 5+nc = 6 too) is read as
+yolov5 only when N is a YOLOv5 anchor-grid count for the input size (3 anchors on strides
+8/16/32, or 8/16/32/64), else as nms. ``layout=`` overrides the choice.
+
+Class names, first found: names the caller gives; the model's metadata ``names``
+(Ultralytics writes a Python dict literal ``{0: 'warning', ...}``; a list works too);
+a labels file beside the model, ``<model stem>.labels.txt``, ``<model file>.labels.txt``
+or ``labels.txt`` (one name per line).
+
+Images are numpy ``H x W x 3`` uint8 arrays in OpenCV's BGR order (as
+:func:`core.panorama.read_panorama` returns them); boxes come back in their pixels
+(continuous coordinates, the image spans ``[0, W] x [0, H]``).
+"""
+from __future__ import annotations
+
+import ast
+import json
+import os
+from dataclasses import dataclass
+from typing import List, Optional, Sequence, Tuple
+
+import numpy as np
+
+from .errors import SILENT, InputError, Progress
+from .panorama import ViewSet
+
+#: Output layouts this module decodes, as named in messages.
+LAYOUTS = {
+    "yolov8": "YOLOv8/11 [1, 4+nc, N]",
+    "yolov5": "YOLOv5/7 [1, N, 5+nc]",
+    "nms": "NMS built in [1, N, 6] (x1, y1, x2, y2, score, class)",
+}
+
+#: Execution providers used when onnxruntime offers them, best first.
+PREFERRED_PROVIDERS = ("CUDAExecutionProvider", "DmlExecutionProvider",
+                       "CoreMLExecutionProvider", "CPUExecutionProvider")
+
+DEFAULT_INPUT_PX = 640
+LETTERBOX_FILL = 114
+MAX_DETECTIONS_PER_IMAGE = 300
+MAX_BATCH = 8
+
+
+@dataclass
+class ImageDetections:
+    """Detections in one image: ``boxes_xyxy`` (n, 4) float in image pixels, ``scores`` (n,)
+    float, ``class_ids`` (n,) int."""
+
+    boxes_xyxy: np.ndarray
+    scores: np.ndarray
+    class_ids: np.ndarray
+
+    @classmethod
+    def empty(cls) -> "ImageDetections":
+        return cls(np.zeros((0, 4)), np.zeros(0), np.zeros(0, dtype=np.int64))
+
+    def __len__(self) -> int:
+        return len(self.scores)
+
+
+@dataclass
+class ModelInfo:
+    """What the adapter logs about a model."""
+
+    path: str
+    input_width_px: int
+    input_height_px: int
+    class_names: List[str]
+    names_source: str  # "caller", "metadata" or the labels file's path
+    layout: str
+    output_shape: Tuple[int, ...]
+    providers: List[str]
+
+    def describe(self) -> str:
+        return (f"{os.path.basename(self.path)}: {LAYOUTS[self.layout]}, output "
+                f"{list(self.output_shape)}, input {self.input_width_px} x {self.input_height_px} px, "
+                f"{len(self.class_names)} classes ({', '.join(self.class_names)}) from "
+                f"{self.names_source}, providers {', '.join(self.providers)}")
+
+
+# --- class names ------------------------------------------------------------------------
+
+def parse_names(text: str) -> Optional[List[str]]:
+    """Class names from a metadata string: a dict ``{0: 'a', 1: 'b'}`` (Ultralytics) or a
+    list, as a Python or JSON literal. ``None`` when it is neither."""
+    value = None
+    for parse in (ast.literal_eval, json.loads):  # literal_eval evaluates literals only
+        try:
+            value = parse(text)
+            break
+        except (ValueError, SyntaxError, TypeError, MemoryError, RecursionError):
+            continue
+    if isinstance(value, dict):
+        try:
+            ids = {int(k): str(v) for k, v in value.items()}
+        except (TypeError, ValueError):
+            return None
+        if not ids or min(ids) < 0:
+            return None
+        return [ids.get(k, f"class_{k}") for k in range(max(ids) + 1)]
+    if isinstance(value, (list, tuple)) and value:
+        return [str(v) for v in value]
+    return None
+
+
+def read_labels_file(path: str) -> List[str]:
+    """One class name per line; blank lines are skipped."""
+    try:
+        with open(path, encoding="utf-8-sig") as f:
+            names = [line.strip() for line in f if line.strip()]
+    except (OSError, UnicodeDecodeError) as e:
+        raise InputError("Cannot read the labels file {path}: {error}", path=path, error=str(e))
+    if not names:
+        raise InputError("The labels file {path} holds no class names (one name per line)", path=path)
+    return names
+
+
+def labels_file_candidates(model_path: str) -> List[str]:
+    stem, _ = os.path.splitext(model_path)
+    return [stem + ".labels.txt", model_path + ".labels.txt",
+            os.path.join(os.path.dirname(model_path), "labels.txt")]
+
+
+# --- layouts and decoders ---------------------------------------------------------------
+
+def yolov5_anchor_counts(input_w: int, input_h: int) -> set:
+    """Candidate counts of YOLOv5/7 dense heads (3 anchors a cell) for an input size."""
+    def cells(strides):
+        return 3 * sum(-(-input_w // s) * -(-input_h // s) for s in strides)
+    return {cells((8, 16, 32)), cells((8, 16, 32, 64))}
+
+
+def choose_layout(shape: Sequence[int], n_classes: int, input_w: int, input_h: int,
+                  model_path: str = "") -> str:
+    """The layout of an output of ``shape`` for ``n_classes`` (rules in the module doc)."""
+    shape = tuple(int(s) for s in shape)
+    fits = []
+    if len(shape) == 3:
+        a, b = shape[1], shape[2]
+        if a == 4 + n_classes:
+            fits.append("yolov8")
+        if b == 5 + n_classes:
+            fits.append("yolov5")
+        if b == 6:
+            fits.append("nms")
+        if "yolov8" in fits and len(fits) > 1:
+            fits = ["yolov8"] if b > a else [f for f in fits if f != "yolov8"]
+        if fits == ["yolov5", "nms"]:
+            fits = ["yolov5"] if a in yolov5_anchor_counts(input_w, input_h) else ["nms"]
+    if not fits:
+        raise InputError(
+            "The model {path} has an output of shape {shape}, which is no layout this plugin "
+            "decodes for {n_classes} class names; supported: {supported}",
+            path=model_path, shape=list(shape), n_classes=n_classes,
+            supported="; ".join(LAYOUTS.values()))
+    return fits[0]
+
+
+def check_layout(layout: str, shape: Sequence[int], n_classes: int, model_path: str = "") -> None:
+    """Raise :class:`InputError` unless ``shape`` fits the forced ``layout``."""
+    shape = tuple(int(s) for s in shape)
+    want = {"yolov8": (1, 4 + n_classes), "yolov5": (2, 5 + n_classes), "nms": (2, 6)}
+    if layout not in want:
+        raise InputError("Unknown output layout {layout}: use one of {layouts}",
+                         layout=layout, layouts=", ".join(LAYOUTS))
+    axis, size = want[layout]
+    if len(shape) != 3 or shape[axis] != size:
+        raise InputError("The model {path} has an output of shape {shape}, which does not fit "
+                         "the layout {layout} with {n_classes} class names",
+                         path=model_path, shape=list(shape), layout=LAYOUTS[layout],
+                         n_classes=n_classes)
+
+
+def _xywh_to_xyxy(b: np.ndarray) -> np.ndarray:
+    half = 0.5 * b[:, 2:4]
+    return np.concatenate([b[:, :2] - half, b[:, :2] + half], axis=1)
+
+
+def decode(layout: str, output: np.ndarray, confidence: float):
+    """One image's raw output (the batch row, 2-D) -> boxes xyxy, scores, class ids above
+    ``confidence``, in model-input pixels, before NMS."""
+    out = np.asarray(output, dtype=np.float32)
+    if layout == "yolov8":
+        out = out.T  # [N, 4+nc]
+        cls_scores = out[:, 4:]
+        class_ids = cls_scores.argmax(axis=1)
+        scores = cls_scores[np.arange(len(out)), class_ids]
+        keep = scores > confidence
+        return _xywh_to_xyxy(out[keep, :4]), scores[keep], class_ids[keep]
+    if layout == "yolov5":
+        out = out[out[:, 4] > confidence]
+        cls_probs = out[:, 5:]
+        class_ids = cls_probs.argmax(axis=1)
+        scores = out[:, 4] * cls_probs[np.arange(len(out)), class_ids]
+        keep = scores > confidence
+        return _xywh_to_xyxy(out[keep, :4]), scores[keep], class_ids[keep]
+    if layout == "nms":
+        out = out[out[:, 4] > confidence]
+        return out[:, :4].copy(), out[:, 4], np.rint(out[:, 5]).astype(np.int64)
+    raise ValueError(layout)
+
+
+def nms_per_class(boxes_xyxy: np.ndarray, scores: np.ndarray, class_ids: np.ndarray,
+                  iou_threshold: float, max_detections: int = MAX_DETECTIONS_PER_IMAGE) -> np.ndarray:
+    """Indices kept by per-class non-maximum suppression, best score first."""
+    import cv2
+
+    if len(scores) == 0:
+        return np.zeros(0, dtype=np.int64)
+    xywh = np.concatenate([boxes_xyxy[:, :2], boxes_xyxy[:, 2:] - boxes_xyxy[:, :2]], axis=1)
+    keep = cv2.dnn.NMSBoxesBatched(xywh.astype(np.float64), scores.astype(np.float32),
+                                   class_ids.astype(np.int32), 0.0, float(iou_threshold))
+    keep = np.asarray(keep, dtype=np.int64).reshape(-1)
+    keep = keep[np.argsort(-scores[keep], kind="stable")]
+    return keep[:max_detections]
+
+
+# --- letterbox --------------------------------------------------------------------------
+
+def letterbox(image: np.ndarray, input_w: int, input_h: int):
+    """Resize keeping the aspect and pad centred with grey 114 (Ultralytics' letterbox).
+
+    Returns the padded image and ``(scale, pad_x, pad_y)``: input pixel = image pixel x
+    scale + pad.
+    """
+    import cv2
+
+    h, w = image.shape[:2]
+    scale = min(input_w / w, input_h / h)
+    new_w, new_h = int(round(w * scale)), int(round(h * scale))
+    if (new_w, new_h) != (w, h):
+        image = cv2.resize(image, (new_w, new_h), interpolation=cv2.INTER_LINEAR)
+    dw, dh = (input_w - new_w) / 2.0, (input_h - new_h) / 2.0
+    top, left = int(round(dh - 0.1)), int(round(dw - 0.1))
+    if (new_w, new_h) != (input_w, input_h):
+        image = cv2.copyMakeBorder(image, top, input_h - new_h - top, left, input_w - new_w - left,
+                                   cv2.BORDER_CONSTANT, value=(LETTERBOX_FILL,) * 3)
+    return image, (scale, float(left), float(top))
+
+
+def unletterbox(boxes_xyxy: np.ndarray, transform, image_w: int, image_h: int) -> np.ndarray:
+    """Model-input boxes back to image pixels, clipped to the image."""
+    scale, pad_x, pad_y = transform
+    b = (boxes_xyxy - np.array([pad_x, pad_y, pad_x, pad_y])) / scale
+    return np.clip(b, 0.0, [image_w, image_h, image_w, image_h])
+
+
+# --- the detector -----------------------------------------------------------------------
+
+def choose_providers(available: Sequence[str]) -> List[str]:
+    """The preferred execution providers onnxruntime offers, in :data:`PREFERRED_PROVIDERS` order."""
+    chosen = [p for p in PREFERRED_PROVIDERS if p in available]
+    return chosen or list(available)
+
+
+def open_session(model_path: str, threads: int = 0, providers: Optional[Sequence[str]] = None):
+    """An onnxruntime session; :class:`InputError` naming the file when it is missing or
+    not a model onnxruntime loads."""
+    import onnxruntime as ort
+
+    if not os.path.isfile(model_path):
+        raise InputError("Model not found: {path}", path=model_path)
+    options = ort.SessionOptions()
+    options.intra_op_num_threads = int(threads)
+    options.log_severity_level = 3
+    try:
+        return ort.InferenceSession(
+            model_path, sess_options=options,
+            providers=list(providers) if providers else choose_providers(ort.get_available_providers()))
+    except Exception as e:  # onnxruntime raises its own pybind types (InvalidProtobuf, Fail, ...)
+        error = (str(e).strip().splitlines() or [type(e).__name__])[0]
+        raise InputError("{path} is not an ONNX model onnxruntime can load: {error}",
+                         path=model_path, error=error)
+
+
+class Detector:
+    """An ONNX detection model in an onnxruntime session.
+
+    ``class_names``: override the names from the model and labels files; ``layout``: force
+    ``"yolov8"``, ``"yolov5"`` or ``"nms"``; ``threads``: onnxruntime intra-op threads (0 =
+    its default); ``providers``: override the execution providers; ``input_size_px``: used
+    when the model's input size is dynamic (else the metadata ``imgsz``, else 640);
+    ``max_batch``: images a run when the model's batch is dynamic (default: 8 on an
+    accelerator, 1 on the CPU).
+    :class:`InputError` for a missing or non-ONNX file, a non-detection model, missing class
+    names or an output layout not decoded.
+    """
+
+    def __init__(self, model_path: str, class_names: Optional[Sequence[str]] = None,
+                 layout: Optional[str] = None, threads: int = 0,
+                 providers: Optional[Sequence[str]] = None, input_size_px: Optional[int] = None,
+                 max_batch: Optional[int] = None):
+        self.model_path = model_path
+        self.session = open_session(model_path, threads, providers)
+        meta = self.session.get_modelmeta().custom_metadata_map or {}
+        task = meta.get("task")
+        if task and task != "detect":
+            raise InputError("The model {path} is a {task} model; sign detection needs a "
+                             "detection model", path=model_path, task=task)
+        self.class_names, self.names_source = self._find_names(class_names, meta)
+
+        inp = self.session.get_inputs()[0]
+        if len(inp.shape) != 4:
+            raise InputError("The model {path} takes an input of shape {shape}; an image model "
+                             "takes [batch, 3, height, width]", path=model_path, shape=list(inp.shape))
+        self.input_name = inp.name
+        self.input_dtype = np.float16 if inp.type == "tensor(float16)" else np.float32
+        self.input_w, self.input_h = self._input_size(inp.shape, meta, input_size_px)
+        if isinstance(inp.shape[0], int) and inp.shape[0] > 1:
+            raise InputError("The model {path} has a fixed batch of {batch}; use a batch of 1 or "
+                             "a dynamic batch", path=model_path, batch=inp.shape[0])
+        if isinstance(inp.shape[0], int):
+            self.max_batch = 1
+        elif max_batch:
+            self.max_batch = int(max_batch)
+        else:  # batches pay on an accelerator; on the CPU they only cost memory
+            on_cpu = self.session.get_providers()[0] == "CPUExecutionProvider"
+            self.max_batch = 1 if on_cpu else MAX_BATCH
+
+        # The declared output shape may be symbolic: run one blank image to see the real one,
+        # so a layout we do not decode fails here and not on the first panorama.
+        blank = np.zeros((1, 3, self.input_h, self.input_w), dtype=self.input_dtype)
+        try:
+            out = self.session.run(None, {self.input_name: blank})[0]
+        except Exception as e:
+            raise InputError("The model {path} failed on a blank {w} x {h} image: {error}",
+                             path=model_path, w=self.input_w, h=self.input_h, error=str(e))
+        self.output_shape = tuple(int(s) for s in out.shape)
+        if layout:
+            check_layout(layout, self.output_shape, len(self.class_names), model_path)
+            self.layout = layout
+        else:
+            self.layout = choose_layout(self.output_shape, len(self.class_names),
+                                        self.input_w, self.input_h, model_path)
+
+    def _find_names(self, class_names, meta):
+        if class_names:
+            return [str(n) for n in class_names], "caller"
+        names = parse_names(meta["names"]) if "names" in meta else None
+        if names:
+            return names, "metadata"
+        for path in labels_file_candidates(self.model_path):
+            if os.path.isfile(path):
+                return read_labels_file(path), path
+        raise InputError("The model {path} names no classes: its metadata has no readable "
+                         "'names' and there is no labels file ({labels}, one class name per line)",
+                         path=self.model_path,
+                         labels=" or ".join(map(os.path.basename, labels_file_candidates(self.model_path))))
+
+    @staticmethod
+    def _input_size(shape, meta, input_size_px):
+        h, w = shape[2], shape[3]
+        if isinstance(h, int) and isinstance(w, int) and h > 0 and w > 0:
+            return w, h
+        if input_size_px:
+            return int(input_size_px), int(input_size_px)
+        imgsz = parse_names(meta["imgsz"]) if "imgsz" in meta else None  # "[640, 640]": h, w
+        if imgsz and len(imgsz) == 2 and all(s.isdigit() for s in imgsz):
+            return int(imgsz[1]), int(imgsz[0])
+        return DEFAULT_INPUT_PX, DEFAULT_INPUT_PX
+
+    @property
+    def input_size(self) -> Tuple[int, int]:
+        """``(width_px, height_px)`` of the model input: the natural size of the views."""
+        return self.input_w, self.input_h
+
+    def info(self) -> ModelInfo:
+        return ModelInfo(self.model_path, self.input_w, self.input_h, list(self.class_names),
+                         self.names_source, self.layout, self.output_shape,
+                         list(self.session.get_providers()))
+
+    def run_raw(self, images: Sequence[np.ndarray]):
+        """Letterbox and infer a batch; returns the raw output rows and the transforms."""
+        import cv2
+
+        boxed = [letterbox(image, self.input_w, self.input_h) for image in images]
+        # BGR HWC uint8 -> RGB NCHW float in 0..1
+        blob = cv2.dnn.blobFromImages([b for b, _ in boxed], 1.0 / 255.0, swapRB=True)
+        if blob.dtype != self.input_dtype:
+            blob = blob.astype(self.input_dtype)
+        return self.session.run(None, {self.input_name: blob})[0], [t for _, t in boxed]
+
+    def detect_many(self, images: Sequence[np.ndarray], confidence: float = 0.25,
+                    iou_threshold: float = 0.45) -> List[ImageDetections]:
+        """Detections in each image (batched when the model's batch is dynamic)."""
+        results = []
+        for start in range(0, len(images), self.max_batch):
+            chunk = images[start:start + self.max_batch]
+            output, transforms = self.run_raw(chunk)
+            for image, row, transform in zip(chunk, output, transforms):
+                results.append(self._postprocess(row, transform, image.shape[1], image.shape[0],
+                                                 confidence, iou_threshold))
+        return results
+
+    def detect(self, image: np.ndarray, confidence: float = 0.25,
+               iou_threshold: float = 0.45) -> ImageDetections:
+        return self.detect_many([image], confidence, iou_threshold)[0]
+
+    def _postprocess(self, row, transform, image_w, image_h, confidence, iou_threshold):
+        boxes, scores, class_ids = decode(self.layout, row, confidence)
+        valid = (class_ids >= 0) & (class_ids < len(self.class_names))
+        boxes, scores, class_ids = boxes[valid], scores[valid], class_ids[valid]
+        boxes = unletterbox(boxes, transform, image_w, image_h)
+        nonempty = (boxes[:, 2] > boxes[:, 0]) & (boxes[:, 3] > boxes[:, 1])
+        boxes, scores, class_ids = boxes[nonempty], scores[nonempty], class_ids[nonempty]
+        keep = nms_per_class(boxes, scores, class_ids, iou_threshold)
+        return ImageDetections(boxes[keep].astype(float), scores[keep].astype(float),
+                               class_ids[keep].astype(np.int64))
+
+
+def model_info(model_path: str, class_names: Optional[Sequence[str]] = None, **kwargs) -> ModelInfo:
+    """Load a model as :class:`Detector` does (same errors) and describe it."""
+    return Detector(model_path, class_names, **kwargs).info()
+
+
+# --- panoramas --------------------------------------------------------------------------
+
+@dataclass
+class PanoramaDetections:
+    """Signs found in one panorama, one row each (after merging across views).
+
+    ``u0, v0, u1, v1``: panorama pixels, the contract's form (u0 in [0, W), u1 > u0,
+    past W across the +-180 deg seam). ``view_index``: the view the box comes from;
+    ``n_views``: how many view detections were merged into it.
+    """
+
+    class_id: np.ndarray
+    class_name: List[str]
+    score: np.ndarray
+    u0: np.ndarray
+    v0: np.ndarray
+    u1: np.ndarray
+    v1: np.ndarray
+    view_index: np.ndarray
+    n_views: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.score)
+
+    def boxes(self) -> np.ndarray:
+        return np.stack([self.u0, self.v0, self.u1, self.v1], axis=1).reshape(-1, 4)
+
+
+def seam_aware_overlap(box: np.ndarray, boxes: np.ndarray, pano_width_px: float) -> np.ndarray:
+    """Intersection over the smaller area of ``box`` with each of ``boxes`` (u0, v0, u1, v1),
+    comparing columns modulo W (a box is also tried shifted by -W and +W)."""
+    ih = np.clip(np.minimum(box[3], boxes[:, 3]) - np.maximum(box[1], boxes[:, 1]), 0, None)
+    iw = np.zeros(len(boxes))
+    for shift in (-pano_width_px, 0.0, pano_width_px):
+        iw = np.maximum(iw, np.clip(np.minimum(box[2] + shift, boxes[:, 2])
+                                    - np.maximum(box[0] + shift, boxes[:, 0]), 0, None))
+    area = (box[2] - box[0]) * (box[3] - box[1])
+    areas = (boxes[:, 2] - boxes[:, 0]) * (boxes[:, 3] - boxes[:, 1])
+    return iw * ih / np.maximum(np.minimum(area, areas), 1e-9)
+
+
+def _union_box(kept: np.ndarray, other: np.ndarray, pano_width_px: float) -> np.ndarray:
+    """Union of two overlapping boxes, ``other`` shifted by a whole W to sit next to ``kept``."""
+    shift = np.round(((kept[0] + kept[2]) - (other[0] + other[2])) / (2 * pano_width_px)) * pano_width_px
+    return np.array([min(kept[0], other[0] + shift), min(kept[1], other[1]),
+                     max(kept[2], other[2] + shift), max(kept[3], other[3])])
+
+
+def merge_view_detections(boxes: np.ndarray, scores: np.ndarray, class_ids: np.ndarray,
+                          complete: np.ndarray, centrality: np.ndarray, pano_width_px: int,
+                          overlap_threshold: float = 0.5):
+    """Merge the same sign seen in overlapping views.
+
+    Candidates are ranked complete (not touching a view edge) first, then by score, then by
+    centrality; each is kept unless it overlaps a kept one of the same class by at least
+    ``overlap_threshold`` (intersection over the smaller box, seam-aware: a cut box lies
+    inside the complete one). A kept box that is itself cut grows to the union with the cut
+    boxes merged into it. Returns (kept indices, merged boxes, merge counts).
+    """
+    order = np.lexsort((-centrality, -scores, ~complete.astype(bool)))
+    kept, kept_boxes, counts = [], [], []
+    for i in order:
+        match = -1
+        same = [k for k, j in enumerate(kept) if class_ids[j] == class_ids[i]]
+        if same:
+            overlaps = seam_aware_overlap(boxes[i], np.array([kept_boxes[k] for k in same]), pano_width_px)
+            best = int(np.argmax(overlaps))
+            if overlaps[best] >= overlap_threshold:
+                match = same[best]
+        if match < 0:
+            kept.append(i)
+            kept_boxes.append(boxes[i].astype(float))
+            counts.append(1)
+            continue
+        counts[match] += 1
+        if not complete[kept[match]] and not complete[i]:
+            kept_boxes[match] = _union_box(kept_boxes[match], boxes[i], pano_width_px)
+    out = np.array(kept_boxes).reshape(-1, 4)
+    if len(out):  # the contract: u0 in [0, W)
+        shift = np.floor(out[:, 0] / pano_width_px) * pano_width_px
+        out[:, 0] -= shift
+        out[:, 2] -= shift
+    return np.array(kept, dtype=np.int64), out, np.array(counts, dtype=np.int64)
+
+
+def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: float = 0.25,
+                    iou_threshold: float = 0.45, overlap_threshold: float = 0.5,
+                    progress: Progress = SILENT) -> PanoramaDetections:
+    """Run ``detector`` on each view of ``pano`` (BGR array) and merge the results.
+
+    ``detector``: a :class:`Detector`, or any object with ``class_names`` and
+    ``detect(image, confidence, iou_threshold) -> ImageDetections`` (``detect_many`` is
+    used when present, to batch views). Boxes are mapped to panorama pixels through each
+    view and merged by :func:`merge_view_detections`.
+    """
+    H, W = pano.shape[:2]
+    work = views.prepare(pano)
+    batch = max(1, int(getattr(detector, "max_batch", 1)))
+    all_boxes, all_scores, all_ids, all_views, all_complete, all_central = [], [], [], [], [], []
+    for start in range(0, len(views), batch):
+        chunk = list(range(start, min(start + batch, len(views))))
+        images = [views[k].cut(work) for k in chunk]
+        if hasattr(detector, "detect_many"):
+            found = detector.detect_many(images, confidence, iou_threshold)
+        else:
+            found = [detector.detect(image, confidence, iou_threshold) for image in images]
+        for k, det in zip(chunk, found):
+            if len(det) == 0:
+                continue
+            view = views[k]
+            all_boxes.append(view.boxes_to_pano(det.boxes_xyxy, W, H))
+            all_scores.append(np.asarray(det.scores, float))
+            all_ids.append(np.asarray(det.class_ids, np.int64))
+            all_views.append(np.full(len(det), k, dtype=np.int64))
+            all_complete.append(~view.touches_edge(det.boxes_xyxy))
+            all_central.append(view.centrality(det.boxes_xyxy))
+        progress.report((chunk[-1] + 1) / len(views))
+    if not all_boxes:
+        z = np.zeros(0)
+        return PanoramaDetections(np.zeros(0, np.int64), [], z, z, z, z, z,
+                                  np.zeros(0, np.int64), np.zeros(0, np.int64))
+    scores, ids = np.concatenate(all_scores), np.concatenate(all_ids)
+    kept, boxes, counts = merge_view_detections(
+        np.concatenate(all_boxes), scores, ids, np.concatenate(all_complete),
+        np.concatenate(all_central), W, overlap_threshold)
+    names = list(detector.class_names)
+    return PanoramaDetections(ids[kept], [names[c] for c in ids[kept]], scores[kept],
+                              boxes[:, 0], boxes[:, 1], boxes[:, 2], boxes[:, 3],
+                              np.concatenate(all_views)[kept], counts)

@@ -1,0 +1,231 @@
+"""The ONNX detector: decoders on tiny models built here with onnx.helper, letterboxing,
+NMS, class names, errors; merging across views and a sign across the +-180 deg seam.
+
+The tiny models (``helpers.tinyonnx``) output a constant tensor: the decoders see exactly
+the candidates written here.
+"""
+import cv2
+import numpy as np
+import pytest
+
+from helpers.synthpano import disc_pano_box, paint_discs
+from helpers.tinyonnx import make_model
+from roadsigns.core import detector as det
+from roadsigns.core.detector import Detector, ImageDetections, detect_panorama, merge_view_detections
+from roadsigns.core.errors import InputError
+from roadsigns.core.panorama import ViewSet
+
+NAMES2 = "{0: 'warning', 1: 'stop'}"  # as Ultralytics writes metadata
+
+
+def v8_output(rows):
+    """Candidates (cx, cy, w, h, score_0, ..., score_nc-1) -> [1, 4+nc, N]."""
+    return np.asarray(rows, np.float32).T[None]
+
+
+V8_ROWS = [[20, 20, 10, 10, 0.9, 0.1],    # warning
+           [21, 20, 10, 10, 0.8, 0.05],   # duplicate of the first: removed by NMS
+           [40, 30, 8, 12, 0.1, 0.7],     # stop
+           [50, 50, 6, 6, 0.1, 0.2],      # below the confidence
+           [20, 20, 10, 10, 0.1, 0.6]]    # same box, other class: kept (per-class NMS)
+
+
+def xyxy(cx, cy, w, h):
+    return [cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2]
+
+
+def image(w=64, h=64):
+    return np.zeros((h, w, 3), np.uint8)
+
+
+def test_yolov8_layout(tmp_path):
+    d = Detector(make_model(tmp_path / "v8.onnx", v8_output(V8_ROWS), meta={"names": NAMES2}))
+    assert (d.layout, d.class_names, d.names_source) == ("yolov8", ["warning", "stop"], "metadata")
+    assert d.input_size == (64, 64)
+    found = d.detect(image(), confidence=0.25)
+    assert found.scores.tolist() == pytest.approx([0.9, 0.7, 0.6])
+    assert found.class_ids.tolist() == [0, 1, 1]
+    assert found.boxes_xyxy == pytest.approx(np.array([xyxy(20, 20, 10, 10), xyxy(40, 30, 8, 12),
+                                                       xyxy(20, 20, 10, 10)]))
+    assert len(d.detect(image(), confidence=0.25, iou_threshold=0.99)) == 4  # no suppression
+
+
+def test_letterbox_is_undone_on_a_wide_image(tmp_path):
+    d = Detector(make_model(tmp_path / "v8.onnx", v8_output(V8_ROWS), meta={"names": NAMES2}))
+    found = d.detect(image(128, 64))  # scale 0.5, 16 px of padding above and below
+    want = (np.array(xyxy(40, 30, 8, 12)) - [0, 16, 0, 16]) / 0.5
+    assert found.boxes_xyxy[1] == pytest.approx(want)
+    assert found.boxes_xyxy[0] == pytest.approx([30, 0, 50, 18])  # clipped at the top
+    boxed, transform = det.letterbox(np.full((64, 128, 3), 7, np.uint8), 64, 64)
+    assert boxed.shape == (64, 64, 3) and transform == (0.5, 0.0, 16.0)
+    assert (boxed[:16] == 114).all() and (boxed[16:48] == 7).all() and (boxed[48:] == 114).all()
+
+
+def test_yolov5_layout_score_is_objectness_times_class(tmp_path):
+    rows = np.zeros((20, 8), np.float32)  # nc = 3
+    rows[0] = [30, 30, 10, 20, 0.9, 0.1, 0.8, 0.1]
+    rows[1] = [10, 10, 4, 4, 0.2, 0.0, 0.0, 1.0]  # objectness below the confidence
+    d = Detector(make_model(tmp_path / "v5.onnx", rows[None]), class_names=["a", "b", "c"])
+    assert d.layout == "yolov5" and d.names_source == "caller"
+    found = d.detect(image())
+    assert found.class_ids.tolist() == [1] and found.scores.tolist() == pytest.approx([0.72])
+    assert found.boxes_xyxy[0] == pytest.approx(xyxy(30, 30, 10, 20))
+
+
+def test_nms_layout(tmp_path):
+    rows = [[5, 6, 25, 30, 0.95, 2], [40, 40, 50, 60, 0.5, 0], [0, 0, 1, 1, 0.1, 1]]
+    d = Detector(make_model(tmp_path / "nms.onnx", np.array(rows)[None]), class_names=["a", "b", "c"])
+    assert d.layout == "nms"
+    found = d.detect(image())
+    assert found.class_ids.tolist() == [2, 0] and found.scores.tolist() == pytest.approx([0.95, 0.5])
+    assert found.boxes_xyxy == pytest.approx(np.array([[5, 6, 25, 30], [40, 40, 50, 60]]))
+
+
+def test_one_class_n_by_6_is_yolov5_only_for_an_anchor_grid_count(tmp_path):
+    # 64 px input: 3 anchors x (8x8 + 4x4 + 2x2) = 252 candidates in a YOLOv5 head
+    assert det.yolov5_anchor_counts(64, 64) >= {252}
+    dense = np.zeros((252, 6), np.float32)
+    dense[7] = [32, 32, 10, 10, 0.9, 0.5]
+    d = Detector(make_model(tmp_path / "v5one.onnx", dense[None]), class_names=["sign"])
+    assert d.layout == "yolov5"
+    assert d.detect(image()).scores.tolist() == pytest.approx([0.45])
+    post = np.array([[10, 10, 30, 30, 0.8, 0]], np.float32)[None]
+    d = Detector(make_model(tmp_path / "nmsone.onnx", post), class_names=["sign"])
+    assert d.layout == "nms"
+    assert d.detect(image()).boxes_xyxy.tolist() == [[10, 10, 30, 30]]
+    post = np.array([[20, 20, 10, 10, 0.9, 1.0]], np.float32)[None]  # class 1 of 1: nothing as nms
+    assert len(Detector(make_model(tmp_path / "post.onnx", post), class_names=["sign"]).detect(image())) == 0
+    d = Detector(make_model(tmp_path / "post.onnx", post), class_names=["sign"], layout="yolov5")
+    assert d.layout == "yolov5"  # forced: read as cx, cy, w, h, objectness, class probability
+    assert d.detect(image()).boxes_xyxy.tolist() == [xyxy(20, 20, 10, 10)]
+
+
+def test_choose_layout_prefers_the_long_axis_as_candidates():
+    assert det.choose_layout([1, 6, 8400], 2, 640, 640) == "yolov8"
+    assert det.choose_layout([1, 84, 8400], 80, 640, 640) == "yolov8"
+    assert det.choose_layout([1, 7, 8], 3, 640, 640) == "yolov8"  # both fit: the longer axis is N
+    assert det.choose_layout([1, 300, 6], 2, 640, 640) == "nms"
+    assert det.choose_layout([1, 6, 6], 2, 640, 640) == "nms"
+    assert det.choose_layout([1, 25200, 85], 80, 640, 640) == "yolov5"
+    assert det.choose_layout([1, 25200, 6], 1, 640, 640) == "yolov5"
+    assert det.choose_layout([1, 300, 6], 1, 640, 640) == "nms"
+
+
+def test_unsupported_output_shape_is_named(tmp_path):
+    path = make_model(tmp_path / "odd.onnx", np.zeros((1, 9, 5)), meta={"names": NAMES2})
+    with pytest.raises(InputError) as e:
+        Detector(path)
+    message = str(e.value)
+    assert "[1, 9, 5]" in message and "odd.onnx" in message
+    assert all(layout in message for layout in ("[1, 4+nc, N]", "[1, N, 5+nc]", "[1, N, 6]"))
+    with pytest.raises(InputError, match="does not fit"):
+        Detector(make_model(tmp_path / "v8.onnx", v8_output(V8_ROWS), meta={"names": NAMES2}),
+                 layout="yolov5")
+
+
+def test_class_names_from_labels_files(tmp_path):
+    output = v8_output(V8_ROWS)
+    path = make_model(tmp_path / "signs.onnx", output)
+    (tmp_path / "labels.txt").write_text("first\nsecond\n")
+    assert Detector(path).class_names == ["first", "second"]
+    (tmp_path / "signs.labels.txt").write_text("warning\n\nstop\n")
+    d = Detector(path)
+    assert d.class_names == ["warning", "stop"] and d.names_source.endswith("signs.labels.txt")
+    meta = make_model(tmp_path / "meta.onnx", output, meta={"names": "{0: 'a', 1: 'b'}"})
+    assert Detector(meta).class_names == ["a", "b"]  # metadata before labels.txt
+    assert Detector(meta, class_names=["x", "y"]).class_names == ["x", "y"]
+
+
+def test_parse_names():
+    assert det.parse_names("{0: 'warning', 1: 'stop'}") == ["warning", "stop"]
+    assert det.parse_names('["a", "b"]') == ["a", "b"]
+    assert det.parse_names('{"0": "a", "2": "c"}') == ["a", "class_1", "c"]
+    assert det.parse_names("__import__('os').system('true')") is None
+    assert det.parse_names("not names") is None
+
+
+def test_model_errors(tmp_path):
+    with pytest.raises(InputError, match="no labels file|names no classes"):
+        Detector(make_model(tmp_path / "bare.onnx", v8_output(V8_ROWS)))
+    text = tmp_path / "notes.onnx"
+    text.write_text("this is not a model")
+    with pytest.raises(InputError, match="notes.onnx is not an ONNX model"):
+        Detector(str(text))
+    with pytest.raises(InputError, match="Model not found"):
+        Detector(str(tmp_path / "absent.onnx"))
+    seg = make_model(tmp_path / "seg.onnx", v8_output(V8_ROWS), meta={"names": NAMES2, "task": "segment"})
+    with pytest.raises(InputError, match="segment model"):
+        Detector(seg)
+
+
+def test_dynamic_input_size_and_batches(tmp_path):
+    path = make_model(tmp_path / "dyn.onnx", v8_output(V8_ROWS), input_shape=["batch", 3, "h", "w"],
+                      meta={"names": NAMES2, "imgsz": "[48, 96]"})
+    assert Detector(path).max_batch == 1  # on the CPU
+    d = Detector(path, max_batch=4)
+    assert d.input_size == (96, 48) and d.max_batch == 4
+    assert Detector(path, input_size_px=128).input_size == (128, 128)
+    results = d.detect_many([image(96, 48)] * 11)
+    assert len(results) == 11 and all(len(r) == 3 for r in results)
+    info = det.model_info(path)
+    assert info.layout == "yolov8" and "CPUExecutionProvider" in info.providers
+    assert "YOLOv8/11" in info.describe()
+
+
+def test_providers_preference():
+    assert det.choose_providers(["AzureExecutionProvider", "CPUExecutionProvider", "CUDAExecutionProvider",
+                                 "DmlExecutionProvider"]) == ["CUDAExecutionProvider", "DmlExecutionProvider",
+                                                              "CPUExecutionProvider"]
+
+
+# --- merging across views and the seam ---------------------------------------------------
+
+def test_merge_prefers_complete_boxes_and_joins_cut_ones():
+    W = 1000
+    boxes = np.array([[100, 50, 130, 80],    # cut at a view edge, high score
+                      [90, 50, 130, 80],     # complete, lower score: wins
+                      [95, 50, 128, 80],     # other class: separate
+                      [990, 10, 1010, 30],   # across the seam, cut
+                      [2, 12, 15, 30]])      # the same sign seen wrapped, cut too
+    scores = np.array([0.9, 0.6, 0.5, 0.7, 0.8])
+    ids = np.array([0, 0, 1, 0, 0])
+    complete = np.array([False, True, True, False, False])
+    kept, merged, counts = merge_view_detections(boxes, scores, ids, complete, np.zeros(5), W)
+    assert sorted(kept.tolist()) == [1, 2, 4]
+    by_index = dict(zip(kept.tolist(), merged))
+    assert by_index[1].tolist() == [90, 50, 130, 80]
+    assert by_index[4].tolist() == [990, 10, 1015, 30]  # union across the seam, u0 < W < u1
+    assert dict(zip(kept.tolist(), counts.tolist())) == {1: 2, 2: 1, 4: 2}
+
+
+class ColourBlobDetector:
+    """Stands in for a model on the views: each red blob is a 'warning' sign."""
+
+    class_names = ["warning", "stop"]
+
+    def detect(self, image, confidence, iou_threshold):
+        mask = ((image[:, :, 2] > 170) & (image[:, :, 1] < 90)).astype(np.uint8)
+        n, _, stats, _ = cv2.connectedComponentsWithStats(mask)
+        boxes = np.array([[x, y, x + w, y + h] for x, y, w, h, _ in stats[1:]], float).reshape(-1, 4)
+        return ImageDetections(boxes, np.full(n - 1, 0.9), np.zeros(n - 1, np.int64))
+
+
+def test_sign_across_the_seam_is_found_once_in_the_right_place():
+    W, H = 2048, 1024
+    pano = paint_discs([(180.0, 5.0, 6.0, (0, 0, 255)), (60.0, -3.0, 3.0, (0, 0, 255))], W)
+    views = ViewSet.ring(8, 0.0, 80.0, 320)
+    reports = []
+    from roadsigns.core.errors import Progress
+    found = detect_panorama(ColourBlobDetector(), pano, views, progress=Progress(on_progress=reports.append))
+    assert reports[-1] == pytest.approx(100.0)
+    assert len(found) == 2 and found.class_name == ["warning", "warning"]
+    seam = int(np.argmax(found.u1 - found.u0))
+    u0, v0, u1, v1 = found.boxes()[seam]
+    assert 0 <= u0 < W < u1  # the contract's unwrapped form
+    assert 0.5 * (u0 + u1) == pytest.approx(W, abs=2.0)
+    assert 0.5 * (v0 + v1) == pytest.approx((0.5 - 5.0 / 180.0) * H, abs=2.0)
+    want = disc_pano_box(180.0, 5.0, 6.0, W)
+    assert u1 - u0 == pytest.approx(want[2] - want[0], abs=4.0)
+    assert found.view_index[seam] == 4 and found.n_views[seam] >= 2  # yaw 180 wins over the cut ones
+    other = 1 - seam
+    assert 0.5 * (found.u0[other] + found.u1[other]) == pytest.approx((60 / 360 + 0.5) * W, abs=2.0)

@@ -1,0 +1,156 @@
+"""Perspective views cut from equirectangular panoramas, and boxes mapped back.
+
+Synthetic panoramas carry coloured discs painted at known (azimuth, elevation); the
+expected view positions are computed longhand from the contract (pinhole looking along
+the view's ray, image x right, y down) and checked against what ``cv2.remap`` produced.
+"""
+import cv2
+import numpy as np
+import pytest
+
+from helpers.synthpano import disc_pano_box as _disc_pano_box, paint_discs as _paint_discs, ray
+from roadsigns.core.errors import InputError
+from roadsigns.core.panorama import PerspectiveView, ViewSet, read_panorama
+
+W, H = 2048, 1024
+RED = (0, 0, 255)  # BGR
+
+
+def paint_discs(discs):
+    return _paint_discs(discs, W)
+
+
+def disc_pano_box(az, el, radius):
+    return _disc_pano_box(az, el, radius, W)
+
+
+def pinhole(view_yaw, view_pitch, hfov, size, az, el):
+    """Longhand projection of ray (az, el) into a view: forward, right = horizontal +90 deg,
+    down = forward x right."""
+    f_axis = ray(view_yaw, view_pitch)
+    r_axis = ray(view_yaw + 90.0, 0.0)
+    d_axis = np.cross(f_axis, r_axis)
+    d = ray(az, el)
+    focal = 0.5 * size / np.tan(np.radians(0.5 * hfov))
+    z = d @ f_axis
+    return 0.5 * size + focal * (d @ r_axis) / z, 0.5 * size + focal * (d @ d_axis) / z
+
+
+def red_blob(image):
+    """Centroid and pixel box (x0, y0, x1, y1: edges) of the red pixels."""
+    mask = (image[:, :, 2] > 170) & (image[:, :, 1] < 90)
+    ys, xs = np.nonzero(mask)
+    assert len(xs), "no red pixels in the view"
+    box = np.array([xs.min(), ys.min(), xs.max() + 1, ys.max() + 1], float)
+    return (xs.mean() + 0.5, ys.mean() + 0.5), box
+
+
+@pytest.fixture(scope="module")
+def pano():
+    return paint_discs([(100.0, 10.0, 4.0, RED), (30.0, 40.0, 4.0, (255, 0, 0)),
+                        (180.0, 0.0, 5.0, (0, 255, 0))])
+
+
+def test_disc_appears_where_the_pinhole_puts_it(pano):
+    view = PerspectiveView(yaw_deg=90.0, pitch_deg=0.0, hfov_deg=80.0, width_px=320, height_px=320)
+    image = view.cut(pano)
+    assert image.shape == (320, 320, 3)
+    centroid, _ = red_blob(image)
+    assert centroid == pytest.approx(pinhole(90.0, 0.0, 80.0, 320, 100.0, 10.0), abs=1.0)
+    # the view's own projection agrees with the longhand one
+    x, y, front = view.ray_to_pixel(ray(100.0, 10.0))
+    assert front and (x, y) == pytest.approx(pinhole(90.0, 0.0, 80.0, 320, 100.0, 10.0), abs=1e-9)
+
+
+def test_upward_view(pano):
+    view = PerspectiveView(0.0, 35.0, 90.0, 320, 320)
+    image = view.cut(pano)
+    blue = (image[:, :, 0] > 170) & (image[:, :, 2] < 90)
+    ys, xs = np.nonzero(blue)
+    want = pinhole(0.0, 35.0, 90.0, 320, 30.0, 40.0)
+    assert (xs.mean() + 0.5, ys.mean() + 0.5) == pytest.approx(want, abs=1.0)
+    assert want[0] > 160  # right of centre: azimuth is clockwise
+
+
+def test_disc_across_the_seam_is_whole_in_the_backward_view(pano):
+    view = PerspectiveView(180.0, 0.0, 80.0, 320, 320)
+    image = view.cut(pano)
+    green = (image[:, :, 1] > 170) & (image[:, :, 2] < 90)
+    ys, xs = np.nonzero(green)
+    assert (xs.mean() + 0.5, ys.mean() + 0.5) == pytest.approx((160.0, 160.0), abs=0.5)
+    assert xs.max() - xs.min() > 25  # both halves, not one half
+    assert abs((xs.max() + 1 - 160) - (160 - xs.min())) <= 1  # symmetric about the seam
+
+
+@pytest.mark.parametrize("yaw, az, el, radius", [(90.0, 100.0, 10.0, 4.0),
+                                                 (180.0, 180.0, 0.0, 5.0),
+                                                 (-150.0, -178.0, 12.0, 6.0)])
+def test_view_box_maps_back_around_the_disc(yaw, az, el, radius):
+    pano = paint_discs([(az, el, radius, RED)])
+    view = PerspectiveView(yaw, 0.0, 80.0, 320, 320)
+    _, box = red_blob(view.cut(pano))
+    got = view.boxes_to_pano(box[None], W, H)[0]
+    want = disc_pano_box(az, el, radius)
+    want[[0, 2]] -= np.floor(want[0] / W) * W  # the contract's form: u0 in [0, W)
+    # Contains the disc's extent (one view pixel is ~1.7 panorama pixels here) and is not
+    # much larger: off the view's centre the view rectangle's corners reach beyond the disc.
+    tol = 2.0
+    assert 0 <= got[0] < W and got[0] < got[2] and got[1] < got[3]
+    assert got[0] < want[0] + tol and got[1] < want[1] + tol, (got, want)
+    assert got[2] > want[2] - tol and got[3] > want[3] - tol, (got, want)
+    size, want_size = got[2:] - got[:2], want[2:] - want[:2]
+    assert np.all(size < 1.2 * want_size), (got, want)
+    if want[2] > W:  # across the seam: unwrapped
+        assert got[0] < W < got[2]
+
+
+def test_whole_view_holding_the_zenith_spans_all_columns():
+    view = PerspectiveView(0.0, 70.0, 90.0, 64, 64)
+    u0, v0, u1, v1 = view.boxes_to_pano([[0, 0, 64, 64]], W, H)[0]
+    assert (u0, v0, u1) == (0.0, 0.0, W) and v1 > 0
+
+
+def test_maps_are_cached_per_view_and_size():
+    view = PerspectiveView(45.0, 0.0, 80.0, 64, 64)
+    assert view.remap_maps(W, H) is view.remap_maps(W, H)
+    assert PerspectiveView(45.0, 0.0, 80.0, 64, 64).remap_maps(W, H) is view.remap_maps(W, H)
+    assert view.remap_maps(W // 2, H // 2) is not view.remap_maps(W, H)
+
+
+def test_view_sets():
+    views = ViewSet.default(640)
+    assert len(views) == 14 and [v.yaw_deg for v in views][:8] == [k * 45.0 for k in range(8)]
+    assert len(ViewSet.default(640, upward=False)) == 8
+    hfov = views[0].hfov_deg
+    assert hfov - 45.0 >= 20.0  # neighbours overlap by at least 20 deg
+    assert views.working_width(4096) == 4096
+    assert 4000 <= views.working_width(8192) < 4200
+    assert hash(views) == hash(ViewSet.default(640))
+
+
+def test_large_panorama_is_reduced_before_cutting_and_boxes_stay_in_its_pixels(pano):
+    views = ViewSet.ring(8, 0.0, 80.0, 160)  # needs ~1020 px of width: 2048 is reduced
+    assert views.working_width(W) < W / 1.5
+    images = list(views.cut_all(pano))
+    view = views[2]  # yaw 90
+    centroid, box = red_blob(images[2])
+    assert centroid == pytest.approx(pinhole(90.0, 0.0, 80.0, 160, 100.0, 10.0), abs=1.0)
+    got = view.boxes_to_pano(box[None], W, H)[0]
+    assert np.all(np.abs(got - disc_pano_box(100.0, 10.0, 4.0)) < 5.0)
+
+
+def test_read_panorama(tmp_path):
+    good = tmp_path / "pano é.png"  # a non-ASCII name
+    cv2.imencode(".png", np.zeros((8, 16, 3), np.uint8))[1].tofile(str(good))
+    assert read_panorama(str(good)).shape == (8, 16, 3)
+    with pytest.raises(InputError, match="not found.*missing.jpg"):
+        read_panorama(str(tmp_path / "missing.jpg"))
+    bad = tmp_path / "corrupt.jpg"
+    bad.write_text("not an image")
+    with pytest.raises(InputError, match="corrupt.jpg"):
+        read_panorama(str(bad))
+    square = tmp_path / "square.png"
+    cv2.imencode(".png", np.zeros((8, 8, 3), np.uint8))[1].tofile(str(square))
+    with pytest.raises(InputError, match="twice as wide"):
+        read_panorama(str(square))
+    assert read_panorama(str(square), require_equirectangular=False).shape == (8, 8, 3)
