@@ -557,3 +557,44 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
     return PanoramaDetections(ids[kept], [names[c] for c in ids[kept]], scores[kept],
                               boxes[:, 0], boxes[:, 1], boxes[:, 2], boxes[:, 3],
                               np.concatenate(all_views)[kept], counts)
+
+
+# --- a drive ------------------------------------------------------------------------------
+
+@dataclass
+class DriveDetections:
+    """Detections over many panoramas: ``per_image[k]`` belongs to ``image_paths[k]``
+    (None where the panorama was skipped); ``skipped`` lists (path, reason)."""
+    per_image: List[Optional[PanoramaDetections]]
+    skipped: List[Tuple[str, str]]
+
+    @property
+    def count(self) -> int:
+        return sum(len(d) for d in self.per_image if d is not None)
+
+
+def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidence: float = 0.25,
+                 iou_threshold: float = 0.45, progress: Progress = SILENT) -> DriveDetections:
+    """:func:`detect_panorama` on each panorama file; missing or corrupt files are skipped.
+
+    Progress advances per view; cancel stops between views. A skipped file adds
+    ``(path, reason)`` to ``skipped`` and a warning to ``progress``.
+    """
+    from .panorama import read_panorama
+
+    per_image: List[Optional[PanoramaDetections]] = []
+    skipped: List[Tuple[str, str]] = []
+    n = max(len(image_paths), 1)
+    for k, path in enumerate(image_paths):
+        progress.report(k / n)
+        try:
+            pano = read_panorama(path)
+        except InputError as error:
+            skipped.append((path, str(error)))
+            progress.warning(str(error))
+            per_image.append(None)
+            continue
+        per_image.append(detect_panorama(detector, pano, views, confidence, iou_threshold,
+                                         progress=progress.sub(k / n, (k + 1) / n)))
+    progress.report(1.0)
+    return DriveDetections(per_image, skipped)

@@ -179,3 +179,17 @@ def azimuth_deg_of_enu(v_enu) -> np.ndarray:
 def pano_forward_azimuth_deg(R_world_from_pano_) -> np.ndarray:
     """Azimuth of the panorama's forward axis (its x axis, the centre column) in world."""
     return azimuth_deg_of_enu(np.asarray(R_world_from_pano_)[..., :, 0])
+
+
+def box_centre_pixel(u0, v0, u1, v1, width):
+    """Centre of panorama boxes (contract form, u1 may exceed W across the seam), u in [0, W)."""
+    return np.mod((np.asarray(u0, float) + np.asarray(u1, float)) / 2.0, width), \
+        (np.asarray(v0, float) + np.asarray(v1, float)) / 2.0
+
+
+def box_centre_ray_world(u0, v0, u1, v1, width, height, q_world_from_pano_wxyz) -> np.ndarray:
+    """Unit world ENU ray through the centre of each panorama box."""
+    u, v = box_centre_pixel(u0, v0, u1, v1, width)
+    d_pano = pixel_to_ray(u, v, width, height)
+    R = matrix_from_quat_wxyz(q_world_from_pano_wxyz)
+    return np.einsum("...ij,...j->...i", R, d_pano)

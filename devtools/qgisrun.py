@@ -59,7 +59,7 @@ class QgisProcess:
             "QT_QPA_PLATFORM": "offscreen",
             "PYTHONPATH": os.pathsep.join(site + [env.get("PYTHONPATH", "")]).strip(os.pathsep),
             "PROJ_DATA": env.get("PROJ_DATA", "/usr/share/proj"),
-            "XDG_RUNTIME_DIR": env.get("XDG_RUNTIME_DIR", tempfile.gettempdir()),
+            "XDG_RUNTIME_DIR": env.get("XDG_RUNTIME_DIR") or tempfile.mkdtemp(prefix="roadsigns-xdg-"),
         })
         self.env = env
         enabled = self("plugins", "enable", "roadsigns")

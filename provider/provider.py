@@ -26,7 +26,8 @@ class RoadSignsProvider(QgsProcessingProvider):
         return ICON_PATH
 
     def loadAlgorithms(self):  # noqa: N802
+        from ..algorithms.detectsigns import DetectSigns
         from ..algorithms.evaluate import Evaluate
         from ..algorithms.importtrajectory import ImportTrajectory
-        for algorithm in (ImportTrajectory(), Evaluate()):
+        for algorithm in (ImportTrajectory(), DetectSigns(), Evaluate()):
             self.addAlgorithm(algorithm)

@@ -2,7 +2,7 @@
 parameter carries help text."""
 import pytest
 
-EXPECTED_ALGORITHMS = {"roadsigns:importtrajectory", "roadsigns:evaluate"}
+EXPECTED_ALGORITHMS = {"roadsigns:importtrajectory", "roadsigns:detectsigns", "roadsigns:evaluate"}
 
 
 @pytest.fixture(scope="module")

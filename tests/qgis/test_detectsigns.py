@@ -1,0 +1,124 @@
+"""roadsigns:detectsigns through qgis_process with tiny real ONNX models built in the test.
+
+The model's output is a constant box at the centre of every view, so each panorama gives
+one detection per view, whose ray must point at that view's centre; the rays are checked
+against the contract's pixel -> ray formula written out in the test.
+"""
+import os
+import shutil
+
+import numpy as np
+import pytest
+from osgeo import ogr
+
+from helpers.contract import quat_to_matrix
+from helpers.tinyonnx import make_model
+
+ALG = "roadsigns:detectsigns"
+NAMES = "{0: 'stop', 1: 'yield'}"
+
+
+def yolov8_centre_box(n_classes=2, size=64):
+    out = np.zeros((1, 4 + n_classes, 1), np.float32)
+    out[0, :4, 0] = [size / 2, size / 2, 10, 10]
+    out[0, 4, 0] = 0.9
+    return out
+
+
+@pytest.fixture(scope="module")
+def stations(qgis_process, drive_projected, tmp_path_factory):
+    folder = tmp_path_factory.mktemp("det")
+    images = folder / "images"
+    shutil.copytree(drive_projected["images"], images)
+    names = drive_projected["names"][:3]
+    shutil.copy(images / drive_projected["names"][3], images / "broken.jpg")  # readable at import
+    times = folder / "times.csv"
+    times.write_text("image,time\n" + "".join("{},{}\n".format(n, t) for n, t in
+                                              zip(names + ["broken.jpg"], drive_projected["times"][:4])))
+    out = str(folder / "stations.gpkg")
+    run = qgis_process.run("roadsigns:importtrajectory", TRAJECTORY=drive_projected["trajectory_csv"],
+                           IMAGE_TIMES=str(times), IMAGES=str(images), TRAJECTORY_CRS="EPSG:32633",
+                           TARGET_CRS="EPSG:32633", LEVER_ARM_Z=-2.0, OUTPUT=out)
+    assert run.returncode == 0, run.text
+    (images / "broken.jpg").write_bytes(b"\xff\xd8 not really a jpeg")  # corrupt after import
+    return out
+
+
+def read_rays(path):
+    dataset = ogr.Open(path)
+    layer = dataset.GetLayer(0)
+    rows = []
+    for feature in layer:
+        g = feature.GetGeometryRef()
+        row = {k: feature[k] for k in feature.keys()}
+        row["points"] = np.array([g.GetPoint(i) for i in range(g.GetPointCount())])
+        row["type"] = ogr.GeometryTypeToName(g.GetGeometryType())
+        rows.append(row)
+    return rows
+
+
+def contract_ray_world(row):
+    W, H = row["width"], row["height"]
+    u = ((row["u0"] + row["u1"]) / 2) % W
+    v = (row["v0"] + row["v1"]) / 2
+    alpha, eps = 2 * np.pi * (u / W - 0.5), np.pi * (0.5 - v / H)
+    d = np.array([np.cos(eps) * np.cos(alpha), np.cos(eps) * np.sin(alpha), -np.sin(eps)])
+    return quat_to_matrix([row["qw"], row["qx"], row["qy"], row["qz"]]) @ d
+
+
+def test_one_ray_per_view_along_the_box_centre(qgis_process, stations, tmp_path):
+    model = make_model(tmp_path / "m.onnx", yolov8_centre_box(), meta={"names": NAMES})
+    out = str(tmp_path / "detections.gpkg")
+    run = qgis_process.run(ALG, STATIONS=stations, MODEL=model, CONFIDENCE=0.5, MAX_RANGE=30, OUTPUT=out)
+    assert run.returncode == 0, run.text
+    assert run.json["results"]["SKIPPED_IMAGES"] == 1
+    assert "broken.jpg" in run.text
+    rows = read_rays(out)
+    per_image = {}
+    for r in rows:
+        per_image.setdefault(r["image"], []).append(r)
+    assert len(per_image) == 3
+    assert all(len(v) == 14 for v in per_image.values())  # 8 horizon + 6 upward views
+    assert run.json["results"]["DETECTIONS"] == len(rows) == 42
+    for r in rows:
+        assert r["class"] == "stop" and r["score"] == pytest.approx(0.9)
+        assert r["type"] == "3D Line String"
+        start, end = r["points"]
+        assert start == pytest.approx([r["x"], r["y"], r["z"]])
+        assert np.linalg.norm(end - start) == pytest.approx(30.0)
+        assert (end - start) / 30.0 == pytest.approx(contract_ray_world(r), abs=1e-6)
+    horizon = sorted(((r["u0"] + r["u1"]) / 2) % r["width"] for r in per_image["pano_0000.jpg"]
+                     if (r["v0"] + r["v1"]) / 2 == pytest.approx(16, abs=0.5))
+    assert horizon == pytest.approx(sorted((32 + k * 8) % 64 for k in range(8)), abs=0.2)
+
+
+def test_names_from_a_labels_file(qgis_process, stations, tmp_path):
+    model = make_model(tmp_path / "m.onnx", yolov8_centre_box())
+    labels = tmp_path / "names.txt"
+    labels.write_text("warning\nmandatory\n")
+    out = str(tmp_path / "d.gpkg")
+    run = qgis_process.run(ALG, STATIONS=stations, MODEL=model, LABELS=str(labels), UPWARD_VIEWS=False,
+                           OUTPUT=out)
+    assert run.returncode == 0, run.text
+    rows = read_rays(out)
+    assert len(rows) == 3 * 8 and {r["class"] for r in rows} == {"warning"}
+
+
+@pytest.mark.parametrize("case,message", [
+    ("not onnx", "is not an ONNX model"),
+    ("layout", "[1, 9, 8]"),
+    ("no names", "names no classes"),
+])
+def test_bad_models(qgis_process, stations, tmp_path, case, message):
+    if case == "not onnx":
+        model = tmp_path / "model.onnx"
+        model.write_text("hello")
+    elif case == "layout":
+        model = make_model(tmp_path / "m.onnx", np.zeros((1, 9, 8), np.float32), meta={"names": NAMES})
+    else:
+        model = make_model(tmp_path / "m.onnx", yolov8_centre_box())
+    out = tmp_path / "d.gpkg"
+    run = qgis_process.run(ALG, STATIONS=stations, MODEL=str(model), OUTPUT=str(out))
+    assert run.returncode != 0
+    assert message in run.text, run.text
+    assert not out.exists()
