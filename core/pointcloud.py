@@ -1,0 +1,557 @@
+"""LAS/LAZ point clouds larger than memory: chunked reading, faithful writing, crops, an index.
+
+Conventions:
+
+* Coordinates are world coordinates of the cloud's CRS (metres, x = East, y = North,
+  z = Up); ``xyz_world`` arrays have shape ``(n, 3)`` and dtype float64.
+* Clouds are read in chunks of ``chunk_points`` points (laspy, with the parallel lazrs
+  backend for LAZ); nothing here loads a whole file.
+* Written files keep the input's point format, version, every dimension, extra bytes,
+  VLRs and EVLRs, scales and offsets and the CRS. Output goes to a temporary file in the
+  destination folder that replaces the destination only on success (no partial files).
+* Crops are 2D (x, y): a shapely geometry in the cloud's CRS, points on its boundary kept.
+"""
+from __future__ import annotations
+
+import copy
+import math
+import os
+import tempfile
+from dataclasses import dataclass, field
+from typing import Callable, Dict, Iterable, Iterator, List, Optional, Sequence, Tuple
+
+import laspy
+import numpy as np
+import shapely
+from shapely.geometry.base import BaseGeometry
+
+from .errors import SILENT, InputError, Progress
+
+#: File name endings read and written as point clouds.
+LAS_SUFFIXES = (".las", ".laz")
+#: Points per chunk: about 60-100 MB of laspy records for the common point formats.
+DEFAULT_CHUNK_POINTS = 1_000_000
+
+_NOT_LAS = "Cannot read {path}: expected a LAS or LAZ file ({detail})"
+_CORRUPT = "Cannot read {path}: the file is truncated or corrupt ({detail})"
+
+
+# --------------------------------------------------------------------------------------
+# Reading
+# --------------------------------------------------------------------------------------
+
+def laz_backends() -> Tuple[laspy.LazBackend, ...]:
+    """Available LAZ backends, the parallel lazrs one first."""
+    return tuple(laspy.LazBackend.detect_available())
+
+
+def _check_signature(path: str) -> None:
+    try:
+        with open(path, "rb") as f:
+            signature = f.read(4)
+    except FileNotFoundError:
+        raise InputError("Cannot read {path}: the file does not exist", path=path)
+    except OSError as e:
+        raise InputError("Cannot read {path}: {detail}", path=path, detail=str(e))
+    if signature != b"LASF":
+        raise InputError(_NOT_LAS, path=path,
+                         detail="no LASF signature; is it another format?")
+
+
+def open_reader(path: str) -> laspy.LasReader:
+    """Open a LAS/LAZ file for chunked reading; :class:`InputError` when it is not one.
+
+    The caller closes the reader (``with open_reader(p) as r: ...``).
+    """
+    path = os.fspath(path)
+    _check_signature(path)
+    try:
+        return laspy.open(path, mode="r", laz_backend=laz_backends())
+    except Exception as e:  # laspy raises LaspyException, ValueError, struct.error, ...
+        raise InputError(_CORRUPT, path=path, detail=f"{type(e).__name__}: {e}")
+
+
+def read_header(path: str) -> laspy.LasHeader:
+    """The header of a LAS/LAZ file (VLRs and EVLRs included)."""
+    with open_reader(path) as reader:
+        return copy.deepcopy(reader.header)
+
+
+def crs_wkt_of_header(header: laspy.LasHeader) -> Optional[str]:
+    """The CRS in a header's WKT or GeoTIFF records as WKT, ``None`` when there is none."""
+    try:
+        crs = header.parse_crs()
+    except Exception:
+        crs = None
+    if crs is not None:
+        return crs.to_wkt()
+    # A WKT record pyproj could not parse is still the file's CRS: hand it on verbatim.
+    for vlr_list in (header.vlrs, header.evlrs or []):
+        for vlr in vlr_list:
+            if isinstance(vlr, laspy.vlrs.known.WktCoordinateSystemVlr) and vlr.string:
+                return vlr.string.strip("\x00").strip() or None
+    return None
+
+
+def read_crs_wkt(path: str) -> Optional[str]:
+    """The CRS of a LAS/LAZ file as WKT, or ``None`` when the file has none (never guessed)."""
+    return crs_wkt_of_header(read_header(path))
+
+
+def iter_chunks(path: str, chunk_points: int = DEFAULT_CHUNK_POINTS,
+                progress: Progress = SILENT) -> Iterator[laspy.ScaleAwarePointRecord]:
+    """Yield the points of a LAS/LAZ file in chunks (laspy ``ScaleAwarePointRecord``).
+
+    Reports progress as the fraction of points read; a truncated or corrupt file raises
+    :class:`InputError` naming it.
+    """
+    path = os.fspath(path)
+    with open_reader(path) as reader:
+        total = reader.header.point_count
+        done = 0
+        progress.report(0.0)
+        iterator = reader.chunk_iterator(max(1, int(chunk_points)))
+        while True:
+            try:
+                chunk = next(iterator)
+            except StopIteration:
+                break
+            except Exception as e:
+                raise InputError(_CORRUPT, path=path, detail=f"{type(e).__name__}: {e}")
+            if len(chunk) == 0:
+                break
+            done += len(chunk)
+            yield chunk
+            progress.report(done / total if total else 1.0)
+        if done < total:
+            raise InputError(_CORRUPT, path=path,
+                             detail=f"header announces {total} points, {done} could be read")
+
+
+def xyz_of(points) -> np.ndarray:
+    """World coordinates ``(n, 3)`` float64 of a laspy point record."""
+    return np.column_stack([np.asarray(points.x, dtype=np.float64),
+                            np.asarray(points.y, dtype=np.float64),
+                            np.asarray(points.z, dtype=np.float64)])
+
+
+# --------------------------------------------------------------------------------------
+# Writing
+# --------------------------------------------------------------------------------------
+
+def _crs_vlr_names() -> Tuple[str, ...]:
+    return ("WktCoordinateSystemVlr", "GeoKeyDirectoryVlr", "GeoAsciiParamsVlr",
+            "GeoDoubleParamsVlr")
+
+
+def output_header(template: laspy.LasHeader, crs_wkt: Optional[str] = None) -> laspy.LasHeader:
+    """A header for writing points like ``template``'s, optionally with another CRS.
+
+    Everything of the template is kept (version, point format, extra bytes, scales,
+    offsets, VLRs, EVLRs, ids, dates); counts and bounds are recomputed by the writer.
+    With ``crs_wkt`` the CRS records are replaced (WKT for point formats >= 6, GeoTIFF
+    keys otherwise, as laspy writes them).
+    """
+    header = copy.deepcopy(template)
+    if crs_wkt:
+        import pyproj  # only needed when a CRS is assigned
+
+        crs = pyproj.CRS.from_user_input(crs_wkt)
+        try:
+            header.add_crs(crs)
+        except Exception:  # GeoTIFF keys cannot express it: store the WKT record
+            header.vlrs.append(laspy.vlrs.known.WktCoordinateSystemVlr(crs.to_wkt()))
+            if header.version.minor >= 4:
+                header.global_encoding.wkt = True
+        if header.evlrs:
+            names = _crs_vlr_names()
+            header.evlrs = laspy.vlrs.vlrlist.VLRList([v for v in header.evlrs
+                                          if type(v).__name__ not in names])
+    return header
+
+
+class CloudWriter:
+    """Write a LAS/LAZ file in chunks; the destination appears only on :meth:`commit`.
+
+    Points go to a temporary file in the destination folder, which ``commit`` moves over
+    the destination with ``os.replace``; ``abort`` (or leaving a ``with`` block by an
+    exception) deletes it. LAZ when the path ends in ``.laz`` (lazrs, parallel).
+    """
+
+    def __init__(self, output_path: str, header: laspy.LasHeader):
+        self.output_path = os.path.abspath(os.fspath(output_path))
+        suffix = os.path.splitext(self.output_path)[1].lower()
+        if suffix not in LAS_SUFFIXES:
+            raise InputError("Cannot write {path}: the output must end in .las or .laz",
+                             path=self.output_path)
+        folder = os.path.dirname(self.output_path)
+        if not os.path.isdir(folder):
+            raise InputError("Cannot write {path}: the folder does not exist",
+                             path=self.output_path)
+        self.compress = suffix == ".laz"
+        self._evlrs = header.evlrs
+        fd, self.temp_path = tempfile.mkstemp(prefix=".roadsigns-", suffix=suffix, dir=folder)
+        self._file = os.fdopen(fd, "wb")
+        self.point_count = 0
+        try:
+            self._writer = laspy.LasWriter(
+                self._file, header, do_compress=self.compress,
+                laz_backend=laz_backends() if self.compress else None, closefd=False)
+        except Exception:
+            self._file.close()
+            os.unlink(self.temp_path)
+            raise
+
+    @property
+    def header(self) -> laspy.LasHeader:
+        return self._writer.header
+
+    def write(self, points) -> None:
+        """Append a point record (same point format as the header)."""
+        if len(points):
+            self._writer.write_points(points)
+            self.point_count += len(points)
+
+    def commit(self) -> None:
+        """Finish the file and move it to the destination."""
+        if self._writer is None:
+            return
+        try:
+            if self._evlrs and self._writer.header.version.minor >= 4:
+                self._writer.write_evlrs(self._evlrs)
+            self._writer.close()
+            self._file.close()
+            os.replace(self.temp_path, self.output_path)
+        except BaseException:
+            self.abort()
+            raise
+        self._writer = None
+
+    def abort(self) -> None:
+        """Drop the temporary file; the destination is left untouched."""
+        self._writer = None
+        try:
+            self._file.close()
+        except Exception:
+            pass
+        if os.path.exists(self.temp_path):
+            os.unlink(self.temp_path)
+
+    def __enter__(self) -> "CloudWriter":
+        return self
+
+    def __exit__(self, exc_type, exc, tb) -> None:
+        if exc_type is None:
+            self.commit()
+        else:
+            self.abort()
+
+
+# --------------------------------------------------------------------------------------
+# Crops
+# --------------------------------------------------------------------------------------
+
+def _as_geometry(item) -> BaseGeometry:
+    if isinstance(item, BaseGeometry):
+        return item
+    if isinstance(item, (bytes, bytearray, memoryview)):
+        return shapely.from_wkb(bytes(item))
+    if isinstance(item, str):
+        return shapely.from_wkt(item)
+    raise InputError("Cannot use {item!r} as a crop geometry: expected a shapely geometry, "
+                     "WKB or WKT", item=type(item).__name__)
+
+
+class CropRegion:
+    """A 2D crop area (shapely geometry in the cloud's CRS) tested on many points at once.
+
+    Points inside or on the boundary are kept. Build it with :meth:`from_polygons` or
+    :meth:`corridor`; ``mask(x, y)`` is vectorised (a bounding-box test, then shapely's
+    prepared ``intersects_xy`` on the rest).
+    """
+
+    def __init__(self, geometry: BaseGeometry):
+        self.geometry = shapely.make_valid(geometry) if not geometry.is_valid else geometry
+        shapely.prepare(self.geometry)
+        self.bounds = tuple(self.geometry.bounds) if not self.geometry.is_empty else None
+
+    @classmethod
+    def from_polygons(cls, polygons: Iterable, buffer_m: float = 0.0) -> "CropRegion":
+        """The union of polygons (shapely, WKB or WKT), grown by ``buffer_m`` metres."""
+        geoms = [_as_geometry(p) for p in polygons]
+        geoms = [g for g in geoms if g is not None and not g.is_empty]
+        if not geoms:
+            raise InputError("The crop layer has no geometry")
+        area = shapely.union_all([shapely.make_valid(g) for g in geoms])
+        if buffer_m:
+            area = area.buffer(float(buffer_m))
+        return cls(area)
+
+    @classmethod
+    def corridor(cls, buffer_m: float, points_xy=None, lines_xy: Sequence = ()) -> "CropRegion":
+        """Everything within ``buffer_m`` metres of stations ``points_xy`` ``(n, 2+)`` and/or
+        polylines ``lines_xy`` (each ``(m, 2+)``: a trajectory, detection rays, ...)."""
+        if not buffer_m or buffer_m <= 0:
+            raise InputError("A corridor needs a positive buffer, got {buffer_m} m",
+                             buffer_m=buffer_m)
+        parts: List[BaseGeometry] = []
+        if points_xy is not None and len(points_xy):
+            pts = np.asarray(points_xy, dtype=float)[:, :2]
+            parts.append(shapely.multipoints(pts))
+        for line in lines_xy:
+            xy = np.asarray(line, dtype=float)[:, :2]
+            parts.append(shapely.linestrings(xy) if len(xy) >= 2 else shapely.points(xy[0]))
+        if not parts:
+            raise InputError("A corridor needs stations or lines")
+        return cls(shapely.union_all(parts).buffer(float(buffer_m)))
+
+    @property
+    def is_empty(self) -> bool:
+        return self.bounds is None
+
+    def mask(self, x, y) -> np.ndarray:
+        """Boolean mask of the points ``(x, y)`` inside (or on the edge of) the region."""
+        x = np.asarray(x, dtype=np.float64)
+        y = np.asarray(y, dtype=np.float64)
+        inside = np.zeros(x.shape, dtype=bool)
+        if self.bounds is None:
+            return inside
+        xmin, ymin, xmax, ymax = self.bounds
+        candidates = np.flatnonzero((x >= xmin) & (x <= xmax) & (y >= ymin) & (y <= ymax))
+        if candidates.size:
+            inside[candidates] = shapely.intersects_xy(self.geometry, x[candidates], y[candidates])
+        return inside
+
+    @property
+    def wkt(self) -> str:
+        return self.geometry.wkt
+
+
+@dataclass
+class CropResult:
+    output_path: str
+    n_input: int
+    n_output: int
+    crs_wkt: Optional[str]
+    warnings: List[str] = field(default_factory=list)
+
+
+def crop_cloud(input_path: str, output_path: str, region: Optional[CropRegion] = None,
+               crs_wkt: Optional[str] = None, chunk_points: int = DEFAULT_CHUNK_POINTS,
+               progress: Progress = SILENT) -> CropResult:
+    """Copy the points of ``input_path`` inside ``region`` (all of them with ``None``) to
+    ``output_path`` in one streaming pass, keeping everything of the file.
+
+    ``crs_wkt`` replaces the file's CRS; a cloud with no CRS and none given is an error.
+    An empty result is a warning and a valid file with no points.
+    """
+    header = read_header(input_path)
+    crs = crs_wkt or crs_wkt_of_header(header)
+    if not crs:
+        raise InputError("{path} has no coordinate reference system and none was given",
+                         path=input_path)
+    result = CropResult(output_path, int(header.point_count), 0, crs)
+    with CloudWriter(output_path, output_header(header, crs_wkt)) as writer:
+        for chunk in iter_chunks(input_path, chunk_points, progress):
+            if region is not None:
+                chunk = chunk[region.mask(chunk.x, chunk.y)]
+            writer.write(chunk)
+        result.n_output = writer.point_count
+    if result.n_output == 0:
+        message = f"No point of {input_path} lies inside the crop area; {output_path} is empty"
+        result.warnings.append(message)
+        progress.warning(message)
+    return result
+
+
+# --------------------------------------------------------------------------------------
+# Spatial index over a cropped cloud
+# --------------------------------------------------------------------------------------
+
+@dataclass
+class PointSet:
+    """Points returned by a query: ``xyz_world`` ``(n, 3)``, named attributes ``(n,)`` and
+    ``point_index`` (position in the source file or input arrays), sorted by that index."""
+    xyz_world: np.ndarray
+    point_index: np.ndarray
+    attributes: Dict[str, np.ndarray]
+
+    def __len__(self) -> int:
+        return len(self.point_index)
+
+    def subset(self, mask) -> "PointSet":
+        return PointSet(self.xyz_world[mask], self.point_index[mask],
+                        {k: v[mask] for k, v in self.attributes.items()})
+
+
+class TiledIndex:
+    """Points of a (cropped) cloud in square tiles of ``tile_size_m`` with KD-trees built
+    lazily per tile, for box, radius, cone and free-predicate queries.
+
+    Only the points kept by the crop are stored (float64 xyz, int64 index, the requested
+    attributes), so memory grows with the crop, not with the input file.
+    """
+
+    def __init__(self, xyz_world: np.ndarray, point_index: np.ndarray,
+                 attributes: Optional[Dict[str, np.ndarray]] = None,
+                 tile_size_m: float = 25.0, crs_wkt: Optional[str] = None):
+        xyz_world = np.asarray(xyz_world, dtype=np.float64).reshape(-1, 3)
+        self.tile_size_m = float(tile_size_m)
+        if not self.tile_size_m > 0:
+            raise ValueError("tile_size_m must be positive")
+        self.crs_wkt = crs_wkt
+        attributes = dict(attributes or {})
+        tiles = np.floor(xyz_world[:, :2] / self.tile_size_m).astype(np.int64)
+        order = np.lexsort((tiles[:, 1], tiles[:, 0]))
+        self.xyz_world = xyz_world[order]
+        self.point_index = np.asarray(point_index, dtype=np.int64)[order]
+        self.attributes = {k: np.asarray(v)[order] for k, v in attributes.items()}
+        tiles = tiles[order]
+        self._ranges: Dict[Tuple[int, int], Tuple[int, int]] = {}
+        if len(tiles):
+            starts = np.flatnonzero(np.r_[True, np.any(tiles[1:] != tiles[:-1], axis=1)])
+            ends = np.r_[starts[1:], len(tiles)]
+            for s, e in zip(starts, ends):
+                self._ranges[(int(tiles[s, 0]), int(tiles[s, 1]))] = (int(s), int(e))
+        self._trees: Dict[Tuple[int, int], object] = {}
+
+    # -- construction ------------------------------------------------------------------
+
+    @classmethod
+    def from_arrays(cls, xyz_world, attributes: Optional[Dict[str, np.ndarray]] = None,
+                    region: Optional[CropRegion] = None, tile_size_m: float = 25.0,
+                    crs_wkt: Optional[str] = None) -> "TiledIndex":
+        """Index in-memory points (``point_index`` = row number), optionally cropped."""
+        xyz_world = np.asarray(xyz_world, dtype=np.float64).reshape(-1, 3)
+        keep = np.ones(len(xyz_world), bool) if region is None else region.mask(
+            xyz_world[:, 0], xyz_world[:, 1])
+        attrs = {k: np.asarray(v)[keep] for k, v in (attributes or {}).items()}
+        return cls(xyz_world[keep], np.flatnonzero(keep), attrs, tile_size_m, crs_wkt)
+
+    @classmethod
+    def from_las(cls, path: str, region: Optional[CropRegion] = None,
+                 dimensions: Sequence[str] = ("intensity", "classification", "gps_time"),
+                 tile_size_m: float = 25.0, chunk_points: int = DEFAULT_CHUNK_POINTS,
+                 progress: Progress = SILENT) -> "TiledIndex":
+        """Index the points of a LAS/LAZ file inside ``region`` (streaming read)."""
+        header = read_header(path)
+        names = set(header.point_format.dimension_names)
+        missing = [d for d in dimensions if d not in names]
+        if missing:
+            raise InputError("{path} has no dimension {names} (point format {fmt})", path=path,
+                             names=", ".join(missing), fmt=header.point_format.id)
+        xyz_parts, index_parts = [], []
+        attr_parts: Dict[str, List[np.ndarray]] = {d: [] for d in dimensions}
+        offset = 0
+        for chunk in iter_chunks(path, chunk_points, progress):
+            keep = (np.ones(len(chunk), bool) if region is None
+                    else region.mask(chunk.x, chunk.y))
+            kept = chunk[keep] if region is not None else chunk
+            xyz_parts.append(xyz_of(kept))
+            index_parts.append(offset + np.flatnonzero(keep))
+            for d in dimensions:
+                attr_parts[d].append(np.array(kept[d]))
+            offset += len(chunk)
+        xyz = np.concatenate(xyz_parts) if xyz_parts else np.zeros((0, 3))
+        index = np.concatenate(index_parts) if index_parts else np.zeros(0, np.int64)
+        attrs = {d: (np.concatenate(p) if p else np.zeros(0)) for d, p in attr_parts.items()}
+        del xyz_parts, index_parts, attr_parts
+        return cls(xyz, index, attrs, tile_size_m, crs_wkt_of_header(header))
+
+    # -- introspection -----------------------------------------------------------------
+
+    def __len__(self) -> int:
+        return len(self.point_index)
+
+    @property
+    def nbytes(self) -> int:
+        """Memory held by the stored points (trees not counted)."""
+        return (self.xyz_world.nbytes + self.point_index.nbytes
+                + sum(v.nbytes for v in self.attributes.values()))
+
+    @property
+    def tile_keys(self) -> List[Tuple[int, int]]:
+        return sorted(self._ranges)
+
+    # -- queries -----------------------------------------------------------------------
+
+    def _tiles_in(self, xy_min, xy_max) -> Iterator[Tuple[Tuple[int, int], int, int]]:
+        t = self.tile_size_m
+        i0, j0 = (int(math.floor(v / t)) for v in xy_min[:2])
+        i1, j1 = (int(math.floor(v / t)) for v in xy_max[:2])
+        if (i1 - i0 + 1) * (j1 - j0 + 1) > len(self._ranges):
+            keys = (k for k in self._ranges if i0 <= k[0] <= i1 and j0 <= k[1] <= j1)
+        else:
+            keys = ((i, j) for i in range(i0, i1 + 1) for j in range(j0, j1 + 1))
+        for key in keys:
+            r = self._ranges.get(key)
+            if r is not None:
+                yield key, r[0], r[1]
+
+    def _gather(self, rows: List[np.ndarray]) -> PointSet:
+        rows_all = np.concatenate(rows) if rows else np.zeros(0, np.int64)
+        rows_all = rows_all[np.argsort(self.point_index[rows_all], kind="stable")]
+        return PointSet(self.xyz_world[rows_all], self.point_index[rows_all],
+                        {k: v[rows_all] for k, v in self.attributes.items()})
+
+    def query_box(self, min_xyz, max_xyz) -> PointSet:
+        """Points with ``min <= xyz <= max`` (use +-inf in z for a 2D box)."""
+        lo = np.asarray(min_xyz, dtype=float)
+        hi = np.asarray(max_xyz, dtype=float)
+        rows = []
+        for _, s, e in self._tiles_in(lo, hi):
+            p = self.xyz_world[s:e]
+            m = np.all((p >= lo) & (p <= hi), axis=1)
+            rows.append(s + np.flatnonzero(m))
+        return self._gather(rows)
+
+    def query_predicate(self, min_xyz, max_xyz,
+                        predicate: Callable[[np.ndarray], np.ndarray]) -> PointSet:
+        """Points in the box ``[min, max]`` for which ``predicate(xyz_world) -> bool mask``
+        holds (a frustum, a slab, ...); the box bounds the tiles visited."""
+        lo = np.asarray(min_xyz, dtype=float)
+        hi = np.asarray(max_xyz, dtype=float)
+        rows = []
+        for _, s, e in self._tiles_in(lo, hi):
+            p = self.xyz_world[s:e]
+            inside = np.flatnonzero(np.all((p >= lo) & (p <= hi), axis=1))
+            if inside.size:
+                keep = np.asarray(predicate(p[inside]), dtype=bool)
+                rows.append(s + inside[keep])
+        return self._gather(rows)
+
+    def _tree(self, key, s, e):
+        tree = self._trees.get(key)
+        if tree is None:
+            from scipy.spatial import cKDTree
+
+            tree = cKDTree(self.xyz_world[s:e])
+            self._trees[key] = tree
+        return tree
+
+    def query_radius(self, center_xyz, radius_m: float) -> PointSet:
+        """Points within ``radius_m`` (3D distance) of ``center_xyz`` (tile KD-trees)."""
+        c = np.asarray(center_xyz, dtype=float)
+        rows = []
+        for key, s, e in self._tiles_in(c - radius_m, c + radius_m):
+            hits = self._tree(key, s, e).query_ball_point(c, radius_m)
+            if hits:
+                rows.append(s + np.asarray(hits, dtype=np.int64))
+        return self._gather(rows)
+
+    def query_cone(self, apex_xyz, direction, half_angle_deg: float,
+                   max_range_m: float, min_range_m: float = 0.0) -> PointSet:
+        """Points seen from ``apex_xyz`` within ``half_angle_deg`` of ``direction`` and at
+        a distance in ``[min_range_m, max_range_m]`` (a frustum-like cone around a ray)."""
+        a = np.asarray(apex_xyz, dtype=float)
+        d = np.asarray(direction, dtype=float)
+        d = d / np.linalg.norm(d)
+        cos_max = math.cos(math.radians(half_angle_deg))
+
+        def inside(p: np.ndarray) -> np.ndarray:
+            v = p - a
+            dist = np.linalg.norm(v, axis=1)
+            along = v @ d
+            return (dist >= min_range_m) & (dist <= max_range_m) & (along >= cos_max * dist)
+
+        return self.query_predicate(a - max_range_m, a + max_range_m, inside)
