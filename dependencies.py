@@ -65,6 +65,27 @@ def install_command(modules: Iterable[str], platform: str = sys.platform) -> str
     return "python3 -m pip install --user --break-system-packages --upgrade {}".format(reqs)
 
 
+def shapely_geos_conflict(qgis_geos_version: str, platform: str = sys.platform) -> str:
+    """'' unless shapely is a wheel with its own GEOS on Linux, where its GEOS's C++ symbols
+    clash with the GEOS QGIS links and crash QGIS; then the message with the fix."""
+    if not platform.startswith("linux"):
+        return ""
+    try:
+        spec = importlib.util.find_spec("shapely")
+    except (ImportError, ValueError):
+        return ""
+    if spec is None or not spec.origin:
+        return ""
+    site = os.path.dirname(os.path.dirname(spec.origin))
+    if not os.path.isdir(os.path.join(site, "shapely.libs")):
+        return ""
+    return ("The installed shapely is a wheel with its own copy of GEOS, which clashes with "
+            "QGIS's GEOS {} on Linux and crashes QGIS. Install shapely built against the "
+            "system GEOS: sudo apt install libgeos-dev && python3 -m pip install --user "
+            "--break-system-packages --force-reinstall --no-deps --no-binary shapely "
+            "\"shapely>=2\"").format(qgis_geos_version)
+
+
 def missing_message(modules: Iterable[str]) -> str:
     """'' when all are present, else one sentence naming them and the command."""
     absent = missing(modules)

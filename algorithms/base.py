@@ -10,7 +10,7 @@ from qgis.core import Qgis, QgsProcessingAlgorithm, QgsProcessingException
 from qgis.PyQt.QtGui import QIcon
 
 from ..core.errors import Cancelled, InputError, Progress
-from ..dependencies import missing_message
+from ..dependencies import missing_message, shapely_geos_conflict
 from ..provider.i18n import tr
 from ..provider.provider import ICON_PATH
 
@@ -67,6 +67,8 @@ class RoadSignsAlgorithm(QgsProcessingAlgorithm):
 
     def check_dependencies(self):
         message = missing_message(self.REQUIRES)
+        if not message and "shapely" in self.REQUIRES:
+            message = shapely_geos_conflict(Qgis.geosVersion())
         if message:
             raise QgsProcessingException(self.tr(message))
 

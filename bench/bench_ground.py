@@ -52,8 +52,8 @@ def stage_generate(path: str, n_points: int, seed: int) -> dict:
     import numpy as np
     import pyproj
 
-    sys.path.insert(0, os.path.join(REPO, "tests", "core"))
-    import cloudgen
+    sys.path.insert(0, os.path.join(REPO, "tests"))
+    from helpers import cloudgen
 
     header = laspy.LasHeader(point_format=6, version="1.4")
     header.scales = np.array([0.001, 0.001, 0.001])

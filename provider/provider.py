@@ -25,9 +25,34 @@ class RoadSignsProvider(QgsProcessingProvider):
     def svgIconPath(self):  # noqa: N802
         return ICON_PATH
 
+    def load(self):
+        """Register the provider's settings (Processing ▸ Options ▸ Providers)."""
+        try:
+            from processing.core.ProcessingConfig import ProcessingConfig, Setting
+            from ..algorithms.groundfilter import PDAL_SETTING
+            ProcessingConfig.settingIcons[self.name()] = self.icon()
+            ProcessingConfig.addSetting(Setting(
+                self.name(), PDAL_SETTING,
+                tr("PDAL executable for the ground filter (empty: search PATH and QGIS)"), "",
+                valuetype=Setting.FILE))
+            ProcessingConfig.readSettings()
+        except ImportError:  # the processing plugin is not there: no settings dialog
+            pass
+        self.refreshAlgorithms()
+        return True
+
+    def unload(self):
+        try:
+            from processing.core.ProcessingConfig import ProcessingConfig
+            from ..algorithms.groundfilter import PDAL_SETTING
+            ProcessingConfig.removeSetting(PDAL_SETTING)
+        except ImportError:
+            pass
+
     def loadAlgorithms(self):  # noqa: N802
         from ..algorithms.detectsigns import DetectSigns
         from ..algorithms.evaluate import Evaluate
+        from ..algorithms.groundfilter import GroundFilter
         from ..algorithms.importtrajectory import ImportTrajectory
-        for algorithm in (ImportTrajectory(), DetectSigns(), Evaluate()):
+        for algorithm in (ImportTrajectory(), DetectSigns(), GroundFilter(), Evaluate()):
             self.addAlgorithm(algorithm)

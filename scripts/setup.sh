@@ -3,6 +3,7 @@
 # QGIS 3.40 LTR from bookworm-backports and a venv on Debian's Python 3.11 with numpy
 # pinned to the system's. Idempotent: a second run only checks and returns in seconds.
 set -euo pipefail
+export PROJ_DATA="${PROJ_DATA:-/usr/share/proj}"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 VENV="${ROADSIGNS_VENV:-$here/.venv}"
 SUDO=""
@@ -11,7 +12,10 @@ if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
 log() { printf '[setup] %s\n' "$*"; }
 
 # --- 1. QGIS 3.40 LTR and Debian's scientific Python --------------------------------
-apt_pkgs=(qgis python3-qgis qgis-providers python3-venv python3-pip python3-scipy python3-pyproj python3-numpy)
+# libgeos-dev: shapely is built against the system GEOS (the one QGIS links): a shapely wheel
+# bundles another GEOS whose C++ symbols clash with QGIS's inside qgis_process and crash it.
+apt_pkgs=(qgis python3-qgis qgis-providers python3-venv python3-pip python3-dev python3-scipy python3-pyproj
+          python3-numpy libgeos-dev)
 need_apt=0
 if ! command -v qgis_process >/dev/null 2>&1; then need_apt=1; fi
 for p in "${apt_pkgs[@]}"; do
@@ -48,8 +52,15 @@ if [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
   constraints="$VENV/constraints.txt"
   echo "numpy==$sys_numpy" > "$constraints"
   log "installing Python dependencies (numpy pinned to $sys_numpy)"
-  "$VENV/bin/python" -m pip install -q --disable-pip-version-check \
+  "$VENV/bin/python" -m pip install -q --disable-pip-version-check --no-binary shapely \
     -c "$constraints" -r "$here/requirements.txt" -r "$here/requirements-dev.txt"
   echo "$want" > "$stamp"
 fi
-log "python deps ok: $("$VENV/bin/python" -c 'import numpy, scipy, pyproj; print("numpy", numpy.__version__, "scipy", scipy.__version__, "pyproj", pyproj.__version__)')"
+sys_geos="$(geos-config --version)"
+venv_geos="$("$VENV/bin/python" -c 'import shapely; print(".".join(map(str, shapely.geos_version)))')"
+if [ "$sys_geos" != "$venv_geos" ]; then
+  log "rebuilding shapely against the system GEOS $sys_geos (it had GEOS $venv_geos)"
+  "$VENV/bin/python" -m pip install -q --disable-pip-version-check --no-binary shapely \
+    --force-reinstall --no-deps -c "$VENV/constraints.txt" "shapely>=2.0"
+fi
+log "python deps ok: $("$VENV/bin/python" -c 'import numpy, scipy, pyproj, shapely; print("numpy", numpy.__version__, "scipy", scipy.__version__, "pyproj", pyproj.__version__, "shapely", shapely.__version__, "GEOS", shapely.geos_version_string)')"

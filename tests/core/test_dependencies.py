@@ -23,3 +23,17 @@ def test_install_commands_per_platform():
     assert "OSGeo4W Shell" in windows
     mac = dependencies.install_command(["cv2"], platform="darwin")
     assert mac.endswith("-m pip install --upgrade opencv-python-headless")
+
+
+def test_shapely_wheel_with_its_own_geos_is_flagged_on_linux(tmp_path, monkeypatch):
+    (tmp_path / "shapely").mkdir()
+    (tmp_path / "shapely" / "__init__.py").write_text("")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    import importlib
+    importlib.invalidate_caches()
+    monkeypatch.delitem(__import__("sys").modules, "shapely", raising=False)
+    assert dependencies.shapely_geos_conflict("3.11.1", platform="linux") == ""  # built from source
+    (tmp_path / "shapely.libs").mkdir()
+    message = dependencies.shapely_geos_conflict("3.11.1", platform="linux")
+    assert "GEOS 3.11.1" in message and "--no-binary shapely" in message
+    assert dependencies.shapely_geos_conflict("3.11.1", platform="win32") == ""

@@ -12,8 +12,7 @@ import pytest
 import shapely
 from shapely.geometry import box
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import cloudgen  # noqa: E402
+from helpers import cloudgen  # noqa: E402
 
 from roadsigns.core import ground  # noqa: E402
 from roadsigns.core import pointcloud as pc  # noqa: E402

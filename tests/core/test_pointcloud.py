@@ -9,8 +9,7 @@ import pytest
 import shapely
 from shapely.geometry import Polygon, box
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import cloudgen  # noqa: E402
+from helpers import cloudgen  # noqa: E402
 
 from roadsigns.core import pointcloud as pc  # noqa: E402
 from roadsigns.core.errors import InputError  # noqa: E402

@@ -2,7 +2,8 @@
 parameter carries help text."""
 import pytest
 
-EXPECTED_ALGORITHMS = {"roadsigns:importtrajectory", "roadsigns:detectsigns", "roadsigns:evaluate"}
+EXPECTED_ALGORITHMS = {"roadsigns:importtrajectory", "roadsigns:detectsigns", "roadsigns:groundfilter",
+                       "roadsigns:evaluate"}
 
 
 @pytest.fixture(scope="module")

@@ -1,0 +1,153 @@
+"""roadsigns:groundfilter - crop a LAS/LAZ cloud and classify its ground (class 2) with
+PDAL's CSF or SMRF filter, or the built-in engine when PDAL is not there."""
+import os
+from contextlib import contextmanager
+
+from qgis.core import (Qgis, QgsCoordinateReferenceSystem, QgsCoordinateTransform,
+                       QgsProcessingException, QgsProcessingOutputNumber,
+                       QgsProcessingOutputString, QgsProcessingParameterBoolean,
+                       QgsProcessingParameterCrs, QgsProcessingParameterEnum,
+                       QgsProcessingParameterFeatureSource, QgsProcessingParameterFile,
+                       QgsProcessingParameterFileDestination, QgsProcessingParameterNumber,
+                       QgsWkbTypes)
+
+from .base import RoadSignsAlgorithm
+
+#: Provider setting (Processing ▸ Options ▸ Providers) and environment variable for a
+#: ``pdal`` executable that is neither on PATH nor in QGIS's bin folder.
+PDAL_SETTING = "ROADSIGNS_PDAL_EXECUTABLE"
+
+
+def configured_pdal_executable():
+    """The ``pdal`` path from the provider's settings or ``ROADSIGNS_PDAL_EXECUTABLE``; None if unset."""
+    path = os.environ.get(PDAL_SETTING, "")
+    try:
+        from processing.core.ProcessingConfig import ProcessingConfig
+        path = ProcessingConfig.getSetting(PDAL_SETTING) or path
+    except Exception:  # processing plugin not loaded
+        pass
+    return path or None
+
+
+class GroundFilter(RoadSignsAlgorithm):
+    ALGORITHM_ID = "groundfilter"
+    DISPLAY_NAME = "Ground filter and crop point cloud"
+    REQUIRES = ("numpy", "scipy", "pyproj", "laspy", "lazrs", "shapely")
+    SHORT_DESCRIPTION = "Crops a LAS/LAZ cloud and classifies ground (class 2) with CSF or SMRF, PDAL or built-in."
+    METHODS = ["CSF (cloth simulation)", "SMRF (simple morphological filter)"]
+    ENGINES = ["Auto (PDAL when available, else built-in)", "PDAL", "Built-in"]
+    HELP = (
+        "Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and "
+        "classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et "
+        "al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's "
+        "default parameters. Other classes are kept unless <i>Reset existing classes</i> is "
+        "checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are "
+        "written unchanged.<br><br><b>Crop</b>: polygons (grown by the crop buffer), or points "
+        "and lines such as the panorama stations or detection rays, buffered into a corridor. "
+        "The crop layer is reprojected to the cloud's CRS.<br><br><b>Engine</b>: PDAL runs "
+        "filters.csf / filters.smrf through its Python bindings or the <i>pdal</i> executable "
+        "(on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign "
+        "inventory); the built-in engine runs the same filters in Python, tile by tile, so "
+        "clouds larger than memory work. Auto uses PDAL when present and falls back to the "
+        "built-in engine if PDAL fails, saying so in the log.")
+
+    def initAlgorithm(self, config=None):  # noqa: N802
+        self.add(QgsProcessingParameterFile(
+            "INPUT", self.tr("Point cloud (LAS/LAZ)"), behavior=Qgis.ProcessingFileParameterBehavior.File,
+            fileFilter=self.tr("LAS/LAZ point clouds (*.las *.laz *.LAS *.LAZ);;All files (*.*)")),
+            "The mobile-mapping cloud, LAS 1.2-1.4 or LAZ, any size (it is read in chunks).")
+        self.add(QgsProcessingParameterFeatureSource(
+            "CROP", self.tr("Crop layer (optional)"),
+            [Qgis.ProcessingSourceType.VectorAnyGeometry], optional=True),
+            "Keep only points inside these polygons, or within the crop buffer of these points or "
+            "lines (e.g. the panorama stations). Empty keeps the whole cloud.")
+        self.add(QgsProcessingParameterNumber(
+            "CROP_BUFFER", self.tr("Crop buffer (m)"), type=Qgis.ProcessingNumberParameterType.Double,
+            defaultValue=0.0, minValue=0.0),
+            "Grow the crop geometries by this many metres; needed (> 0) for a point or line layer.")
+        self.add(QgsProcessingParameterEnum(
+            "METHOD", self.tr("Ground method"), options=[self.tr(m) for m in self.METHODS], defaultValue=0),
+            "CSF suits roads and gentle terrain; SMRF suits steeper or rougher terrain.")
+        self.add(QgsProcessingParameterEnum(
+            "ENGINE", self.tr("Engine"), options=[self.tr(e) for e in self.ENGINES], defaultValue=0),
+            "Auto: PDAL when QGIS has it (Python bindings or the pdal executable), else built-in.")
+        self.add(QgsProcessingParameterCrs(
+            "CLOUD_CRS", self.tr("Cloud CRS (when the file has none)"), optional=True),
+            "The cloud's CRS if the file does not record one; a CRS in the file is replaced by it. "
+            "The CRS is never guessed.", advanced=True)
+        self.add(QgsProcessingParameterBoolean(
+            "RESET_CLASSES", self.tr("Reset existing classes"), defaultValue=False),
+            "Set every non-ground point to class 1 (unclassified) instead of keeping its class.",
+            advanced=True)
+        self.add(QgsProcessingParameterFileDestination(
+            "OUTPUT", self.tr("Ground-classified cloud"),
+            self.tr("LAZ (*.laz);;LAS (*.las)"), defaultValue=None),
+            "The cropped cloud with ground as class 2; LAZ or LAS by the file extension.")
+        self.addOutput(QgsProcessingOutputString("ENGINE_USED", self.tr("Engine that ran")))
+        self.addOutput(QgsProcessingOutputNumber("POINTS_IN", self.tr("Points read")))
+        self.addOutput(QgsProcessingOutputNumber("POINTS_OUT", self.tr("Points written")))
+        self.addOutput(QgsProcessingOutputNumber("GROUND_POINTS", self.tr("Ground points")))
+
+    def _crop_geometries(self, parameters, context, cloud_crs, buffer_m, feedback):
+        """WKB of the crop layer's geometries in the cloud's CRS (None without a crop layer)."""
+        source = self.parameterAsSource(parameters, "CROP", context)
+        if source is None:
+            return None
+        if QgsWkbTypes.geometryType(source.wkbType()) != Qgis.GeometryType.Polygon and buffer_m <= 0:
+            raise QgsProcessingException(self.tr(
+                "The crop layer holds points or lines: give a crop buffer in metres (> 0) to make "
+                "a corridor around them"))
+        transform = None
+        if cloud_crs.isValid() and source.sourceCrs().isValid() and source.sourceCrs() != cloud_crs:
+            feedback.pushInfo(self.tr("Reprojecting the crop layer from {} to {}").format(
+                source.sourceCrs().authid(), cloud_crs.authid() or cloud_crs.description()))
+            transform = QgsCoordinateTransform(source.sourceCrs(), cloud_crs, context.transformContext())
+        geometries = []
+        for feature in source.getFeatures():
+            geometry = feature.geometry()
+            if geometry.isNull() or geometry.isEmpty():
+                continue
+            if transform is not None:
+                geometry.transform(transform)
+            geometries.append(bytes(geometry.asWkb()))
+        return geometries
+
+    @contextmanager
+    def _pdal_errors(self, pdal_error_type):
+        try:
+            yield
+        except pdal_error_type as error:
+            raise QgsProcessingException(self.tr("PDAL failed: {}\n{}").format(
+                error, getattr(error, "stderr", "")).strip())
+
+    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+        self.check_dependencies()
+        from ..core import pointcloud
+        from ..core.ground import PdalError, run_ground_filter
+
+        input_path = self.parameterAsFile(parameters, "INPUT", context)
+        output_path = self.parameterAsFileOutput(parameters, "OUTPUT", context)
+        if os.path.splitext(output_path)[1].lower() not in (".las", ".laz"):
+            output_path = os.path.splitext(output_path)[0] + ".laz"
+        user_crs = self.parameterAsCrs(parameters, "CLOUD_CRS", context)
+        buffer_m = self.parameterAsDouble(parameters, "CROP_BUFFER", context)
+        with self.core_errors():
+            crs_wkt = user_crs.toWkt(Qgis.CrsWktVariant.Wkt2_2019Simplified) if user_crs.isValid() \
+                else pointcloud.read_crs_wkt(input_path)
+        cloud_crs = QgsCoordinateReferenceSystem.fromWkt(crs_wkt) if crs_wkt else QgsCoordinateReferenceSystem()
+        crop = self._crop_geometries(parameters, context, cloud_crs, buffer_m, feedback)
+        with self.core_errors(), self._pdal_errors(PdalError):
+            result = run_ground_filter(
+                input_path, output_path,
+                method=self.parameterAsEnum(parameters, "METHOD", context),
+                engine=self.parameterAsEnum(parameters, "ENGINE", context),
+                crop_polygons=crop, crop_buffer_m=buffer_m if crop else 0.0,
+                crs_wkt=crs_wkt if user_crs.isValid() else None,
+                reset_classes=self.parameterAsBoolean(parameters, "RESET_CLASSES", context),
+                pdal_executable=configured_pdal_executable(),
+                progress=self.progress(feedback))
+        feedback.pushInfo(self.tr("Engine: {}; method: {}; {} points read, {} written, {} ground").format(
+            result.engine, result.method.upper(), result.n_input, result.n_output, result.n_ground))
+        return {"OUTPUT": result.output_path, "ENGINE_USED": result.engine,
+                "POINTS_IN": result.n_input, "POINTS_OUT": result.n_output,
+                "GROUND_POINTS": result.n_ground}

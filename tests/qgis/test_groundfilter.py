@@ -1,0 +1,162 @@
+"""roadsigns:groundfilter through qgis_process on generated LAZ clouds."""
+import os
+import stat
+import sys
+import textwrap
+
+import laspy
+import numpy as np
+import pytest
+import shapely
+from osgeo import ogr, osr
+from pyproj import Transformer
+
+from helpers import cloudgen
+
+ALG = "roadsigns:groundfilter"
+
+
+@pytest.fixture(scope="module")
+def road(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("cloud")
+    scene = cloudgen.road_scene(slope=0.06, seed=2)
+    path = str(folder / "road.laz")
+    cloudgen.write_scene(path, scene, crs_epsg=25833)
+    return path, scene
+
+
+def write_layer(path, geometries_wkt, epsg, kind):
+    ds = ogr.GetDriverByName("GPKG").CreateDataSource(str(path))
+    srs = osr.SpatialReference()
+    srs.ImportFromEPSG(epsg)
+    srs.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
+    layer = ds.CreateLayer("crop", srs, kind)
+    for wkt in geometries_wkt:
+        feature = ogr.Feature(layer.GetLayerDefn())
+        feature.SetGeometry(ogr.CreateGeometryFromWkt(wkt))
+        layer.CreateFeature(feature)
+    ds = None
+    return str(path)
+
+
+def classes(path):
+    las = laspy.read(path)
+    return np.column_stack([las.x, las.y, las.z]), np.asarray(las.classification)
+
+
+@pytest.mark.parametrize("method", [0, 1])
+def test_ground_agrees_with_truth(qgis_process, road, tmp_path, method):
+    path, scene = road
+    out = str(tmp_path / "ground.laz")
+    run = qgis_process.run(ALG, INPUT=path, METHOD=method, ENGINE=2, OUTPUT=out)
+    assert run.returncode == 0, run.text
+    results = run.json["results"]
+    assert results["ENGINE_USED"] == "builtin"
+    assert results["POINTS_IN"] == results["POINTS_OUT"] == len(scene)
+    xyz, cls = classes(out)
+    assert np.allclose(xyz, scene.xyz, atol=1e-3)  # same points, same order
+    agreement = np.mean((cls == 2) == scene.is_ground)
+    assert agreement >= 0.99, agreement
+    assert results["GROUND_POINTS"] == int(np.sum(cls == 2))
+
+
+def test_auto_without_pdal_says_so(qgis_process, road, tmp_path):
+    out = str(tmp_path / "g.laz")
+    run = qgis_process.run(ALG, INPUT=road[0], OUTPUT=out)
+    assert run.returncode == 0, run.text
+    assert run.json["results"]["ENGINE_USED"] == "builtin"
+    assert any("PDAL not found" in line for line in run.json["log"]["info"])
+
+
+def test_crop_polygon_in_another_crs(qgis_process, road, tmp_path):
+    path, scene = road
+    x0, y0, _ = cloudgen.ORIGIN
+    to_geo = Transformer.from_crs("EPSG:25833", "EPSG:4326", always_xy=True)
+    ring = [(x0 + 10, y0 - 5), (x0 + 30, y0 - 5), (x0 + 30, y0 + 5), (x0 + 10, y0 + 5)]
+    ring_geo = [to_geo.transform(*p) for p in ring]
+    wkt = "POLYGON(({}))".format(", ".join("{} {}".format(*p) for p in ring_geo + ring_geo[:1]))
+    crop = write_layer(tmp_path / "crop.gpkg", [wkt], 4326, ogr.wkbPolygon)
+    out = str(tmp_path / "g.laz")
+    run = qgis_process.run(ALG, INPUT=path, CROP=crop, ENGINE=2, OUTPUT=out)
+    assert run.returncode == 0, run.text
+    xyz, _ = classes(out)
+    back = Transformer.from_crs("EPSG:4326", "EPSG:25833", always_xy=True)
+    polygon = shapely.Polygon([back.transform(*p) for p in ring_geo])
+    inside = shapely.contains_xy(polygon.buffer(0.01), scene.xyz[:, 0], scene.xyz[:, 1])
+    core = shapely.contains_xy(polygon.buffer(-0.01), scene.xyz[:, 0], scene.xyz[:, 1])
+    assert core.sum() <= len(xyz) <= inside.sum()
+    assert shapely.contains_xy(polygon.buffer(0.01), xyz[:, 0], xyz[:, 1]).all()
+
+
+def test_corridor_around_points(qgis_process, road, tmp_path):
+    path, scene = road
+    x0, y0, _ = cloudgen.ORIGIN
+    stations = ["POINT({} {})".format(x0 + 20, y0), "POINT({} {})".format(x0 + 25, y0)]
+    crop = write_layer(tmp_path / "stations.gpkg", stations, 25833, ogr.wkbPoint)
+    run = qgis_process.run(ALG, INPUT=path, CROP=crop, ENGINE=2, OUTPUT=str(tmp_path / "g.laz"))
+    assert run.returncode != 0 and "crop buffer" in run.text  # points need a buffer
+    out = str(tmp_path / "g.laz")
+    run = qgis_process.run(ALG, INPUT=path, CROP=crop, CROP_BUFFER=4, ENGINE=2, OUTPUT=out)
+    assert run.returncode == 0, run.text
+    xyz, _ = classes(out)
+    d = np.minimum(np.hypot(xyz[:, 0] - x0 - 20, xyz[:, 1] - y0), np.hypot(xyz[:, 0] - x0 - 25, xyz[:, 1] - y0))
+    assert d.max() <= 4.0 + 1e-6 and len(xyz) > 1000
+    d_all = np.minimum(np.hypot(scene.xyz[:, 0] - x0 - 20, scene.xyz[:, 1] - y0),
+                       np.hypot(scene.xyz[:, 0] - x0 - 25, scene.xyz[:, 1] - y0))
+    assert abs(len(xyz) - int(np.sum(d_all <= 4.0))) <= int(np.sum(np.abs(d_all - 4.0) < 0.01))
+
+
+def fake_pdal(folder):
+    path = folder / "pdal"
+    path.write_text("#!{}\n".format(sys.executable) + textwrap.dedent("""
+        import sys
+        sys.stdin.read()
+        sys.stderr.write("PDAL: readers.las: Invalid something in the fake\\n")
+        sys.exit(1)
+    """))
+    path.chmod(path.stat().st_mode | stat.S_IEXEC)
+    return str(path)
+
+
+def test_failing_pdal_falls_back_only_under_auto(qgis_process, road, tmp_path, monkeypatch):
+    monkeypatch.setitem(qgis_process.env, "ROADSIGNS_PDAL_EXECUTABLE", fake_pdal(tmp_path))
+    out = tmp_path / "g.laz"
+    run = qgis_process.run(ALG, INPUT=road[0], ENGINE=1, OUTPUT=str(out))
+    assert run.returncode != 0
+    assert "Invalid something in the fake" in run.text
+    assert not out.exists()
+    run = qgis_process.run(ALG, INPUT=road[0], ENGINE=0, OUTPUT=str(out))
+    assert run.returncode == 0, run.text
+    assert run.json["results"]["ENGINE_USED"] == "builtin"
+    assert "PDAL failed, the built-in engine was used instead" in run.text
+
+
+@pytest.mark.parametrize("case,message", [
+    ("not las", "LAS"),
+    ("truncated", "truncated.laz"),
+    ("no crs", "has no coordinate reference system"),
+    ("pdal asked", "PDAL was asked for"),
+])
+def test_bad_input(qgis_process, road, tmp_path, case, message):
+    parameters = dict(INPUT=road[0], ENGINE=2)
+    if case == "not las":
+        bad = tmp_path / "notes.laz"
+        bad.write_text("this is not a point cloud")
+        parameters["INPUT"] = str(bad)
+    elif case == "truncated":
+        bad = tmp_path / "truncated.laz"
+        bad.write_bytes(open(road[0], "rb").read()[:20000])
+        parameters["INPUT"] = str(bad)
+    elif case == "no crs":
+        scene = cloudgen.road_scene(length_m=10, density_per_m2=20, seed=5)
+        bad = str(tmp_path / "nocrs.las")
+        cloudgen.write_scene(bad, scene, crs_epsg=None)
+        parameters["INPUT"] = bad
+    else:
+        parameters["ENGINE"] = 1
+    out = tmp_path / "out.laz"
+    run = qgis_process.run(ALG, OUTPUT=str(out), **parameters)
+    assert run.returncode != 0
+    assert message in run.text, run.text
+    assert not out.exists()
+    assert not [f for f in os.listdir(tmp_path) if f.startswith("out")]
