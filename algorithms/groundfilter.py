@@ -40,7 +40,8 @@ class GroundFilter(RoadSignsAlgorithm):
         "Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and "
         "classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et "
         "al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's "
-        "default parameters. Other classes are kept unless <i>Reset existing classes</i> is "
+        "parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m "
+        "cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless <i>Reset existing classes</i> is "
         "checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are "
         "written unchanged.<br><br><b>Crop</b>: polygons (grown by the crop buffer), or points "
         "and lines such as the panorama stations or detection rays, buffered into a corridor. "
@@ -71,6 +72,17 @@ class GroundFilter(RoadSignsAlgorithm):
         self.add(QgsProcessingParameterEnum(
             "ENGINE", self.tr("Engine"), options=[self.tr(e) for e in self.ENGINES], defaultValue=0),
             "Auto: PDAL when QGIS has it (Python bindings or the pdal executable), else built-in.")
+        self.add(QgsProcessingParameterNumber(
+            "THRESHOLD", self.tr("Ground distance threshold (m)"),
+            type=Qgis.ProcessingNumberParameterType.Double, defaultValue=0.2, minValue=0.01),
+            "Points within this height of the ground surface are ground (PDAL's threshold option). "
+            "PDAL's default is 0.5 m; 0.2 m suits dense mobile-mapping clouds, where it keeps the "
+            "lowest parts of cars, walls and street furniture off the ground class.", advanced=True)
+        self.add(QgsProcessingParameterNumber(
+            "CELL_SIZE", self.tr("Cloth resolution / cell size (m)"),
+            type=Qgis.ProcessingNumberParameterType.Double, defaultValue=0.5, minValue=0.05),
+            "CSF's cloth resolution or SMRF's cell size, in metres (PDAL's default: 1 m).",
+            advanced=True)
         self.add(QgsProcessingParameterCrs(
             "CLOUD_CRS", self.tr("Cloud CRS (when the file has none)"), optional=True),
             "The cloud's CRS if the file does not record one; a CRS in the file is replaced by it. "
@@ -123,7 +135,7 @@ class GroundFilter(RoadSignsAlgorithm):
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
         self.check_dependencies()
         from ..core import pointcloud
-        from ..core.ground import PdalError, run_ground_filter
+        from ..core.ground import CsfParams, PdalError, SmrfParams, run_ground_filter
 
         input_path = self.parameterAsFile(parameters, "INPUT", context)
         output_path = self.parameterAsFileOutput(parameters, "OUTPUT", context)
@@ -136,10 +148,15 @@ class GroundFilter(RoadSignsAlgorithm):
                 else pointcloud.read_crs_wkt(input_path)
         cloud_crs = QgsCoordinateReferenceSystem.fromWkt(crs_wkt) if crs_wkt else QgsCoordinateReferenceSystem()
         crop = self._crop_geometries(parameters, context, cloud_crs, buffer_m, feedback)
+        method = self.parameterAsEnum(parameters, "METHOD", context)
+        threshold_m = self.parameterAsDouble(parameters, "THRESHOLD", context)
+        cell_m = self.parameterAsDouble(parameters, "CELL_SIZE", context)
+        params = CsfParams(resolution=cell_m, threshold=threshold_m) if method == 0 else \
+            SmrfParams(cell=cell_m, threshold=threshold_m)
         with self.core_errors(), self._pdal_errors(PdalError):
             result = run_ground_filter(
                 input_path, output_path,
-                method=self.parameterAsEnum(parameters, "METHOD", context),
+                method=method, params=params,
                 engine=self.parameterAsEnum(parameters, "ENGINE", context),
                 crop_polygons=crop, crop_buffer_m=buffer_m if crop else 0.0,
                 crs_wkt=crs_wkt if user_crs.isValid() else None,

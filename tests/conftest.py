@@ -38,3 +38,12 @@ def drive_geographic(tmp_path_factory):
     """The same drive with lon/lat positions (EPSG:4326)."""
     from devtools import trajsample
     return trajsample.make_sample(str(tmp_path_factory.mktemp("drive_geographic")), crs="geographic")
+
+
+@pytest.fixture(scope="session")
+def scene_tiny_cloud(tmp_path_factory):
+    """A generated scene (devtools/scenegen, preset tiny) without panoramas: LAZ with true classes."""
+    from devtools.scenegen import generate_scene
+    folder = str(tmp_path_factory.mktemp("scene_tiny_cloud"))
+    generate_scene("tiny", seed=11, out_dir=folder, panoramas=False, masks=False)
+    return folder

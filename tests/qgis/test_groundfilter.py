@@ -160,3 +160,18 @@ def test_bad_input(qgis_process, road, tmp_path, case, message):
     assert message in run.text, run.text
     assert not out.exists()
     assert not [f for f in os.listdir(tmp_path) if f.startswith("out")]
+
+
+@pytest.mark.parametrize("method", [0, 1])
+def test_generated_street_scene(qgis_process, scene_tiny_cloud, tmp_path, method):
+    """The ray-cast street scene (buildings, cars, trees, street furniture, curbs): the true
+    classes are in the input, reset by the filter and compared afterwards."""
+    source = os.path.join(scene_tiny_cloud, "cloud.laz")
+    out = str(tmp_path / "g.laz")
+    run = qgis_process.run(ALG, INPUT=source, METHOD=method, RESET_CLASSES=True, OUTPUT=out)
+    assert run.returncode == 0, run.text
+    truth = np.asarray(laspy.read(source).classification) == 2
+    _, cls = classes(out)
+    assert set(np.unique(cls)) <= {1, 2}
+    agreement = np.mean((cls == 2) == truth)
+    assert agreement >= 0.99, agreement
