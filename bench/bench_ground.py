@@ -24,18 +24,10 @@ REPO = os.path.dirname(HERE)
 
 
 def _import_package():
-    """Make the checkout importable as ``roadsigns`` (as tests/conftest.py does)."""
-    import tempfile
-
-    folder = os.path.join(tempfile.gettempdir(), "roadsigns-bench-path")
-    os.makedirs(folder, exist_ok=True)
-    link = os.path.join(folder, "roadsigns")
-    if not os.path.islink(link):
-        try:
-            os.symlink(REPO, link)
-        except FileExistsError:
-            pass
-    sys.path.insert(0, folder)
+    """Make the checkout importable as ``roadsigns``."""
+    sys.path.insert(0, REPO)
+    from devtools import import_roadsigns
+    import_roadsigns()
 
 
 def _peak_rss_mb() -> float:

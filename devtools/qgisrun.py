@@ -14,7 +14,7 @@ import sys
 import tempfile
 from dataclasses import dataclass
 
-REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from . import plugin_path as default_plugin_path
 
 
 @dataclass
@@ -34,15 +34,6 @@ class Run:
         return self.stdout + self.stderr
 
 
-def make_plugin_path(plugin_path: str = None) -> str:
-    """A folder holding ``roadsigns`` -> this checkout (made once per process)."""
-    plugin_path = plugin_path or tempfile.mkdtemp(prefix="roadsigns-pluginpath-")
-    link = os.path.join(plugin_path, "roadsigns")
-    if not os.path.exists(link):
-        os.symlink(REPO_ROOT, link)
-    return plugin_path
-
-
 class QgisProcess:
     """``qgis_process`` bound to one plugin folder and one throw-away profile."""
 
@@ -54,7 +45,7 @@ class QgisProcess:
         env = dict(os.environ)
         site = [p for p in sys.path if p.endswith("site-packages") and os.path.isdir(p)]
         env.update({
-            "QGIS_PLUGINPATH": make_plugin_path(plugin_path),
+            "QGIS_PLUGINPATH": plugin_path or default_plugin_path(),
             "QGIS_CUSTOM_CONFIG_PATH": self.profile,
             "QT_QPA_PLATFORM": "offscreen",
             "PYTHONPATH": os.pathsep.join(site + [env.get("PYTHONPATH", "")]).strip(os.pathsep),

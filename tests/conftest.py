@@ -6,17 +6,17 @@ for the ``qgis_process`` tests (see ``tests/qgis/conftest.py``).
 """
 import os
 import sys
-import tempfile
 
 import pytest
 
 if os.path.isdir("/usr/share/proj"):  # pyproj inside a venv looks under the venv otherwise
     os.environ.setdefault("PROJ_DATA", "/usr/share/proj")
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-PLUGIN_PATH = tempfile.mkdtemp(prefix="roadsigns-pluginpath-")
-os.symlink(REPO_ROOT, os.path.join(PLUGIN_PATH, "roadsigns"))
-sys.path.insert(0, PLUGIN_PATH)
 sys.path.append(REPO_ROOT)  # dev tools: ``import devtools.trajsample``
+from devtools import plugin_path as _plugin_path  # noqa: E402
+
+PLUGIN_PATH = _plugin_path()
+sys.path.insert(0, PLUGIN_PATH)
 sys.path.append(os.path.join(REPO_ROOT, "tests"))  # shared test helpers: ``import helpers.contract``
 
 

@@ -11,32 +11,16 @@ API: :func:`generate_scene`; CLI: ``python -m devtools.scenegen --preset tiny --
 """
 from __future__ import annotations
 
-import importlib
 import os
-import sys
-import tempfile
 
 os.environ.setdefault("PROJ_DATA", "/usr/share/proj")  # pyproj inside a venv needs it
 
-REPO_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
 def roadsigns_geometry():
-    """Import ``roadsigns.core.geometry`` (the contract's frames), making the checkout importable.
-
-    The checkout may have any folder name; as in ``tests/conftest.py`` a symlink
-    ``<tmp>/roadsigns -> checkout`` is put on ``sys.path`` when ``roadsigns`` is not importable.
-    """
-    try:
-        return importlib.import_module("roadsigns.core.geometry")
-    except ImportError:
-        pass
-    link_dir = tempfile.mkdtemp(prefix="scenegen-roadsigns-")
-    os.symlink(REPO_ROOT, os.path.join(link_dir, "roadsigns"))
-    sys.path.insert(0, link_dir)
-    for name in [m for m in sys.modules if m == "roadsigns" or m.startswith("roadsigns.")]:
-        del sys.modules[name]
-    return importlib.import_module("roadsigns.core.geometry")
+    """``roadsigns.core.geometry`` (the contract's frames) from this checkout."""
+    from .. import import_roadsigns
+    return import_roadsigns("roadsigns.core.geometry")
 
 
 from .presets import PRESETS, Preset  # noqa: E402
