@@ -1,47 +1,61 @@
 """The main job on the bundled sample, through qgis_process, as an analyst's batch script would.
 
-For now the chain is its first stage: a small generated drive (trajectory CSV at 100 Hz,
-image times, panoramas) is imported into panorama stations. Later stages join as they land.
-Outputs go to ``demo_out/``.
+The sample is the generator's ``tiny`` scene (devtools/scenegen: 36 m of street, panoramas,
+trajectory, LiDAR, reference signs), made on the fly into ``demo_out/sample``. The chain
+runs the stages the plugin has today; the others are listed as still to come.
 """
+import json
 import os
 import sys
 
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, REPO_ROOT)
 
-from devtools import trajsample  # noqa: E402
 from devtools.qgisrun import QgisProcess  # noqa: E402
+from devtools.scenegen import generate_scene  # noqa: E402
+
+CHAIN = ("importtrajectory", "detectsigns", "groundfilter", "projectdetections", "refinesigns",
+         "evaluate")
 
 
 def main():
     out_dir = os.path.join(REPO_ROOT, "demo_out")
-    sample_dir = os.path.join(out_dir, "sample")
-    os.makedirs(sample_dir, exist_ok=True)
-    sample = trajsample.make_sample(sample_dir, width_px=512, crs="geographic")
-    print("Sample drive: {} panoramas, trajectory {}".format(len(sample["names"]),
-                                                              sample["trajectory_csv"]))
+    sample = os.path.join(out_dir, "sample")
+    if not os.path.exists(os.path.join(sample, "scene.json")):
+        print("Generating the sample scene into {} ...".format(sample))
+        generate_scene("tiny", seed=1, out_dir=sample, masks=False)
+    with open(os.path.join(sample, "scene.json")) as f:
+        scene = json.load(f)
     qgis = QgisProcess()
-    stations = os.path.join(out_dir, "stations.gpkg")
-    run = qgis.run("roadsigns:importtrajectory", TRAJECTORY=sample["trajectory_csv"],
-                   IMAGE_TIMES=sample["image_times"], IMAGES=sample["images"],
-                   TRAJECTORY_CRS="EPSG:4326", TARGET_CRS="EPSG:32633",
-                   LEVER_ARM_X=0.4, LEVER_ARM_Z=-1.8, OUTPUT=stations)
-    if run.returncode != 0:
-        print(run.text)
-        sys.exit("roadsigns:importtrajectory failed")
-    for line in run.json["log"].get("info", []):
-        print("  " + line)
-    print("Stations: {} ({:.1f} s)".format(stations, run.wall_s))
-    from osgeo import ogr
-    dataset = ogr.Open(stations)  # keep a reference: the layer dies with its dataset
-    layer = dataset.GetLayer(0)
-    print("{:>4} {:<14} {:>12} {:>13} {:>8} {:>8}".format("id", "image", "x", "y", "z", "heading"))
-    for feature in layer:
-        print("{:>4} {:<14} {:>12.3f} {:>13.3f} {:>8.3f} {:>8.3f}".format(
-            feature["station_id"], feature["image"], feature["x"], feature["y"], feature["z"],
-            feature["heading"]))
-    print("Stages still to come: detectsigns, groundfilter, projectdetections, refinesigns, evaluate")
+    available = set(qgis("--json", "list").json["providers"]["roadsigns"]["algorithms"])
+
+    def run(stage, **parameters):
+        result = qgis.run("roadsigns:" + stage, **parameters)
+        if result.returncode != 0:
+            print(result.text)
+            sys.exit("roadsigns:{} failed".format(stage))
+        print("{:<18} {:6.1f} s  {}".format(stage, result.wall_s, "; ".join(
+            result.json["log"].get("info", [])[-2:])))
+        return result.json["results"]
+
+    lever, bore = scene["lever_arm_m"], scene["boresight_deg"]
+    stations = run("importtrajectory", TRAJECTORY=os.path.join(sample, "trajectory.csv"),
+                   IMAGE_TIMES=os.path.join(sample, "image_times.csv"),
+                   IMAGES=os.path.join(sample, "images"), TRAJECTORY_CRS=scene["trajectory_crs"],
+                   TARGET_CRS=scene["target_crs"], LEVER_ARM_X=lever[0], LEVER_ARM_Y=lever[1],
+                   LEVER_ARM_Z=lever[2], BORESIGHT_ROLL=bore["roll"], BORESIGHT_PITCH=bore["pitch"],
+                   BORESIGHT_YAW=bore["yaw"], OUTPUT=os.path.join(out_dir, "stations.gpkg"))["OUTPUT"]
+    ground = run("groundfilter", INPUT=os.path.join(sample, "cloud.laz"), CROP=stations,
+                 CROP_BUFFER=20, RESET_CLASSES=True, OUTPUT=os.path.join(out_dir, "ground.laz"))
+    print("\nOutputs in {}:".format(out_dir))
+    print("  panorama stations  {}".format(stations))
+    print("  ground-classified  {} ({} of {} points kept, {} ground, engine {})".format(
+        ground["OUTPUT"], ground["POINTS_OUT"], ground["POINTS_IN"], ground["GROUND_POINTS"],
+        ground["ENGINE_USED"]))
+    missing = [s for s in CHAIN if "roadsigns:" + s not in available]
+    detect_note = " (detectsigns needs a model: none is bundled yet)" if "roadsigns:detectsigns" in available else ""
+    print("Stages still to come in the demo: {}{}".format(
+        ", ".join(missing + ["detectsigns"] if detect_note else missing), detect_note))
 
 
 if __name__ == "__main__":
