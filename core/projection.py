@@ -1,0 +1,646 @@
+"""Detections -> candidate sign surfaces in the point cloud (``roadsigns:projectdetections``).
+
+For each detection the viewing frustum of its box (the panorama box grown by a margin for
+calibration error, from the panorama centre out to ``max_range_m``) is searched for the
+first dense planar surface along the box-centre ray: the sign, not the wall behind it
+(Balado et al. 2020: the box-centre ray meets the first plane of points).
+
+How the cloud is searched (cost ~ linear in points + detections):
+
+* one streaming read of the LAS/LAZ keeps only the points under the union of the frusta's
+  2D footprints, in a :class:`~.pointcloud.TiledIndex` of small tiles;
+* one pass over those tiles serves all detections together: each tile is visited once and
+  tested against the detections whose footprint crosses it, so a detection only ever
+  touches the tiles under its own frustum (``ProjectionResult.tiles_visited``);
+* points of class 2 (ground) are never candidates.
+
+Conventions: world ENU metres; boxes in the contract's form (``u0 < W``, ``u1`` may exceed
+``W`` across the seam); ``q_world_from_pano_wxyz`` maps panorama rays to world
+(Hamilton, scalar first); normals are unit world vectors oriented towards the station.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import shapely
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
+
+from . import geometry
+from .errors import SILENT, InputError, Progress
+from .pointcloud import CropRegion, TiledIndex
+
+#: Default search depth along the rays, metres (Balado et al. use 15 m).
+DEFAULT_MAX_RANGE_M = 30.0
+#: LAS classification code of ground points.
+GROUND_CLASS = 2
+#: Candidate status flags.
+STATUS_OK, STATUS_NO_POINTS, STATUS_NO_SURFACE = "ok", "no_points", "no_surface"
+
+#: Detection fields as the detections layer names them (contract + station pose).
+DETECTION_FIELDS = ("det_id", "station_id", "image", "class", "score", "u0", "v0", "u1", "v1",
+                    "width", "height", "x", "y", "z", "qw", "qx", "qy", "qz")
+#: Fields a candidate adds (``cand_*``: the surface point, NaN when there is none).
+CANDIDATE_FIELDS = ("cand_x", "cand_y", "cand_z", "range_m", "n_points", "normal_e",
+                    "normal_n", "normal_u", "quality", "status")
+
+
+# --------------------------------------------------------------------------------------
+# Detections
+# --------------------------------------------------------------------------------------
+
+@dataclass
+class Detections:
+    """Detections with the pose of their panorama, one row each.
+
+    ``box_px`` (n, 4): u0, v0, u1, v1; ``pano_size_px`` (n, 2): W, H; ``centre_world`` (n, 3):
+    panorama centre; ``q_world_from_pano_wxyz`` (n, 4).
+    """
+
+    det_id: np.ndarray
+    station_id: np.ndarray
+    image: List[str]
+    class_name: List[str]
+    score: np.ndarray
+    box_px: np.ndarray
+    pano_size_px: np.ndarray
+    centre_world: np.ndarray
+    q_world_from_pano_wxyz: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.det_id)
+
+    @classmethod
+    def empty(cls) -> "Detections":
+        return cls(np.zeros(0, np.int64), np.zeros(0, np.int64), [], [], np.zeros(0),
+                   np.zeros((0, 4)), np.zeros((0, 2)), np.zeros((0, 3)), np.zeros((0, 4)))
+
+    @classmethod
+    def from_records(cls, rows: Sequence[Dict]) -> "Detections":
+        """From dicts with :data:`DETECTION_FIELDS` (the detections layer's attributes)."""
+        rows = list(rows)
+        if not rows:
+            return cls.empty()
+        missing = [f for f in DETECTION_FIELDS if f not in rows[0]]
+        if missing:
+            raise InputError("The detections lack the field(s) {fields}; expected the output of "
+                             "Detect signs", fields=", ".join(missing))
+
+        def col(name, dtype=float):
+            values = [r[name] for r in rows]
+            for r, v in zip(rows, values):
+                if v is None or (isinstance(v, float) and math.isnan(v)):
+                    raise InputError("Detection {det_id}: the field {field} is empty",
+                                     det_id=r.get("det_id"), field=name)
+            return np.asarray(values, dtype=dtype)
+
+        det = cls(col("det_id", np.int64), col("station_id", np.int64),
+                  [str(r["image"]) for r in rows], [str(r["class"]) for r in rows],
+                  col("score"), np.column_stack([col(k) for k in ("u0", "v0", "u1", "v1")]),
+                  np.column_stack([col("width"), col("height")]),
+                  np.column_stack([col(k) for k in ("x", "y", "z")]),
+                  np.column_stack([col(k) for k in ("qw", "qx", "qy", "qz")]))
+        det.validate()
+        return det
+
+    def validate(self) -> None:
+        """:class:`InputError` for boxes or poses that break the contract."""
+        b, W, H = self.box_px, self.pano_size_px[:, 0], self.pano_size_px[:, 1]
+        bad = ~((b[:, 0] < b[:, 2]) & (b[:, 1] < b[:, 3]) & (W > 0) & (H > 0)
+                & (b[:, 2] - b[:, 0] <= W) & np.all(np.isfinite(b), axis=1))
+        if np.any(bad):
+            k = int(np.flatnonzero(bad)[0])
+            raise InputError("Detection {det_id}: the box ({u0}, {v0}, {u1}, {v1}) is not "
+                             "u0 < u1, v0 < v1 inside a {w} x {h} panorama",
+                             det_id=int(self.det_id[k]), u0=b[k, 0], v0=b[k, 1], u1=b[k, 2],
+                             v1=b[k, 3], w=int(W[k]), h=int(H[k]))
+        qn = np.linalg.norm(self.q_world_from_pano_wxyz, axis=1)
+        bad = ~(np.abs(qn - 1.0) < 1e-3) | ~np.all(np.isfinite(self.centre_world), axis=1)
+        if np.any(bad):
+            k = int(np.flatnonzero(bad)[0])
+            raise InputError("Detection {det_id}: the station pose is invalid (quaternion "
+                             "norm {norm:.4f}, position {xyz})", det_id=int(self.det_id[k]),
+                             norm=float(qn[k]), xyz=self.centre_world[k].tolist())
+
+    def take(self, index) -> "Detections":
+        index = np.asarray(index, dtype=np.int64)
+        return Detections(self.det_id[index], self.station_id[index],
+                          [self.image[i] for i in index], [self.class_name[i] for i in index],
+                          self.score[index], self.box_px[index], self.pano_size_px[index],
+                          self.centre_world[index], self.q_world_from_pano_wxyz[index])
+
+    def R_world_from_pano(self) -> np.ndarray:
+        return geometry.matrix_from_quat_wxyz(self.q_world_from_pano_wxyz)
+
+    def centre_rays_world(self) -> np.ndarray:
+        b = self.box_px
+        return geometry.box_centre_ray_world(b[:, 0], b[:, 1], b[:, 2], b[:, 3],
+                                             self.pano_size_px[:, 0], self.pano_size_px[:, 1],
+                                             self.q_world_from_pano_wxyz)
+
+    def records(self) -> List[Dict]:
+        return [{"det_id": int(self.det_id[k]), "station_id": int(self.station_id[k]),
+                 "image": self.image[k], "class": self.class_name[k],
+                 "score": float(self.score[k]),
+                 **dict(zip(("u0", "v0", "u1", "v1"), map(float, self.box_px[k]))),
+                 "width": int(self.pano_size_px[k, 0]), "height": int(self.pano_size_px[k, 1]),
+                 **dict(zip(("x", "y", "z"), map(float, self.centre_world[k]))),
+                 **dict(zip(("qw", "qx", "qy", "qz"), map(float, self.q_world_from_pano_wxyz[k])))}
+                for k in range(len(self))]
+
+
+# --------------------------------------------------------------------------------------
+# Boxes and frusta
+# --------------------------------------------------------------------------------------
+
+def grow_boxes(box_px: np.ndarray, pano_size_px: np.ndarray, margin_deg: float,
+               margin_frac: float) -> np.ndarray:
+    """Boxes grown on every side by ``max(margin_deg, margin_frac x box size)``; v clipped to
+    ``[0, H]``, u left unwrapped (seam handled by the tests)."""
+    b = np.asarray(box_px, float)
+    W, H = pano_size_px[:, 0].astype(float), pano_size_px[:, 1].astype(float)
+    mu = np.maximum(margin_deg / 360.0 * W, margin_frac * (b[:, 2] - b[:, 0]))
+    mv = np.maximum(margin_deg / 180.0 * H, margin_frac * (b[:, 3] - b[:, 1]))
+    width = np.minimum(b[:, 2] - b[:, 0] + 2 * mu, W)
+    uc = 0.5 * (b[:, 0] + b[:, 2])
+    return np.column_stack([uc - width / 2, np.maximum(b[:, 1] - mv, 0.0), uc + width / 2,
+                            np.minimum(b[:, 3] + mv, H)])
+
+
+def box_coordinates(u, v, box, width_px):
+    """Pixel(s) -> coordinates relative to ``box``: 0..1 across it in u and v (outside
+    beyond), comparing columns across the seam (the nearest wrap of u is used)."""
+    u0, v0, u1, v1 = box
+    uc = 0.5 * (u0 + u1)
+    du = np.mod(np.asarray(u, float) - uc + width_px / 2.0, width_px) - width_px / 2.0
+    return du / (u1 - u0) + 0.5, (np.asarray(v, float) - v0) / (v1 - v0)
+
+
+def box_boundary_rays_world(box_px, pano_size_px, R_world_from_pano, samples_per_edge=5):
+    """Unit world rays along the outline of each box and through its centre, (n, m, 3)."""
+    s = np.linspace(0.0, 1.0, samples_per_edge)
+    a = np.concatenate([s, np.ones_like(s), s[::-1], np.zeros_like(s), [0.5]])
+    c = np.concatenate([np.zeros_like(s), s, np.ones_like(s), s[::-1], [0.5]])
+    b = np.asarray(box_px, float)
+    u = b[:, :1] + a[None] * (b[:, 2:3] - b[:, :1])
+    v = b[:, 1:2] + c[None] * (b[:, 3:4] - b[:, 1:2])
+    d = geometry.pixel_to_ray(np.mod(u, pano_size_px[:, :1]), v, pano_size_px[:, :1],
+                              pano_size_px[:, 1:2])
+    return np.einsum("nij,nmj->nmi", R_world_from_pano, d)
+
+
+@dataclass
+class Frusta:
+    """The search volumes of the detections: grown boxes, 2D footprints and 3D bounds."""
+
+    boxes_px: np.ndarray        # (n, 4) grown boxes
+    footprints: List            # shapely polygons (x, y), one per detection
+    lo_world: np.ndarray        # (n, 3) bounding box of each frustum
+    hi_world: np.ndarray
+
+    @classmethod
+    def build(cls, det: Detections, max_range_m: float, margin_deg: float,
+              margin_frac: float) -> "Frusta":
+        boxes = grow_boxes(det.box_px, det.pano_size_px, margin_deg, margin_frac)
+        R = det.R_world_from_pano()
+        rays = box_boundary_rays_world(boxes, det.pano_size_px, R)
+        far = det.centre_world[:, None, :] + max_range_m * rays
+        # the far cap bulges between sampled rays by at most range x (1 - cos(step / 2))
+        size_deg = np.maximum((boxes[:, 2] - boxes[:, 0]) / det.pano_size_px[:, 0] * 360.0,
+                              (boxes[:, 3] - boxes[:, 1]) / det.pano_size_px[:, 1] * 180.0)
+        step = np.radians(size_deg / 4.0)
+        pad = 0.1 + max_range_m * (1.0 - np.cos(np.minimum(step, np.pi / 2) / 2.0))
+        pts = np.concatenate([det.centre_world[:, None, :], far], axis=1)
+        lo, hi = pts.min(axis=1) - pad[:, None], pts.max(axis=1) + pad[:, None]
+        hulls = shapely.convex_hull(shapely.multipoints(pts[:, :, :2]))
+        footprints = list(shapely.buffer(hulls, pad, quad_segs=2))
+        return cls(boxes, footprints, lo, hi)
+
+
+# --------------------------------------------------------------------------------------
+# Point-set tools shared with refine
+# --------------------------------------------------------------------------------------
+
+def pca(xyz: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Centroid, eigenvalues (descending) and eigenvectors (columns) of the covariance."""
+    c = xyz.mean(axis=0)
+    w, V = np.linalg.eigh(np.cov((xyz - c).T) if len(xyz) > 1 else np.zeros((3, 3)))
+    return c, w[::-1].clip(min=0.0), V[:, ::-1]
+
+
+def euclidean_clusters(xyz: np.ndarray, tolerance_m: float) -> np.ndarray:
+    """Connected components of the points at most ``tolerance_m`` apart (labels 0..k-1)."""
+    n = len(xyz)
+    if n == 0:
+        return np.zeros(0, np.int64)
+    pairs = cKDTree(xyz).query_pairs(tolerance_m, output_type="ndarray")
+    graph = coo_matrix((np.ones(len(pairs), bool), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    return connected_components(graph, directed=False)[1]
+
+
+@dataclass
+class Plane:
+    """A plane ``normal . (x - point) = 0``, its inliers and their RMS distance."""
+
+    point: np.ndarray
+    normal: np.ndarray
+    inliers: np.ndarray
+    rms_m: float
+
+    def distance(self, xyz) -> np.ndarray:
+        return (np.asarray(xyz) - self.point) @ self.normal
+
+
+def fit_plane_ransac(xyz: np.ndarray, threshold_m: float, max_tilt_deg: Optional[float] = None,
+                     iterations: int = 200, seed: int = 0, max_eval_points: int = 3000
+                     ) -> Optional[Plane]:
+    """RANSAC plane with least-squares refits; ``max_tilt_deg``: the plane may lean at most
+    this much from vertical (its normal within that of horizontal). ``None`` when no
+    admissible plane has 3 inliers. Deterministic for a given ``seed``."""
+    n = len(xyz)
+    if n < 3:
+        return None
+    rng = np.random.default_rng(seed)
+    c0 = xyz.mean(axis=0)
+    p = xyz - c0
+    sample = rng.integers(0, n, (iterations, 3))
+    a, b, c = p[sample[:, 0]], p[sample[:, 1]], p[sample[:, 2]]
+    normals = np.cross(b - a, c - a)
+    norm = np.linalg.norm(normals, axis=1)
+    ok = norm > 1e-9
+    normals[ok] /= norm[ok, None]
+    if max_tilt_deg is not None:
+        ok &= np.abs(normals[:, 2]) <= math.sin(math.radians(max_tilt_deg))
+    if not np.any(ok):
+        return None
+    normals, a = normals[ok], a[ok]
+    ev = p if n <= max_eval_points else p[rng.choice(n, max_eval_points, replace=False)]
+    counts = (np.abs((ev[None, :, :] - a[:, None, :]) @ normals[..., None])[..., 0]
+              < threshold_m).sum(axis=1)
+    best = int(np.argmax(counts))
+    normal, point = normals[best], a[best]
+    inliers = np.abs((p - point) @ normal) < threshold_m
+    for _ in range(3):  # least-squares refits on the inliers
+        if inliers.sum() < 3:
+            return None
+        centroid, _, V = pca(p[inliers])
+        cand = V[:, 2]
+        if max_tilt_deg is not None and abs(cand[2]) > math.sin(math.radians(max_tilt_deg)):
+            break
+        normal, point = cand, centroid
+        new = np.abs((p - point) @ normal) < threshold_m
+        if np.array_equal(new, inliers):
+            break
+        inliers = new
+    d = (p[inliers] - point) @ normal
+    return Plane(point + c0, normal, inliers, float(np.sqrt(np.mean(d ** 2))) if len(d) else 0.0)
+
+
+def convex_radius_m(xyz: np.ndarray, normal_to_viewer: np.ndarray) -> float:
+    """Radius of curvature of a surface bulging towards the viewer (``inf`` when flat or
+    hollow): a paraboloid ``w = a + b s + c t + k (s^2 + t^2)`` fitted robustly in the frame
+    of the plane, ``w`` along ``normal_to_viewer``. Convex traffic mirrors give ~1-3 m; a
+    flat sign with its pole behind looks hollow (k > 0) and is not mistaken for one."""
+    if len(xyz) < 10:
+        return math.inf
+    n = np.asarray(normal_to_viewer, float)
+    e1 = np.cross(n, [0.0, 0.0, 1.0])
+    e1 = e1 / np.linalg.norm(e1) if np.linalg.norm(e1) > 1e-6 else np.array([1.0, 0.0, 0.0])
+    e2 = np.cross(n, e1)
+    rel = xyz - xyz.mean(axis=0)
+    s, t, w = rel @ e1, rel @ e2, rel @ n
+    A = np.column_stack([np.ones_like(s), s, t, s * s + t * t])
+    keep = np.ones(len(w), bool)
+    for _ in range(3):  # refits without the points off the surface (poles, brackets)
+        coef, *_ = np.linalg.lstsq(A[keep], w[keep], rcond=None)
+        res = w - A @ coef
+        sigma = 1.4826 * np.median(np.abs(res[keep] - np.median(res[keep]))) + 1e-4
+        new = np.abs(res) < 3.0 * sigma
+        if new.sum() < 10 or np.array_equal(new, keep):
+            break
+        keep = new
+    k = coef[3]
+    return 1.0 / (2.0 * -k) if k < -1e-9 else math.inf
+
+
+# --------------------------------------------------------------------------------------
+# Projection
+# --------------------------------------------------------------------------------------
+
+@dataclass
+class ProjectionParams:
+    """Tuning of :func:`project_detections` (defaults suit 5-50 points/dm^2 MLS clouds)."""
+
+    margin_deg: float = 0.25          # frustum margin, degrees, at least
+    margin_frac: float = 0.10         # ... or this share of the box size per side
+    min_range_m: float = 0.5
+    tile_size_m: float = 5.0
+    cluster_tolerance_m: float = 0.15  # Euclidean clustering: at least this, or
+    cluster_tolerance_per_m: float = 0.008  # this x range
+    min_points: int = 12              # points a surface needs
+    core_fraction: float = 0.6        # central share of the box that the centre ray samples
+    plane_threshold_m: float = 0.04
+    max_tilt_deg: float = 30.0        # a sign surface leans at most this from vertical
+    min_inlier_share: float = 0.6     # of the cluster's core points on the plane
+    min_extent_m: float = 0.05        # second principal spread: not a line (pole, wire)
+    min_curvature_radius_m: float = 3.0  # flatter than this (convex mirrors are curved)
+
+
+@dataclass
+class ProjectionResult:
+    """One candidate per detection (row k belongs to ``detections`` row k).
+
+    ``xyz_world`` / ``normal_world`` are NaN and ``range_m`` NaN unless ``status == "ok"``;
+    ``n_points``: points of the candidate surface; ``point_index``: their positions in the
+    LAS file (or input arrays); ``quality`` in 0..1. ``tiles_visited`` / ``points_tested``:
+    work per detection; ``n_tiles`` / ``n_indexed``: size of the index.
+    """
+
+    detections: Detections
+    xyz_world: np.ndarray
+    normal_world: np.ndarray
+    range_m: np.ndarray
+    n_points: np.ndarray
+    quality: np.ndarray
+    status: List[str]
+    point_index: List[np.ndarray]
+    tiles_visited: np.ndarray
+    points_tested: np.ndarray
+    n_tiles: int = 0
+    n_indexed: int = 0
+    warnings: List[str] = field(default_factory=list)
+
+    def __len__(self) -> int:
+        return len(self.detections)
+
+    @classmethod
+    def unprojected(cls, det: Detections) -> "ProjectionResult":
+        n = len(det)
+        nan3 = np.full((n, 3), np.nan)
+        return cls(det, nan3, nan3.copy(), np.full(n, np.nan), np.zeros(n, np.int64),
+                   np.zeros(n), [STATUS_NO_POINTS] * n, [np.zeros(0, np.int64)] * n,
+                   np.zeros(n, np.int64), np.zeros(n, np.int64))
+
+    def records(self) -> List[Dict]:
+        """Detection fields + :data:`CANDIDATE_FIELDS` per candidate (the output layer)."""
+        out = []
+        for k, rec in enumerate(self.detections.records()):
+            rec.update({"cand_x": float(self.xyz_world[k, 0]),
+                        "cand_y": float(self.xyz_world[k, 1]),
+                        "cand_z": float(self.xyz_world[k, 2]), "range_m": float(self.range_m[k]),
+                        "n_points": int(self.n_points[k]),
+                        "normal_e": float(self.normal_world[k, 0]),
+                        "normal_n": float(self.normal_world[k, 1]),
+                        "normal_u": float(self.normal_world[k, 2]),
+                        "quality": float(self.quality[k]), "status": self.status[k]})
+            out.append(rec)
+        return out
+
+    @classmethod
+    def from_records(cls, rows: Sequence[Dict]) -> "ProjectionResult":
+        """Read back a candidates layer (the input of refine); ``point_index`` is empty."""
+        rows = list(rows)
+        det = Detections.from_records(rows)
+        res = cls.unprojected(det)
+        if not rows:
+            return res
+        missing = [f for f in CANDIDATE_FIELDS if f not in rows[0]]
+        if missing:
+            raise InputError("The candidates lack the field(s) {fields}; expected the output of "
+                             "Project detections", fields=", ".join(missing))
+
+        def col(name):
+            return np.array([np.nan if r[name] is None else float(r[name]) for r in rows])
+
+        res.xyz_world = np.column_stack([col("cand_x"), col("cand_y"), col("cand_z")])
+        res.normal_world = np.column_stack([col("normal_e"), col("normal_n"), col("normal_u")])
+        res.range_m, res.quality = col("range_m"), np.nan_to_num(col("quality"))
+        res.n_points = np.nan_to_num(col("n_points")).astype(np.int64)
+        res.status = [str(r["status"]) for r in rows]
+        bad = [s for s in res.status if s not in (STATUS_OK, STATUS_NO_POINTS, STATUS_NO_SURFACE)]
+        if bad:
+            raise InputError("Unknown candidate status {status!r}; expected ok, no_points or "
+                             "no_surface", status=bad[0])
+        ok = np.array([s == STATUS_OK for s in res.status])
+        if np.any(ok & ~np.all(np.isfinite(res.xyz_world), axis=1)):
+            raise InputError("A candidate with status ok has no position")
+        return res
+
+
+def check_ground_classified(index: TiledIndex, source: str) -> None:
+    """:class:`InputError` when an indexed cloud has points but none of class 2."""
+    if len(index) and not np.any(index.attributes["classification"] == GROUND_CLASS):
+        raise InputError("{source} has no ground points (class 2) where the signs are: run "
+                         "roadsigns:groundfilter on it first (or classify the ground with "
+                         "another tool)", source=source)
+
+
+def build_index(cloud: Union[str, TiledIndex], region: Optional[CropRegion], tile_size_m: float,
+                progress: Progress = SILENT) -> Tuple[TiledIndex, str]:
+    """A :class:`TiledIndex` with intensity and classification (read from a LAS/LAZ path,
+    cropped to ``region``), or the given index after checking its attributes."""
+    if isinstance(cloud, TiledIndex):
+        index, source = cloud, "The point cloud"
+        missing = [d for d in ("intensity", "classification") if d not in index.attributes]
+        if missing:
+            raise InputError("The point index lacks {names}", names=", ".join(missing))
+    else:
+        source = str(cloud)
+        index = TiledIndex.from_las(source, region=region,
+                                    dimensions=("intensity", "classification"),
+                                    tile_size_m=tile_size_m, progress=progress)
+    check_ground_classified(index, source)
+    return index, source
+
+
+def _assign_tiles(frusta: Frusta, tile_size_m: float,
+                  present: set) -> Dict[Tuple[int, int], List[int]]:
+    """Tile key -> detections whose footprint crosses that (non-empty) tile."""
+    per_tile: Dict[Tuple[int, int], List[int]] = {}
+    t = tile_size_m
+    for k, fp in enumerate(frusta.footprints):
+        i0, j0 = np.floor(frusta.lo_world[k, :2] / t).astype(int)
+        i1, j1 = np.floor(frusta.hi_world[k, :2] / t).astype(int)
+        ii, jj = np.meshgrid(np.arange(i0, i1 + 1), np.arange(j0, j1 + 1), indexing="ij")
+        keys = [key for key in zip(ii.ravel().tolist(), jj.ravel().tolist()) if key in present]
+        if not keys:
+            continue
+        arr = np.array(keys, float)
+        squares = shapely.box(arr[:, 0] * t, arr[:, 1] * t, (arr[:, 0] + 1) * t,
+                              (arr[:, 1] + 1) * t)
+        for key, hit in zip(keys, shapely.intersects(fp, squares)):
+            if hit:
+                per_tile.setdefault(key, []).append(k)
+    return per_tile
+
+
+def _frustum_members(xyz, det: Detections, k: int, frusta: Frusta, R: np.ndarray,
+                     max_range_m: float, min_range_m: float) -> np.ndarray:
+    """Rows of ``xyz`` inside detection ``k``'s frustum (grown box, range window)."""
+    inside = np.all((xyz >= frusta.lo_world[k]) & (xyz <= frusta.hi_world[k]), axis=1)
+    rows = np.flatnonzero(inside)
+    if rows.size == 0:
+        return rows
+    W, H = det.pano_size_px[k]
+    u, v, rng = geometry.world_to_pixel(xyz[rows], det.centre_world[k], R[k], W, H)
+    a, b = box_coordinates(u, v, frusta.boxes_px[k], W)
+    keep = (a >= 0) & (a <= 1) & (b >= 0) & (b <= 1) & (rng >= min_range_m) & (rng <= max_range_m)
+    return rows[keep]
+
+
+@dataclass
+class Surface:
+    xyz_world: np.ndarray
+    normal_world: np.ndarray
+    range_m: float
+    members: np.ndarray   # rows of the frustum points on the surface
+    quality: float
+
+
+def find_surface(xyz: np.ndarray, centre: np.ndarray, ray: np.ndarray, a: np.ndarray,
+                 b: np.ndarray, params: ProjectionParams) -> Tuple[str, Optional[Surface]]:
+    """The first dense planar cluster along the box-centre ray among frustum points.
+
+    ``a, b``: the points' coordinates relative to the (un-grown) box, 0..1 inside. Clusters
+    are ranked by the median range of their points in the box's core (the central
+    ``core_fraction``); the first one that is dense, planar, flat and not a line wins.
+    """
+    if len(xyz) < params.min_points:
+        return STATUS_NO_POINTS, None
+    rng = np.linalg.norm(xyz - centre, axis=1)
+    tol = max(params.cluster_tolerance_m, params.cluster_tolerance_per_m * float(np.median(rng)))
+    labels = euclidean_clusters(xyz, tol)
+    half = params.core_fraction / 2.0
+    core = (np.abs(a - 0.5) <= half) & (np.abs(b - 0.5) <= half)
+    counts = np.bincount(labels)
+    order = []
+    for lab in np.flatnonzero(counts >= params.min_points):
+        in_core = core & (labels == lab)
+        if in_core.sum() >= max(3, params.min_points // 3):
+            order.append((float(np.median(rng[in_core])), int(lab)))
+    for _, lab in sorted(order):
+        members = np.flatnonzero(labels == lab)
+        pts = xyz[members]
+        thr = params.plane_threshold_m + 0.001 * float(np.median(rng[members]))
+        plane = fit_plane_ransac(pts, thr, params.max_tilt_deg, seed=int(lab))
+        if plane is None:
+            continue
+        in_core = core[members]
+        share = float(plane.inliers[in_core].mean())
+        on = pts[plane.inliers]
+        _, ev, _ = pca(on)
+        if (share < params.min_inlier_share or np.sqrt(ev[1]) < params.min_extent_m
+                or plane.inliers.sum() < params.min_points):
+            continue
+        normal = plane.normal if plane.normal @ (centre - plane.point) > 0 else -plane.normal
+        if convex_radius_m(pts[in_core], normal) < params.min_curvature_radius_m:
+            break  # the first surface is curved (a convex mirror): nothing behind it counts
+        denom = float(ray @ normal)
+        point = None
+        if denom < -0.1:  # the ray meets the front of the plane
+            t = float((plane.point - centre) @ normal) / denom
+            point = centre + t * ray
+            if np.min(np.linalg.norm(on - point, axis=1)) > 2.0 * tol:
+                point = None  # the ray passes through a hole or beside the surface
+        if point is None:
+            centre_pts = plane.inliers & in_core
+            q = np.median(pts[centre_pts] if np.any(centre_pts) else on, axis=0)
+            point = q - plane.distance(q) * normal
+        # quality: plane support in the core x density x coverage of the box by the surface
+        grid = (np.clip(a[members][plane.inliers], 0, 0.999) * 4).astype(int) * 4 + \
+            (np.clip(b[members][plane.inliers], 0, 0.999) * 4).astype(int)
+        coverage = len(np.unique(grid)) / 16.0
+        quality = share * (1.0 - math.exp(-plane.inliers.sum() / 30.0)) * min(1.0, coverage / 0.6)
+        return STATUS_OK, Surface(point, normal, float(np.linalg.norm(point - centre)),
+                                  members[plane.inliers], float(quality))
+    return STATUS_NO_SURFACE, None
+
+
+def project_detections(detections: Detections, cloud: Union[str, TiledIndex],
+                       max_range_m: float = DEFAULT_MAX_RANGE_M,
+                       params: ProjectionParams = ProjectionParams(),
+                       progress: Progress = SILENT) -> ProjectionResult:
+    """Candidate sign surface per detection (see the module doc).
+
+    ``cloud``: a LAS/LAZ path (ground-classified) or a :class:`TiledIndex` holding
+    ``intensity`` and ``classification``. Empty detections give an empty result and a
+    warning; a cloud without ground class raises :class:`InputError`.
+    """
+    if not max_range_m or max_range_m <= params.min_range_m:
+        raise InputError("The maximum range must exceed {min} m, got {value} m",
+                         min=params.min_range_m, value=max_range_m)
+    det = detections
+    result = ProjectionResult.unprojected(det)
+    if len(det) == 0:
+        message = "No detections to project; the candidates are empty"
+        result.warnings.append(message)
+        progress.warning(message)
+        return result
+    det.validate()
+    frusta = Frusta.build(det, max_range_m, params.margin_deg, params.margin_frac)
+    region = CropRegion(shapely.union_all(frusta.footprints))
+    index, source = build_index(cloud, region, params.tile_size_m, progress.sub(0.0, 0.5))
+    result.n_indexed = len(index)
+    if len(index) == 0:
+        message = f"{source} has no point inside the detections' frusta; no candidate found"
+        result.warnings.append(message)
+        progress.warning(message)
+        return result
+
+    # one pass over the tiles, every detection crossing a tile tested there
+    tile = index.tile_size_m
+    keys = index.tile_keys
+    result.n_tiles = len(keys)
+    per_tile = _assign_tiles(frusta, tile, set(keys))
+    R = det.R_world_from_pano()
+    found: List[List[Tuple[np.ndarray, np.ndarray]]] = [[] for _ in range(len(det))]
+    tiles_visited = np.zeros(len(det), np.int64)
+    points_tested = np.zeros(len(det), np.int64)
+    sweep = progress.sub(0.5, 0.8)
+    for n_done, (key, members) in enumerate(sorted(per_tile.items())):
+        pts = index.query_box([key[0] * tile, key[1] * tile, -np.inf],
+                              [(key[0] + 1) * tile, (key[1] + 1) * tile, np.inf])
+        pts = pts.subset(pts.attributes["classification"] != GROUND_CLASS)
+        for k in members:
+            tiles_visited[k] += 1
+            points_tested[k] += len(pts)
+            rows = _frustum_members(pts.xyz_world, det, k, frusta, R, max_range_m,
+                                    params.min_range_m)
+            if rows.size:
+                found[k].append((pts.xyz_world[rows], pts.point_index[rows]))
+        if n_done % 16 == 0:
+            sweep.report(n_done / max(1, len(per_tile)))
+    result.tiles_visited, result.points_tested = tiles_visited, points_tested
+
+    rays = det.centre_rays_world()
+    search = progress.sub(0.8, 1.0)
+    for k in range(len(det)):
+        if not found[k]:
+            continue
+        xyz = np.concatenate([f[0] for f in found[k]])
+        pidx = np.concatenate([f[1] for f in found[k]])
+        pidx, first = np.unique(pidx, return_index=True)  # a point on a tile edge comes twice
+        xyz = xyz[first]
+        W, H = det.pano_size_px[k]
+        u, v, _ = geometry.world_to_pixel(xyz, det.centre_world[k], R[k], W, H)
+        a, b = box_coordinates(u, v, det.box_px[k], W)
+        status, surface = find_surface(xyz, det.centre_world[k], rays[k], a, b, params)
+        result.status[k] = status
+        if surface is not None:
+            result.xyz_world[k] = surface.xyz_world
+            result.normal_world[k] = surface.normal_world
+            result.range_m[k] = surface.range_m
+            result.n_points[k] = len(surface.members)
+            result.quality[k] = surface.quality
+            result.point_index[k] = pidx[surface.members]
+        if k % 32 == 0:
+            search.report(k / len(det))
+    n_ok = sum(s == STATUS_OK for s in result.status)
+    progress.info(f"{n_ok} of {len(det)} detections found a surface in the cloud "
+                  f"({result.status.count(STATUS_NO_POINTS)} without points, "
+                  f"{result.status.count(STATUS_NO_SURFACE)} without a planar surface)")
+    return result

@@ -1,0 +1,143 @@
+"""Detections -> candidate surfaces (core.projection) on a scene of known sign panels."""
+import numpy as np
+import pytest
+
+from helpers import signscene
+from roadsigns.core import projection as P
+from roadsigns.core.errors import InputError, Progress
+from roadsigns.core.pointcloud import TiledIndex
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return signscene.make_scene(seed=3)
+
+
+@pytest.fixture(scope="module")
+def las_path(scene, tmp_path_factory):
+    path = str(tmp_path_factory.mktemp("signscene") / "cloud.las")
+    signscene.write_las(scene, path)
+    return path
+
+
+@pytest.fixture(scope="module")
+def detections(scene):
+    return P.Detections.from_records(scene.detections)
+
+
+@pytest.fixture(scope="module")
+def result(detections, las_path):
+    return P.project_detections(detections, las_path, max_range_m=30.0)
+
+
+def truth_of(scene, k):
+    return {p.sign_id: p for p in scene.panels}[scene.detections[k]["truth_id"]]
+
+
+def test_every_visible_panel_gets_a_candidate_on_its_face(scene, result):
+    checked = 0
+    for k in range(len(result)):
+        p = truth_of(scene, k)
+        if not (p.is_sign and p.has_points):
+            continue
+        assert result.status[k] == P.STATUS_OK, (k, p.sign_id)
+        rel = result.xyz_world[k] - p.centre_world
+        assert abs(rel @ p.normal) < 0.05                      # on the plane
+        s, t = rel @ p.right, rel @ p.up
+        assert p.inside(s * 0.95, t * 0.95), (p.sign_id, s, t)  # inside the outline
+        assert result.normal_world[k] @ p.normal > np.cos(np.radians(5))
+        station = result.detections.centre_world[k]
+        assert result.range_m[k] == pytest.approx(np.linalg.norm(result.xyz_world[k] - station))
+        assert 0 < result.quality[k] <= 1 and result.n_points[k] >= 12
+        assert len(result.point_index[k]) == result.n_points[k]
+        checked += 1
+    assert checked >= 45
+
+
+def test_the_wall_behind_a_panel_is_not_picked(scene, result):
+    rows = [k for k in range(len(result)) if truth_of(scene, k).sign_id == 6]
+    assert len(rows) >= 5
+    panel = truth_of(scene, rows[0])
+    for k in rows:
+        station = result.detections.centre_world[k]
+        assert result.range_m[k] < np.linalg.norm(panel.centre_world - station) + 0.5
+
+
+def test_out_of_reach_and_curved_surfaces_are_flagged(scene, result):
+    for k in range(len(result)):
+        p = truth_of(scene, k)
+        if not p.has_points:
+            assert result.status[k] == P.STATUS_NO_POINTS
+            assert np.all(np.isnan(result.xyz_world[k])) and result.n_points[k] == 0
+        elif not p.is_sign:  # the convex mirror
+            assert result.status[k] == P.STATUS_NO_SURFACE
+            assert np.all(np.isnan(result.xyz_world[k]))
+
+
+def test_boxes_across_the_seam(scene, result):
+    rows = [k for k in range(len(result)) if truth_of(scene, k).sign_id == 9]
+    assert any(scene.detections[k]["u1"] > signscene.PANO_W for k in rows)
+    assert all(result.status[k] == P.STATUS_OK for k in rows)
+
+
+def test_one_pass_over_the_tiles_for_all_detections(scene, detections, monkeypatch):
+    """Structural cost: each tile is fetched once whatever the number of detections, and a
+    detection only touches tiles under its own frustum, a small part of the cloud."""
+    index = TiledIndex.from_arrays(scene.xyz_world, {"intensity": scene.intensity,
+                                                     "classification": scene.classification},
+                                   tile_size_m=5.0)
+    fetched = []
+    original = TiledIndex.query_box
+
+    def counting(self, lo, hi):
+        fetched.append(tuple(lo[:2]))
+        return original(self, lo, hi)
+
+    monkeypatch.setattr(TiledIndex, "query_box", counting)
+    one = P.project_detections(detections, index)
+    n_fetch_one = len(fetched)
+    assert len(set(fetched)) == n_fetch_one  # no tile twice
+    assert n_fetch_one < one.n_tiles         # not every tile of the cloud
+    assert one.points_tested.max() < 0.1 * len(index)
+    frusta = P.Frusta.build(detections, P.DEFAULT_MAX_RANGE_M, 0.25, 0.1)
+    for k in range(len(detections)):
+        span = np.floor(frusta.hi_world[k, :2] / 5.0) - np.floor(frusta.lo_world[k, :2] / 5.0) + 1
+        assert one.tiles_visited[k] <= span.prod()
+
+    fetched.clear()
+    many = P.Detections.from_records(scene.detections * 10)
+    ten = P.project_detections(many, index)
+    assert len(fetched) == n_fetch_one       # ten times the detections, the same tiles
+    assert np.array_equal(ten.tiles_visited, np.tile(one.tiles_visited, 10))
+    assert ten.status == one.status * 10
+
+
+def test_records_round_trip(result):
+    back = P.ProjectionResult.from_records(result.records())
+    assert back.status == result.status
+    np.testing.assert_allclose(back.xyz_world, result.xyz_world, equal_nan=True)
+    np.testing.assert_allclose(back.detections.box_px, result.detections.box_px)
+    assert set(P.CANDIDATE_FIELDS) | set(P.DETECTION_FIELDS) <= set(result.records()[0])
+
+
+def test_empty_detections_give_an_empty_result(las_path):
+    warnings = []
+    res = P.project_detections(P.Detections.empty(), las_path,
+                               progress=Progress(on_warning=warnings.append))
+    assert len(res) == 0 and res.records() == [] and warnings
+
+
+def test_cloud_without_ground_class_is_refused(scene, detections):
+    index = TiledIndex.from_arrays(scene.xyz_world, {
+        "intensity": scene.intensity, "classification": np.ones(len(scene.xyz_world), np.uint8)})
+    with pytest.raises(InputError, match="groundfilter"):
+        P.project_detections(detections, index)
+
+
+def test_bad_detections_are_refused(scene):
+    rows = [dict(scene.detections[0], u1=scene.detections[0]["u0"] - 5)]
+    with pytest.raises(InputError, match="box"):
+        P.Detections.from_records(rows)
+    rows = [{k: v for k, v in scene.detections[0].items() if k != "qw"}]
+    with pytest.raises(InputError, match="qw"):
+        P.Detections.from_records(rows)

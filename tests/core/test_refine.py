@@ -1,0 +1,163 @@
+"""Candidates -> signs (core.refine) on a scene of known sign panels."""
+import numpy as np
+import pytest
+from scipy.optimize import linear_sum_assignment
+
+from helpers import signscene
+from roadsigns.core import projection as P
+from roadsigns.core import refine as R
+from roadsigns.core.errors import Progress
+from roadsigns.core.pointcloud import TiledIndex, read_header
+
+
+def make_index(scene, classification=None):
+    cls = scene.classification if classification is None else classification
+    return TiledIndex.from_arrays(scene.xyz_world, {"intensity": scene.intensity,
+                                                    "classification": cls}, tile_size_m=5.0)
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return signscene.make_scene(seed=7)
+
+
+@pytest.fixture(scope="module")
+def index(scene):
+    return make_index(scene)
+
+
+@pytest.fixture(scope="module")
+def candidates(scene, index):
+    return P.project_detections(P.Detections.from_records(scene.detections), index)
+
+
+@pytest.fixture(scope="module")
+def refined(candidates, index):
+    return R.refine_signs(candidates, index, merge_radius_m=1.0)
+
+
+def match(signs, truth, radius=0.5):
+    """Hungarian matching on 3D distance within ``radius``: {truth sign_id: sign}."""
+    d = np.linalg.norm(np.array([s.xyz_world for s in signs])[:, None]
+                       - np.array([p.centre_world for p in truth])[None], axis=2)
+    rows, cols = linear_sum_assignment(np.where(d <= radius, d, 1e6))
+    return {truth[c].sign_id: signs[r] for r, c in zip(rows, cols) if d[r, c] <= radius}
+
+
+def test_signs_match_the_truth(scene, refined):
+    truth = scene.signs
+    matched = match(refined.signs, truth)
+    precision, recall = len(matched) / len(refined.signs), len(matched) / len(truth)
+    errors = {"position": [], "height": [], "azimuth": [], "width": [], "panel_height": []}
+    for p in truth:
+        s = matched[p.sign_id]
+        assert s.klass == p.cls
+        assert s.n_views == scene.n_views(p.sign_id)
+        if s.position_source == "image":
+            continue
+        errors["position"].append(np.linalg.norm(s.xyz_world - p.centre_world))
+        errors["height"].append(abs(s.height - p.height_above_ground))
+        errors["azimuth"].append(abs((s.azimuth - p.azimuth_deg + 180) % 360 - 180))
+        errors["width"].append(abs(s.width - p.width))
+        errors["panel_height"].append(abs(s.panel_height - p.height))
+    print(f"\nprecision {precision:.3f} recall {recall:.3f}; "
+          + "; ".join(f"{k} median {np.median(v):.3f} max {np.max(v):.3f}" for k, v in errors.items()))
+    assert precision == 1.0 and recall == 1.0   # the convex mirror is not a sign
+    assert max(errors["position"]) < 0.05
+    assert max(errors["height"]) < 0.05
+    assert max(errors["azimuth"]) < 5.0
+    assert max(errors["width"]) < 0.05 and max(errors["panel_height"]) < 0.05
+
+
+def test_stacked_panels_stay_apart(scene, refined):
+    matched = match(refined.signs, scene.signs)
+    for upper, lower in ((2, 3), (4, 5)):  # different classes; the same class
+        a, b = matched[upper], matched[lower]
+        assert a.sign_id != b.sign_id and a.z > b.z + 0.5
+
+
+def test_out_of_reach_sign_is_triangulated(scene, refined):
+    p = next(p for p in scene.signs if not p.has_points)
+    s = match(refined.signs, [p])[p.sign_id]
+    assert np.linalg.norm(s.xyz_world - p.centre_world) < 0.3
+    assert s.position_source == "image" and s.n_points == 0 and s.n_views == 3
+    assert sum(x.position_source == "image" for x in refined.signs) == 1
+
+
+def test_records_follow_the_contract(refined, scene):
+    for rec, s, outline in zip(refined.records(), refined.signs, refined.outlines_world):
+        assert tuple(rec) == R.SIGN_FIELDS
+        assert 0.0 <= rec["azimuth"] < 360.0 and 0.0 < rec["score"] <= 1.0
+        images = rec["source_images"].split(";")
+        assert len(images) == rec["n_views"] and rec["best_image"] in images
+        assert rec["bottom_height"] == pytest.approx(rec["height"] - rec["panel_height"] / 2, abs=0.02)
+        if rec["position_source"] == "lidar":
+            assert outline.shape == (4, 3) and rec["n_points"] > 50 and rec["planarity"] > 0.9
+            assert rec["mean_intensity"] > 0
+    assert refined.ground_source == [R.GROUND_POINTS] * len(refined.signs)
+    # the best view of sign 1 is the nearest station in front of it
+    p = scene.signs[0]
+    s = match(refined.signs, [p])[p.sign_id]
+    assert s.best_image == "pano_00003.jpg"
+
+
+def test_faded_face_keeps_its_points_and_the_bright_one_drops_the_pole(scene, refined):
+    matched = match(refined.signs, scene.signs)
+    bright, faded = matched[1], matched[7]
+    assert faded.mean_intensity < 0.4 * bright.mean_intensity
+    assert faded.n_points > 100
+    rows = refined.signs.index(bright)
+    z = scene.xyz_world[refined.point_index[rows], 2]
+    p = scene.signs[0]
+    assert z.min() > p.centre_world[2] - p.height / 2 - 0.03  # no pole below the panel
+
+
+def test_a_misclassified_view_is_outvoted(scene, index):
+    rows = [dict(d) for d in scene.detections]
+    first = next(k for k, d in enumerate(rows) if d["truth_id"] == 1)
+    rows[first]["class"], rows[first]["score"] = "mandatory", 0.3
+    out = R.refine_signs(P.project_detections(P.Detections.from_records(rows), index), index)
+    p = scene.signs[0]
+    s = match(out.signs, [p])[p.sign_id]
+    assert s.klass == "prohibitory" and s.n_views == scene.n_views(1)
+    assert len(out.signs) == len(scene.signs)
+
+
+def test_ground_fallbacks_are_reported(scene, candidates):
+    cls = scene.classification.copy()
+    p = scene.signs[0]
+    near = np.hypot(*(scene.xyz_world[:, :2] - p.centre_world[:2]).T) < 4.0
+    cls[near & (cls == 2)] = 1  # the ground below sign 1 unclassified: its pole reaches down
+    warnings = []
+    out = R.refine_signs(candidates, make_index(scene, cls),
+                         progress=Progress(on_warning=warnings.append))
+    k = out.signs.index(match(out.signs, [p])[p.sign_id])
+    assert out.ground_source[k] == R.LOWEST_POINTS
+    assert abs(out.signs[k].height - p.height_above_ground) < 0.1
+    assert any("lowest points" in w for w in warnings)
+
+
+def test_triangulation_needs_an_angle_between_the_rays():
+    C = np.array([[0.0, 0, 0], [5.0, 0, 0]])
+    target = np.array([10.0, 8.0, 1.0])
+    D = (target - C) / np.linalg.norm(target - C, axis=1, keepdims=True)
+    np.testing.assert_allclose(R.intersect_rays(C, D), target, atol=1e-9)
+    assert np.allclose(R.ray_distance(target, C, D), 0.0)
+
+
+def test_empty_candidates_give_an_empty_layer(index):
+    warnings = []
+    out = R.refine_signs(P.ProjectionResult.unprojected(P.Detections.empty()), index,
+                         progress=Progress(on_warning=warnings.append))
+    assert out.signs == [] and out.records() == [] and warnings
+
+
+def test_from_a_las_file_with_the_sign_points(scene, candidates, tmp_path):
+    las = str(tmp_path / "cloud.las")
+    signscene.write_las(scene, las)
+    back = P.ProjectionResult.from_records(candidates.records())  # as read from the layer
+    out = R.refine_signs(back, las)
+    assert len(match(out.signs, scene.signs)) == len(scene.signs) == len(out.signs)
+    n = R.write_sign_points(las, str(tmp_path / "signs.las"), out.point_index)
+    assert n == sum(len(p) for p in out.point_index) > 0
+    assert read_header(str(tmp_path / "signs.las")).point_count == n
