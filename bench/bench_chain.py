@@ -7,6 +7,10 @@ final sign layer from ``roadsigns:evaluate``. Stages the provider does not have 
 reported as missing, and the stages that need their output as blocked.
 
     python bench/bench_chain.py --preset default --seed 7 [--scene DIR] [--json out.json]
+                                [--detections model|oracle] [--model MODEL.onnx]
+
+``--detections oracle`` replaces the detector by the scene's true boxes (devtools/oracle.py),
+to measure the cloud stages apart from the detector.
 
 Prints a table, then the same figures as JSON (also written to ``--json`` if given).
 """
@@ -36,7 +40,7 @@ def load_scene(args):
         return scene_dir, json.load(f)
 
 
-def stage_plan(scene_dir, meta, work):
+def stage_plan(scene_dir, meta, work, model=None):
     """(stage id, parameters, output key, what it needs) in chain order."""
     p = lambda name: os.path.join(scene_dir, name)  # noqa: E731
     w = lambda name: os.path.join(work, name)  # noqa: E731
@@ -49,7 +53,8 @@ def stage_plan(scene_dir, meta, work):
                                   LEVER_ARM_X=lever[0], LEVER_ARM_Y=lever[1], LEVER_ARM_Z=lever[2],
                                   BORESIGHT_ROLL=bore[0], BORESIGHT_PITCH=bore[1], BORESIGHT_YAW=bore[2],
                                   OUTPUT=w("stations.gpkg")), "OUTPUT", []),
-        ("detectsigns", dict(STATIONS=w("stations.gpkg"), CONFIDENCE=0.4, OUTPUT=w("detections.gpkg")),
+        ("detectsigns", dict(STATIONS=w("stations.gpkg"), CONFIDENCE=0.4, OUTPUT=w("detections.gpkg"),
+                             **({"MODEL": model} if model else {})),
          "OUTPUT", ["importtrajectory"]),
         # the scene's cloud carries its true classes: reset them, compare afterwards
         ("groundfilter", dict(INPUT=p("cloud.laz"), METHOD=0, ENGINE=0, RESET_CLASSES=True,
@@ -97,20 +102,32 @@ def main(argv=None):
     parser.add_argument("--seed", type=int, default=7)
     parser.add_argument("--scene", help="an existing scene folder (else generated into bench/out)")
     parser.add_argument("--json", help="also write the figures to this file")
+    parser.add_argument("--detections", choices=["model", "oracle"], default="model",
+                        help="the detector (bundled or --model), or the scene's true boxes")
+    parser.add_argument("--model", help="an ONNX model instead of the bundled one")
     args = parser.parse_args(argv)
 
     scene_dir, meta = load_scene(args)
-    work = os.path.join(REPO_ROOT, "bench", "out", "chain-{}-{}".format(args.preset, args.seed))
+    work = os.path.join(REPO_ROOT, "bench", "out", "chain-{}-{}-{}".format(
+        os.path.basename(os.path.normpath(scene_dir)), args.detections, args.seed))
     os.makedirs(work, exist_ok=True)
     qgis = QgisProcess()
     listing = qgis("--json", "list")
     available = set(listing.json["providers"]["roadsigns"]["algorithms"])
 
-    figures = {"scene": scene_dir, "preset": args.preset, "seed": args.seed, "stages": {}}
+    figures = {"scene": scene_dir, "preset": args.preset, "seed": args.seed,
+               "detections": args.detections, "stages": {}}
     done = set()
-    for stage, parameters, output_key, needs in stage_plan(scene_dir, meta, work):
+    for stage, parameters, output_key, needs in stage_plan(scene_dir, meta, work, args.model):
         record = {"status": "missing"}
-        if "roadsigns:" + stage not in available:
+        if stage == "detectsigns" and args.detections == "oracle" and "importtrajectory" in done:
+            from devtools.oracle import oracle_detections
+            start = time.perf_counter()
+            count = oracle_detections(scene_dir, parameters["STATIONS"], parameters["OUTPUT"])
+            record = {"status": "oracle", "wall_s": round(time.perf_counter() - start, 2),
+                      "detections": count}
+            done.add(stage)
+        elif "roadsigns:" + stage not in available:
             pass
         elif any(n not in done for n in needs):
             record["status"] = "blocked"

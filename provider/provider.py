@@ -54,5 +54,8 @@ class RoadSignsProvider(QgsProcessingProvider):
         from ..algorithms.evaluate import Evaluate
         from ..algorithms.groundfilter import GroundFilter
         from ..algorithms.importtrajectory import ImportTrajectory
-        for algorithm in (ImportTrajectory(), DetectSigns(), GroundFilter(), Evaluate()):
+        from ..algorithms.projectdetections import ProjectDetections
+        from ..algorithms.refinesigns import RefineSigns
+        for algorithm in (ImportTrajectory(), DetectSigns(), GroundFilter(), ProjectDetections(),
+                          RefineSigns(), Evaluate()):
             self.addAlgorithm(algorithm)

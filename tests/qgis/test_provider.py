@@ -2,8 +2,8 @@
 parameter carries help text."""
 import pytest
 
-EXPECTED_ALGORITHMS = {"roadsigns:importtrajectory", "roadsigns:detectsigns", "roadsigns:groundfilter",
-                       "roadsigns:evaluate"}
+EXPECTED_ALGORITHMS = {"roadsigns:" + a for a in (
+    "importtrajectory", "detectsigns", "groundfilter", "projectdetections", "refinesigns", "evaluate")}
 
 
 @pytest.fixture(scope="module")

@@ -1,0 +1,115 @@
+"""roadsigns:refinesigns - merge the views of each physical sign and refine it in the
+cloud: the sign layer handed to a road authority."""
+from qgis.core import (Qgis, QgsGeometry, QgsLineString, QgsPoint, QgsPolygon,
+                       QgsProcessingException, QgsProcessingParameterFeatureSink,
+                       QgsProcessingParameterFeatureSource, QgsProcessingParameterFile,
+                       QgsProcessingParameterFileDestination, QgsProcessingParameterNumber)
+
+from .base import RoadSignsAlgorithm
+from .layers import DOUBLE, INT, TEXT, check_same_crs, make_fields, read_records, write_records
+
+SIGN_SPEC = [("sign_id", INT), ("class", TEXT), ("score", DOUBLE), ("height", DOUBLE),
+             ("bottom_height", DOUBLE), ("width", DOUBLE), ("panel_height", DOUBLE),
+             ("azimuth", DOUBLE), ("n_views", INT), ("n_points", INT), ("source_images", TEXT),
+             ("best_image", TEXT), ("mean_intensity", DOUBLE), ("planarity", DOUBLE),
+             ("position_source", TEXT), ("x", DOUBLE), ("y", DOUBLE), ("z", DOUBLE)]
+OUTLINE_SPEC = [("sign_id", INT), ("class", TEXT), ("width", DOUBLE), ("panel_height", DOUBLE)]
+
+
+class RefineSigns(RoadSignsAlgorithm):
+    ALGORITHM_ID = "refinesigns"
+    DISPLAY_NAME = "Refine and merge signs"
+    REQUIRES = ("numpy", "scipy", "laspy", "lazrs", "shapely")
+    SHORT_DESCRIPTION = "Merges the views of each sign and refines it in the cloud: the sign layer."
+    HELP = (
+        "Groups the candidates of different panoramas that are the same physical sign (same "
+        "class, within the merge radius, plane normals agreeing; panels stacked on one pole "
+        "stay apart), then refines each sign in the cloud: Euclidean clustering, an intensity "
+        "filter whose threshold adapts to the cloud (Otsu), a near-vertical RANSAC plane and "
+        "PCA dimensionality to keep the panel and drop the pole.<br><br>Each sign gets its "
+        "panel centre, width and panel height, the azimuth its face looks towards (clockwise "
+        "from grid north), its height above the ground directly below (class-2 points near "
+        "the sign; the log names any fallback), the bottom height, the number of views and "
+        "points, the images it was seen in and the best of them (closest, most frontal), the "
+        "mean intensity and planarity. A sign seen in two or more panoramas but with no cloud "
+        "points is placed by triangulating its rays (position_source = image).<br><br>"
+        "Optional outputs: panel outlines (PolygonZ) and the sign points (LAS/LAZ).")
+
+    def initAlgorithm(self, config=None):  # noqa: N802
+        self.add(QgsProcessingParameterFeatureSource(
+            "CANDIDATES", self.tr("Sign candidates"), [Qgis.ProcessingSourceType.VectorPoint]),
+            "The output of Project detections.")
+        self.add(QgsProcessingParameterFile(
+            "POINT_CLOUD", self.tr("Ground-classified point cloud (LAS/LAZ)"),
+            behavior=Qgis.ProcessingFileParameterBehavior.File,
+            fileFilter=self.tr("LAS/LAZ point clouds (*.las *.laz *.LAS *.LAZ);;All files (*.*)")),
+            "The same cloud as for Project detections (ground as class 2).")
+        self.add(QgsProcessingParameterNumber(
+            "MERGE_RADIUS", self.tr("Merge radius (m)"), type=Qgis.ProcessingNumberParameterType.Double,
+            defaultValue=1.0, minValue=0.05),
+            "Candidates of the same class closer than this (metres) with agreeing plane normals "
+            "are taken as one sign.")
+        self.add(QgsProcessingParameterFeatureSink(
+            "OUTPUT", self.tr("Signs"), type=Qgis.ProcessingSourceType.VectorPoint),
+            "PointZ sign layer at the panel centres with the contract's fields.")
+        self.add(QgsProcessingParameterFeatureSink(
+            "OUTLINES", self.tr("Panel outlines"), type=Qgis.ProcessingSourceType.VectorPolygon,
+            optional=True, createByDefault=False),
+            "PolygonZ layer of each panel's rectangle in its plane (signs placed from the cloud).")
+        self.add(QgsProcessingParameterFileDestination(
+            "SIGN_POINTS", self.tr("Sign points"), self.tr("LAZ (*.laz);;LAS (*.las)"),
+            optional=True, createByDefault=False),
+            "A LAS/LAZ file of the points of every sign panel, all dimensions kept.")
+
+    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+        self.check_dependencies()
+        from ..core.pointcloud import read_crs_wkt
+        from ..core.projection import CANDIDATE_FIELDS, DETECTION_FIELDS, ProjectionResult
+        from ..core.refine import refine_signs, write_sign_points
+
+        source = self.parameterAsSource(parameters, "CANDIDATES", context)
+        if source is None:
+            raise QgsProcessingException(self.invalidSourceError(parameters, "CANDIDATES"))
+        cloud_path = self.parameterAsFile(parameters, "POINT_CLOUD", context)
+        rows = read_records(source, DETECTION_FIELDS + CANDIDATE_FIELDS, self.tr("Sign candidates"),
+                            feedback)
+        progress = self.progress(feedback)
+        with self.core_errors():
+            check_same_crs(source.sourceCrs(), read_crs_wkt(cloud_path), self.tr("The candidates"),
+                           cloud_path)
+            result = refine_signs(ProjectionResult.from_records(rows), cloud_path,
+                                  merge_radius_m=self.parameterAsDouble(parameters, "MERGE_RADIUS", context),
+                                  progress=progress.sub(0.0, 0.85))
+        records = result.records()
+        fields = make_fields(SIGN_SPEC)
+        sink, dest_id = self.parameterAsSink(parameters, "OUTPUT", context, fields,
+                                             Qgis.WkbType.PointZ, source.sourceCrs())
+        if sink is None:
+            raise QgsProcessingException(self.invalidSinkError(parameters, "OUTPUT"))
+        write_records(sink, fields, SIGN_SPEC, records,
+                      [QgsGeometry(QgsPoint(r["x"], r["y"], r["z"])) for r in records], feedback, (85, 92))
+        outputs = {"OUTPUT": dest_id}
+
+        outline_fields = make_fields(OUTLINE_SPEC)
+        outline_sink, outline_id = self.parameterAsSink(parameters, "OUTLINES", context, outline_fields,
+                                                        Qgis.WkbType.PolygonZ, source.sourceCrs())
+        if outline_sink is not None:
+            placed = [(r, c) for r, c in zip(records, result.outlines_world) if c is not None]
+            polygons = [QgsGeometry(QgsPolygon(QgsLineString([QgsPoint(*p) for p in list(c) + [c[0]]])))
+                        for _, c in placed]
+            write_records(outline_sink, outline_fields, OUTLINE_SPEC, [r for r, _ in placed], polygons,
+                          feedback, (92, 95))
+            outputs["OUTLINES"] = outline_id
+        points_path = self.parameterAsFileOutput(parameters, "SIGN_POINTS", context)
+        if points_path:
+            with self.core_errors():
+                n = write_sign_points(cloud_path, points_path, result.point_index,
+                                      progress=progress.sub(0.95, 1.0))
+            feedback.pushInfo(self.tr("{} sign points written to {}").format(n, points_path))
+            outputs["SIGN_POINTS"] = points_path
+        by_source = {}
+        for r in records:
+            by_source[r["position_source"]] = by_source.get(r["position_source"], 0) + 1
+        feedback.pushInfo(self.tr("{} signs from {} candidates ({})").format(
+            len(records), len(rows), ", ".join("{} {}".format(v, k) for k, v in sorted(by_source.items()))))
+        return outputs

@@ -1,0 +1,189 @@
+"""projectdetections, refinesigns and evaluate through qgis_process on a generated scene,
+with detections made from the scene's true boxes (devtools/oracle.py) so that the cloud
+stages are measured apart from the detector."""
+import os
+
+import laspy
+import numpy as np
+import pytest
+from osgeo import ogr
+
+from devtools.oracle import oracle_detections
+
+# the goals of the issue (Zhang 2023: P 0.978 / R 0.947; Balado 2020: 97.5 % within 0.5 m)
+GOALS = dict(PRECISION=0.97, RECALL=0.95, MEDIAN_ERROR=0.05, P95_ERROR=0.20,
+             MEDIAN_HEIGHT_ERROR=0.05, MEDIAN_AZIMUTH_ERROR=5.0, CLASS_ACCURACY=0.97)
+
+
+def rows(path):
+    dataset = ogr.Open(path)
+    layer = dataset.GetLayer(0)
+    out = []
+    for feature in layer:
+        row = {k: feature[k] for k in feature.keys()}
+        g = feature.GetGeometryRef()
+        row["_geometry"] = None if g is None else ogr.GeometryTypeToName(g.GetGeometryType())
+        out.append(row)
+    return out
+
+
+@pytest.fixture(scope="module")
+def chain(qgis_process, scene_tiny, tmp_path_factory):
+    scene_dir, scene = scene_tiny
+    work = tmp_path_factory.mktemp("chain")
+    lever, bore = scene["lever_arm_m"], scene["boresight_deg"]
+    stations = str(work / "stations.gpkg")
+    run = qgis_process.run("roadsigns:importtrajectory", TRAJECTORY=os.path.join(scene_dir, "trajectory.csv"),
+                           IMAGE_TIMES=os.path.join(scene_dir, "image_times.csv"),
+                           IMAGES=os.path.join(scene_dir, "images"), TRAJECTORY_CRS=scene["trajectory_crs"],
+                           TARGET_CRS=scene["target_crs"], LEVER_ARM_X=lever[0], LEVER_ARM_Y=lever[1],
+                           LEVER_ARM_Z=lever[2], BORESIGHT_ROLL=bore["roll"], BORESIGHT_PITCH=bore["pitch"],
+                           BORESIGHT_YAW=bore["yaw"], OUTPUT=stations)
+    assert run.returncode == 0, run.text
+    ground = str(work / "ground.laz")
+    run = qgis_process.run("roadsigns:groundfilter", INPUT=os.path.join(scene_dir, "cloud.laz"),
+                           CROP=stations, CROP_BUFFER=25, RESET_CLASSES=True, OUTPUT=ground)
+    assert run.returncode == 0, run.text
+    detections = str(work / "detections.gpkg")
+    assert oracle_detections(scene_dir, stations, detections) > 10
+    return dict(work=work, stations=stations, ground=ground, detections=detections, scene=scene,
+                scene_dir=scene_dir)
+
+
+def project(qgis_process, chain, cloud, name):
+    out = str(chain["work"] / name)
+    run = qgis_process.run("roadsigns:projectdetections", DETECTIONS=chain["detections"],
+                           POINT_CLOUD=cloud, MAX_RANGE=30, OUTPUT=out)
+    assert run.returncode == 0, run.text
+    return out
+
+
+def refine(qgis_process, chain, candidates, cloud, name, **extra):
+    out = str(chain["work"] / name)
+    run = qgis_process.run("roadsigns:refinesigns", CANDIDATES=candidates, POINT_CLOUD=cloud,
+                           MERGE_RADIUS=1.0, OUTPUT=out, **extra)
+    assert run.returncode == 0, run.text
+    return out, run
+
+
+def evaluate(qgis_process, chain, signs, reference=None):
+    run = qgis_process.run("roadsigns:evaluate", SIGNS=signs,
+                           REFERENCE=reference or os.path.join(chain["scene_dir"], "reference_signs.csv"),
+                           MATCH_RADIUS=1.0, OUTPUT_REPORT=str(chain["work"] / "evaluation.html"))
+    assert run.returncode == 0, run.text
+    return run.json["results"]
+
+
+def test_candidates_lie_on_their_panels(qgis_process, chain):
+    candidates = rows(project(qgis_process, chain, chain["ground"], "candidates.gpkg"))
+    assert len(candidates) == len(rows(chain["detections"]))
+    ok = [c for c in candidates if c["status"] == "ok"]
+    assert len(ok) >= 0.9 * len(candidates)
+    assert all(c["_geometry"] == "3D Point" for c in ok)
+    panels = chain["scene"]["signs"]
+    for c in ok:
+        p = np.array([c["cand_x"], c["cand_y"], c["cand_z"]])
+        # the nearest true panel of the detection's class: on its plane, inside its outline
+        best = min((s for s in panels if s["class"] == c["class"]),
+                   key=lambda s: np.linalg.norm(p - np.array(s["centre"])))
+        normal = np.array(best["normal"])
+        assert abs(np.dot(p - np.array(best["centre"]), normal)) < 0.05
+        offset = p - np.array(best["centre"])
+        assert np.linalg.norm(offset - np.dot(offset, normal) * normal) < max(best["width"], best["panel_height"]) / 2 + 0.1
+
+
+def test_sign_layer_meets_the_goals(qgis_process, chain):
+    candidates = project(qgis_process, chain, chain["ground"], "candidates.gpkg")
+    points = str(chain["work"] / "sign_points.laz")
+    signs, run = refine(qgis_process, chain, candidates, chain["ground"], "signs.gpkg",
+                        OUTLINES=str(chain["work"] / "outlines.gpkg"), SIGN_POINTS=points)
+    layer = rows(signs)
+    fields = ["sign_id", "class", "score", "height", "bottom_height", "width", "panel_height", "azimuth",
+              "n_views", "n_points", "source_images", "best_image", "mean_intensity", "planarity",
+              "position_source", "x", "y", "z"]
+    assert list(k for k in layer[0] if not k.startswith("_")) == fields
+    assert all(s["_geometry"] == "3D Point" and s["position_source"] == "lidar" for s in layer)
+    assert all(s["best_image"] in s["source_images"].split(";") for s in layer)
+    shared = [s for s in chain["scene"]["signs"] if s["mount"] == "shared_pole"]
+    assert len(shared) == 2  # two panels on one pole, both must be found apart
+    results = evaluate(qgis_process, chain, signs)
+    for name, goal in GOALS.items():
+        better = results[name] >= goal if name in ("PRECISION", "RECALL", "CLASS_ACCURACY") else results[name] <= goal
+        assert better, (name, results[name], goal)
+    outlines = rows(str(chain["work"] / "outlines.gpkg"))
+    assert len(outlines) == len(layer) and all(o["_geometry"] == "3D Polygon" for o in outlines)
+    sign_points = laspy.read(points)
+    assert len(sign_points) == sum(s["n_points"] for s in layer) > 0
+    assert set(np.unique(sign_points.classification)) <= {1}  # the panels, not the ground
+
+
+def test_signs_out_of_the_scanners_reach_are_triangulated(qgis_process, chain):
+    """A scanner that reaches 4 m from the vehicle: the roadside signs have no points and
+    must be placed from their rays (position_source = image), the gantry signs from the cloud."""
+    near = str(chain["work"] / "near.laz")
+    run = qgis_process.run("roadsigns:groundfilter", INPUT=os.path.join(chain["scene_dir"], "cloud.laz"),
+                           CROP=chain["stations"], CROP_BUFFER=4, RESET_CLASSES=True, OUTPUT=near)
+    assert run.returncode == 0, run.text
+    signs, run = refine(qgis_process, chain, project(qgis_process, chain, near, "cand_near.gpkg"), near,
+                        "signs_near.gpkg")
+    assert "stations' height" in run.text  # no ground below those signs: the fallback is named
+    layer = rows(signs)
+    truth = chain["scene"]["signs"]
+    placed = [s for s in layer if s["position_source"] == "image"]
+    assert len(placed) >= 3
+    for s in placed:
+        p = np.array([s["x"], s["y"], s["z"]])
+        nearest = min(truth, key=lambda t: np.linalg.norm(p - np.array(t["centre"])))
+        assert np.linalg.norm(p - np.array(nearest["centre"])) < 0.3
+        assert s["class"] == nearest["class"] and s["n_views"] >= 2
+    gantry = [s for s in layer if s["position_source"] == "lidar"]
+    assert len(gantry) == sum(t["mount"] == "gantry" for t in truth)
+
+
+def test_cloud_without_ground_class_is_refused(qgis_process, chain):
+    out = chain["work"] / "never.gpkg"
+    run = qgis_process.run("roadsigns:projectdetections", DETECTIONS=chain["detections"],
+                           POINT_CLOUD=_no_ground(chain), MAX_RANGE=30, OUTPUT=str(out))
+    assert run.returncode != 0 and "roadsigns:groundfilter" in run.text
+    assert not out.exists()
+
+
+def _no_ground(chain):
+    las = laspy.read(chain["ground"])
+    las.classification = np.ones(len(las.points), np.uint8)
+    path = str(chain["work"] / "no_ground.laz")
+    las.write(path)
+    return path
+
+
+def test_crs_mismatch_is_refused(qgis_process, chain, tmp_path):
+    src = ogr.Open(chain["detections"])
+    other = str(tmp_path / "det_4326.gpkg")
+    ogr.GetDriverByName("GPKG").CopyDataSource(src, other)
+    src = None
+    ds = ogr.Open(other, 1)
+    ds.ExecuteSQL("UPDATE gpkg_geometry_columns SET srs_id = 4326")
+    ds = None
+    run = qgis_process.run("roadsigns:projectdetections", DETECTIONS=other, POINT_CLOUD=chain["ground"],
+                           OUTPUT=str(tmp_path / "c.gpkg"))
+    assert run.returncode != 0 and "EPSG:4326" in run.text and "EPSG:32633" in run.text
+
+
+def test_empty_detections_give_empty_layers(qgis_process, chain, tmp_path):
+    src = ogr.Open(chain["detections"])
+    empty = str(tmp_path / "empty.gpkg")
+    ogr.GetDriverByName("GPKG").CopyDataSource(src, empty)
+    src = None
+    ds = ogr.Open(empty, 1)
+    ds.ExecuteSQL("DELETE FROM detections")
+    ds = None
+    candidates = str(tmp_path / "c.gpkg")
+    run = qgis_process.run("roadsigns:projectdetections", DETECTIONS=empty, POINT_CLOUD=chain["ground"],
+                           OUTPUT=candidates)
+    assert run.returncode == 0, run.text
+    assert "No detections" in run.text and rows(candidates) == []
+    signs = str(tmp_path / "s.gpkg")
+    run = qgis_process.run("roadsigns:refinesigns", CANDIDATES=candidates, POINT_CLOUD=chain["ground"],
+                           OUTPUT=signs)
+    assert run.returncode == 0, run.text
+    assert "No candidates" in run.text and rows(signs) == []
