@@ -51,8 +51,10 @@ def oracle_detections(scene_dir: str, stations_path: str, out_path: str, min_box
         q = np.array([station["qw"], station["qx"], station["qy"], station["qz"]], float)
         centre = np.array([station["x"], station["y"], station["z"]], float)
         for seen in boxes_by_image.get(station["image"], []):
+            if seen["facing"] != "front" or not seen.get("visible_box") or seen["occlusion"] > max_occlusion:
+                continue
             u0, v0, u1, v1 = (float(c) for c in seen["visible_box"])
-            if seen["facing"] != "front" or seen["occlusion"] > max_occlusion or v1 - v0 < min_box_px:
+            if v1 - v0 < min_box_px:
                 continue
             det_id += 1
             ray = geometry.box_centre_ray_world(u0, v0, u1, v1, station["width"], station["height"], q)
