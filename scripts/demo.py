@@ -1,8 +1,10 @@
-"""The main job on the bundled sample, through qgis_process, as an analyst's batch script would.
+"""The main job on the sample, through qgis_process, as an analyst's batch script would.
 
-The sample is the generator's ``tiny`` scene (devtools/scenegen: 36 m of street, panoramas,
-trajectory, LiDAR, reference signs), made on the fly into ``demo_out/sample``. The chain
-runs the stages the plugin has today; the others are listed as still to come.
+The sample is the generator's ``tiny`` scene (devtools/scenegen: 36 m of street with
+panoramas, trajectory, LiDAR and reference signs), made on the fly into ``demo_out/sample``.
+The chain: import trajectory -> detect signs (the bundled model; while none is bundled,
+the scene's true boxes stand in, and the demo says so) -> ground filter -> project
+detections -> refine signs -> evaluate against the reference signs.
 """
 import json
 import os
@@ -14,8 +16,7 @@ sys.path.insert(0, REPO_ROOT)
 from devtools.qgisrun import QgisProcess  # noqa: E402
 from devtools.scenegen import generate_scene  # noqa: E402
 
-CHAIN = ("importtrajectory", "detectsigns", "groundfilter", "projectdetections", "refinesigns",
-         "evaluate")
+BUNDLED_MODEL = os.path.join(REPO_ROOT, "models", "roadsigns.onnx")
 
 
 def main():
@@ -27,15 +28,14 @@ def main():
     with open(os.path.join(sample, "scene.json")) as f:
         scene = json.load(f)
     qgis = QgisProcess()
-    available = set(qgis("--json", "list").json["providers"]["roadsigns"]["algorithms"])
+    out = lambda name: os.path.join(out_dir, name)  # noqa: E731
 
     def run(stage, **parameters):
         result = qgis.run("roadsigns:" + stage, **parameters)
         if result.returncode != 0:
             print(result.text)
             sys.exit("roadsigns:{} failed".format(stage))
-        print("{:<18} {:6.1f} s  {}".format(stage, result.wall_s, "; ".join(
-            result.json["log"].get("info", [])[-2:])))
+        print("{:<18} {:6.1f} s  {}".format(stage, result.wall_s, (result.json["log"].get("info") or [""])[-1]))
         return result.json["results"]
 
     lever, bore = scene["lever_arm_m"], scene["boresight_deg"]
@@ -44,18 +44,27 @@ def main():
                    IMAGES=os.path.join(sample, "images"), TRAJECTORY_CRS=scene["trajectory_crs"],
                    TARGET_CRS=scene["target_crs"], LEVER_ARM_X=lever[0], LEVER_ARM_Y=lever[1],
                    LEVER_ARM_Z=lever[2], BORESIGHT_ROLL=bore["roll"], BORESIGHT_PITCH=bore["pitch"],
-                   BORESIGHT_YAW=bore["yaw"], OUTPUT=os.path.join(out_dir, "stations.gpkg"))["OUTPUT"]
+                   BORESIGHT_YAW=bore["yaw"], OUTPUT=out("stations.gpkg"))["OUTPUT"]
+    if os.path.exists(BUNDLED_MODEL):
+        detections = run("detectsigns", STATIONS=stations, CONFIDENCE=0.4, OUTPUT=out("detections.gpkg"))["OUTPUT"]
+    else:
+        from devtools.oracle import oracle_detections
+        detections = out("detections.gpkg")
+        count = oracle_detections(sample, stations, detections)
+        print("{:<18} (no bundled model yet: {} detections from the scene's true boxes)".format(
+            "detectsigns", count))
     ground = run("groundfilter", INPUT=os.path.join(sample, "cloud.laz"), CROP=stations,
-                 CROP_BUFFER=20, RESET_CLASSES=True, OUTPUT=os.path.join(out_dir, "ground.laz"))
-    print("\nOutputs in {}:".format(out_dir))
-    print("  panorama stations  {}".format(stations))
-    print("  ground-classified  {} ({} of {} points kept, {} ground, engine {})".format(
-        ground["OUTPUT"], ground["POINTS_OUT"], ground["POINTS_IN"], ground["GROUND_POINTS"],
-        ground["ENGINE_USED"]))
-    missing = [s for s in CHAIN if "roadsigns:" + s not in available]
-    detect_note = " (detectsigns needs a model: none is bundled yet)" if "roadsigns:detectsigns" in available else ""
-    print("Stages still to come in the demo: {}{}".format(
-        ", ".join(missing + ["detectsigns"] if detect_note else missing), detect_note))
+                 CROP_BUFFER=25, RESET_CLASSES=True, OUTPUT=out("ground.laz"))["OUTPUT"]
+    candidates = run("projectdetections", DETECTIONS=detections, POINT_CLOUD=ground, MAX_RANGE=30,
+                     OUTPUT=out("candidates.gpkg"))["OUTPUT"]
+    signs = run("refinesigns", CANDIDATES=candidates, POINT_CLOUD=ground, MERGE_RADIUS=1.0,
+                OUTPUT=out("signs.gpkg"), OUTLINES=out("panel_outlines.gpkg"))["OUTPUT"]
+    scores = run("evaluate", SIGNS=signs, REFERENCE=os.path.join(sample, "reference_signs.csv"),
+                 MATCH_RADIUS=1.0, OUTPUT_REPORT=out("evaluation.html"))
+    print("\nSign layer: {}\nEvaluation report: {}".format(signs, scores["OUTPUT_REPORT"]))
+    print("precision {PRECISION:.3f}  recall {RECALL:.3f}  class accuracy {CLASS_ACCURACY:.3f}  "
+          "median error {MEDIAN_ERROR:.3f} m  p95 {P95_ERROR:.3f} m  height error {MEDIAN_HEIGHT_ERROR:.3f} m  "
+          "azimuth error {MEDIAN_AZIMUTH_ERROR:.1f} deg".format(**scores))
 
 
 if __name__ == "__main__":
