@@ -65,6 +65,27 @@ class RoadSignsAlgorithm(QgsProcessingAlgorithm):
         self.addParameter(parameter)
         return parameter
 
+    def add_number(self, name, label, default, help_text, minimum=None, maximum=None,
+                   integer=False, advanced=False):
+        """A double (or integer) parameter with its help text."""
+        from qgis.core import QgsProcessingParameterNumber
+        kind = Qgis.ProcessingNumberParameterType.Integer if integer else \
+            Qgis.ProcessingNumberParameterType.Double
+        parameter = QgsProcessingParameterNumber(name, self.tr(label), type=kind, defaultValue=default)
+        if minimum is not None:
+            parameter.setMinimum(minimum)
+        if maximum is not None:
+            parameter.setMaximum(maximum)
+        return self.add(parameter, help_text, advanced)
+
+    def add_las_file(self, name, label, help_text):
+        """A LAS/LAZ input file parameter."""
+        from qgis.core import QgsProcessingParameterFile
+        return self.add(QgsProcessingParameterFile(
+            name, self.tr(label), behavior=Qgis.ProcessingFileParameterBehavior.File,
+            fileFilter=self.tr("LAS/LAZ point clouds (*.las *.laz *.LAS *.LAZ);;All files (*.*)")),
+            help_text)
+
     def check_dependencies(self):
         message = missing_message(self.REQUIRES)
         if not message and "shapely" in self.REQUIRES:

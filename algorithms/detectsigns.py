@@ -3,30 +3,29 @@ one ray per detection (LineStringZ from the panorama centre through the box cent
 import os
 
 import numpy as np
-from qgis.core import (Qgis, QgsFeature, QgsFeatureSink, QgsField, QgsFields, QgsGeometry,
+from qgis.core import (Qgis, QgsFeature, QgsFeatureSink, QgsGeometry,
                        QgsLineString, QgsPoint, QgsProcessingException,
                        QgsProcessingParameterBoolean, QgsProcessingParameterFeatureSource,
-                       QgsProcessingParameterFile, QgsProcessingParameterFeatureSink,
-                       QgsProcessingParameterNumber, QgsProcessingOutputNumber)
-from qgis.PyQt.QtCore import QMetaType
+                       QgsProcessingParameterFile, QgsProcessingParameterFeatureSink, QgsProcessingOutputNumber)
 
 from .base import RoadSignsAlgorithm
+from .layers import DOUBLE, INT, TEXT, make_fields
 
 PLUGIN_DIR = os.path.dirname(os.path.dirname(__file__))
 BUNDLED_MODEL = os.path.join(PLUGIN_DIR, "models", "roadsigns.onnx")
 STATION_FIELDS = ("station_id", "image", "path", "time", "x", "y", "z", "qw", "qx", "qy", "qz",
                   "heading", "width", "height")
-DETECTION_FIELDS = [("det_id", QMetaType.Type.Int), ("station_id", QMetaType.Type.Int),
-                    ("image", QMetaType.Type.QString), ("class", QMetaType.Type.QString),
-                    ("score", QMetaType.Type.Double), ("u0", QMetaType.Type.Double),
-                    ("v0", QMetaType.Type.Double), ("u1", QMetaType.Type.Double),
-                    ("v1", QMetaType.Type.Double), ("n_views", QMetaType.Type.Int),
-                    ("time", QMetaType.Type.Double), ("x", QMetaType.Type.Double),
-                    ("y", QMetaType.Type.Double), ("z", QMetaType.Type.Double),
-                    ("qw", QMetaType.Type.Double), ("qx", QMetaType.Type.Double),
-                    ("qy", QMetaType.Type.Double), ("qz", QMetaType.Type.Double),
-                    ("heading", QMetaType.Type.Double), ("width", QMetaType.Type.Int),
-                    ("height", QMetaType.Type.Int)]
+DETECTION_FIELDS = [("det_id", INT), ("station_id", INT),
+                    ("image", TEXT), ("class", TEXT),
+                    ("score", DOUBLE), ("u0", DOUBLE),
+                    ("v0", DOUBLE), ("u1", DOUBLE),
+                    ("v1", DOUBLE), ("n_views", INT),
+                    ("time", DOUBLE), ("x", DOUBLE),
+                    ("y", DOUBLE), ("z", DOUBLE),
+                    ("qw", DOUBLE), ("qx", DOUBLE),
+                    ("qy", DOUBLE), ("qz", DOUBLE),
+                    ("heading", DOUBLE), ("width", INT),
+                    ("height", INT)]
 
 
 def read_stations(source, label):
@@ -70,28 +69,25 @@ class DetectSigns(RoadSignsAlgorithm):
             behavior=Qgis.ProcessingFileParameterBehavior.File, optional=True,
             fileFilter=self.tr("ONNX models (*.onnx);;All files (*.*)")),
             "A YOLO-family ONNX detector. Empty uses the model bundled with the plugin.")
-        self.add(QgsProcessingParameterNumber(
-            "CONFIDENCE", self.tr("Minimum confidence"), type=Qgis.ProcessingNumberParameterType.Double,
-            defaultValue=0.4, minValue=0.0, maxValue=1.0),
-            "Detections scoring below this (0-1) are dropped.")
+        self.add_number(
+            "CONFIDENCE", "Minimum confidence", 0.4,
+            "Detections scoring below this (0-1) are dropped.", minimum=0.0, maximum=1.0)
         self.add(QgsProcessingParameterFile(
             "LABELS", self.tr("Class names file (optional)"),
             behavior=Qgis.ProcessingFileParameterBehavior.File, optional=True,
             fileFilter=self.tr("Text files (*.txt);;All files (*.*)")),
             "One class name per line, in the model's class order; needed when the model has no "
             "names in its metadata and no labels file beside it.", advanced=True)
-        self.add(QgsProcessingParameterNumber(
-            "MAX_RANGE", self.tr("Ray length (m)"), type=Qgis.ProcessingNumberParameterType.Double,
-            defaultValue=50.0, minValue=1.0),
-            "Length of each detection ray from the panorama centre, in metres.", advanced=True)
+        self.add_number(
+            "MAX_RANGE", "Ray length (m)", 50.0,
+            "Length of each detection ray from the panorama centre, in metres.", minimum=1.0, advanced=True)
         self.add(QgsProcessingParameterBoolean(
             "UPWARD_VIEWS", self.tr("Also look upwards (overhead and gantry signs)"), defaultValue=True),
             "Adds a ring of views tilted 35° up; unchecked halves the work but misses signs "
             "high above the road close to the vehicle.", advanced=True)
-        self.add(QgsProcessingParameterNumber(
-            "THREADS", self.tr("CPU threads (0: all)"), type=Qgis.ProcessingNumberParameterType.Integer,
-            defaultValue=0, minValue=0),
-            "Threads onnxruntime may use on the CPU; 0 lets it use every core.", advanced=True)
+        self.add_number(
+            "THREADS", "CPU threads (0: all)", 0,
+            "Threads onnxruntime may use on the CPU; 0 lets it use every core.", minimum=0, integer=True, advanced=True)
         self.add(QgsProcessingParameterFeatureSink(
             "OUTPUT", self.tr("Detections"), type=Qgis.ProcessingSourceType.VectorLine),
             "LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, "
@@ -136,9 +132,7 @@ class DetectSigns(RoadSignsAlgorithm):
             feedback.pushWarning(self.tr("Skipped {} panorama(s) that could not be read.").format(
                 len(found.skipped)))
 
-        fields = QgsFields()
-        for name, field_type in DETECTION_FIELDS:
-            fields.append(QgsField(name, field_type))
+        fields = make_fields(DETECTION_FIELDS)
         sink, dest_id = self.parameterAsSink(parameters, "OUTPUT", context, fields,
                                              Qgis.WkbType.LineStringZ, source.sourceCrs())
         if sink is None:

@@ -6,8 +6,7 @@ import os
 import numpy as np
 from qgis.core import (Qgis, QgsCoordinateTransform, QgsFeatureRequest, QgsProcessingException,
                        QgsProcessingOutputNumber, QgsProcessingParameterFeatureSource,
-                       QgsProcessingParameterFile, QgsProcessingParameterFileDestination,
-                       QgsProcessingParameterNumber, QgsVectorLayer)
+                       QgsProcessingParameterFile, QgsProcessingParameterFileDestination, QgsVectorLayer)
 
 from ..core.evaluate import OUTPUT_NAMES, SignSet, evaluate, read_reference_csv, write_html_report
 from .base import RoadSignsAlgorithm
@@ -97,11 +96,10 @@ class Evaluate(RoadSignsAlgorithm):
             fileFilter=self.tr("Reference signs (*.csv *.txt *.gpkg *.shp *.geojson);;All files (*.*)")),
             "Ground truth: a CSV sign_id,class,x,y,z,height,width,panel_height,azimuth in the sign "
             "layer's CRS, or a point layer with those fields (reprojected if its CRS differs).")
-        self.add(QgsProcessingParameterNumber(
-            "MATCH_RADIUS", self.tr("Match radius (m)"), type=Qgis.ProcessingNumberParameterType.Double,
-            defaultValue=1.0, minValue=0.001),
+        self.add_number(
+            "MATCH_RADIUS", "Match radius (m)", 1.0,
             "A sign and a reference panel farther apart than this (3D distance between panel "
-            "centres, metres) are never matched.")
+            "centres, metres) are never matched.", minimum=0.001)
         self.add(QgsProcessingParameterFileDestination(
             "OUTPUT_REPORT", self.tr("Evaluation report"), self.tr("HTML files (*.html)")),
             "HTML report: the summary and one row per sign and reference panel.")

@@ -8,7 +8,7 @@ from qgis.core import (Qgis, QgsCoordinateReferenceSystem, QgsCoordinateTransfor
                        QgsProcessingOutputString, QgsProcessingParameterBoolean,
                        QgsProcessingParameterCrs, QgsProcessingParameterEnum,
                        QgsProcessingParameterFeatureSource, QgsProcessingParameterFile,
-                       QgsProcessingParameterFileDestination, QgsProcessingParameterNumber,
+                       QgsProcessingParameterFileDestination,
                        QgsWkbTypes)
 
 from .base import RoadSignsAlgorithm
@@ -62,27 +62,23 @@ class GroundFilter(RoadSignsAlgorithm):
             [Qgis.ProcessingSourceType.VectorAnyGeometry], optional=True),
             "Keep only points inside these polygons, or within the crop buffer of these points or "
             "lines (e.g. the panorama stations). Empty keeps the whole cloud.")
-        self.add(QgsProcessingParameterNumber(
-            "CROP_BUFFER", self.tr("Crop buffer (m)"), type=Qgis.ProcessingNumberParameterType.Double,
-            defaultValue=0.0, minValue=0.0),
-            "Grow the crop geometries by this many metres; needed (> 0) for a point or line layer.")
+        self.add_number(
+            "CROP_BUFFER", "Crop buffer (m)", 0.0,
+            "Grow the crop geometries by this many metres; needed (> 0) for a point or line layer.", minimum=0.0)
         self.add(QgsProcessingParameterEnum(
             "METHOD", self.tr("Ground method"), options=[self.tr(m) for m in self.METHODS], defaultValue=0),
             "CSF suits roads and gentle terrain; SMRF suits steeper or rougher terrain.")
         self.add(QgsProcessingParameterEnum(
             "ENGINE", self.tr("Engine"), options=[self.tr(e) for e in self.ENGINES], defaultValue=0),
             "Auto: PDAL when QGIS has it (Python bindings or the pdal executable), else built-in.")
-        self.add(QgsProcessingParameterNumber(
-            "THRESHOLD", self.tr("Ground distance threshold (m)"),
-            type=Qgis.ProcessingNumberParameterType.Double, defaultValue=0.2, minValue=0.01),
+        self.add_number(
+            "THRESHOLD", "Ground distance threshold (m)", 0.2,
             "Points within this height of the ground surface are ground (PDAL's threshold option). "
             "PDAL's default is 0.5 m; 0.2 m suits dense mobile-mapping clouds, where it keeps the "
-            "lowest parts of cars, walls and street furniture off the ground class.", advanced=True)
-        self.add(QgsProcessingParameterNumber(
-            "CELL_SIZE", self.tr("Cloth resolution / cell size (m)"),
-            type=Qgis.ProcessingNumberParameterType.Double, defaultValue=0.5, minValue=0.05),
-            "CSF's cloth resolution or SMRF's cell size, in metres (PDAL's default: 1 m).",
-            advanced=True)
+            "lowest parts of cars, walls and street furniture off the ground class.", minimum=0.01, advanced=True)
+        self.add_number(
+            "CELL_SIZE", "Cloth resolution / cell size (m)", 0.5,
+            "CSF's cloth resolution or SMRF's cell size, in metres (PDAL's default: 1 m).", minimum=0.05, advanced=True)
         self.add(QgsProcessingParameterCrs(
             "CLOUD_CRS", self.tr("Cloud CRS (when the file has none)"), optional=True),
             "The cloud's CRS if the file does not record one; a CRS in the file is replaced by it. "

@@ -2,27 +2,25 @@
 and the camera mount -> a PointZ layer of panorama stations with full pose."""
 import math
 
-from qgis.core import (Qgis, QgsCoordinateReferenceSystem, QgsFeature, QgsFeatureSink, QgsField,
-                       QgsFields, QgsGeometry, QgsPoint, QgsProcessingException,
+from qgis.core import (Qgis, QgsCoordinateReferenceSystem, QgsFeature, QgsFeatureSink,
+                       QgsGeometry, QgsPoint, QgsProcessingException,
                        QgsProcessingParameterBoolean, QgsProcessingParameterCrs,
-                       QgsProcessingParameterFeatureSink, QgsProcessingParameterFile,
-                       QgsProcessingParameterNumber)
-from qgis.PyQt.QtCore import QMetaType
+                       QgsProcessingParameterFeatureSink, QgsProcessingParameterFile)
 
 from ..core.trajectory import CameraMount, import_stations
 from .base import RoadSignsAlgorithm
+from .layers import DOUBLE, INT, TEXT, make_fields
 
 FILE = Qgis.ProcessingFileParameterBehavior.File
 FOLDER = Qgis.ProcessingFileParameterBehavior.Folder
-DOUBLE = Qgis.ProcessingNumberParameterType.Double
 
-STATION_FIELDS = [("station_id", QMetaType.Type.Int), ("image", QMetaType.Type.QString),
-                  ("path", QMetaType.Type.QString), ("time", QMetaType.Type.Double),
-                  ("x", QMetaType.Type.Double), ("y", QMetaType.Type.Double),
-                  ("z", QMetaType.Type.Double), ("qw", QMetaType.Type.Double),
-                  ("qx", QMetaType.Type.Double), ("qy", QMetaType.Type.Double),
-                  ("qz", QMetaType.Type.Double), ("heading", QMetaType.Type.Double),
-                  ("width", QMetaType.Type.Int), ("height", QMetaType.Type.Int)]
+STATION_FIELDS = [("station_id", INT), ("image", TEXT),
+                  ("path", TEXT), ("time", DOUBLE),
+                  ("x", DOUBLE), ("y", DOUBLE),
+                  ("z", DOUBLE), ("qw", DOUBLE),
+                  ("qx", DOUBLE), ("qy", DOUBLE),
+                  ("qz", DOUBLE), ("heading", DOUBLE),
+                  ("width", INT), ("height", INT)]
 
 
 def crs_for_pyproj(crs: QgsCoordinateReferenceSystem):
@@ -81,28 +79,25 @@ class ImportTrajectory(RoadSignsAlgorithm):
             "Projected CRS of the outputs (metres, East-North-Up). A compound CRS with a vertical "
             "datum turns ellipsoidal heights into that datum when its geoid grid is installed. "
             "Empty: the trajectory CRS if it is projected, else its UTM zone.")
-        for axis, default, meaning in (("X", 0.0, "forward"), ("Y", 0.0, "right"), ("Z", 0.0, "down")):
-            self.add(QgsProcessingParameterNumber(
-                "LEVER_ARM_" + axis, self.tr("Lever arm {} (m)").format(axis.lower()), type=DOUBLE,
-                defaultValue=default),
-                "Panorama centre relative to the trajectory's reference point, in metres along the "
-                "body axis {} ({} positive).".format(axis.lower(), meaning))
-        for angle in ("ROLL", "PITCH", "YAW"):
-            self.add(QgsProcessingParameterNumber(
-                "BORESIGHT_" + angle, self.tr("Boresight {} (°)").format(angle.lower()), type=DOUBLE,
-                defaultValue=0.0, minValue=-360.0, maxValue=360.0),
-                "Panorama frame relative to the body frame: R_body_from_pano = Rz(yaw) Ry(pitch) "
-                "Rx(roll), degrees.")
+        lever_help = ("Panorama centre relative to the trajectory's reference point, in metres "
+                      "along the body axes: x forward, y right, z down.")
+        self.add_number("LEVER_ARM_X", "Lever arm x, forward (m)", 0.0, lever_help)
+        self.add_number("LEVER_ARM_Y", "Lever arm y, right (m)", 0.0, lever_help)
+        self.add_number("LEVER_ARM_Z", "Lever arm z, down (m)", 0.0, lever_help)
+        boresight_help = ("Panorama frame relative to the body frame: R_body_from_pano = Rz(yaw) "
+                          "Ry(pitch) Rx(roll), degrees.")
+        self.add_number("BORESIGHT_ROLL", "Boresight roll (°)", 0.0, boresight_help, -360.0, 360.0)
+        self.add_number("BORESIGHT_PITCH", "Boresight pitch (°)", 0.0, boresight_help, -360.0, 360.0)
+        self.add_number("BORESIGHT_YAW", "Boresight yaw (°)", 0.0, boresight_help, -360.0, 360.0)
         self.add(QgsProcessingParameterBoolean(
             "SKIP_OUTSIDE", self.tr("Skip images outside the trajectory's time span"),
             defaultValue=False),
             "When checked, images whose time lies outside the trajectory are skipped and counted "
             "in the log; otherwise they are an error.", advanced=True)
-        self.add(QgsProcessingParameterNumber(
-            "MAX_GAP", self.tr("Warn about trajectory gaps longer than (s)"), type=DOUBLE,
-            defaultValue=0.5, minValue=0.0),
+        self.add_number(
+            "MAX_GAP", "Warn about trajectory gaps longer than (s)", 0.5,
             "A warning names images that fall between two trajectory samples further apart than "
-            "this, in seconds.", advanced=True)
+            "this, in seconds.", minimum=0.0, advanced=True)
         self.add(QgsProcessingParameterBoolean(
             "FAIL_ON_MISSING_IMAGE", self.tr("Fail on a missing or unreadable panorama"),
             defaultValue=False),
@@ -141,9 +136,7 @@ class ImportTrajectory(RoadSignsAlgorithm):
 
         output_crs = target_crs if target_crs.isValid() else \
             QgsCoordinateReferenceSystem.fromWkt(result.target_crs_wkt)
-        fields = QgsFields()
-        for name, field_type in STATION_FIELDS:
-            fields.append(QgsField(name, field_type))
+        fields = make_fields(STATION_FIELDS)
         sink, dest_id = self.parameterAsSink(parameters, "OUTPUT", context, fields,
                                              Qgis.WkbType.PointZ, output_crs)
         if sink is None:

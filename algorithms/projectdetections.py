@@ -2,7 +2,7 @@
 cloud for the first dense planar surface: one candidate sign position per detection."""
 from qgis.core import (Qgis, QgsGeometry, QgsPoint, QgsProcessingException,
                        QgsProcessingParameterFeatureSink, QgsProcessingParameterFeatureSource,
-                       QgsProcessingParameterFile, QgsProcessingParameterNumber)
+                       QgsProcessingParameterFile)
 
 from .base import RoadSignsAlgorithm
 from .layers import DOUBLE, INT, TEXT, check_same_crs, make_fields, read_records, write_records
@@ -44,10 +44,9 @@ class ProjectDetections(RoadSignsAlgorithm):
             behavior=Qgis.ProcessingFileParameterBehavior.File,
             fileFilter=self.tr("LAS/LAZ point clouds (*.las *.laz *.LAS *.LAZ);;All files (*.*)")),
             "The cloud with ground as class 2 (the output of Ground filter), in the detections' CRS.")
-        self.add(QgsProcessingParameterNumber(
-            "MAX_RANGE", self.tr("Maximum range (m)"), type=Qgis.ProcessingNumberParameterType.Double,
-            defaultValue=30.0, minValue=1.0),
-            "Search each frustum up to this distance from the panorama centre, in metres.")
+        self.add_number(
+            "MAX_RANGE", "Maximum range (m)", 30.0,
+            "Search each frustum up to this distance from the panorama centre, in metres.", minimum=1.0)
         self.add(QgsProcessingParameterFeatureSink(
             "OUTPUT", self.tr("Sign candidates"), type=Qgis.ProcessingSourceType.VectorPoint),
             "PointZ layer, one candidate per detection (no geometry where no surface was found).")

@@ -3,7 +3,7 @@ cloud: the sign layer handed to a road authority."""
 from qgis.core import (Qgis, QgsGeometry, QgsLineString, QgsPoint, QgsPolygon,
                        QgsProcessingException, QgsProcessingParameterFeatureSink,
                        QgsProcessingParameterFeatureSource, QgsProcessingParameterFile,
-                       QgsProcessingParameterFileDestination, QgsProcessingParameterNumber)
+                       QgsProcessingParameterFileDestination)
 
 from .base import RoadSignsAlgorithm
 from .layers import DOUBLE, INT, TEXT, check_same_crs, make_fields, read_records, write_records
@@ -44,11 +44,10 @@ class RefineSigns(RoadSignsAlgorithm):
             behavior=Qgis.ProcessingFileParameterBehavior.File,
             fileFilter=self.tr("LAS/LAZ point clouds (*.las *.laz *.LAS *.LAZ);;All files (*.*)")),
             "The same cloud as for Project detections (ground as class 2).")
-        self.add(QgsProcessingParameterNumber(
-            "MERGE_RADIUS", self.tr("Merge radius (m)"), type=Qgis.ProcessingNumberParameterType.Double,
-            defaultValue=1.0, minValue=0.05),
+        self.add_number(
+            "MERGE_RADIUS", "Merge radius (m)", 1.0,
             "Candidates of the same class closer than this (metres) with agreeing plane normals "
-            "are taken as one sign.")
+            "are taken as one sign.", minimum=0.05)
         self.add(QgsProcessingParameterFeatureSink(
             "OUTPUT", self.tr("Signs"), type=Qgis.ProcessingSourceType.VectorPoint),
             "PointZ sign layer at the panel centres with the contract's fields.")

@@ -88,17 +88,22 @@ def stage_baseline(src: str, dst: str, chunk_points: int) -> dict:
 
 
 def stage_ground(src: str, dst: str, method: str, corridor_m: float,
-                 chunk_points: int) -> dict:
+                 chunk_points: int, trajectory: str = "-") -> dict:
     """Our run: LAZ -> corridor crop -> ground (built-in, tiled) -> LAZ."""
+    import numpy as np
     _import_package()
     from shapely.geometry import LineString
 
     from roadsigns.core import ground, pointcloud
 
     header = pointcloud.read_header(src)
-    y_mid = 0.5 * (header.mins[1] + header.maxs[1])
     crop = None
-    if corridor_m > 0:  # corridor around the road's centre line
+    if corridor_m > 0 and trajectory != "-":  # corridor around the vehicle's path
+        from roadsigns.core.tables import read_table
+        path = read_table(trajectory, ("x", "y"), numeric=("x", "y"))
+        crop = [LineString(np.column_stack([path["x"], path["y"]])[::10]).buffer(corridor_m)]
+    elif corridor_m > 0:  # the generated straight road: corridor around its centre line
+        y_mid = 0.5 * (header.mins[1] + header.maxs[1])
         crop = [LineString([(header.mins[0], y_mid),
                             (header.maxs[0], y_mid)]).buffer(corridor_m)]
     t0 = time.perf_counter()
@@ -124,6 +129,8 @@ def main(argv=None) -> int:
     p.add_argument("--method", choices=["csf", "smrf"], default="csf")
     p.add_argument("--corridor-m", type=float, default=12.0,
                    help="half width of the crop corridor around the centre line (0 = no crop)")
+    p.add_argument("--trajectory", help="with --input: crop a corridor around this trajectory "
+                   "CSV (projected x, y in the cloud's CRS) instead of a straight centre line")
     p.add_argument("--chunk-points", type=int, default=1_000_000)
     p.add_argument("--out-dir", default=os.path.join(HERE, "out"))
     p.add_argument("--seed", type=int, default=0)
@@ -138,7 +145,7 @@ def main(argv=None) -> int:
         elif name == "baseline":
             result = stage_baseline(rest[0], rest[1], int(rest[2]))
         else:
-            result = stage_ground(rest[0], rest[1], rest[2], float(rest[3]), int(rest[4]))
+            result = stage_ground(rest[0], rest[1], rest[2], float(rest[3]), int(rest[4]), rest[5])
         print(json.dumps(result))
         return 0
 
@@ -156,7 +163,7 @@ def main(argv=None) -> int:
     ground_out = os.path.join(args.out_dir, f"ground_{args.method}.laz")
     base = _run_stage(["baseline", src, base_out, str(args.chunk_points)])
     grd = _run_stage(["ground", src, ground_out, args.method, str(args.corridor_m),
-                      str(args.chunk_points)])
+                      str(args.chunk_points), args.trajectory or "-"])
     n = base["points"]
     print(f"input: {src} ({n:,} points)")
     print(f"{'stage':<28}{'seconds':>9}{'points/s':>14}{'peak RSS MB':>13}")

@@ -7,7 +7,6 @@ y = northing or latitude, z = height.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Optional
 
 import numpy as np
 from pyproj import CRS, Proj, Transformer

@@ -104,7 +104,6 @@ class Road:
         a = Dx * Dx + Dy * Dy
         b = 2 * (px * Dx + py * Dy)
         c0 = px * px + py * py
-        sg = np.sign(self.curvature)
         curb_t = np.full(best.shape, np.inf)
         for lateral in (-SIDEWALK_OUTER_T, -CURB_T, CURB_T, SIDEWALK_OUTER_T):
             r = abs(self.radius_signed + lateral)

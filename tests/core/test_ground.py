@@ -1,6 +1,5 @@
 """Ground classification: built-in CSF/SMRF accuracy, tiling, classes, PDAL plumbing."""
 import json
-import os
 import stat
 import sys
 import textwrap

@@ -1,6 +1,4 @@
 """Chunked LAS/LAZ I/O, faithful writing, crops and the tiled spatial index."""
-import os
-import sys
 
 import laspy
 import numpy as np

@@ -1,6 +1,5 @@
 """core.trajectory: stations from CSV / SBET / poses against an independent computation,
 and every bad input giving a clear InputError."""
-import os
 
 import numpy as np
 import pytest

@@ -4,7 +4,6 @@ The model's output is a constant box at the centre of every view, so each panora
 one detection per view, whose ray must point at that view's centre; the rays are checked
 against the contract's pixel -> ray formula written out in the test.
 """
-import os
 import shutil
 
 import numpy as np

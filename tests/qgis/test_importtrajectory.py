@@ -5,7 +5,6 @@ import numpy as np
 import pytest
 from osgeo import ogr
 
-from devtools import trajsample
 from helpers.contract import angle_between_deg, expected_stations, quat_to_matrix
 
 ALG = "roadsigns:importtrajectory"
