@@ -6,7 +6,7 @@ PY := $(VENV)/bin/python
 export QT_QPA_PLATFORM := offscreen
 export PROJ_DATA := /usr/share/proj
 
-.PHONY: setup test test-core demo clean
+.PHONY: setup test test-core demo zip clean
 
 setup:
 	bash scripts/setup.sh
@@ -19,6 +19,9 @@ test-core: setup
 
 demo: setup
 	$(PY) scripts/demo.py
+
+zip:
+	$(PY) scripts/package.py
 
 clean:
 	rm -rf demo_out build dist
