@@ -1,5 +1,7 @@
 """roadsigns:refinesigns - merge the views of each physical sign and refine it in the
 cloud: the sign layer handed to a road authority."""
+import os
+
 from qgis.core import (Qgis, QgsGeometry, QgsLineString, QgsPoint, QgsPolygon,
                        QgsProcessingException, QgsProcessingParameterFeatureSink,
                        QgsProcessingParameterFeatureSource, QgsProcessingParameterFile,
@@ -7,12 +9,15 @@ from qgis.core import (Qgis, QgsGeometry, QgsLineString, QgsPoint, QgsPolygon,
 
 from .base import RoadSignsAlgorithm
 from .layers import DOUBLE, INT, TEXT, check_same_crs, make_fields, read_records, write_records
+from .style import SignLayerStyler, file_of, write_sign_style
 
 SIGN_SPEC = [("sign_id", INT), ("class", TEXT), ("score", DOUBLE), ("height", DOUBLE),
              ("bottom_height", DOUBLE), ("width", DOUBLE), ("panel_height", DOUBLE),
              ("azimuth", DOUBLE), ("n_views", INT), ("n_points", INT), ("source_images", TEXT),
              ("best_image", TEXT), ("mean_intensity", DOUBLE), ("planarity", DOUBLE),
              ("position_source", TEXT), ("x", DOUBLE), ("y", DOUBLE), ("z", DOUBLE)]
+#: beyond the contract: the review chip's path, relative to the sign layer's folder
+SIGN_SPEC_WITH_CHIP = SIGN_SPEC + [("chip", TEXT)]
 OUTLINE_SPEC = [("sign_id", INT), ("class", TEXT), ("width", DOUBLE), ("panel_height", DOUBLE)]
 
 
@@ -33,7 +38,12 @@ class RefineSigns(RoadSignsAlgorithm):
         "points, the images it was seen in and the best of them (closest, most frontal), the "
         "mean intensity and planarity. A sign seen in two or more panoramas but with no cloud "
         "points is placed by triangulating its rays (position_source = image).<br><br>"
-        "Optional outputs: panel outlines (PolygonZ) and the sign points (LAS/LAZ).")
+        "Optional outputs: panel outlines (PolygonZ) and the sign points (LAS/LAZ).<br><br>"
+        "<b>Review</b>: with the panorama folder, each sign gets an image chip from its best "
+        "panorama (its box with a margin, undistorted), written into a folder beside the sign "
+        "layer and linked by the <i>chip</i> field (a relative path); the review report shows "
+        "every sign's chip and attributes. The sign layer is styled with a symbol per class "
+        "and its height as label (a .qml file beside it).")
 
     def initAlgorithm(self, config=None):  # noqa: N802
         self.add(QgsProcessingParameterFeatureSource(
@@ -48,9 +58,15 @@ class RefineSigns(RoadSignsAlgorithm):
             "MERGE_RADIUS", "Merge radius (m)", 1.0,
             "Candidates of the same class closer than this (metres) with agreeing plane normals "
             "are taken as one sign.", minimum=0.05)
+        self.add(QgsProcessingParameterFile(
+            "IMAGES", self.tr("Panorama folder (for review chips)"),
+            behavior=Qgis.ProcessingFileParameterBehavior.Folder, optional=True),
+            "The folder of the panoramas (as for Import trajectory). When given, an image chip of "
+            "each sign is cut from its best panorama for review.")
         self.add(QgsProcessingParameterFeatureSink(
             "OUTPUT", self.tr("Signs"), type=Qgis.ProcessingSourceType.VectorPoint),
-            "PointZ sign layer at the panel centres with the contract's fields.")
+            "PointZ sign layer at the panel centres with the contract's fields, and chip: the "
+            "relative path of the sign's review picture.")
         self.add(QgsProcessingParameterFeatureSink(
             "OUTLINES", self.tr("Panel outlines"), type=Qgis.ProcessingSourceType.VectorPolygon,
             optional=True, createByDefault=False),
@@ -59,6 +75,11 @@ class RefineSigns(RoadSignsAlgorithm):
             "SIGN_POINTS", self.tr("Sign points"), self.tr("LAZ (*.laz);;LAS (*.las)"),
             optional=True, createByDefault=False),
             "A LAS/LAZ file of the points of every sign panel, all dimensions kept.")
+        self.add(QgsProcessingParameterFileDestination(
+            "REVIEW_REPORT", self.tr("Review report"), self.tr("HTML files (*.html)"),
+            optional=True, createByDefault=False),
+            "An HTML page with every sign's chip and attributes, to confirm signs without opening "
+            "panoramas (needs the panorama folder).")
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
         self.check_dependencies()
@@ -76,18 +97,33 @@ class RefineSigns(RoadSignsAlgorithm):
         with self.core_errors():
             check_same_crs(source.sourceCrs(), read_crs_wkt(cloud_path), self.tr("The candidates"),
                            cloud_path)
-            result = refine_signs(ProjectionResult.from_records(rows), cloud_path,
+            candidates = ProjectionResult.from_records(rows)
+            result = refine_signs(candidates, cloud_path,
                                   merge_radius_m=self.parameterAsDouble(parameters, "MERGE_RADIUS", context),
                                   progress=progress.sub(0.0, 0.85))
         records = result.records()
-        fields = make_fields(SIGN_SPEC)
+        fields = make_fields(SIGN_SPEC_WITH_CHIP)
         sink, dest_id = self.parameterAsSink(parameters, "OUTPUT", context, fields,
                                              Qgis.WkbType.PointZ, source.sourceCrs())
         if sink is None:
             raise QgsProcessingException(self.invalidSinkError(parameters, "OUTPUT"))
-        write_records(sink, fields, SIGN_SPEC, records,
-                      [QgsGeometry(QgsPoint(r["x"], r["y"], r["z"])) for r in records], feedback, (85, 92))
+        layer_file = file_of(dest_id)
+        images_dir = self.parameterAsFile(parameters, "IMAGES", context)
+        report_path = self.parameterAsFileOutput(parameters, "REVIEW_REPORT", context)
+        if images_dir:
+            self._review(records, candidates, result, images_dir, layer_file,
+                         report_path, progress.sub(0.85, 0.9), feedback)
+        elif report_path:
+            feedback.pushWarning(self.tr("The review report needs the panorama folder: not written."))
+        write_records(sink, fields, SIGN_SPEC_WITH_CHIP, records,
+                      [QgsGeometry(QgsPoint(r["x"], r["y"], r["z"])) for r in records], feedback, (90, 92))
         outputs = {"OUTPUT": dest_id}
+        if report_path and images_dir:
+            outputs["REVIEW_REPORT"] = report_path
+        if layer_file:
+            write_sign_style(os.path.splitext(layer_file)[0] + ".qml", source.sourceCrs())
+        if context.willLoadLayerOnCompletion(dest_id):
+            context.layerToLoadOnCompletionDetails(dest_id).setPostProcessor(SignLayerStyler.create())
 
         outline_fields = make_fields(OUTLINE_SPEC)
         outline_sink, outline_id = self.parameterAsSink(parameters, "OUTLINES", context, outline_fields,
@@ -112,3 +148,23 @@ class RefineSigns(RoadSignsAlgorithm):
         feedback.pushInfo(self.tr("{} signs from {} candidates ({})").format(
             len(records), len(rows), ", ".join("{} {}".format(v, k) for k, v in sorted(by_source.items()))))
         return outputs
+
+    def _review(self, records, candidates, result, images_dir, layer_file, report_path, progress, feedback):
+        """Chips beside the sign layer (or the report), their relative paths in ``chip``."""
+        from ..core.review import best_view_boxes, write_chips, write_review_report
+        base = layer_file or report_path
+        if not base:
+            feedback.pushWarning(self.tr("Review chips need a sign layer written to a file: skipped."))
+            return
+        chips_dir = os.path.splitext(base)[0] + "_chips"
+        with self.core_errors():
+            names = write_chips(records, best_view_boxes(candidates, result), images_dir, chips_dir, progress)
+        layer_dir = os.path.dirname(layer_file or report_path)
+        for record, name in zip(records, names):
+            record["chip"] = os.path.relpath(os.path.join(chips_dir, name), layer_dir) if name else None
+        if report_path:
+            report_dir = os.path.dirname(os.path.abspath(report_path))
+            links = [os.path.relpath(os.path.join(chips_dir, n), report_dir) if n else "" for n in names]
+            with self.core_errors():
+                write_review_report(records, links, report_path, title=self.tr("Road signs for review"))
+        feedback.pushInfo(self.tr("{} review chips in {}").format(sum(bool(n) for n in names), chips_dir))

@@ -95,13 +95,16 @@ def test_candidates_lie_on_their_panels(qgis_process, chain):
 def test_sign_layer_meets_the_goals(qgis_process, chain):
     candidates = project(qgis_process, chain, chain["ground"], "candidates.gpkg")
     points = str(chain["work"] / "sign_points.laz")
+    review = str(chain["work"] / "review" / "review.html")
     signs, run = refine(qgis_process, chain, candidates, chain["ground"], "signs.gpkg",
-                        OUTLINES=str(chain["work"] / "outlines.gpkg"), SIGN_POINTS=points)
+                        OUTLINES=str(chain["work"] / "outlines.gpkg"), SIGN_POINTS=points,
+                        IMAGES=os.path.join(chain["scene_dir"], "images"), REVIEW_REPORT=review)
     layer = rows(signs)
     fields = ["sign_id", "class", "score", "height", "bottom_height", "width", "panel_height", "azimuth",
               "n_views", "n_points", "source_images", "best_image", "mean_intensity", "planarity",
-              "position_source", "x", "y", "z"]
+              "position_source", "x", "y", "z", "chip"]
     assert list(k for k in layer[0] if not k.startswith("_")) == fields
+    check_review(chain, signs, layer, review)
     assert all(s["_geometry"] == "3D Point" and s["position_source"] == "lidar" for s in layer)
     assert all(s["best_image"] in s["source_images"].split(";") for s in layer)
     shared = [s for s in chain["scene"]["signs"] if s["mount"] == "shared_pole"]
@@ -115,6 +118,25 @@ def test_sign_layer_meets_the_goals(qgis_process, chain):
     sign_points = laspy.read(points)
     assert len(sign_points) == sum(s["n_points"] for s in layer) > 0
     assert set(np.unique(sign_points.classification)) <= {1}  # the panels, not the ground
+
+
+def check_review(chain, signs_path, layer, review_path):
+    """Each sign's chip, linked by a relative path, shows its panel; the report shows them all;
+    the style file sits beside the layer."""
+    import cv2
+    folder = os.path.dirname(signs_path)
+    html = open(review_path, encoding="utf-8").read()
+    for sign in layer:
+        assert sign["chip"] and not os.path.isabs(sign["chip"])
+        chip = cv2.imread(os.path.join(folder, sign["chip"]))
+        assert chip is not None and chip.shape[:2] == (256, 256)
+        link = os.path.relpath(os.path.join(folder, sign["chip"]), os.path.dirname(review_path))
+        assert 'src="{}"'.format(link) in html
+    assert html.count('class="sign"') == len(layer)
+    qml = os.path.splitext(signs_path)[0] + ".qml"
+    style = open(qml).read()
+    assert "categorizedSymbol" in style and all(c in style for c in ("warning", "stop", "yield"))
+    assert "height" in style
 
 
 def test_signs_out_of_the_scanners_reach_are_triangulated(qgis_process, chain):

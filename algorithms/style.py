@@ -1,0 +1,78 @@
+"""The sign layer's style: a symbol per class (shaped and coloured like the sign) and a
+label with the sign's height; written as a QML beside the output and applied when QGIS
+loads the output layer."""
+import os
+
+from qgis.core import (QgsCategorizedSymbolRenderer, QgsMarkerSymbol, QgsPalLayerSettings,
+                       QgsProcessingLayerPostProcessorInterface, QgsRendererCategory,
+                       QgsTextBufferSettings, QgsTextFormat, QgsVectorLayer,
+                       QgsVectorLayerSimpleLabeling)
+
+from ..provider.i18n import tr
+
+RED, BLUE, WHITE, DARK = "208,28,31,255", "31,95,191,255", "255,255,255,255", "29,29,27,255"
+#: class -> (marker shape name, fill, stroke, rotation in degrees)
+CLASS_SYMBOLS = {
+    "warning": ("triangle", WHITE, RED, 0.0),
+    "prohibitory": ("circle", WHITE, RED, 0.0),
+    "mandatory": ("circle", BLUE, WHITE, 0.0),
+    "information": ("square", BLUE, WHITE, 0.0),
+    "stop": ("octagon", RED, WHITE, 22.5),
+    "yield": ("triangle", WHITE, RED, 180.0),
+}
+HEIGHT_LABEL = "format_number(\"height\", 2) || ' m'"
+
+
+def _symbol(shape, fill, stroke, rotation_deg):
+    return QgsMarkerSymbol.createSimple({"name": shape, "color": fill, "outline_color": stroke,
+                                         "outline_width": "0.6", "size": "4.5",
+                                         "angle": str(rotation_deg)})
+
+
+def style_sign_layer(layer):
+    """Categorised symbols by ``class`` (others grey) and a height label."""
+    categories = [QgsRendererCategory(name, _symbol(*spec), tr(name)) for name, spec in CLASS_SYMBOLS.items()]
+    categories.append(QgsRendererCategory("", _symbol("diamond", "154,154,154,255", DARK, 0.0), tr("other")))
+    layer.setRenderer(QgsCategorizedSymbolRenderer("class", categories))
+    settings = QgsPalLayerSettings()
+    settings.fieldName = HEIGHT_LABEL
+    settings.isExpression = True
+    text = QgsTextFormat()
+    text.setSize(8)
+    buffer = QgsTextBufferSettings()
+    buffer.setEnabled(True)
+    buffer.setSize(0.8)
+    text.setBuffer(buffer)
+    settings.setFormat(text)
+    layer.setLabeling(QgsVectorLayerSimpleLabeling(settings))
+    layer.setLabelsEnabled(True)
+    layer.triggerRepaint()
+
+
+def write_sign_style(qml_path, crs):
+    """Write the style as a QML file (QGIS loads ``signs.qml`` with ``signs.gpkg``)."""
+    layer = QgsVectorLayer("PointZ?crs={}&field=class:string&field=height:double".format(
+        crs.authid() or "EPSG:4326"), "signs", "memory")
+    style_sign_layer(layer)
+    message, ok = layer.saveNamedStyle(qml_path)
+    return ok
+
+
+class SignLayerStyler(QgsProcessingLayerPostProcessorInterface):
+    """Applies the sign style to the output layer QGIS loads after the algorithm."""
+    instance = None
+
+    def postProcessLayer(self, layer, context, feedback):  # noqa: N802
+        if isinstance(layer, QgsVectorLayer):
+            style_sign_layer(layer)
+
+    @staticmethod
+    def create():
+        SignLayerStyler.instance = SignLayerStyler()  # kept alive until QGIS calls it
+        return SignLayerStyler.instance
+
+
+def file_of(destination):
+    """The file behind a vector destination ('/x/signs.gpkg|layername=signs' -> '/x/signs.gpkg')."""
+    path = destination.split("|")[0]
+    return path if os.path.splitext(path)[1] and os.path.isabs(path) else None
