@@ -1,12 +1,15 @@
 """The Processing provider ``roadsigns``: lists the algorithms, one per module."""
+import glob
 import os
 
-from qgis.core import QgsProcessingProvider
+from qgis.core import QgsProcessingModelAlgorithm, QgsProcessingProvider
 from qgis.PyQt.QtGui import QIcon
 
 from .i18n import tr
 
-ICON_PATH = os.path.join(os.path.dirname(os.path.dirname(__file__)), "icons", "roadsigns.svg")
+PLUGIN_DIR = os.path.dirname(os.path.dirname(__file__))
+ICON_PATH = os.path.join(PLUGIN_DIR, "icons", "roadsigns.svg")
+MODELS_DIR = os.path.join(PLUGIN_DIR, "models")
 
 
 class RoadSignsProvider(QgsProcessingProvider):
@@ -59,3 +62,44 @@ class RoadSignsProvider(QgsProcessingProvider):
         for algorithm in (ImportTrajectory(), DetectSigns(), GroundFilter(), ProjectDetections(),
                           RefineSigns(), Evaluate()):
             self.addAlgorithm(algorithm)
+        self._load_models()
+
+    def _load_models(self):
+        """The Processing models shipped in ``models/`` (the whole chain), as algorithms."""
+        for path in sorted(glob.glob(os.path.join(MODELS_DIR, "*.model3"))):
+            model = ShippedModel()
+            if model.fromFile(path):
+                model.apply_parameter_help()
+                self.addAlgorithm(model)
+
+
+class ShippedModel(QgsProcessingModelAlgorithm):
+    """A model shipped with the plugin: its id is the model's name (``signinventory``), its
+    display name and help are translated."""
+
+    DISPLAY_NAMES = {"signinventory": "Sign inventory (whole chain)"}
+
+    def displayName(self):  # noqa: N802
+        return tr(self.DISPLAY_NAMES.get(self.name(), self.name()))
+
+    def shortHelpString(self):  # noqa: N802
+        return tr(self.helpContent().get("ALG_DESC", ""))
+
+    def shortDescription(self):  # noqa: N802
+        return self.shortHelpString()
+
+    def icon(self):
+        return QIcon(ICON_PATH)
+
+    def apply_parameter_help(self):
+        """Parameter help (tooltips) from the model's help content, translated."""
+        help_content = self.helpContent()
+        for parameter in self.parameterDefinitions():
+            if help_content.get(parameter.name()):
+                parameter.setHelp(tr(help_content[parameter.name()]))
+
+    def createInstance(self):  # noqa: N802
+        model = ShippedModel()
+        model.loadVariant(self.toVariant())
+        model.apply_parameter_help()
+        return model

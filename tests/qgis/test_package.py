@@ -39,7 +39,7 @@ def test_chain_runs_from_the_unpacked_zip(plugin_zip, scene_tiny, tmp_path):
         archive.extractall(plugins)
     qgis = QgisProcess(str(plugins), str(tmp_path / "profile"))
     listing = qgis("--json", "list").json["providers"]["roadsigns"]["algorithms"]
-    assert len(listing) == 6
+    assert len(listing) == 7  # six algorithms and the shipped model
     scene_dir, scene = scene_tiny
     lever, bore = scene["lever_arm_m"], scene["boresight_deg"]
     stations = str(tmp_path / "stations.gpkg")

@@ -3,7 +3,8 @@ parameter carries help text."""
 import pytest
 
 EXPECTED_ALGORITHMS = {"roadsigns:" + a for a in (
-    "importtrajectory", "detectsigns", "groundfilter", "projectdetections", "refinesigns", "evaluate")}
+    "importtrajectory", "detectsigns", "groundfilter", "projectdetections", "refinesigns", "evaluate",
+    "signinventory")}
 
 
 @pytest.fixture(scope="module")

@@ -1,0 +1,148 @@
+"""Build the shipped Processing model ``models/sign_inventory.model3``: the whole chain,
+stations -> detections -> ground filter -> candidates -> signs (with review chips), with
+sensible defaults. Run with QGIS's Python (the plugin's provider must resolve its ids):
+
+    QT_QPA_PLATFORM=offscreen /usr/bin/python3 scripts/build_model.py
+
+The README's single ``qgis_process`` command for the chain is this model.
+"""
+import os
+import sys
+
+REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, REPO_ROOT)
+
+from qgis.core import (QgsApplication, QgsProcessingModelAlgorithm,  # noqa: E402
+                       QgsProcessingModelChildAlgorithm, QgsProcessingModelChildParameterSource,
+                       QgsProcessingModelOutput, QgsProcessingModelParameter,
+                       QgsProcessingParameterBoolean, QgsProcessingParameterCrs,
+                       QgsProcessingParameterFile, QgsProcessingParameterNumber, Qgis)
+from qgis.PyQt.QtCore import QPointF  # noqa: E402
+
+OUT = os.path.join(REPO_ROOT, "models", "sign_inventory.model3")
+DOUBLE = Qgis.ProcessingNumberParameterType.Double
+
+
+def add_input(model, parameter, help_text, x, y):
+    parameter.setHelp(help_text)
+    component = QgsProcessingModelParameter(parameter.name())
+    component.setPosition(QPointF(x, y))
+    model.addModelParameter(parameter, component)
+
+
+def child(model, child_id, algorithm, sources, x, y, outputs=()):
+    c = QgsProcessingModelChildAlgorithm(algorithm)
+    c.setChildId(child_id)
+    c.setDescription(child_id)
+    c.setPosition(QPointF(x, y))
+    for name, source in sources.items():
+        c.addParameterSources(name, [source])
+    model_outputs = {}
+    for name, label in outputs:
+        output = QgsProcessingModelOutput(label)
+        output.setChildId(child_id)
+        output.setChildOutputName(name)
+        output.setPosition(QPointF(x + 200, y + 40))
+        model_outputs[label] = output
+    c.setModelOutputs(model_outputs)
+    model.addChildAlgorithm(c)
+    return child_id
+
+
+def param(name):
+    return QgsProcessingModelChildParameterSource.fromModelParameter(name)
+
+
+def output_of(child_id, name="OUTPUT"):
+    return QgsProcessingModelChildParameterSource.fromChildOutput(child_id, name)
+
+
+def static(value):
+    return QgsProcessingModelChildParameterSource.fromStaticValue(value)
+
+
+def build():
+    model = QgsProcessingModelAlgorithm("Sign inventory (whole chain)", "Road sign inventory", "roadsigns")
+    model.setName("signinventory")
+    model.setHelpContent({"ALG_DESC": (
+        "The whole road-sign inventory: panorama stations from the trajectory, sign detection "
+        "in the panoramas, ground filter and crop of the point cloud around the drive, "
+        "projection of each detection into the cloud, and refinement and merging into the "
+        "sign layer, with a review chip of every sign and the review report."),
+        "ALG_CREATOR": "Road Sign Inventory"})
+    file_ = Qgis.ProcessingFileParameterBehavior.File
+    y = 60
+    inputs = [
+        (QgsProcessingParameterFile("TRAJECTORY", "Trajectory (CSV or SBET)", behavior=file_),
+         "time,x,y,z,roll,pitch,heading CSV, or an Applanix SBET."),
+        (QgsProcessingParameterFile("IMAGE_TIMES", "Image times (CSV)", behavior=file_),
+         "image,time CSV of the panoramas."),
+        (QgsProcessingParameterFile("IMAGES", "Panorama folder",
+                                    behavior=Qgis.ProcessingFileParameterBehavior.Folder),
+         "Folder of the equirectangular panoramas."),
+        (QgsProcessingParameterCrs("TRAJECTORY_CRS", "Trajectory CRS", "EPSG:4326"),
+         "CRS of the trajectory positions (ignored for an SBET)."),
+        (QgsProcessingParameterCrs("TARGET_CRS", "Target CRS (projected, the point cloud's)"),
+         "Projected CRS of the outputs: the point cloud's CRS."),
+        (QgsProcessingParameterFile("POINT_CLOUD", "Point cloud (LAS/LAZ)", behavior=file_),
+         "The drive's LiDAR cloud."),
+        (QgsProcessingParameterFile("MODEL", "ONNX detector (empty: bundled)", behavior=file_,
+                                    optional=True), "Your own ONNX detector, or empty for the bundled one."),
+        (QgsProcessingParameterNumber("CONFIDENCE", "Minimum detection confidence", DOUBLE, 0.4, False, 0, 1),
+         "Detections scoring below this are dropped."),
+    ]
+    for name, default, help_text in (("LEVER_ARM_X", 0.0, "Lever arm x, forward (m)."),
+                                     ("LEVER_ARM_Y", 0.0, "Lever arm y, right (m)."),
+                                     ("LEVER_ARM_Z", 0.0, "Lever arm z, down (m)."),
+                                     ("BORESIGHT_ROLL", 0.0, "Boresight roll (°)."),
+                                     ("BORESIGHT_PITCH", 0.0, "Boresight pitch (°)."),
+                                     ("BORESIGHT_YAW", 0.0, "Boresight yaw (°).")):
+        inputs.append((QgsProcessingParameterNumber(name, help_text.rstrip("."), DOUBLE, default), help_text))
+    help_content = dict(model.helpContent())
+    for parameter, help_text in inputs:
+        add_input(model, parameter, help_text, 120, y)
+        help_content[parameter.name()] = help_text  # the model's help keeps parameter help
+        y += 60
+    model.setHelpContent(help_content)
+
+    mount = {n: param(n) for n in ("LEVER_ARM_X", "LEVER_ARM_Y", "LEVER_ARM_Z", "BORESIGHT_ROLL",
+                                   "BORESIGHT_PITCH", "BORESIGHT_YAW")}
+    stations = child(model, "stations", "roadsigns:importtrajectory", dict(
+        TRAJECTORY=param("TRAJECTORY"), IMAGE_TIMES=param("IMAGE_TIMES"), IMAGES=param("IMAGES"),
+        TRAJECTORY_CRS=param("TRAJECTORY_CRS"), TARGET_CRS=param("TARGET_CRS"), **mount), 450, 80,
+        [("OUTPUT", "Panorama stations")])
+    detections = child(model, "detections", "roadsigns:detectsigns", dict(
+        STATIONS=output_of(stations), MODEL=param("MODEL"), CONFIDENCE=param("CONFIDENCE")), 450, 220,
+        [("OUTPUT", "Detections")])
+    ground = child(model, "ground", "roadsigns:groundfilter", dict(
+        INPUT=param("POINT_CLOUD"), CROP=output_of(stations), CROP_BUFFER=static(25.0),
+        METHOD=static(0), ENGINE=static(0)), 450, 360, [("OUTPUT", "Ground-classified cloud")])
+    candidates = child(model, "candidates", "roadsigns:projectdetections", dict(
+        DETECTIONS=output_of(detections), POINT_CLOUD=output_of(ground), MAX_RANGE=static(30.0)),
+        450, 500, [("OUTPUT", "Sign candidates")])
+    child(model, "signs", "roadsigns:refinesigns", dict(
+        CANDIDATES=output_of(candidates), POINT_CLOUD=output_of(ground), MERGE_RADIUS=static(1.0),
+        IMAGES=param("IMAGES")), 450, 640,
+        [("OUTPUT", "Signs"), ("OUTLINES", "Panel outlines"), ("REVIEW_REPORT", "Review report")])
+    return model
+
+
+def main():
+    app = QgsApplication([], False)
+    app.initQgis()
+    from devtools import import_roadsigns
+    import_roadsigns()
+    from roadsigns.provider.provider import RoadSignsProvider
+    provider = RoadSignsProvider()
+    QgsApplication.processingRegistry().addProvider(provider)
+    model = build()
+    ok, errors = model.validate()
+    if not ok:
+        sys.exit("The model does not validate: {}".format(errors))
+    if not model.toFile(OUT):
+        sys.exit("Cannot write {}".format(OUT))
+    print("wrote", OUT)
+
+
+if __name__ == "__main__":
+    main()
