@@ -2,7 +2,7 @@
 import glob
 import os
 
-from qgis.core import QgsProcessingModelAlgorithm, QgsProcessingProvider
+from qgis.core import QgsApplication, QgsProcessingModelAlgorithm, QgsProcessingProvider
 from qgis.PyQt.QtGui import QIcon
 
 from .i18n import tr
@@ -41,8 +41,16 @@ class RoadSignsProvider(QgsProcessingProvider):
             ProcessingConfig.readSettings()
         except ImportError:  # the processing plugin is not there: no settings dialog
             pass
+        # the shipped models resolve their steps through the registry, which holds this
+        # provider only once load() has returned: load them again when it does
+        QgsApplication.processingRegistry().providerAdded.connect(self._registered)
         self.refreshAlgorithms()
         return True
+
+    def _registered(self, provider_id):
+        if provider_id == self.id():
+            QgsApplication.processingRegistry().providerAdded.disconnect(self._registered)
+            self.refreshAlgorithms()
 
     def unload(self):
         try:
@@ -66,6 +74,8 @@ class RoadSignsProvider(QgsProcessingProvider):
 
     def _load_models(self):
         """The Processing models shipped in ``models/`` (the whole chain), as algorithms."""
+        if QgsApplication.processingRegistry().providerById(self.id()) is not self:
+            return  # not registered yet: see load()
         for path in sorted(glob.glob(os.path.join(MODELS_DIR, "*.model3"))):
             model = ShippedModel()
             if model.fromFile(path):

@@ -124,6 +124,7 @@ def build():
         CANDIDATES=output_of(candidates), POINT_CLOUD=output_of(ground), MERGE_RADIUS=static(1.0),
         IMAGES=param("IMAGES")), 450, 640,
         [("OUTPUT", "Signs"), ("OUTLINES", "Panel outlines"), ("REVIEW_REPORT", "Review report")])
+    model.updateDestinationParameters()  # the children's model outputs become the model's
     return model
 
 
