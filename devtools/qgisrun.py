@@ -34,6 +34,18 @@ class Run:
         return self.stdout + self.stderr
 
 
+def _vm_hwm_kb(pid: int) -> int:
+    """Peak resident memory (KiB) of a running process, 0 when it cannot be read."""
+    try:
+        with open("/proc/{}/status".format(pid)) as f:
+            for line in f:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1])
+    except OSError:
+        pass
+    return 0
+
+
 class QgisProcess:
     """``qgis_process`` bound to one plugin folder and one throw-away profile."""
 
@@ -64,7 +76,11 @@ class QgisProcess:
             start = time.perf_counter()
             p = subprocess.Popen([self.executable, *args], env=self.env, stdout=out, stderr=err,
                                  stdin=subprocess.DEVNULL, text=True)
-            while True:  # os.wait4 gives this child's own rusage (peak RSS)
+            peak_kb = 0
+            while True:
+                # VmHWM of the running process is its own peak: ru_maxrss from wait4 would
+                # also count this (parent) process's memory at fork time
+                peak_kb = max(peak_kb, _vm_hwm_kb(p.pid))
                 pid, status, usage = os.wait4(p.pid, os.WNOHANG)
                 if pid:
                     break
@@ -77,7 +93,7 @@ class QgisProcess:
             wall_s = time.perf_counter() - start
             out.seek(0)
             err.seek(0)
-            return Run(p.returncode, out.read(), err.read(), wall_s, usage.ru_maxrss / 1024.0)
+            return Run(p.returncode, out.read(), err.read(), wall_s, peak_kb / 1024.0)
 
     def run(self, algorithm: str, timeout=3600, **parameters) -> Run:
         """``qgis_process --json run algorithm -- NAME=value ...``."""
