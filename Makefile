@@ -6,7 +6,7 @@ PY := $(VENV)/bin/python
 export QT_QPA_PLATFORM := offscreen
 export PROJ_DATA := /usr/share/proj
 
-.PHONY: setup test test-core demo zip clean
+.PHONY: setup test test-core demo zip i18n clean
 
 setup:
 	bash scripts/setup.sh
@@ -22,6 +22,12 @@ demo: setup
 
 zip:
 	$(PY) scripts/package.py
+
+# translations: merge new strings into i18n/*.ts, build the .qm, list what is untranslated
+i18n:
+	python3 scripts/i18n.py update
+	python3 scripts/i18n.py compile
+	python3 scripts/i18n.py check
 
 clean:
 	rm -rf demo_out build dist

@@ -65,7 +65,21 @@ def install_command(modules: Iterable[str], platform: str = sys.platform) -> str
     return "python3 -m pip install --user --break-system-packages --upgrade {}".format(reqs)
 
 
-def shapely_geos_conflict(qgis_geos_version: str, platform: str = sys.platform) -> str:
+#: message templates, translated by the caller before formatting (``translate`` arguments)
+SHAPELY_CONFLICT = ("The installed shapely is a wheel with its own copy of GEOS, which clashes with "
+                    "QGIS's GEOS {geos} on Linux and crashes QGIS. Install shapely built against the "
+                    "system GEOS: sudo apt install libgeos-dev && python3 -m pip install --user "
+                    "--break-system-packages --force-reinstall --no-deps --no-binary shapely "
+                    "\"shapely>=2\"")
+MISSING = ("Road Sign Inventory needs the Python package(s) {packages}, not found in QGIS's Python. "
+           "Install with: {command}")
+
+
+def _same(text: str) -> str:
+    return text
+
+
+def shapely_geos_conflict(qgis_geos_version: str, platform: str = sys.platform, translate=_same) -> str:
     """'' unless shapely is a wheel with its own GEOS on Linux, where its GEOS's C++ symbols
     clash with the GEOS QGIS links and crash QGIS; then the message with the fix."""
     if not platform.startswith("linux"):
@@ -79,17 +93,13 @@ def shapely_geos_conflict(qgis_geos_version: str, platform: str = sys.platform) 
     site = os.path.dirname(os.path.dirname(spec.origin))
     if not os.path.isdir(os.path.join(site, "shapely.libs")):
         return ""
-    return ("The installed shapely is a wheel with its own copy of GEOS, which clashes with "
-            "QGIS's GEOS {} on Linux and crashes QGIS. Install shapely built against the "
-            "system GEOS: sudo apt install libgeos-dev && python3 -m pip install --user "
-            "--break-system-packages --force-reinstall --no-deps --no-binary shapely "
-            "\"shapely>=2\"").format(qgis_geos_version)
+    return translate(SHAPELY_CONFLICT).format(geos=qgis_geos_version)
 
 
-def missing_message(modules: Iterable[str]) -> str:
+def missing_message(modules: Iterable[str], translate=_same) -> str:
     """'' when all are present, else one sentence naming them and the command."""
     absent = missing(modules)
     if not absent:
         return ""
-    return ("Road Sign Inventory needs the Python package(s) {}, not found in QGIS's Python. "
-            "Install with: {}").format(", ".join(pip_requirements(absent)), install_command(absent))
+    return translate(MISSING).format(packages=", ".join(pip_requirements(absent)),
+                                     command=install_command(absent))

@@ -18,7 +18,7 @@ class RoadSignsPlugin:
         if self.provider is None:
             self.provider = RoadSignsProvider()
             QgsApplication.processingRegistry().addProvider(self.provider)
-        message = missing_message(PACKAGES)
+        message = missing_message(PACKAGES, tr)
         if message:
             QgsMessageLog.logMessage(message, tr("Road Sign Inventory"), Qgis.MessageLevel.Warning)
             if self.iface is None and not getattr(self, "_told", False):  # qgis_process: stderr

@@ -87,11 +87,11 @@ class RoadSignsAlgorithm(QgsProcessingAlgorithm):
             help_text)
 
     def check_dependencies(self):
-        message = missing_message(self.REQUIRES)
+        message = missing_message(self.REQUIRES, self.tr)
         if not message and "shapely" in self.REQUIRES:
-            message = shapely_geos_conflict(Qgis.geosVersion())
+            message = shapely_geos_conflict(Qgis.geosVersion(), translate=self.tr)
         if message:
-            raise QgsProcessingException(self.tr(message))
+            raise QgsProcessingException(message)
 
     def progress(self, feedback):
         """A core Progress that forwards to ``feedback`` (percent, log, cancel)."""
@@ -104,6 +104,9 @@ class RoadSignsAlgorithm(QgsProcessingAlgorithm):
         try:
             yield
         except InputError as error:
-            raise QgsProcessingException(self.tr(error.template).format(**error.fields))
+            # words passed as fields ("Trajectory", "target CRS", ...) are translated too
+            fields = {k: self.tr(v) if k in ("what", "role", "kind") and isinstance(v, str) else v
+                      for k, v in error.fields.items()}
+            raise QgsProcessingException(self.tr(error.template).format(**fields))
         except Cancelled:
             raise QgsProcessingException(self.tr("Cancelled: nothing was written."))

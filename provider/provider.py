@@ -101,6 +101,12 @@ class ShippedModel(QgsProcessingModelAlgorithm):
     def icon(self):
         return QIcon(ICON_PATH)
 
+    def group(self):
+        return tr("Road sign inventory")
+
+    def helpString(self):  # noqa: N802
+        return self.shortHelpString()
+
     def apply_parameter_help(self):
         """Parameter help (tooltips) from the model's help content, translated."""
         help_content = self.helpContent()
