@@ -1,0 +1,105 @@
+"""The bundled model (models/roadsigns.onnx) through qgis_process finds a generated scene's signs.
+
+The scene (tests/conftest.py ``scene_tiny``: preset tiny, seed 3, 2048 x 1024 panoramas) was
+never used in training (training scenes have seeds from 100 up). Clearly visible signs:
+front faces at least 20 px tall and at most 20 % hidden. Each must be found with its class
+(IoU >= 0.5 with its visible or whole box), and the detections must lie on signs.
+"""
+import os
+
+import numpy as np
+import pytest
+from osgeo import ogr
+
+from devtools import REPO_ROOT
+
+BUNDLED = os.path.join(REPO_ROOT, "models", "roadsigns.onnx")
+MIN_HEIGHT_PX = 20
+MAX_OCCLUSION = 0.2
+MIN_RECALL = 0.8          # of clearly visible signs found with the right class
+MIN_ON_SIGN_SHARE = 0.9   # of detections lying on a true sign (front face)
+
+pytestmark = pytest.mark.skipif(not os.path.isfile(BUNDLED), reason="no bundled model")
+
+
+def seam_iou(a, b, width):
+    """IoU of two panorama boxes u0, v0, u1, v1, columns compared modulo the width."""
+    best = 0.0
+    for shift in (-width, 0.0, width):
+        iw = min(a[2] + shift, b[2]) - max(a[0] + shift, b[0])
+        ih = min(a[3], b[3]) - max(a[1], b[1])
+        if iw > 0 and ih > 0:
+            inter = iw * ih
+            union = (a[2] - a[0]) * (a[3] - a[1]) + (b[2] - b[0]) * (b[3] - b[1]) - inter
+            best = max(best, inter / union)
+    return best
+
+
+def read_detections(path):
+    dataset = ogr.Open(path)
+    rows = [{k: f[k] for k in ("image", "class", "score", "u0", "v0", "u1", "v1")} for f in dataset.GetLayer(0)]
+    dataset = None
+    return rows
+
+
+@pytest.fixture(scope="module")
+def detections(qgis_process, scene_tiny, tmp_path_factory):
+    scene_dir, scene = scene_tiny
+    work = tmp_path_factory.mktemp("bundled")
+    lever, bore = scene["lever_arm_m"], scene["boresight_deg"]
+    stations = str(work / "stations.gpkg")
+    run = qgis_process.run("roadsigns:importtrajectory", TRAJECTORY=os.path.join(scene_dir, "trajectory.csv"),
+                           IMAGE_TIMES=os.path.join(scene_dir, "image_times.csv"),
+                           IMAGES=os.path.join(scene_dir, "images"), TRAJECTORY_CRS=scene["trajectory_crs"],
+                           TARGET_CRS=scene["target_crs"], LEVER_ARM_X=lever[0], LEVER_ARM_Y=lever[1],
+                           LEVER_ARM_Z=lever[2], BORESIGHT_ROLL=bore["roll"], BORESIGHT_PITCH=bore["pitch"],
+                           BORESIGHT_YAW=bore["yaw"], OUTPUT=stations)
+    assert run.returncode == 0, run.text
+    out = str(work / "detections.gpkg")
+    run = qgis_process.run("roadsigns:detectsigns", STATIONS=stations, OUTPUT=out)  # no MODEL: bundled
+    assert run.returncode == 0, run.text
+    assert "roadsigns.onnx" in run.text
+    return read_detections(out)
+
+
+def test_bundled_model_finds_the_clearly_visible_signs(detections, scene_tiny):
+    _, scene = scene_tiny
+    width = scene["image_width"]
+    sign_class = {s["sign_id"]: s["class"] for s in scene["signs"]}
+    by_image = {}
+    for d in detections:
+        by_image.setdefault(d["image"], []).append(d)
+    wanted, found, missed = 0, 0, []
+    for meta in scene["images"]:
+        for s in meta["signs"]:
+            vb = s.get("visible_box")
+            if (s["facing"] != "front" or vb is None or vb[3] - vb[1] < MIN_HEIGHT_PX
+                    or s["occlusion"] > MAX_OCCLUSION):
+                continue
+            wanted += 1
+            hit = any(d["class"] == sign_class[s["sign_id"]]
+                      and max(seam_iou([d["u0"], d["v0"], d["u1"], d["v1"]], box, width)
+                              for box in (vb, s["box"])) >= 0.5
+                      for d in by_image.get(meta["image"], []))
+            found += hit
+            if not hit:
+                missed.append((meta["image"], s["sign_id"], sign_class[s["sign_id"]], [round(v) for v in vb]))
+    assert wanted >= 10  # the scene shows enough signs for the test to mean something
+    assert found >= MIN_RECALL * wanted, f"found {found} of {wanted}; missed {missed}"
+
+
+def test_bundled_model_detections_lie_on_signs(detections, scene_tiny):
+    _, scene = scene_tiny
+    width = scene["image_width"]
+    fronts = {m["image"]: [s for s in m["signs"] if s["facing"] == "front" and s.get("visible_box")]
+              for m in scene["images"]}
+    assert detections
+    off = []
+    for d in detections:
+        box = [d["u0"], d["v0"], d["u1"], d["v1"]]
+        if not any(max(seam_iou(box, s["visible_box"], width), seam_iou(box, s["box"], width)) >= 0.3
+                   for s in fronts[d["image"]]):
+            off.append((d["image"], d["class"], round(d["score"], 2), [round(v) for v in box]))
+    assert len(off) <= (1 - MIN_ON_SIGN_SHARE) * len(detections), \
+        f"{len(off)} of {len(detections)} detections on no sign: {off}"
+    assert np.all(np.array([d["score"] for d in detections]) >= 0.4)  # the default CONFIDENCE
