@@ -2,9 +2,9 @@
 
 The sample is the generator's ``tiny`` scene (devtools/scenegen: 36 m of street with
 panoramas, trajectory, LiDAR and reference signs), made on the fly into ``demo_out/sample``.
-The chain: import trajectory -> detect signs (the bundled model; while none is bundled,
-the scene's true boxes stand in, and the demo says so) -> ground filter -> project
-detections -> refine signs -> evaluate against the reference signs.
+The chain is the shipped model ``roadsigns:signinventory`` (import trajectory -> detect
+signs with the bundled model -> ground filter -> project detections -> refine signs with
+review chips), then ``roadsigns:evaluate`` against the scene's reference signs.
 """
 import json
 import os
@@ -16,7 +16,6 @@ sys.path.insert(0, REPO_ROOT)
 from devtools.qgisrun import QgisProcess  # noqa: E402
 from devtools.scenegen import generate_scene  # noqa: E402
 
-BUNDLED_MODEL = os.path.join(REPO_ROOT, "models", "roadsigns.onnx")
 
 
 def main():
@@ -39,29 +38,26 @@ def main():
         return result.json["results"]
 
     lever, bore = scene["lever_arm_m"], scene["boresight_deg"]
-    stations = run("importtrajectory", TRAJECTORY=os.path.join(sample, "trajectory.csv"),
-                   IMAGE_TIMES=os.path.join(sample, "image_times.csv"),
-                   IMAGES=os.path.join(sample, "images"), TRAJECTORY_CRS=scene["trajectory_crs"],
-                   TARGET_CRS=scene["target_crs"], LEVER_ARM_X=lever[0], LEVER_ARM_Y=lever[1],
-                   LEVER_ARM_Z=lever[2], BORESIGHT_ROLL=bore["roll"], BORESIGHT_PITCH=bore["pitch"],
-                   BORESIGHT_YAW=bore["yaw"], OUTPUT=out("stations.gpkg"))["OUTPUT"]
-    if os.path.exists(BUNDLED_MODEL):
-        detections = run("detectsigns", STATIONS=stations, CONFIDENCE=0.4, OUTPUT=out("detections.gpkg"))["OUTPUT"]
-    else:
-        from devtools.oracle import oracle_detections
-        detections = out("detections.gpkg")
-        count = oracle_detections(sample, stations, detections)
-        print("{:<18} (no bundled model yet: {} detections from the scene's true boxes)".format(
-            "detectsigns", count))
-    ground = run("groundfilter", INPUT=os.path.join(sample, "cloud.laz"), CROP=stations,
-                 CROP_BUFFER=25, RESET_CLASSES=True, OUTPUT=out("ground.laz"))["OUTPUT"]
-    candidates = run("projectdetections", DETECTIONS=detections, POINT_CLOUD=ground, MAX_RANGE=30,
-                     OUTPUT=out("candidates.gpkg"))["OUTPUT"]
-    signs = run("refinesigns", CANDIDATES=candidates, POINT_CLOUD=ground, MERGE_RADIUS=1.0,
-                OUTPUT=out("signs.gpkg"), OUTLINES=out("panel_outlines.gpkg"))["OUTPUT"]
+    # the shipped model: the whole chain in one qgis_process run, as in the README
+    run("signinventory", TRAJECTORY=os.path.join(sample, "trajectory.csv"),
+        IMAGE_TIMES=os.path.join(sample, "image_times.csv"),
+        IMAGES=os.path.join(sample, "images"), TRAJECTORY_CRS=scene["trajectory_crs"],
+        TARGET_CRS=scene["target_crs"], POINT_CLOUD=os.path.join(sample, "cloud.laz"),
+        LEVER_ARM_X=lever[0], LEVER_ARM_Y=lever[1], LEVER_ARM_Z=lever[2],
+        BORESIGHT_ROLL=bore["roll"], BORESIGHT_PITCH=bore["pitch"], BORESIGHT_YAW=bore["yaw"],
+        CONFIDENCE=0.4, **{"stations:Panorama stations": out("stations.gpkg"),
+                           "detections:Detections": out("detections.gpkg"),
+                           "ground:Ground-classified cloud": out("ground.laz"),
+                           "candidates:Sign candidates": out("candidates.gpkg"),
+                           "signs:Signs": out("signs.gpkg"),
+                           "signs:Panel outlines": out("panel_outlines.gpkg"),
+                           "signs:Review report": out("review.html")})
+    signs = out("signs.gpkg")
     scores = run("evaluate", SIGNS=signs, REFERENCE=os.path.join(sample, "reference_signs.csv"),
                  MATCH_RADIUS=1.0, OUTPUT_REPORT=out("evaluation.html"))
-    print("\nSign layer: {}\nEvaluation report: {}".format(signs, scores["OUTPUT_REPORT"]))
+    print("\nSign layer: {} (style signs.qml, review chips in signs_chips/)".format(signs))
+    print("Review report: {}".format(out("review.html")))
+    print("Evaluation report: {}".format(scores["OUTPUT_REPORT"]))
     print("precision {PRECISION:.3f}  recall {RECALL:.3f}  class accuracy {CLASS_ACCURACY:.3f}  "
           "median error {MEDIAN_ERROR:.3f} m  p95 {P95_ERROR:.3f} m  height error {MEDIAN_HEIGHT_ERROR:.3f} m  "
           "azimuth error {MEDIAN_AZIMUTH_ERROR:.1f} deg".format(**scores))
