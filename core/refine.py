@@ -118,6 +118,13 @@ class RefineParams:
     ray_gap_m: float = 0.25              # triangulation: rays this close (plus 1 % of range)
     min_ray_angle_deg: float = 2.0
     max_triangulation_range_m: float = 80.0
+    same_panel_radius_m: float = 0.3     # two signs closer than this (centres) are one panel
+    #: largest plausible panel side (m) per class; information signs (gantries) are larger
+    max_panel_side_m: Tuple[Tuple[str, float], ...] = (("information", 6.0),)
+    max_panel_side_default_m: float = 1.6
+
+    def max_side_m(self, klass: str) -> float:
+        return dict(self.max_panel_side_m).get(klass, self.max_panel_side_default_m)
 
 
 @dataclass
@@ -635,6 +642,22 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
         if target >= 0:
             extra.setdefault(target, []).append(k)
             moved.add(n)
+    # two groups on one panel (the detector gave one panel two classes, or its views split):
+    # one sign whose class is the vote of all its views; the group with more views absorbs
+    normals = [p.normal_world if p is not None else None for _, p, _ in signs]
+    cos_agree = math.cos(math.radians(params.normal_agreement_deg))
+    by_views = sorted(range(len(signs)), key=lambda n: -len(signs[n][0]))
+    for i, a in enumerate(by_views):
+        if a in moved:
+            continue
+        for b in by_views[i + 1:]:
+            if b in moved or np.linalg.norm(centres[a] - centres[b]) > params.same_panel_radius_m:
+                continue
+            if normals[a] is not None and normals[b] is not None and \
+                    abs(float(np.dot(normals[a], normals[b]))) < cos_agree:
+                continue
+            extra.setdefault(a, []).extend(list(signs[b][0]) + extra.pop(b, []))
+            moved.add(b)
     # views without a surface: attach to a sign whose centre lies in their box, else triangulate
     still = []
     for k in np.flatnonzero(status != STATUS_OK):
@@ -651,7 +674,7 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
     # records
     sources = []
     kept = [n for n in range(len(signs)) if n not in moved]
-    for n_sign, n_old in enumerate(kept):
+    for n_old in kept:
         rows, panel, x_img = signs[n_old]
         views = list(rows) + extra.get(n_old, [])
         klass, score = vote_class(cand, views)
@@ -678,8 +701,13 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
             width, panel_h = float(np.median(w_est)), float(np.median(h_est))
             bottom = float(centre[2] - panel_h / 2)
             pidx, mean_int, planarity, outline = np.zeros(0, np.int64), math.nan, math.nan, None
+        if max(width, panel_h) > params.max_side_m(klass):
+            progress.info(f"Candidates {det.det_id[views].tolist()} dropped: a {width:.2f} x "
+                          f"{panel_h:.2f} m panel is too large for a {klass} sign (a billboard?)")
+            continue
         ground_z, gsource = ground_with_fallbacks(index, centre, bottom, det.centre_world[views, 2],
                                                   params)
+        n_sign = len(result.signs)
         images = []
         for k in sorted(views, key=lambda k: det.det_id[k]):
             if det.image[k] not in images:

@@ -123,6 +123,30 @@ def test_a_misclassified_view_is_outvoted(scene, index):
     assert len(out.signs) == len(scene.signs)
 
 
+def test_one_panel_given_two_classes_is_one_sign(scene, index):
+    """The detector boxes one panel twice in each image, with two classes (per-class NMS
+    keeps both): still one sign, with the class of the stronger boxes."""
+    rows = [dict(d) for d in scene.detections]
+    doubles = [dict(d, det_id=10000 + n, score=0.35) for n, d in enumerate(rows) if d["truth_id"] == 1]
+    for d in doubles:
+        d["class"] = "mandatory"
+    assert len(doubles) >= 2
+    rows += doubles
+    out = R.refine_signs(P.project_detections(P.Detections.from_records(rows), index), index)
+    p = scene.signs[0]
+    near = [s for s in out.signs if np.linalg.norm(s.xyz_world - p.centre_world) < 0.5]
+    assert len(near) == 1 and near[0].klass == "prohibitory"
+    assert len(out.signs) == len(scene.signs)
+
+
+def test_a_panel_too_large_for_its_class_is_dropped(scene, candidates, index):
+    p = scene.signs[0]
+    small = R.RefineParams(max_panel_side_default_m=0.9 * max(p.width, p.height))
+    out = R.refine_signs(candidates, index, params=small)
+    kept = [s for s in out.signs if np.linalg.norm(s.xyz_world - p.centre_world) < 0.5]
+    assert kept == [] and len(out.signs) < len(scene.signs)
+
+
 def test_ground_fallbacks_are_reported(scene, candidates):
     cls = scene.classification.copy()
     p = scene.signs[0]
