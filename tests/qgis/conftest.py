@@ -6,8 +6,19 @@ enabled in it with ``qgis_process plugins enable roadsigns`` (see devtools/qgisr
 import pytest
 
 from devtools.qgisrun import QgisProcess
+from helpers.scenes import scene_inputs
 
 
 @pytest.fixture(scope="session")
 def qgis_process(plugin_path, tmp_path_factory):
     return QgisProcess(plugin_path, str(tmp_path_factory.mktemp("qgis-profile")))
+
+
+@pytest.fixture(scope="session")
+def scene_tiny_stations(qgis_process, scene_tiny, tmp_path_factory):
+    """The tiny scene's panorama stations, imported once through qgis_process."""
+    scene_dir, scene = scene_tiny
+    stations = str(tmp_path_factory.mktemp("stations") / "stations.gpkg")
+    run = qgis_process.run("roadsigns:importtrajectory", OUTPUT=stations, **scene_inputs(scene_dir, scene))
+    assert run.returncode == 0, run.text
+    return stations

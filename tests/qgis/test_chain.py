@@ -28,18 +28,10 @@ def rows(path):
 
 
 @pytest.fixture(scope="module")
-def chain(qgis_process, scene_tiny, tmp_path_factory):
+def chain(qgis_process, scene_tiny, scene_tiny_stations, tmp_path_factory):
     scene_dir, scene = scene_tiny
     work = tmp_path_factory.mktemp("chain")
-    lever, bore = scene["lever_arm_m"], scene["boresight_deg"]
-    stations = str(work / "stations.gpkg")
-    run = qgis_process.run("roadsigns:importtrajectory", TRAJECTORY=os.path.join(scene_dir, "trajectory.csv"),
-                           IMAGE_TIMES=os.path.join(scene_dir, "image_times.csv"),
-                           IMAGES=os.path.join(scene_dir, "images"), TRAJECTORY_CRS=scene["trajectory_crs"],
-                           TARGET_CRS=scene["target_crs"], LEVER_ARM_X=lever[0], LEVER_ARM_Y=lever[1],
-                           LEVER_ARM_Z=lever[2], BORESIGHT_ROLL=bore["roll"], BORESIGHT_PITCH=bore["pitch"],
-                           BORESIGHT_YAW=bore["yaw"], OUTPUT=stations)
-    assert run.returncode == 0, run.text
+    stations = scene_tiny_stations
     ground = str(work / "ground.laz")
     run = qgis_process.run("roadsigns:groundfilter", INPUT=os.path.join(scene_dir, "cloud.laz"),
                            CROP=stations, CROP_BUFFER=25, RESET_CLASSES=True, OUTPUT=ground)

@@ -43,18 +43,9 @@ def read_detections(path):
 
 
 @pytest.fixture(scope="module")
-def detections(qgis_process, scene_tiny, tmp_path_factory):
-    scene_dir, scene = scene_tiny
+def detections(qgis_process, scene_tiny_stations, tmp_path_factory):
     work = tmp_path_factory.mktemp("bundled")
-    lever, bore = scene["lever_arm_m"], scene["boresight_deg"]
-    stations = str(work / "stations.gpkg")
-    run = qgis_process.run("roadsigns:importtrajectory", TRAJECTORY=os.path.join(scene_dir, "trajectory.csv"),
-                           IMAGE_TIMES=os.path.join(scene_dir, "image_times.csv"),
-                           IMAGES=os.path.join(scene_dir, "images"), TRAJECTORY_CRS=scene["trajectory_crs"],
-                           TARGET_CRS=scene["target_crs"], LEVER_ARM_X=lever[0], LEVER_ARM_Y=lever[1],
-                           LEVER_ARM_Z=lever[2], BORESIGHT_ROLL=bore["roll"], BORESIGHT_PITCH=bore["pitch"],
-                           BORESIGHT_YAW=bore["yaw"], OUTPUT=stations)
-    assert run.returncode == 0, run.text
+    stations = scene_tiny_stations
     out = str(work / "detections.gpkg")
     run = qgis_process.run("roadsigns:detectsigns", STATIONS=stations, OUTPUT=out)  # no MODEL: bundled
     assert run.returncode == 0, run.text

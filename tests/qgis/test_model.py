@@ -6,6 +6,8 @@ import os
 import pytest
 from osgeo import ogr
 
+from helpers.scenes import scene_inputs
+
 SIGN_FIELDS = ["sign_id", "class", "score", "height", "bottom_height", "width", "panel_height",
                "azimuth", "n_views", "n_points", "source_images", "best_image", "mean_intensity",
                "planarity", "position_source", "x", "y", "z", "chip"]
@@ -15,19 +17,13 @@ SIGN_FIELDS = ["sign_id", "class", "score", "height", "bottom_height", "width", 
 def model_run(qgis_process, scene_tiny, tmp_path_factory):
     scene_dir, scene = scene_tiny
     out = tmp_path_factory.mktemp("model")
-    lever, bore = scene["lever_arm_m"], scene["boresight_deg"]
     outputs = {"signs:Signs": str(out / "signs.gpkg"), "signs:Review report": str(out / "review.html"),
                "stations:Panorama stations": str(out / "stations.gpkg"),
                "detections:Detections": str(out / "detections.gpkg"),
                "ground:Ground-classified cloud": str(out / "ground.laz"),
                "candidates:Sign candidates": str(out / "candidates.gpkg")}
-    run = qgis_process.run(
-        "roadsigns:signinventory", TRAJECTORY=os.path.join(scene_dir, "trajectory.csv"),
-        IMAGE_TIMES=os.path.join(scene_dir, "image_times.csv"), IMAGES=os.path.join(scene_dir, "images"),
-        TRAJECTORY_CRS=scene["trajectory_crs"], TARGET_CRS=scene["target_crs"],
-        POINT_CLOUD=os.path.join(scene_dir, "cloud.laz"), LEVER_ARM_X=lever[0], LEVER_ARM_Y=lever[1],
-        LEVER_ARM_Z=lever[2], BORESIGHT_ROLL=bore["roll"], BORESIGHT_PITCH=bore["pitch"],
-        BORESIGHT_YAW=bore["yaw"], CONFIDENCE=0.4, **outputs)
+    run = qgis_process.run("roadsigns:signinventory", POINT_CLOUD=os.path.join(scene_dir, "cloud.laz"),
+                           CONFIDENCE=0.4, **scene_inputs(scene_dir, scene), **outputs)
     assert run.returncode == 0, run.text
     return out, run, scene_dir
 

@@ -9,6 +9,7 @@ import pytest
 from devtools import REPO_ROOT
 from devtools.oracle import oracle_detections
 from devtools.qgisrun import QgisProcess
+from helpers.scenes import scene_mount
 
 DEV_ONLY = ("tests/", "bench/", "devtools/", "scripts/", ".ci/", "Makefile", "requirements-dev.txt",
             "pytest.ini", ".gitignore")
@@ -41,13 +42,10 @@ def test_chain_runs_from_the_unpacked_zip(plugin_zip, scene_tiny, tmp_path):
     listing = qgis("--json", "list").json["providers"]["roadsigns"]["algorithms"]
     assert len(listing) == 7  # six algorithms and the shipped model
     scene_dir, scene = scene_tiny
-    lever, bore = scene["lever_arm_m"], scene["boresight_deg"]
     stations = str(tmp_path / "stations.gpkg")
     run = qgis.run("roadsigns:importtrajectory", POSES=os.path.join(scene_dir, "poses.csv"),
                    IMAGES=os.path.join(scene_dir, "images"), TRAJECTORY_CRS=scene["trajectory_crs"],
-                   TARGET_CRS=scene["target_crs"], LEVER_ARM_X=lever[0], LEVER_ARM_Y=lever[1],
-                   LEVER_ARM_Z=lever[2], BORESIGHT_ROLL=bore["roll"], BORESIGHT_PITCH=bore["pitch"],
-                   BORESIGHT_YAW=bore["yaw"], OUTPUT=stations)
+                   TARGET_CRS=scene["target_crs"], OUTPUT=stations, **scene_mount(scene))
     assert run.returncode == 0, run.text
     # the provider comes from the unpacked folder, not from the checkout
     assert os.path.realpath(qgis.env["QGIS_PLUGINPATH"]) == os.path.realpath(str(plugins))

@@ -1,0 +1,17 @@
+"""Parameters of generated scenes (devtools/scenegen) for qgis_process runs."""
+import os
+
+
+def scene_mount(scene):
+    """A generated scene's camera mount as importtrajectory parameters."""
+    lever, bore = scene["lever_arm_m"], scene["boresight_deg"]
+    return dict(LEVER_ARM_X=lever[0], LEVER_ARM_Y=lever[1], LEVER_ARM_Z=lever[2],
+                BORESIGHT_ROLL=bore["roll"], BORESIGHT_PITCH=bore["pitch"], BORESIGHT_YAW=bore["yaw"])
+
+
+def scene_inputs(scene_dir, scene):
+    """Trajectory, image times, panoramas, CRSs and mount of a generated scene."""
+    return dict(TRAJECTORY=os.path.join(scene_dir, "trajectory.csv"),
+                IMAGE_TIMES=os.path.join(scene_dir, "image_times.csv"),
+                IMAGES=os.path.join(scene_dir, "images"), TRAJECTORY_CRS=scene["trajectory_crs"],
+                TARGET_CRS=scene["target_crs"], **scene_mount(scene))
