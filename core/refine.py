@@ -122,6 +122,9 @@ class RefineParams:
     #: largest plausible panel side (m) per class; information signs (gantries) are larger
     max_panel_side_m: Tuple[Tuple[str, float], ...] = (("information", 6.0),)
     max_panel_side_default_m: float = 1.6
+    #: a sign seen in a single panorama is kept only with at least this detector score: a real
+    #: sign passing the vehicle is seen from several stations, a lone weak box is mostly noise
+    min_single_view_score: float = 0.6
 
     def max_side_m(self, klass: str) -> float:
         return dict(self.max_panel_side_m).get(klass, self.max_panel_side_default_m)
@@ -712,6 +715,10 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
         for k in sorted(views, key=lambda k: det.det_id[k]):
             if det.image[k] not in images:
                 images.append(det.image[k])
+        if len(images) == 1 and score < params.min_single_view_score:
+            progress.info(f"Candidates {det.det_id[views].tolist()} dropped: seen in one panorama "
+                          f"only, with a score of {score:.2f}")
+            continue
         rec = SignRecord(
             sign_id=n_sign + 1, klass=klass, score=score, height=float(centre[2] - ground_z),
             bottom_height=float(bottom - ground_z), width=float(width), panel_height=float(panel_h),

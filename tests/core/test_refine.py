@@ -185,3 +185,10 @@ def test_from_a_las_file_with_the_sign_points(scene, candidates, tmp_path):
     n = R.write_sign_points(las, str(tmp_path / "signs.las"), out.point_index)
     assert n == sum(len(p) for p in out.point_index) > 0
     assert read_header(str(tmp_path / "signs.las")).point_count == n
+
+
+@pytest.mark.parametrize("score,kept", [(0.5, False), (0.9, True)])
+def test_a_sign_seen_once_needs_a_confident_detection(scene, index, score, kept):
+    one = dict(next(d for d in scene.detections if d["truth_id"] == 1), score=score)
+    out = R.refine_signs(P.project_detections(P.Detections.from_records([one]), index), index)
+    assert len(out.signs) == (1 if kept else 0)
