@@ -170,27 +170,25 @@ def _no_ground(chain):
     return path
 
 
+def edited_copy(path, copy, sql):
+    """A copy of a GeoPackage with one SQL statement applied to it."""
+    ogr.GetDriverByName("GPKG").CopyDataSource(ogr.Open(path), copy)
+    dataset = ogr.Open(copy, 1)
+    dataset.ExecuteSQL(sql)
+    dataset = None
+    return copy
+
+
 def test_crs_mismatch_is_refused(qgis_process, chain, tmp_path):
-    src = ogr.Open(chain["detections"])
-    other = str(tmp_path / "det_4326.gpkg")
-    ogr.GetDriverByName("GPKG").CopyDataSource(src, other)
-    src = None
-    ds = ogr.Open(other, 1)
-    ds.ExecuteSQL("UPDATE gpkg_geometry_columns SET srs_id = 4326")
-    ds = None
+    other = edited_copy(chain["detections"], str(tmp_path / "det_4326.gpkg"),
+                        "UPDATE gpkg_geometry_columns SET srs_id = 4326")
     run = qgis_process.run("roadsigns:projectdetections", DETECTIONS=other, POINT_CLOUD=chain["ground"],
                            OUTPUT=str(tmp_path / "c.gpkg"))
     assert run.returncode != 0 and "EPSG:4326" in run.text and "EPSG:32633" in run.text
 
 
 def test_empty_detections_give_empty_layers(qgis_process, chain, tmp_path):
-    src = ogr.Open(chain["detections"])
-    empty = str(tmp_path / "empty.gpkg")
-    ogr.GetDriverByName("GPKG").CopyDataSource(src, empty)
-    src = None
-    ds = ogr.Open(empty, 1)
-    ds.ExecuteSQL("DELETE FROM detections")
-    ds = None
+    empty = edited_copy(chain["detections"], str(tmp_path / "empty.gpkg"), "DELETE FROM detections")
     candidates = str(tmp_path / "c.gpkg")
     run = qgis_process.run("roadsigns:projectdetections", DETECTIONS=empty, POINT_CLOUD=chain["ground"],
                            OUTPUT=candidates)

@@ -30,16 +30,6 @@ def read_stations(path):
     return names, rows, epsg
 
 
-@pytest.fixture
-def projected(drive_projected):
-    return drive_projected
-
-
-@pytest.fixture
-def geographic(drive_geographic):
-    return drive_geographic
-
-
 def check_output(path, sample, with_time=True):
     names, rows, epsg = read_stations(path)
     assert names == FIELDS
@@ -64,41 +54,41 @@ def check_output(path, sample, with_time=True):
         assert np.allclose([r["time"] for r in rows], sample["times"], atol=1e-6)
 
 
-def test_projected_trajectory_csv(qgis_process, projected, tmp_path):
+def test_projected_trajectory_csv(qgis_process, drive_projected, tmp_path):
     out = str(tmp_path / "stations.gpkg")
-    run = qgis_process.run(ALG, TRAJECTORY=projected["trajectory_csv"],
-                           IMAGE_TIMES=projected["image_times"], IMAGES=projected["images"],
+    run = qgis_process.run(ALG, TRAJECTORY=drive_projected["trajectory_csv"],
+                           IMAGE_TIMES=drive_projected["image_times"], IMAGES=drive_projected["images"],
                            TRAJECTORY_CRS="EPSG:32633", TARGET_CRS="EPSG:32633", OUTPUT=out, **MOUNT)
     assert run.returncode == 0, run.text
     assert run.json["results"]["OUTPUT"] == out
-    check_output(out, projected)
+    check_output(out, drive_projected)
 
 
-def test_geographic_trajectory_csv(qgis_process, geographic, tmp_path):
+def test_geographic_trajectory_csv(qgis_process, drive_geographic, tmp_path):
     out = str(tmp_path / "stations.gpkg")
-    run = qgis_process.run(ALG, TRAJECTORY=geographic["trajectory_csv"],
-                           IMAGE_TIMES=geographic["image_times"], IMAGES=geographic["images"],
+    run = qgis_process.run(ALG, TRAJECTORY=drive_geographic["trajectory_csv"],
+                           IMAGE_TIMES=drive_geographic["image_times"], IMAGES=drive_geographic["images"],
                            TRAJECTORY_CRS="EPSG:4326", TARGET_CRS="EPSG:32633", OUTPUT=out, **MOUNT)
     assert run.returncode == 0, run.text
-    check_output(out, geographic)
+    check_output(out, drive_geographic)
 
 
-def test_sbet(qgis_process, projected, tmp_path):
+def test_sbet(qgis_process, drive_projected, tmp_path):
     out = str(tmp_path / "stations.gpkg")
-    run = qgis_process.run(ALG, TRAJECTORY=projected["sbet"], IMAGE_TIMES=projected["image_times"],
-                           IMAGES=projected["images"], TARGET_CRS="EPSG:32633", OUTPUT=out, **MOUNT)
+    run = qgis_process.run(ALG, TRAJECTORY=drive_projected["sbet"], IMAGE_TIMES=drive_projected["image_times"],
+                           IMAGES=drive_projected["images"], TARGET_CRS="EPSG:32633", OUTPUT=out, **MOUNT)
     assert run.returncode == 0, run.text
     assert any("SBET" in line for line in run.json["log"]["info"])
-    check_output(out, projected)
+    check_output(out, drive_projected)
 
 
-def test_per_image_poses_without_target_crs(qgis_process, geographic, tmp_path):
+def test_per_image_poses_without_target_crs(qgis_process, drive_geographic, tmp_path):
     out = str(tmp_path / "stations.gpkg")
-    run = qgis_process.run(ALG, POSES=geographic["poses"], IMAGES=geographic["images"],
+    run = qgis_process.run(ALG, POSES=drive_geographic["poses"], IMAGES=drive_geographic["images"],
                            TRAJECTORY_CRS="EPSG:4326", OUTPUT=out, **MOUNT)
     assert run.returncode == 0, run.text
     assert any("UTM zone 33N" in line for line in run.json["log"]["info"])
-    check_output(out, geographic)
+    check_output(out, drive_geographic)
 
 
 # --- bad input: non-zero exit, a message naming what is wrong, no output ---------------------
@@ -150,10 +140,10 @@ def bad_cases(sample, tmp_path):
 @pytest.mark.parametrize("case", ["empty", "missing columns", "nan", "duplicate time", "outside span",
                                   "missing image", "not 2:1", "sbet size", "unknown crs",
                                   "no trajectory"])
-def test_bad_input(qgis_process, projected, tmp_path, case):
-    overrides, messages = bad_cases(projected, tmp_path)[case]
-    parameters = dict(TRAJECTORY=projected["trajectory_csv"], IMAGE_TIMES=projected["image_times"],
-                      IMAGES=projected["images"], TRAJECTORY_CRS="EPSG:32633",
+def test_bad_input(qgis_process, drive_projected, tmp_path, case):
+    overrides, messages = bad_cases(drive_projected, tmp_path)[case]
+    parameters = dict(TRAJECTORY=drive_projected["trajectory_csv"], IMAGE_TIMES=drive_projected["image_times"],
+                      IMAGES=drive_projected["images"], TRAJECTORY_CRS="EPSG:32633",
                       TARGET_CRS="EPSG:32633", OUTPUT=str(tmp_path / "out.gpkg"))
     parameters.update(overrides)
     parameters = {k: v for k, v in parameters.items() if v != ""}
@@ -164,12 +154,12 @@ def test_bad_input(qgis_process, projected, tmp_path, case):
     assert not os.path.exists(tmp_path / "out.gpkg")
 
 
-def test_skips_are_logged(qgis_process, projected, tmp_path):
+def test_skips_are_logged(qgis_process, drive_projected, tmp_path):
     times = write(tmp_path, "t.csv", "image,time\ngone.jpg,{}\npano_0001.jpg,{}\nlate.jpg,99999\n".format(
-        projected["times"][0], projected["times"][1]))
+        drive_projected["times"][0], drive_projected["times"][1]))
     out = str(tmp_path / "out.gpkg")
-    run = qgis_process.run(ALG, TRAJECTORY=projected["trajectory_csv"], IMAGE_TIMES=times,
-                           IMAGES=projected["images"], TRAJECTORY_CRS="EPSG:32633",
+    run = qgis_process.run(ALG, TRAJECTORY=drive_projected["trajectory_csv"], IMAGE_TIMES=times,
+                           IMAGES=drive_projected["images"], TRAJECTORY_CRS="EPSG:32633",
                            TARGET_CRS="EPSG:32633", SKIP_OUTSIDE=True, OUTPUT=out)
     assert run.returncode == 0, run.text
     log = run.json["log"]
