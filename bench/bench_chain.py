@@ -105,6 +105,9 @@ def main(argv=None):
     parser.add_argument("--detections", choices=["model", "oracle"], default="model",
                         help="the detector (bundled or --model), or the scene's true boxes")
     parser.add_argument("--model", help="an ONNX model instead of the bundled one")
+    parser.add_argument("--from", dest="from_stage", metavar="STAGE",
+                        help="reuse the outputs of the stages before STAGE from an earlier run "
+                             "(e.g. --from refinesigns while tuning the refinement)")
     args = parser.parse_args(argv)
 
     scene_dir, meta = load_scene(args)
@@ -118,9 +121,17 @@ def main(argv=None):
     figures = {"scene": scene_dir, "preset": args.preset, "seed": args.seed,
                "detections": args.detections, "stages": {}}
     done = set()
-    for stage, parameters, output_key, needs in stage_plan(scene_dir, meta, work, args.model):
+    plan = stage_plan(scene_dir, meta, work, args.model)
+    if args.from_stage and args.from_stage not in [p[0] for p in plan]:
+        parser.error(f"--from: no stage {args.from_stage}")
+    reuse = args.from_stage is not None
+    for stage, parameters, output_key, needs in plan:
         record = {"status": "missing"}
-        if stage == "detectsigns" and args.detections == "oracle" and "importtrajectory" in done:
+        reuse = reuse and stage != args.from_stage
+        if reuse and os.path.exists(parameters.get("OUTPUT", "")):
+            record = {"status": "reused"}
+            done.add(stage)
+        elif stage == "detectsigns" and args.detections == "oracle" and "importtrajectory" in done:
             from devtools.oracle import oracle_detections
             start = time.perf_counter()
             count = oracle_detections(scene_dir, parameters["STATIONS"], parameters["OUTPUT"])

@@ -16,7 +16,9 @@
    point's neighbourhood, dropping clearly linear points (the pole) -> convexity test
    (traffic mirrors are curved) -> the outline in the plane: the points' extent, widened up
    to the views' boxes cast on the plane (sampled points miss sharp corners; at most
-   ``box_extent_allowance_m``); centre = centre of the outline, not the centroid.
+   ``box_extent_allowance_m``); centre = centre of the outline, not the centroid -> a
+   surface test: a panel whose plane continues beyond a vertical and a horizontal side and
+   that is no brighter than that surface is a picture on a billboard or a wall, not a sign.
 3. **Attributes.** Facing azimuth: plane normal oriented towards the stations that saw the
    panel, degrees clockwise from grid north in [0, 360). Ground: a robust plane through
    the class-2 points within 0.4 / 0.75 / 1.5 / 3 m horizontally, taken at the panel centre;
@@ -25,9 +27,13 @@
    ``RefineResult.ground_source`` says which, and a warning counts them.
 4. **Views without a surface of their own.** A view whose box holds the centre of a sign
    found by other views joins it (a lone view that hit the wall behind a sign seen by
-   several views, too). The remaining ``no_points`` views are triangulated: same-class rays from different panoramas that pass within a
+   several views, too; at any range when the class is the same: a sign far ahead, beyond
+   the scanner's reach, that nearer views found in the cloud). The remaining ``no_points``
+   views are triangulated: same-class rays from different panoramas that pass within a
    tolerance of each other, at an angle of at least ``min_ray_angle_deg``, are grouped and
-   intersected by least squares (outlying rays dropped); ``position_source = image``.
+   intersected by least squares (outlying rays dropped), and kept when the point's depth
+   along the rays is certain to ``max_depth_sigma_m`` (nearly parallel rays, as of a
+   distant sign straight ahead, are not); ``position_source = image``.
 
 Classes: score-weighted vote of the views; ``score``: ``1 - prod(1 - s)`` over the views of
 the winning class; ``best_image``: the view minimising range / cos(incidence).
@@ -59,6 +65,11 @@ SIGN_FIELDS = ("sign_id", "class", "score", "height", "bottom_height", "width", 
                "azimuth", "n_views", "n_points", "source_images", "best_image",
                "mean_intensity", "planarity", "position_source", "x", "y", "z")
 GROUND_POINTS, LOWEST_POINTS, CAMERA_HEIGHT = "ground_points", "lowest_points", "camera_height"
+#: reasons of :func:`extract_panel` that mean "not a sign" (the views are dropped); other
+#: reasons only mean the panel could not be isolated (the views' candidates are kept)
+CURVED_SURFACE = "curved surface (a convex mirror?)"
+LARGER_SURFACE = "part of a larger flat surface (a picture on a billboard or a wall?)"
+NOT_A_SIGN = (CURVED_SURFACE, LARGER_SURFACE)
 
 
 @dataclass
@@ -112,12 +123,22 @@ class RefineParams:
     box_extent_allowance_m: float = 0.10  # boxes may widen the points' outline (corners)
     linear_threshold: float = 0.7        # PCA: a point is on a line (pole) above this a1D
     min_convex_radius_m: float = 3.0     # more curved than this: a mirror, not a sign
+    #: a panel whose plane continues this far beyond a vertical and a horizontal side (share
+    #: of occupied cells of the bands there) is part of a larger surface (a billboard)
+    surround_band_m: float = 0.3
+    surround_gap_m: float = 0.05
+    surround_cell_m: float = 0.1
+    surround_min_share: float = 0.5
     ground_radii_m: Tuple[float, ...] = (0.4, 0.75, 1.5, 3.0)
     min_ground_points: int = 8
     camera_height_m: float = 2.4         # panorama centre above the road (last fallback)
     ray_gap_m: float = 0.25              # triangulation: rays this close (plus 1 % of range)
     min_ray_angle_deg: float = 2.0
     max_triangulation_range_m: float = 80.0
+    #: triangulated points whose depth along the rays is less certain than this are dropped:
+    #: rays of a distant sign seen straight ahead from a straight drive are nearly parallel
+    ray_angle_noise_deg: float = 0.1     # box centre and calibration, one sigma
+    max_depth_sigma_m: float = 1.0
     same_panel_radius_m: float = 0.3     # two signs closer than this (centres) are one panel
     #: largest plausible panel side (m) per class; information signs (gantries) are larger
     max_panel_side_m: Tuple[Tuple[str, float], ...] = (("information", 6.0),)
@@ -380,7 +401,7 @@ def extract_panel(cand: ProjectionResult, rows: np.ndarray, index: TiledIndex, b
     if abs(normal[2]) > math.sin(math.radians(params.max_tilt_deg)):
         normal = plane.normal if plane.normal @ n0 > 0 else -plane.normal
     if convex_radius_m(panel.xyz_world, normal) < params.min_convex_radius_m:
-        return None, "curved surface (a convex mirror?)"
+        return None, CURVED_SURFACE
     right, up = panel_frame(normal)
     rel = panel.xyz_world - centroid
     s, t = rel @ right, rel @ up
@@ -402,7 +423,54 @@ def extract_panel(cand: ProjectionResult, rows: np.ndarray, index: TiledIndex, b
     corners = np.array([centroid + ss * right + tt * up
                         for ss, tt in ((s0, t1), (s1, t1), (s1, t0), (s0, t0))])
     planarity = float(1.0 - ev[2] / ev[1]) if ev[1] > 0 else 0.0
-    return Panel(centre, normal, float(s1 - s0), float(t1 - t0), corners, panel, planarity), ""
+    result = Panel(centre, normal, float(s1 - s0), float(t1 - t0), corners, panel, planarity)
+    if on_larger_surface(result, index, bright, spacing, params):
+        return None, LARGER_SURFACE
+    return result, ""
+
+
+def surface_around_panel(panel: Panel, index: TiledIndex, spacing_m: float,
+                         params: RefineParams) -> Tuple[np.ndarray, np.ndarray]:
+    """How much the panel's plane continues beyond its outline: the share (0..1) of occupied
+    cells in bands of ``surround_band_m`` along its (left, right, bottom, top) sides, from
+    the non-ground points within ``plane_threshold_m`` of the plane; and those points'
+    intensities."""
+    right, up = panel_frame(panel.normal_world)
+    hw, hh, band = 0.5 * panel.width_m, 0.5 * panel.height_m, params.surround_band_m
+    gap = params.surround_gap_m
+    pts = index.query_radius(panel.centre_world, math.hypot(hw + band, hh + band))
+    rel = pts.xyz_world - panel.centre_world
+    near = (np.abs(rel @ panel.normal_world) < params.plane_threshold_m) & \
+        (pts.attributes["classification"] != GROUND_CLASS)
+    s, t = rel[near] @ right, rel[near] @ up
+    cell = max(params.surround_cell_m, 2.5 * spacing_m)
+    shares = []
+    # (across, along, lo, hi, half extent along): across the side's edge, along it
+    for across, along, half_across, half_along, sign in ((s, t, hw, hh, -1), (s, t, hw, hh, 1),
+                                                         (t, s, hh, hw, -1), (t, s, hh, hw, 1)):
+        a = sign * across - half_across - gap
+        m = (a >= 0) & (a < band - gap) & (np.abs(along) <= half_along)
+        n_a = max(1, int(math.ceil((band - gap) / cell)))
+        n_b = max(1, int(math.ceil(2 * half_along / cell)))
+        ia = np.minimum((a[m] / cell).astype(np.int64), n_a - 1)
+        ib = np.minimum(((along[m] + half_along) / cell).astype(np.int64), n_b - 1)
+        shares.append(np.unique(ia * n_b + ib).size / (n_a * n_b))
+    return np.array(shares), pts.attributes["intensity"][near][
+        (np.abs(s) > hw + gap) | (np.abs(t) > hh + gap)].astype(float)
+
+
+def on_larger_surface(panel: Panel, index: TiledIndex, bright: float, spacing_m: float,
+                      params: RefineParams) -> bool:
+    """True when the panel is a patch of a larger flat surface: its plane continues beyond
+    both a vertical and a horizontal side (a sign stacked on another or beside another, or
+    its pole, continues one way only) and the patch is no brighter than the surface around
+    it (a retroreflective sign screwed onto a wall is kept)."""
+    shares, around = surface_around_panel(panel, index, spacing_m, params)
+    full = shares >= params.surround_min_share
+    if not ((full[0] or full[1]) and (full[2] or full[3])):
+        return False
+    own = float(np.median(panel.points.attributes["intensity"]))
+    return not (own >= bright and around.size and float(np.median(around)) < bright)
 
 
 def box_extents_in_plane(cand: ProjectionResult, rows: Sequence[int], origin: np.ndarray,
@@ -518,6 +586,17 @@ def ray_distance(point: np.ndarray, origins: np.ndarray, directions: np.ndarray)
     return np.linalg.norm(rel - along[:, None] * directions, axis=1)
 
 
+def depth_sigma_m(x: np.ndarray, origins: np.ndarray, gaps_m: np.ndarray, sin_max_angle: float,
+                  params: RefineParams) -> float:
+    """Rough one-sigma uncertainty (m) of a triangulated point along its rays: the lateral
+    uncertainty (the rays' residual gaps, at least the angular noise at the range) over the
+    sine of the widest angle between the rays."""
+    rng = float(np.linalg.norm(x - origins, axis=1).max())
+    lateral = max(float(np.sqrt(np.mean(gaps_m ** 2))),
+                  rng * math.radians(params.ray_angle_noise_deg))
+    return lateral / max(sin_max_angle, 1e-9)
+
+
 def triangulate_groups(cand: ProjectionResult, rows: np.ndarray, params: RefineParams
                        ) -> List[Tuple[np.ndarray, np.ndarray]]:
     """Groups of rays (candidate rows) meeting at one point, and that point."""
@@ -562,8 +641,9 @@ def triangulate_groups(cand: ProjectionResult, rows: np.ndarray, params: RefineP
             tol = params.ray_gap_m + 0.01 * np.linalg.norm(x - C[members], axis=1)
             worst = int(np.argmax(dist - tol))
             if dist[worst] <= tol[worst]:
-                dmax = max(np.linalg.norm(np.cross(D[a], D[b])) for a in members for b in members)
-                if dmax >= sin_min:
+                sin_max = max(np.linalg.norm(np.cross(D[a], D[b])) for a in members for b in members)
+                if sin_max >= sin_min and depth_sigma_m(x, C[members], dist, sin_max,
+                                                        params) <= params.max_depth_sigma_m:
                     out.append((rows[members], x))
                 break
             members = np.delete(members, worst)
@@ -617,7 +697,7 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
         panel, reason = (extract_panel(cand, rows, index, bright, params) if index is not None
                          else (None, "no cloud"))
         if panel is None:
-            if reason.startswith("curved"):
+            if reason in NOT_A_SIGN:
                 progress.info(f"Candidates {det.det_id[rows].tolist()} dropped: {reason}")
                 continue
             # the views agree on a surface the refinement could not isolate: keep their mean
@@ -661,10 +741,15 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
                 continue
             extra.setdefault(a, []).extend(list(signs[b][0]) + extra.pop(b, []))
             moved.add(b)
-    # views without a surface: attach to a sign whose centre lies in their box, else triangulate
+    # views without a surface: attach to a sign whose centre lies in their box (of their class
+    # at any range: a sign far ahead, beyond the scanner, found by the views that came near
+    # it), else triangulate
     still = []
     for k in np.flatnonzero(status != STATUS_OK):
-        target = _sign_in_box(det, int(k), centres, np.ones(len(centres), bool), math.inf)
+        same = np.array([c == det.class_name[k] for c in sign_class], bool)
+        target = _sign_in_box(det, int(k), centres, same, math.inf, search_m=math.inf)
+        if target < 0:
+            target = _sign_in_box(det, int(k), centres, np.ones(len(centres), bool), math.inf)
         if target >= 0:
             extra.setdefault(target, []).append(int(k))
         else:

@@ -20,7 +20,8 @@ from .model import STRIDE, SignNet, calibration_power, decode, export_onnx
 
 #: Generated scenes used for training: (preset, seed, panorama width or None). Seeds from
 #: 100 up are reserved for training; the bench and tests use seeds below 100.
-TRAIN_SCENES = (("default", 100, None), ("tiny", 100, None))
+TRAIN_SCENES = (("default", 100, None), ("tiny", 100, None), ("default", 101, None),
+                ("default", 102, None))
 #: The last panoramas of each training scene (at most this many, and a sixth) are kept for validation.
 VAL_PANORAMAS_PER_SCENE = 8
 

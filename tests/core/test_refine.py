@@ -192,3 +192,81 @@ def test_a_sign_seen_once_needs_a_confident_detection(scene, index, score, kept)
     one = dict(next(d for d in scene.detections if d["truth_id"] == 1), score=score)
     out = R.refine_signs(P.project_detections(P.Detections.from_records([one]), index), index)
     assert len(out.signs) == (1 if kept else 0)
+
+
+def _oncoming(x, y, h):
+    normal = np.array([-1.0, np.tan(np.radians(6)), 0.0])
+    return np.array([x, y, float(signscene.ground_z_local(x, y)) + h]), normal / np.linalg.norm(normal)
+
+
+def test_a_picture_on_a_billboard_is_not_a_sign_but_a_sign_on_a_wall_is():
+    """A red circle printed on a 3 x 2 m billboard is boxed as a prohibitory sign: its plane
+    goes on around it, no brighter, so it is dropped. A retroreflective sign screwed onto a
+    wall 1.5 cm in front of it is kept, like a sign on a pole."""
+    Panel = signscene.TruthPanel
+    board, n = _oncoming(30, -6.0, 3.0)
+    wall, n2 = _oncoming(60, -6.0, 2.5)
+    on_pole, n3 = _oncoming(90, -6.0, 2.5)
+    panels = [
+        Panel(1, "prohibitory", "circle", board + 0.4 * np.cross(n, [0, 0, 1]), n, 0.6, 0.6,
+              is_sign=False, has_points=False, pole=False),
+        Panel(2, "billboard", "rect", board, n, 3.0, 2.0, is_sign=False, detected=False,
+              pole=False, reflectance=0.4),
+        Panel(3, "mandatory", "circle", wall + 0.015 * n2, n2, 0.6, 0.6, pole=False),
+        Panel(4, "wall", "rect", wall, n2, 5.0, 3.0, is_sign=False, detected=False, pole=False,
+              reflectance=0.3),
+        Panel(5, "warning", "triangle_up", on_pole, n3, 0.9, 0.78),
+    ]
+    scene = signscene.make_scene(seed=3, panels=panels, road_length_m=110.0,
+                                 stations_x=np.arange(0.0, 105.0, 5.0))
+    index = make_index(scene)
+    messages = []
+    out = R.refine_signs(P.project_detections(P.Detections.from_records(scene.detections), index),
+                         index, progress=Progress(on_info=messages.append))
+    matched = match(out.signs, scene.signs)
+    assert sorted(matched) == [3, 5] and len(out.signs) == 2
+    assert matched[3].position_source == "lidar" and matched[3].n_points > 50
+    assert any(R.LARGER_SURFACE in m for m in messages)
+
+
+def _views_from(scene, panel, stations):
+    """Detections of ``panel`` from the stations ``stations`` (indices), numbered after the
+    scene's own."""
+    far = signscene.TruthPanel(**{**panel.__dict__, "seen_from": list(stations)})
+    probe = signscene.SignScene(scene.xyz_world[:0], scene.classification[:0], scene.intensity[:0],
+                                scene.station_centre_world, scene.station_q_wxyz,
+                                scene.station_images, [far])
+    rows = signscene.make_detections(probe, 1.0, np.random.default_rng(5))
+    first = max(d["det_id"] for d in scene.detections) + 1
+    return [dict(d, det_id=first + n) for n, d in enumerate(rows)]
+
+
+def test_views_beyond_the_scanners_reach_join_their_sign(scene, index):
+    """Sign 10 (x = 145 m) boxed from the first stations, 120-145 m away: no points within
+    the projection's range there. The views join the sign found by the near stations; their
+    nearly parallel rays are not triangulated into a second sign."""
+    p = next(q for q in scene.signs if q.sign_id == 10)
+    far = _views_from(scene, p, range(0, 5))
+    cand = P.project_detections(P.Detections.from_records(scene.detections + far), index)
+    assert all(s != P.STATUS_OK for s in cand.status[-len(far):])
+    out = R.refine_signs(cand, index)
+    s = match(out.signs, [p])[p.sign_id]
+    assert s.n_views == scene.n_views(10) + len(far)
+    assert len(out.signs) == len(scene.signs)
+
+
+def test_nearly_parallel_rays_place_no_sign(scene, index):
+    """A sign 120-145 m ahead with no points and no nearer view: its rays meet at angles of
+    a degree or two, too uncertain in depth to place it."""
+    p = next(q for q in scene.signs if q.sign_id == 10)
+    far = _views_from(scene, p, range(0, 5))
+    alone = P.project_detections(P.Detections.from_records(far), index)
+    assert R.refine_signs(alone, index).signs == []
+    # the same rays, near and wide apart, do place it (as the out-of-reach sign 8 shows)
+    C = scene.station_centre_world[:5]
+    D = p.centre_world - C
+    D /= np.linalg.norm(D, axis=1, keepdims=True)
+    x = R.intersect_rays(C, D)
+    sin_max = np.linalg.norm(np.cross(D[0], D[-1]))
+    assert R.depth_sigma_m(x, C, R.ray_distance(x, C, D), sin_max, R.RefineParams()) > \
+        R.RefineParams().max_depth_sigma_m

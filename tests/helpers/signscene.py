@@ -19,6 +19,9 @@ Contents (``SignScene.signs``, local x, y):
 9. information panel over the road facing backwards: its boxes cross the panorama seam;
 10. mandatory circle (145, -6);
 and a convex traffic mirror (135, 6.4) that the detector takes for a prohibitory sign.
+Tests may pass their own panels: surfaces that are not signs (``is_sign=False``, e.g. a
+billboard, ``detected=False`` for one the detector ignores) lose the points hidden by a
+sign right in front of them.
 """
 from __future__ import annotations
 
@@ -57,6 +60,8 @@ class TruthPanel:
     pole: bool = True
     convex_radius_m: Optional[float] = None
     seen_from: Optional[List[int]] = None   # station indices (else: by range and facing)
+    detected: bool = True      # False: a surface the detector does not report (a wall)
+    reflectance: Optional[float] = None     # of a surface that is not a sign (else 0.55)
 
     @property
     def right(self):
@@ -180,6 +185,19 @@ def _sample_panel(p: TruthPanel, density, rng):
     return pts
 
 
+def _behind_a_sign(pts, surface: TruthPanel, panels: List[TruthPanel]) -> np.ndarray:
+    """Points of a surface hidden by a sign panel right in front of it (within 0.3 m): the
+    scanner sees the sign there, not the wall behind it."""
+    hidden = np.zeros(len(pts), bool)
+    for q in panels:
+        if q is surface or not q.has_points or not q.is_sign:
+            continue
+        rel = pts - q.centre_local
+        depth = rel @ q.normal
+        hidden |= (depth < 0) & (depth > -0.3) & q.inside(rel @ q.right, rel @ q.up)
+    return hidden
+
+
 def _cylinder(x, y, r, z0, z1, density, rng):
     n = rng.poisson(2 * np.pi * r * (z1 - z0) * density)
     a = rng.uniform(0, 2 * np.pi, n)
@@ -212,7 +230,8 @@ def make_scene(seed: int = 0, panel_density: float = 600.0, ground_density: floa
             continue
         pts = _sample_panel(p, panel_density, rng)
         if not p.is_sign:
-            add(pts, 1, 0.55)
+            pts = pts[~_behind_a_sign(pts, p, panels)]
+            add(pts, 1, 0.55 if p.reflectance is None else p.reflectance)
         else:
             add(pts, 1, 0.22 if p.faded else 0.95, incidence=p.faded)
         if p.pole:
@@ -247,6 +266,8 @@ def make_detections(scene: SignScene, box_noise_px: float, rng) -> List[dict]:
                                           scene.station_images)):
         R = geometry.matrix_from_quat_wxyz(q)
         for p in scene.panels:
+            if not p.detected:
+                continue
             to_station = c - p.centre_world
             dist = float(np.linalg.norm(to_station))
             if p.seen_from is not None:
