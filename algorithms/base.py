@@ -9,7 +9,7 @@ from contextlib import contextmanager
 from qgis.core import Qgis, QgsProcessingAlgorithm, QgsProcessingException
 from qgis.PyQt.QtGui import QIcon
 
-from ..core.errors import Cancelled, InputError, Progress
+from ..core.errors import Cancelled, InputError, Message, Progress
 from ..dependencies import missing_message, shapely_geos_conflict
 from ..provider.i18n import tr
 from ..provider.provider import ICON_PATH
@@ -96,7 +96,23 @@ class RoadSignsAlgorithm(QgsProcessingAlgorithm):
     def progress(self, feedback):
         """A core Progress that forwards to ``feedback`` (percent, log, cancel)."""
         return Progress(on_progress=feedback.setProgress, is_cancelled=feedback.isCanceled,
-                        on_info=feedback.pushInfo, on_warning=feedback.pushWarning)
+                        on_info=lambda m: feedback.pushInfo(self.localise(m)),
+                        on_warning=lambda m: feedback.pushWarning(self.localise(m)))
+
+    #: core message fields whose (English) words are translated too ("Trajectory", ...)
+    TRANSLATED_FIELDS = ("what", "role", "kind")
+
+    def localise(self, message) -> str:
+        """A core :class:`Message` (or an :class:`InputError`) in the user's language: its
+        template through ``tr``, then its fields, those that are messages themselves or
+        words (``TRANSLATED_FIELDS``) translated too. Other text is returned as it is."""
+        if not isinstance(message, (Message, InputError)):
+            return str(message)
+        fields = {k: self.localise(v) if isinstance(v, Message) else
+                  self.tr(v) if k in self.TRANSLATED_FIELDS and isinstance(v, str) else v
+                  for k, v in message.fields.items()}
+        text = self.tr(message.template)
+        return text.format(**fields) if message.fields else text
 
     @contextmanager
     def core_errors(self):
@@ -104,9 +120,6 @@ class RoadSignsAlgorithm(QgsProcessingAlgorithm):
         try:
             yield
         except InputError as error:
-            # words passed as fields ("Trajectory", "target CRS", ...) are translated too
-            fields = {k: self.tr(v) if k in ("what", "role", "kind") and isinstance(v, str) else v
-                      for k, v in error.fields.items()}
-            raise QgsProcessingException(self.tr(error.template).format(**fields))
+            raise QgsProcessingException(self.localise(error))
         except Cancelled:
             raise QgsProcessingException(self.tr("Cancelled: nothing was written."))

@@ -8,6 +8,7 @@ from qgis.core import (Qgis, QgsFeature, QgsFeatureSink, QgsGeometry,
                        QgsProcessingParameterBoolean, QgsProcessingParameterFeatureSource,
                        QgsProcessingParameterFile, QgsProcessingParameterFeatureSink, QgsProcessingOutputNumber)
 
+from ..provider.i18n import tr
 from .base import RoadSignsAlgorithm
 from .layers import DOUBLE, INT, TEXT, make_fields
 
@@ -34,8 +35,9 @@ def read_stations(source, label):
     missing = [f for f in STATION_FIELDS if f not in names]
     if missing:
         raise QgsProcessingException(
-            "{}: missing field(s) {}; fields found: {}; expected the output of Import "
-            "trajectory".format(label, ", ".join(missing), ", ".join(names)))
+            tr("{layer}: missing field(s) {missing}; fields found: {found}; expected the output "
+               "of Import trajectory").format(layer=label, missing=", ".join(missing),
+                                              found=", ".join(names)))
     rows = []
     for feature in source.getFeatures():
         rows.append({f: feature[f] for f in STATION_FIELDS})

@@ -9,6 +9,7 @@ from qgis.core import (Qgis, QgsCoordinateTransform, QgsFeatureRequest, QgsProce
                        QgsProcessingParameterFile, QgsProcessingParameterFileDestination, QgsVectorLayer)
 
 from ..core.evaluate import OUTPUT_NAMES, SignSet, evaluate, read_reference_csv, write_html_report
+from ..provider.i18n import tr
 from .base import RoadSignsAlgorithm
 
 EXTRA_OUTPUTS = ("MEDIAN_HORIZONTAL_ERROR", "MEDIAN_VERTICAL_ERROR")
@@ -45,7 +46,8 @@ def sign_set_from_features(features, fields, transform, label, id_field="sign_id
     """A core SignSet from point features (PointZ geometry, or x, y, z fields)."""
     if fields.lookupField("class") < 0:
         raise QgsProcessingException(
-            "{}: no field 'class'; fields found: {}".format(label, ", ".join(fields.names())))
+            tr("{layer}: no field 'class'; fields found: {found}").format(
+                layer=label, found=", ".join(fields.names())))
     ids, classes, xyz, height, azimuth, width, panel_height, images = [], [], [], [], [], [], [], []
     for k, feature in enumerate(features):
         geometry = feature.geometry()

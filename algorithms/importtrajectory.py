@@ -130,9 +130,9 @@ class ImportTrajectory(RoadSignsAlgorithm):
                 fail_on_missing_image=self.parameterAsBoolean(parameters, "FAIL_ON_MISSING_IMAGE", context),
                 progress=self.progress(feedback).sub(0.0, 0.9))
         for message in result.messages:
-            feedback.pushInfo(message)
+            feedback.pushInfo(self.localise(message))
         for warning in result.warnings:
-            feedback.pushWarning(warning)
+            feedback.pushWarning(self.localise(warning))
 
         output_crs = target_crs if target_crs.isValid() else \
             QgsCoordinateReferenceSystem.fromWkt(result.target_crs_wkt)

@@ -9,6 +9,8 @@ from qgis.core import (QgsCoordinateReferenceSystem, QgsFeature, QgsFeatureReque
                        QgsFeatureSink, QgsField, QgsFields, QgsProcessingException)
 from qgis.PyQt.QtCore import QMetaType
 
+from ..provider.i18n import tr
+
 INT, DOUBLE, TEXT = QMetaType.Type.Int, QMetaType.Type.Double, QMetaType.Type.QString
 
 
@@ -31,7 +33,8 @@ def read_records(source, required, label, feedback=None):
     missing = [f for f in required if f not in names]
     if missing:
         raise QgsProcessingException(
-            "{}: missing field(s) {}; fields found: {}".format(label, ", ".join(missing), ", ".join(names)))
+            tr("{layer}: missing field(s) {missing}; fields found: {found}").format(
+                layer=label, missing=", ".join(missing), found=", ".join(names)))
     records = []
     for feature in source.getFeatures(QgsFeatureRequest()):
         if feedback is not None and feedback.isCanceled():
@@ -75,7 +78,7 @@ def check_same_crs(layer_crs, cloud_crs_wkt, layer_label, cloud_path):
     cloud_crs = QgsCoordinateReferenceSystem.fromWkt(cloud_crs_wkt)
     if cloud_crs.isValid() and cloud_crs != layer_crs:
         raise QgsProcessingException(
-            "{} is in {}, the point cloud {} in {}: import the trajectory with the cloud's CRS as "
-            "target CRS so that every stage works in one CRS".format(
-                layer_label, layer_crs.authid() or layer_crs.description(), cloud_path,
-                cloud_crs.authid() or cloud_crs.description()))
+            tr("{layer} is in {layer_crs}, the point cloud {cloud} in {cloud_crs}: import the "
+               "trajectory with the cloud's CRS as target CRS so that every stage works in one "
+               "CRS").format(layer=layer_label, layer_crs=layer_crs.authid() or layer_crs.description(),
+                             cloud=cloud_path, cloud_crs=cloud_crs.authid() or cloud_crs.description()))

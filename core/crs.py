@@ -12,7 +12,7 @@ import numpy as np
 from pyproj import CRS, Proj, Transformer
 from pyproj.exceptions import CRSError
 
-from .errors import InputError
+from .errors import InputError, Message
 
 
 def parse_crs(user_input, role: str = "CRS") -> CRS:
@@ -66,14 +66,16 @@ class WorldTransform:
             self.source = self.source.to_3d()  # lon/lat + ellipsoidal height, per the contract
         self._to_target = Transformer.from_crs(self.source, self.target, always_xy=True)
         if not self.heights_transformed:
-            self.height_note = "heights pass through unchanged (the target CRS has no vertical datum)"
+            self.height_note = Message("Heights: pass through unchanged (the target CRS has no "
+                                       "vertical datum)")
         elif "ballpark vertical" in self._to_target.description.lower():
-            self.height_note = ("the geoid grid for {} is not installed: heights stay as they are "
-                                "(ellipsoidal), only the horizontal position is transformed"
-                                .format(self.target.name))
+            self.height_note = Message("Heights: the geoid grid for {crs} is not installed: heights "
+                                       "stay as they are (ellipsoidal), only the horizontal "
+                                       "position is transformed", crs=self.target.name)
         else:
-            self.height_note = "heights transformed to {}: {}".format(self.target.name,
-                                                                     self._to_target.description)
+            self.height_note = Message("Heights: transformed to {crs}: {operation}",
+                                       crs=self.target.name,
+                                       operation=self._to_target.description)
         target_h = horizontal_crs(self.target)
         self._target_proj = Proj(target_h)
         self._target_to_geographic = Transformer.from_crs(target_h, target_h.geodetic_crs,

@@ -591,7 +591,7 @@ def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidenc
             pano = read_panorama(path)
         except InputError as error:
             skipped.append((path, str(error)))
-            progress.warning(str(error))
+            progress.warning(error.template, **error.fields)
             per_image.append(None)
             continue
         per_image.append(detect_panorama(detector, pano, views, confidence, iou_threshold,

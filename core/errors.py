@@ -2,7 +2,9 @@
 
 Core code never imports qgis; the Processing adapters turn :class:`InputError` into a
 ``QgsProcessingException`` (translating ``template`` with ``tr``) and pass a
-:class:`Progress` that forwards to ``QgsProcessingFeedback``.
+:class:`Progress` that forwards to ``QgsProcessingFeedback``. Log messages are
+:class:`Message` s: English text that keeps its template and fields, which the adapters
+translate the same way.
 """
 from __future__ import annotations
 
@@ -19,6 +21,22 @@ class InputError(ValueError):
         self.template = template
         self.fields = fields
         super().__init__(template.format(**fields))
+
+
+class Message(str):
+    """An English log message (``template.format(**fields)``) that keeps its ``template``
+    and ``fields``, so that an adapter can show it in the user's language; a plain ``str``
+    everywhere else."""
+
+    template: str
+    fields: dict
+
+    def __new__(cls, template: str, **fields):
+        if isinstance(template, Message) and not fields:
+            return template
+        message = super().__new__(cls, template.format(**fields) if fields else template)
+        message.template, message.fields = str(template), fields
+        return message
 
 
 class Cancelled(RuntimeError):
@@ -59,13 +77,19 @@ class Progress:
         if self._is_cancelled is not None and self._is_cancelled():
             raise Cancelled("cancelled")
 
-    def info(self, message: str) -> None:
+    def info(self, template: str, **fields) -> Message:
+        """Log ``template`` (English, ``{named}`` fields) as a :class:`Message`; returns it."""
+        message = Message(template, **fields)
         if self._on_info is not None:
             self._on_info(message)
+        return message
 
-    def warning(self, message: str) -> None:
+    def warning(self, template: str, **fields) -> Message:
+        """Warn with ``template`` (English, ``{named}`` fields) as a :class:`Message`."""
+        message = Message(template, **fields)
         if self._on_warning is not None:
             self._on_warning(message)
+        return message
 
 
 #: A Progress that reports nothing and never cancels.

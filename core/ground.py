@@ -40,7 +40,7 @@ import numpy as np
 from scipy import ndimage
 from scipy.spatial import cKDTree
 
-from .errors import SILENT, InputError, Progress
+from .errors import SILENT, InputError, Message, Progress
 from .pointcloud import (DEFAULT_CHUNK_POINTS, LAS_SUFFIXES, CloudWriter, CropRegion,
                          crs_wkt_of_header, iter_chunks, output_header, read_header)
 
@@ -697,8 +697,8 @@ def _builtin_engine(input_path: str, output_path: str, method: str, params: Para
                 n_ground += int(ground.sum())
         n_out = writer.point_count
     if n_out and not n_eligible:
-        warnings.append(f"No point of {input_path} has the returns '{params.returns}': "
-                        "nothing was classified")
+        warnings.append(Message("No point of {path} has the returns '{returns}': nothing was "
+                                "classified", path=input_path, returns=params.returns))
     return n_out, n_ground, warnings
 
 
@@ -966,9 +966,8 @@ def classify_ground(input_path: str, output_path: str, method: str = "csf",
             except PdalError as e:
                 if engine == "pdal":
                     raise
-                message = f"PDAL failed, the built-in engine was used instead: {e}"
-                result.warnings.append(message)
-                progress.warning(message)
+                result.warnings.append(progress.warning(
+                    "PDAL failed, the built-in engine was used instead: {error}", error=str(e)))
 
     n_out, n_ground, warnings = _builtin_engine(
         input_path, output_path, method, params, region, header, crs_wkt, reset_classes,
@@ -983,10 +982,9 @@ def classify_ground(input_path: str, output_path: str, method: str = "csf",
 
 def _warn_if_empty(result: GroundResult, input_path: str, progress: Progress) -> None:
     if result.n_output == 0:
-        message = (f"No point of {input_path} is left after the crop: "
-                   f"{result.output_path} has no points")
-        result.warnings.append(message)
-        progress.warning(message)
+        result.warnings.append(progress.warning(
+            "No point of {path} is left after the crop: {output} has no points",
+            path=input_path, output=result.output_path))
 
 
 def run_ground_filter(input_path: str, output_path: str, method="csf", engine="auto",

@@ -358,9 +358,9 @@ def crop_cloud(input_path: str, output_path: str, region: Optional[CropRegion] =
             writer.write(chunk)
         result.n_output = writer.point_count
     if result.n_output == 0:
-        message = f"No point of {input_path} lies inside the crop area; {output_path} is empty"
-        result.warnings.append(message)
-        progress.warning(message)
+        result.warnings.append(progress.warning(
+            "No point of {path} lies inside the crop area; {output} is empty",
+            path=input_path, output=output_path))
     return result
 
 

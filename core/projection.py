@@ -576,9 +576,7 @@ def project_detections(detections: Detections, cloud: Union[str, TiledIndex],
     det = detections
     result = ProjectionResult.unprojected(det)
     if len(det) == 0:
-        message = "No detections to project; the candidates are empty"
-        result.warnings.append(message)
-        progress.warning(message)
+        result.warnings.append(progress.warning("No detections to project; the candidates are empty"))
         return result
     det.validate()
     frusta = Frusta.build(det, max_range_m, params.margin_deg, params.margin_frac)
@@ -586,9 +584,8 @@ def project_detections(detections: Detections, cloud: Union[str, TiledIndex],
     index, source = build_index(cloud, region, params.tile_size_m, progress.sub(0.0, 0.5))
     result.n_indexed = len(index)
     if len(index) == 0:
-        message = f"{source} has no point inside the detections' frusta; no candidate found"
-        result.warnings.append(message)
-        progress.warning(message)
+        result.warnings.append(progress.warning(
+            "{path} has no point inside the detections' frusta; no candidate found", path=source))
         return result
 
     # one pass over the tiles, every detection crossing a tile tested there
@@ -640,7 +637,8 @@ def project_detections(detections: Detections, cloud: Union[str, TiledIndex],
         if k % 32 == 0:
             search.report(k / len(det))
     n_ok = sum(s == STATUS_OK for s in result.status)
-    progress.info(f"{n_ok} of {len(det)} detections found a surface in the cloud "
-                  f"({result.status.count(STATUS_NO_POINTS)} without points, "
-                  f"{result.status.count(STATUS_NO_SURFACE)} without a planar surface)")
+    progress.info("{ok} of {count} detections found a surface in the cloud ({no_points} "
+                  "without points, {no_surface} without a planar surface)", ok=n_ok,
+                  count=len(det), no_points=result.status.count(STATUS_NO_POINTS),
+                  no_surface=result.status.count(STATUS_NO_SURFACE))
     return result

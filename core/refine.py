@@ -52,7 +52,7 @@ from scipy.spatial import cKDTree
 from scipy.spatial.distance import squareform
 
 from . import geometry
-from .errors import SILENT, InputError, Progress
+from .errors import SILENT, InputError, Message, Progress
 from .pointcloud import (CloudWriter, CropRegion, PointSet, TiledIndex, iter_chunks,
                          output_header, read_header)
 from .projection import (GROUND_CLASS, STATUS_NO_POINTS, STATUS_OK, ProjectionResult,
@@ -67,8 +67,8 @@ SIGN_FIELDS = ("sign_id", "class", "score", "height", "bottom_height", "width", 
 GROUND_POINTS, LOWEST_POINTS, CAMERA_HEIGHT = "ground_points", "lowest_points", "camera_height"
 #: reasons of :func:`extract_panel` that mean "not a sign" (the views are dropped); other
 #: reasons only mean the panel could not be isolated (the views' candidates are kept)
-CURVED_SURFACE = "curved surface (a convex mirror?)"
-LARGER_SURFACE = "part of a larger flat surface (a picture on a billboard or a wall?)"
+CURVED_SURFACE = Message("curved surface (a convex mirror?)")
+LARGER_SURFACE = Message("part of a larger flat surface (a picture on a billboard or a wall?)")
 NOT_A_SIGN = (CURVED_SURFACE, LARGER_SURFACE)
 
 
@@ -340,7 +340,7 @@ def extract_panel(cand: ProjectionResult, rows: np.ndarray, index: TiledIndex, b
     pts = pts.subset((pts.attributes["classification"] != GROUND_CLASS)
                      & (np.abs((pts.xyz_world - c0) @ n0) < params.slab_m))
     if len(pts) < params.min_panel_points:
-        return None, "too few points"
+        return None, Message("too few points")
     # inside the boxes of most views
     boxes = grow_boxes(det.box_px[rows], det.pano_size_px[rows], params.box_margin_deg,
                        params.box_margin_frac)
@@ -354,7 +354,7 @@ def extract_panel(cand: ProjectionResult, rows: np.ndarray, index: TiledIndex, b
         votes += (a >= 0) & (a <= 1) & (b >= 0) & (b <= 1)
     pts = pts.subset(votes >= max(1, math.ceil(0.5 * len(rows))))
     if len(pts) < params.min_panel_points:
-        return None, "too few points in the boxes"
+        return None, Message("too few points in the boxes")
     # Euclidean clusters grown from the candidates
     spacing = point_spacing_m(pts.xyz_world)
     labels = euclidean_clusters(pts.xyz_world, max(params.cluster_tolerance_m,
@@ -375,7 +375,7 @@ def extract_panel(cand: ProjectionResult, rows: np.ndarray, index: TiledIndex, b
     plane = fit_plane_ransac(pts.xyz_world[bright_mask], params.plane_threshold_m,
                              params.max_tilt_deg)
     if plane is None or plane.inliers.sum() < params.min_panel_points:
-        return None, "no near-vertical plane"
+        return None, Message("no near-vertical plane")
     res = plane.distance(pts.xyz_world)
     sigma = 1.4826 * float(np.median(np.abs(res[bright_mask][plane.inliers])))
     tight = np.abs(res) < min(params.plane_threshold_m, max(0.015, 2.5 * sigma))
@@ -393,7 +393,7 @@ def extract_panel(cand: ProjectionResult, rows: np.ndarray, index: TiledIndex, b
     if keep.sum() >= params.min_panel_points:
         panel = panel.subset(keep)
     if len(panel) < params.min_panel_points:
-        return None, "too few planar points"
+        return None, Message("too few planar points")
     centroid, ev, V = pca(panel.xyz_world)
     normal = V[:, 2]
     if (normal @ n0) < 0:
@@ -670,9 +670,8 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
     det = cand.detections
     result = RefineResult([], [], [], [], np.full(len(cand), -1, np.int64))
 
-    def warn(message):
-        result.warnings.append(message)
-        progress.warning(message)
+    def warn(template, **fields):
+        result.warnings.append(progress.warning(template, **fields))
 
     if len(cand) == 0:
         warn("No candidates to refine; the sign layer is empty")
@@ -695,14 +694,15 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
     signs: List[Tuple[np.ndarray, Optional[Panel], Optional[np.ndarray]]] = []
     for g, rows in enumerate(groups):
         panel, reason = (extract_panel(cand, rows, index, bright, params) if index is not None
-                         else (None, "no cloud"))
+                         else (None, Message("no point cloud")))
         if panel is None:
             if reason in NOT_A_SIGN:
-                progress.info(f"Candidates {det.det_id[rows].tolist()} dropped: {reason}")
+                progress.info("Candidates {ids} dropped: {reason}", ids=det.det_id[rows].tolist(),
+                              reason=reason)
                 continue
             # the views agree on a surface the refinement could not isolate: keep their mean
-            progress.info(f"Candidates {det.det_id[rows].tolist()}: {reason}; placed at the "
-                          "candidates' median")
+            progress.info("Candidates {ids}: {reason}; placed at the candidates' median",
+                          ids=det.det_id[rows].tolist(), reason=reason)
         signs.append((rows, panel, None))
         sub.report((g + 1) / max(1, len(groups)))
 
@@ -790,8 +790,10 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
             bottom = float(centre[2] - panel_h / 2)
             pidx, mean_int, planarity, outline = np.zeros(0, np.int64), math.nan, math.nan, None
         if max(width, panel_h) > params.max_side_m(klass):
-            progress.info(f"Candidates {det.det_id[views].tolist()} dropped: a {width:.2f} x "
-                          f"{panel_h:.2f} m panel is too large for a {klass} sign (a billboard?)")
+            progress.info("Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too "
+                          "large for a {sign_class} sign (a billboard?)",
+                          ids=det.det_id[views].tolist(), width=width, height=panel_h,
+                          sign_class=klass)
             continue
         ground_z, gsource = ground_with_fallbacks(index, centre, bottom, det.centre_world[views, 2],
                                                   params)
@@ -801,8 +803,8 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
             if det.image[k] not in images:
                 images.append(det.image[k])
         if len(images) == 1 and score < params.min_single_view_score:
-            progress.info(f"Candidates {det.det_id[views].tolist()} dropped: seen in one panorama "
-                          f"only, with a score of {score:.2f}")
+            progress.info("Candidates {ids} dropped: seen in one panorama only, with a score of "
+                          "{score:.2f}", ids=det.det_id[views].tolist(), score=score)
             continue
         rec = SignRecord(
             sign_id=n_sign + 1, klass=klass, score=score, height=float(centre[2] - ground_z),
@@ -818,16 +820,17 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
         result.ground_source.append(gsource)
         sources.append(gsource)
         result.candidate_sign[views] = n_sign
-    camera = f"the stations' height minus {params.camera_height_m} m"
-    for fallback, what in ((LOWEST_POINTS, "the lowest points below the sign"),
+    camera = Message("the stations' height minus {height} m", height=params.camera_height_m)
+    for fallback, what in ((LOWEST_POINTS, Message("the lowest points below the sign")),
                            (CAMERA_HEIGHT, camera)):
         count = sources.count(fallback)
         if count:
-            warn(f"{count} sign(s) have no ground points (class 2) within "
-                 f"{max(params.ground_radii_m)} m: their height is measured from {what}")
+            warn("{count} sign(s) have no ground points (class 2) within {radius} m: their "
+                 "height is measured from {source}", count=count,
+                 radius=max(params.ground_radii_m), source=what)
     n_img = sum(s.position_source == "image" for s in result.signs)
-    progress.info(f"{len(result.signs)} signs from {len(cand)} candidates ({n_img} placed from "
-                  "the images alone)")
+    progress.info("{signs} signs from {candidates} candidates ({from_images} placed from the "
+                  "images alone)", signs=len(result.signs), candidates=len(cand), from_images=n_img)
     progress.report(1.0)
     return result
 

@@ -64,7 +64,7 @@ def write_chips(signs: Sequence[Dict], boxes: Sequence[Optional[Sequence[float]]
         try:
             pano = read_panorama(os.path.join(images_dir, image))
         except InputError as error:
-            progress.warning(str(error))
+            progress.warning(error.template, **error.fields)
             continue
         height_px, width_px = pano.shape[:2]
         for k in members:

@@ -23,7 +23,7 @@ from scipy.spatial.transform import Rotation, Slerp
 
 from . import geometry
 from .crs import WorldTransform, default_target_crs, world_transform
-from .errors import InputError, Progress, SILENT
+from .errors import SILENT, InputError, Message, Progress
 from .panorama import check_equirectangular, read_image_size
 from .tables import read_table
 
@@ -231,8 +231,9 @@ def interpolate_at(trajectory: Trajectory, names: List[str], times_s: np.ndarray
                              path=times_path, location=locations[k], time=repr(float(times_s[k])),
                              image=names[k], start=repr(float(t[0])), end=repr(float(t[-1])),
                              count=int(outside.sum()))
-        warnings.append("Skipped {} image(s) whose time is outside the trajectory's span "
-                        "[{}, {}], the first: {}".format(int(outside.sum()), t[0], t[-1], names[k]))
+        warnings.append(Message("Skipped {count} image(s) whose time is outside the trajectory's "
+                                "span [{start}, {end}], the first: {image}", count=int(outside.sum()),
+                                start=t[0], end=t[-1], image=names[k]))
         keep = ~outside
         names = [n for n, k_ in zip(names, keep) if k_]
         times_s = times_s[keep]
@@ -247,9 +248,10 @@ def interpolate_at(trajectory: Trajectory, names: List[str], times_s: np.ndarray
     long_gaps = np.flatnonzero(gap_s > max_gap_s)
     if long_gaps.size:
         worst = int(long_gaps[np.argmax(gap_s[long_gaps])])
-        warnings.append("{} image(s) fall in a trajectory gap longer than {} s; the longest gap is "
-                        "{:.3f} s around image '{}' at time {}".format(
-                            long_gaps.size, max_gap_s, gap_s[worst], names[worst], times_s[worst]))
+        warnings.append(Message("{count} image(s) fall in a trajectory gap longer than {max_gap} s; "
+                                "the longest gap is {gap:.3f} s around image '{image}' at time "
+                                "{time}", count=long_gaps.size, max_gap=max_gap_s,
+                                gap=gap_s[worst], image=names[worst], time=times_s[worst]))
     slerp = Slerp(t, trajectory.rotations_ned_from_body())
     return BodyPoses(list(names), times_s,
                      trajectory.x[i0], trajectory.y[i0], trajectory.z[i0],
@@ -311,8 +313,8 @@ def _panorama_sizes(names: List[str], images_dir: str, fail_on_missing: bool,
         widths.append(width_px)
         heights.append(height_px)
     if skipped:
-        warnings.append("Skipped {} panorama(s) that are missing or unreadable; the first: {}"
-                        .format(len(skipped), skipped[0]))
+        warnings.append(Message("Skipped {count} panorama(s) that are missing or unreadable; "
+                                "the first: {path}", count=len(skipped), path=skipped[0]))
     return np.array(keep, dtype=np.int64), paths, np.array(widths), np.array(heights)
 
 
@@ -346,12 +348,13 @@ def import_stations(images_dir: str, target_crs=None, trajectory_crs=None,
         trajectory = read_trajectory(trajectory_path)
         if is_sbet_path(trajectory_path):
             source_crs = SBET_CRS
-            messages.append("SBET trajectory: WGS 84 geographic with ellipsoidal heights, {} records"
-                            .format(len(trajectory)))
+            messages.append(Message("SBET trajectory: WGS 84 geographic with ellipsoidal heights, "
+                                    "{count} records", count=len(trajectory)))
         else:
             source_crs = trajectory_crs
-            messages.append("Trajectory: {} samples over {:.1f} s".format(
-                len(trajectory), trajectory.time_s[-1] - trajectory.time_s[0]))
+            messages.append(Message("Trajectory: {count} samples over {span:.1f} s",
+                                    count=len(trajectory),
+                                    span=trajectory.time_s[-1] - trajectory.time_s[0]))
         progress.report(0.1)
         names, times_s, locations = read_image_times(image_times_path)
         poses = interpolate_at(trajectory, names, times_s, locations, image_times_path,
@@ -360,9 +363,9 @@ def import_stations(images_dir: str, target_crs=None, trajectory_crs=None,
 
     if target_crs is None or (isinstance(target_crs, str) and not target_crs.strip()):
         target_crs = default_target_crs(source_crs, poses.x0[0], poses.y0[0])
-        messages.append("No target CRS given: using {}".format(target_crs.name))
+        messages.append(Message("No target CRS given: using {crs}", crs=target_crs.name))
     transform = world_transform(source_crs, target_crs)
-    messages.append("Heights: " + transform.height_note)
+    messages.append(transform.height_note)
 
     keep, paths, widths, heights = _panorama_sizes(poses.image, images_dir, fail_on_missing_image,
                                                    warnings, progress.sub(0.2, 0.9))

@@ -50,323 +50,333 @@
         <translation>Nubes de puntos LAS/LAZ (*.las *.laz *.LAS *.LAZ);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="112"/>
+        <location filename="../algorithms/base.py" line="125"/>
         <source>Cancelled: nothing was written.</source>
         <translation>Cancelado: no se escribió nada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="47"/>
+        <location filename="../algorithms/detectsigns.py" line="38"/>
+        <source>{layer}: missing field(s) {missing}; fields found: {found}; expected the output of Import trajectory</source>
+        <translation>{layer}: falta(n) el/los campo(s) {missing}; campos encontrados: {found}; se esperaba la salida de Importar trayectoria</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="49"/>
         <source>Detect signs in panoramas</source>
         <translation>Detectar señales en panoramas</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="49"/>
+        <location filename="../algorithms/detectsigns.py" line="51"/>
         <source>Runs an ONNX sign detector on each panorama; one ray per detected sign.</source>
         <translation>Ejecuta un detector de señales ONNX en cada panorama; un rayo por señal detectada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="51"/>
+        <location filename="../algorithms/detectsigns.py" line="53"/>
         <source>Cuts each station&apos;s equirectangular panorama into overlapping perspective views (a horizon ring, and an upward ring for overhead signs), runs the ONNX detector on each view, maps the boxes back to panorama pixels and merges the same sign found in two views.&lt;br&gt;&lt;br&gt;The &lt;b&gt;model&lt;/b&gt; is the bundled one when left empty, or your own ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model with NMS built in ([1, N, 6]). Class names come from the model&apos;s metadata (Ultralytics &lt;i&gt;names&lt;/i&gt;) or a labels file (one name per line).&lt;br&gt;&lt;br&gt;Output: one line per detection from the panorama centre along the ray through the box centre, &lt;i&gt;Ray length&lt;/i&gt; long, with the box (u0, v0, u1, v1 in panorama pixels; across the ±180° seam u1 exceeds the width) and the station&apos;s pose. A panorama that cannot be read is skipped with a warning and counted.</source>
         <translation>Corta el panorama equirrectangular de cada estación en vistas en perspectiva superpuestas (un anillo horizontal y un anillo hacia arriba para las señales elevadas), ejecuta el detector ONNX en cada vista, devuelve los recuadros a píxeles del panorama y fusiona la misma señal encontrada en dos vistas.&lt;br&gt;&lt;br&gt;El &lt;b&gt;modelo&lt;/b&gt; es el incluido si se deja vacío, o su propia exportación ONNX: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) o un modelo con NMS integrado ([1, N, 6]). Los nombres de clase provienen de los metadatos del modelo (&lt;i&gt;names&lt;/i&gt; de Ultralytics) o de un archivo de etiquetas (un nombre por línea).&lt;br&gt;&lt;br&gt;Salida: una línea por detección desde el centro del panorama a lo largo del rayo que pasa por el centro del recuadro, de &lt;i&gt;Longitud del rayo&lt;/i&gt; de largo, con el recuadro (u0, v0, u1, v1 en píxeles del panorama; a través de la costura de ±180°, u1 supera el ancho) y la pose de la estación. Un panorama que no se puede leer se omite con una advertencia y se contabiliza.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="66"/>
+        <location filename="../algorithms/detectsigns.py" line="68"/>
         <source>The output of Import trajectory: one point per panorama with its pose and path.</source>
         <translation>La salida de «Importar trayectoria y panoramas»: un punto por panorama con su pose y su ruta.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="68"/>
+        <location filename="../algorithms/detectsigns.py" line="70"/>
         <source>ONNX model (empty: the bundled model)</source>
         <translation>Modelo ONNX (vacío: el modelo incluido)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="70"/>
+        <location filename="../algorithms/detectsigns.py" line="72"/>
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>Modelos ONNX (*.onnx);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="71"/>
+        <location filename="../algorithms/detectsigns.py" line="73"/>
         <source>A YOLO-family ONNX detector. Empty uses the model bundled with the plugin.</source>
         <translation>Un detector ONNX de la familia YOLO. Vacío usa el modelo incluido con el complemento.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="73"/>
+        <location filename="../algorithms/detectsigns.py" line="75"/>
         <source>Minimum confidence</source>
         <translation>Confianza mínima</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="74"/>
+        <location filename="../algorithms/detectsigns.py" line="76"/>
         <source>Detections scoring below this (0-1) are dropped.</source>
         <translation>Se descartan las detecciones con una puntuación inferior a este valor (0-1).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="76"/>
+        <location filename="../algorithms/detectsigns.py" line="78"/>
         <source>Class names file (optional)</source>
         <translation>Archivo de nombres de clase (opcional)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="78"/>
+        <location filename="../algorithms/detectsigns.py" line="80"/>
         <source>Text files (*.txt);;All files (*.*)</source>
         <translation>Archivos de texto (*.txt);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="79"/>
+        <location filename="../algorithms/detectsigns.py" line="81"/>
         <source>One class name per line, in the model&apos;s class order; needed when the model has no names in its metadata and no labels file beside it.</source>
         <translation>Un nombre de clase por línea, en el orden de clases del modelo; necesario cuando el modelo no tiene nombres en sus metadatos ni un archivo de etiquetas a su lado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="82"/>
+        <location filename="../algorithms/detectsigns.py" line="84"/>
         <source>Ray length (m)</source>
         <translation>Longitud del rayo (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="83"/>
+        <location filename="../algorithms/detectsigns.py" line="85"/>
         <source>Length of each detection ray from the panorama centre, in metres.</source>
         <translation>Longitud de cada rayo de detección desde el centro del panorama, en metros.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="85"/>
+        <location filename="../algorithms/detectsigns.py" line="87"/>
         <source>Also look upwards (overhead and gantry signs)</source>
         <translation>Mirar también hacia arriba (señales elevadas y de pórtico)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="86"/>
+        <location filename="../algorithms/detectsigns.py" line="88"/>
         <source>Adds a ring of views tilted 35° up; unchecked halves the work but misses signs high above the road close to the vehicle.</source>
         <translation>Añade un anillo de vistas inclinadas 35° hacia arriba; si se desmarca, el trabajo se reduce a la mitad, pero se pierden las señales situadas muy por encima de la calzada cerca del vehículo.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="89"/>
+        <location filename="../algorithms/detectsigns.py" line="91"/>
         <source>CPU threads (0: all)</source>
         <translation>Hilos de CPU (0: todos)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="90"/>
+        <location filename="../algorithms/detectsigns.py" line="92"/>
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>Hilos que onnxruntime puede usar en la CPU; 0 le permite usar todos los núcleos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="92"/>
+        <location filename="../algorithms/detectsigns.py" line="94"/>
         <location filename="../algorithms/projectdetections.py" line="63"/>
         <location filename="../algorithms/projectdetections.py" line="40"/>
         <source>Detections</source>
         <translation>Detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="93"/>
+        <location filename="../algorithms/detectsigns.py" line="95"/>
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, u0, v0, u1, v1, n_views and the station&apos;s pose fields.</source>
         <translation>Capa LineStringZ, un rayo por detección, con det_id, station_id, image, class, score, u0, v0, u1, v1, n_views y los campos de pose de la estación.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="95"/>
+        <location filename="../algorithms/detectsigns.py" line="97"/>
         <source>Number of detections</source>
         <translation>Número de detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="96"/>
+        <location filename="../algorithms/detectsigns.py" line="98"/>
         <source>Panoramas skipped</source>
         <translation>Panoramas omitidos</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="107"/>
-        <location filename="../algorithms/detectsigns.py" line="65"/>
+        <location filename="../algorithms/detectsigns.py" line="109"/>
+        <location filename="../algorithms/detectsigns.py" line="67"/>
         <location filename="../algorithms/importtrajectory.py" line="107"/>
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="111"/>
+        <location filename="../algorithms/detectsigns.py" line="113"/>
         <source>ONNX model not found: {}{}</source>
         <translation>No se encontró el modelo ONNX: {}{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="112"/>
+        <location filename="../algorithms/detectsigns.py" line="114"/>
         <source> (no model is bundled with this version: give your own)</source>
         <translation> (esta versión no incluye ningún modelo: indique el suyo)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="128"/>
+        <location filename="../algorithms/detectsigns.py" line="130"/>
         <source>{} panoramas, {} views each</source>
         <translation>{} panoramas, {} vistas cada uno</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="132"/>
+        <location filename="../algorithms/detectsigns.py" line="134"/>
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>Se omitieron {} panorama(s) que no se pudieron leer.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="161"/>
+        <location filename="../algorithms/detectsigns.py" line="163"/>
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} detecciones en {} panoramas ({} omitidos).</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="16"/>
+        <location filename="../algorithms/evaluate.py" line="17"/>
         <source>True positives (matched signs)</source>
         <translation>Verdaderos positivos (señales emparejadas)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="16"/>
+        <location filename="../algorithms/evaluate.py" line="17"/>
         <source>False positives (unmatched signs)</source>
         <translation>Falsos positivos (señales sin pareja)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="17"/>
+        <location filename="../algorithms/evaluate.py" line="18"/>
         <source>False negatives (missed reference panels)</source>
         <translation>Falsos negativos (paneles de referencia no detectados)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="17"/>
+        <location filename="../algorithms/evaluate.py" line="18"/>
         <source>Precision</source>
         <translation>Precisión</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="18"/>
+        <location filename="../algorithms/evaluate.py" line="19"/>
         <source>Recall</source>
         <translation>Exhaustividad (recall)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="18"/>
+        <location filename="../algorithms/evaluate.py" line="19"/>
         <source>F1 score</source>
         <translation>Puntuación F1</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="18"/>
+        <location filename="../algorithms/evaluate.py" line="19"/>
         <source>Class accuracy of matches</source>
         <translation>Exactitud de clase de los emparejamientos</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="19"/>
+        <location filename="../algorithms/evaluate.py" line="20"/>
         <source>Median 3D position error (m)</source>
         <translation>Mediana del error de posición 3D (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="19"/>
+        <location filename="../algorithms/evaluate.py" line="20"/>
         <source>95th percentile 3D error (m)</source>
         <translation>Percentil 95 del error 3D (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="20"/>
+        <location filename="../algorithms/evaluate.py" line="21"/>
         <source>Median height error (m)</source>
         <translation>Mediana del error de altura (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="21"/>
+        <location filename="../algorithms/evaluate.py" line="22"/>
         <source>Median azimuth error (°)</source>
         <translation>Mediana del error de acimut (°)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="22"/>
+        <location filename="../algorithms/evaluate.py" line="23"/>
         <source>Median horizontal position error (m)</source>
         <translation>Mediana del error de posición horizontal (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="23"/>
+        <location filename="../algorithms/evaluate.py" line="24"/>
         <source>Median vertical position error (m)</source>
         <translation>Mediana del error de posición vertical (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="74"/>
+        <location filename="../algorithms/evaluate.py" line="49"/>
+        <source>{layer}: no field &apos;class&apos;; fields found: {found}</source>
+        <translation>{layer}: no hay campo &apos;class&apos;; campos encontrados: {found}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="76"/>
         <source>Evaluate signs against reference</source>
         <translation>Evaluar señales frente a la referencia</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="76"/>
+        <location filename="../algorithms/evaluate.py" line="78"/>
         <source>Scores a sign layer against reference sign panels and writes an HTML report.</source>
         <translation>Puntúa una capa de señales frente a paneles de referencia y escribe un informe HTML.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="78"/>
+        <location filename="../algorithms/evaluate.py" line="80"/>
         <source>Matches each sign to at most one reference panel by optimal assignment (Hungarian method) on the 3D distance between panel centres, within the match radius and ignoring class, then reports precision (matches / signs), recall (matches / reference panels), F1, the class accuracy of the matches, and the median and 95th percentile position error, the median height error and the median azimuth error.&lt;br&gt;&lt;br&gt;The &lt;b&gt;reference&lt;/b&gt; is a CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt; in the sign layer&apos;s CRS, or a point layer with those fields (reprojected to the sign layer&apos;s CRS).&lt;br&gt;&lt;br&gt;The HTML report has the summary and one row per sign: matched (with its errors), missed or false.</source>
         <translation>Empareja cada señal con como máximo un panel de referencia mediante asignación óptima (método húngaro) según la distancia 3D entre los centros de los paneles, dentro del radio de emparejamiento y sin tener en cuenta la clase; después informa de la precisión (emparejamientos / señales), la exhaustividad (emparejamientos / paneles de referencia), F1, la exactitud de clase de los emparejamientos, la mediana y el percentil 95 del error de posición, la mediana del error de altura y la mediana del error de acimut.&lt;br&gt;&lt;br&gt;La &lt;b&gt;referencia&lt;/b&gt; es un CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt; en el SRC de la capa de señales, o una capa de puntos con esos campos (reproyectada al SRC de la capa de señales).&lt;br&gt;&lt;br&gt;El informe HTML contiene el resumen y una fila por señal: emparejada (con sus errores), no detectada o falsa.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="91"/>
+        <location filename="../algorithms/evaluate.py" line="93"/>
         <source>The sign layer to score (PointZ at the panel centres, e.g. the output of Refine signs), with the fields sign_id, class and optionally height, azimuth, best_image.</source>
         <translation>La capa de señales que se puntúa (PointZ en los centros de los paneles, p. ej. la salida de «Refinar y fusionar señales»), con los campos sign_id, class y opcionalmente height, azimuth, best_image.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="94"/>
+        <location filename="../algorithms/evaluate.py" line="96"/>
         <source>Reference signs (CSV or point layer)</source>
         <translation>Señales de referencia (CSV o capa de puntos)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="96"/>
+        <location filename="../algorithms/evaluate.py" line="98"/>
         <source>Reference signs (*.csv *.txt *.gpkg *.shp *.geojson);;All files (*.*)</source>
         <translation>Señales de referencia (*.csv *.txt *.gpkg *.shp *.geojson);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="97"/>
+        <location filename="../algorithms/evaluate.py" line="99"/>
         <source>Ground truth: a CSV sign_id,class,x,y,z,height,width,panel_height,azimuth in the sign layer&apos;s CRS, or a point layer with those fields (reprojected if its CRS differs).</source>
         <translation>Verdad de terreno: un CSV sign_id,class,x,y,z,height,width,panel_height,azimuth en el SRC de la capa de señales, o una capa de puntos con esos campos (reproyectada si su SRC es distinto).</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="100"/>
+        <location filename="../algorithms/evaluate.py" line="102"/>
         <source>Match radius (m)</source>
         <translation>Radio de emparejamiento (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="101"/>
+        <location filename="../algorithms/evaluate.py" line="103"/>
         <source>A sign and a reference panel farther apart than this (3D distance between panel centres, metres) are never matched.</source>
         <translation>Una señal y un panel de referencia separados más que esto (distancia 3D entre los centros de los paneles, en metros) nunca se emparejan.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="104"/>
+        <location filename="../algorithms/evaluate.py" line="106"/>
         <source>Evaluation report</source>
         <translation>Informe de evaluación</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="104"/>
+        <location filename="../algorithms/evaluate.py" line="106"/>
         <location filename="../algorithms/refinesigns.py" line="79"/>
         <source>HTML files (*.html)</source>
         <translation>Archivos HTML (*.html)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="105"/>
+        <location filename="../algorithms/evaluate.py" line="107"/>
         <source>HTML report: the summary and one row per sign and reference panel.</source>
         <translation>Informe HTML: el resumen y una fila por señal y por panel de referencia.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="111"/>
+        <location filename="../algorithms/evaluate.py" line="113"/>
         <source>Reference file not found: {}</source>
         <translation>No se encontró el archivo de referencia: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="113"/>
+        <location filename="../algorithms/evaluate.py" line="115"/>
         <source>Reference CSV {}: coordinates taken in the sign layer&apos;s CRS ({})</source>
         <translation>CSV de referencia {}: coordenadas tomadas en el SRC de la capa de señales ({})</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="120"/>
+        <location filename="../algorithms/evaluate.py" line="122"/>
         <source>Cannot read the reference {}: expected a CSV or a point layer</source>
         <translation>No se puede leer la referencia {}: se esperaba un CSV o una capa de puntos</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="123"/>
+        <location filename="../algorithms/evaluate.py" line="125"/>
         <source>Reprojecting the reference from {} to {}</source>
         <translation>Reproyectando la referencia de {} a {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="137"/>
-        <location filename="../algorithms/evaluate.py" line="90"/>
+        <location filename="../algorithms/evaluate.py" line="139"/>
+        <location filename="../algorithms/evaluate.py" line="92"/>
         <source>Sign layer</source>
         <translation>Capa de señales</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="139"/>
+        <location filename="../algorithms/evaluate.py" line="141"/>
         <source>The sign layer is empty: nothing to evaluate.</source>
         <translation>La capa de señales está vacía: no hay nada que evaluar.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="143"/>
+        <location filename="../algorithms/evaluate.py" line="145"/>
         <source>The reference {} has no sign: nothing to evaluate against.</source>
         <translation>La referencia {} no tiene ninguna señal: no hay nada con qué comparar.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="148"/>
+        <location filename="../algorithms/evaluate.py" line="150"/>
         <source>Road sign evaluation</source>
         <translation>Evaluación de señales viales</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="155"/>
+        <location filename="../algorithms/evaluate.py" line="157"/>
         <source>{} signs, {} reference panels: TP {}, FP {}, FN {}; precision {}, recall {}, median error {} m</source>
         <translation>{} señales, {} paneles de referencia: TP {}, FP {}, FN {}; precisión {}, exhaustividad {}, mediana del error {} m</translation>
     </message>
@@ -725,6 +735,16 @@
         <translation>{} estaciones de panorama escritas.</translation>
     </message>
     <message>
+        <location filename="../algorithms/layers.py" line="36"/>
+        <source>{layer}: missing field(s) {missing}; fields found: {found}</source>
+        <translation>{layer}: falta(n) el/los campo(s) {missing}; campos encontrados: {found}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/layers.py" line="81"/>
+        <source>{layer} is in {layer_crs}, the point cloud {cloud} in {cloud_crs}: import the trajectory with the cloud&apos;s CRS as target CRS so that every stage works in one CRS</source>
+        <translation>{layer} está en {layer_crs} y la nube de puntos {cloud} en {cloud_crs}: importe la trayectoria con el SRC de la nube como SRC de destino para que todas las etapas trabajen en un mismo SRC</translation>
+    </message>
+    <message>
         <location filename="../algorithms/projectdetections.py" line="21"/>
         <source>Project detections into the point cloud</source>
         <translation>Proyectar detecciones en la nube de puntos</translation>
@@ -955,32 +975,50 @@
         <translation>No se reconoce el {role} &apos;{crs}&apos;: {error}</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="88"/>
+        <location filename="../core/crs.py" line="69"/>
+        <source>Heights: pass through unchanged (the target CRS has no vertical datum)</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Alturas: se mantienen sin cambios (el SRC de destino no tiene datum vertical)</translation>
+    </message>
+    <message>
+        <location filename="../core/crs.py" line="72"/>
+        <source>Heights: the geoid grid for {crs} is not installed: heights stay as they are (ellipsoidal), only the horizontal position is transformed</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Alturas: la rejilla del geoide para {crs} no está instalada: las alturas quedan como están (elipsoidales), solo se transforma la posición horizontal</translation>
+    </message>
+    <message>
+        <location filename="../core/crs.py" line="76"/>
+        <source>Heights: transformed to {crs}: {operation}</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Alturas: transformadas a {crs}: {operation}</translation>
+    </message>
+    <message>
+        <location filename="../core/crs.py" line="90"/>
         <source>Cannot transform positions from {source} to {target}: {error}</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se pueden transformar las posiciones de {source} a {target}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="93"/>
+        <location filename="../core/crs.py" line="95"/>
         <source>Transforming positions from {source} to {target} gave invalid values (outside the CRS&apos;s area, or a missing vertical grid)</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La transformación de las posiciones de {source} a {target} dio valores no válidos (fuera del área del SRC, o falta una malla vertical)</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="110"/>
-        <location filename="../core/crs.py" line="120"/>
+        <location filename="../core/crs.py" line="112"/>
+        <location filename="../core/crs.py" line="122"/>
         <source>trajectory CRS</source>
         <extracomment>A fragment filled into {what}, {role} or {kind} of error messages (a kind of file or CRS, or &apos;is duplicated&apos;): write it to fit those messages&apos; translations, lowercase.</extracomment>
         <translation>SRC de la trayectoria</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="121"/>
+        <location filename="../core/crs.py" line="123"/>
         <source>target CRS</source>
         <extracomment>A fragment filled into {what}, {role} or {kind} of error messages (a kind of file or CRS, or &apos;is duplicated&apos;): write it to fit those messages&apos; translations, lowercase.</extracomment>
         <translation>SRC de destino</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="123"/>
+        <location filename="../core/crs.py" line="125"/>
         <source>The target CRS {crs} is not projected: expected a projected CRS in metres (e.g. a UTM zone)</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El SRC de destino {crs} no es proyectado: se esperaba un SRC proyectado en metros (p. ej. una zona UTM)</translation>
@@ -1126,6 +1164,12 @@
         <translation>No se puede leer {path}: el archivo está dañado ({detail})</translation>
     </message>
     <message>
+        <location filename="../core/ground.py" line="700"/>
+        <source>No point of {path} has the returns &apos;{returns}&apos;: nothing was classified</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Ningún punto de {path} tiene los retornos &apos;{returns}&apos;: no se clasificó nada</translation>
+    </message>
+    <message>
         <location filename="../core/ground.py" line="814"/>
         <source>PDAL executable {path} not found or not executable</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -1173,6 +1217,30 @@
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS&apos;s bin folder)</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se pidió PDAL, pero no se encontró ni el módulo de Python pdal ni un ejecutable pdal (PATH, carpeta bin de QGIS)</translation>
+    </message>
+    <message>
+        <location filename="../core/ground.py" line="956"/>
+        <source>PDAL not found: using the built-in engine</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se encontró PDAL: se usa el motor integrado</translation>
+    </message>
+    <message>
+        <location filename="../core/ground.py" line="970"/>
+        <source>PDAL failed, the built-in engine was used instead: {error}</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>PDAL falló; se usó el motor integrado en su lugar: {error}</translation>
+    </message>
+    <message>
+        <location filename="../core/ground.py" line="986"/>
+        <source>No point of {path} is left after the crop: {output} has no points</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No queda ningún punto de {path} tras el recorte: {output} no tiene puntos</translation>
+    </message>
+    <message>
+        <location filename="../core/ground.py" line="1007"/>
+        <source>No crop polygons: the crop buffer is ignored</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No hay polígonos de recorte: se ignora el búfer de recorte</translation>
     </message>
     <message>
         <location filename="../core/panorama.py" line="31"/>
@@ -1266,6 +1334,12 @@
         <translation>{path} no tiene sistema de referencia de coordenadas y no se indicó ninguno</translation>
     </message>
     <message>
+        <location filename="../core/pointcloud.py" line="362"/>
+        <source>No point of {path} lies inside the crop area; {output} is empty</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Ningún punto de {path} está dentro del área de recorte; {output} está vacío</translation>
+    </message>
+    <message>
         <location filename="../core/pointcloud.py" line="441"/>
         <source>{path} has no dimension {names} (point format {fmt})</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -1332,10 +1406,124 @@
         <translation>El alcance máximo debe superar {min} m; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="578"/>
+        <location filename="../core/projection.py" line="579"/>
+        <source>No detections to project; the candidates are empty</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No hay detecciones que proyectar; los candidatos están vacíos</translation>
+    </message>
+    <message>
+        <location filename="../core/projection.py" line="588"/>
+        <source>{path} has no point inside the detections&apos; frusta; no candidate found</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{path} no tiene puntos dentro de los troncos de visión de las detecciones; no se encontró ningún candidato</translation>
+    </message>
+    <message>
+        <location filename="../core/projection.py" line="640"/>
+        <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{ok} de {count} detecciones encontraron una superficie en la nube ({no_points} sin puntos, {no_surface} sin superficie plana)</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="70"/>
+        <source>curved surface (a convex mirror?)</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>superficie curva (¿un espejo convexo?)</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="71"/>
+        <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>parte de una superficie plana mayor (¿una imagen en una valla publicitaria o una pared?)</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="343"/>
+        <source>too few points</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>muy pocos puntos</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="357"/>
+        <source>too few points in the boxes</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>muy pocos puntos en los recuadros</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="378"/>
+        <source>no near-vertical plane</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>ningún plano casi vertical</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="396"/>
+        <source>too few planar points</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>muy pocos puntos planos</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="668"/>
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El radio de fusión debe ser positivo; se recibió {value} m</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="677"/>
+        <source>No candidates to refine; the sign layer is empty</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No hay candidatos que refinar; la capa de señales está vacía</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="697"/>
+        <source>no point cloud</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>sin nube de puntos</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="700"/>
+        <source>Candidates {ids} dropped: {reason}</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Candidatos {ids} descartados: {reason}</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="704"/>
+        <source>Candidates {ids}: {reason}; placed at the candidates&apos; median</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Candidatos {ids}: {reason}; situados en la mediana de los candidatos</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="793"/>
+        <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Candidatos {ids} descartados: un panel de {width:.2f} x {height:.2f} m es demasiado grande para una señal {sign_class} (¿una valla publicitaria?)</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="806"/>
+        <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Candidatos {ids} descartados: vistos en una sola panorámica, con una puntuación de {score:.2f}</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="823"/>
+        <source>the stations&apos; height minus {height} m</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>la altura de las estaciones menos {height} m</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="824"/>
+        <source>the lowest points below the sign</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>los puntos más bajos bajo la señal</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="828"/>
+        <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{count} señal(es) no tienen puntos de suelo (clase 2) a menos de {radius} m: su altura se mide desde {source}</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="832"/>
+        <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{signs} señales a partir de {candidates} candidatos ({from_images} situadas solo a partir de las imágenes)</translation>
     </message>
     <message>
         <location filename="../core/tables.py" line="54"/>
@@ -1484,38 +1672,74 @@
         <translation>Archivo de tiempos de imagen {path}, {location}: el tiempo {time} de la imagen &apos;{image}&apos; está fuera del intervalo de la trayectoria [{start}, {end}] ({count} imagen(es) fuera en total; active la opción para omitirlas)</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="240"/>
+        <location filename="../core/trajectory.py" line="234"/>
+        <source>Skipped {count} image(s) whose time is outside the trajectory&apos;s span [{start}, {end}], the first: {image}</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Se omitieron {count} imagen(es) cuyo tiempo está fuera del intervalo de la trayectoria [{start}, {end}]; la primera: {image}</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="241"/>
         <source>No image time falls inside the trajectory&apos;s span [{start}, {end}]</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún tiempo de imagen cae dentro del intervalo de la trayectoria [{start}, {end}]</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="262"/>
+        <location filename="../core/trajectory.py" line="251"/>
+        <source>{count} image(s) fall in a trajectory gap longer than {max_gap} s; the longest gap is {gap:.3f} s around image &apos;{image}&apos; at time {time}</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{count} imagen(es) caen en un hueco de la trayectoria de más de {max_gap} s; el hueco más largo es de {gap:.3f} s, en torno a la imagen &apos;{image}&apos; en el tiempo {time}</translation>
+    </message>
+    <message>
         <location filename="../core/trajectory.py" line="264"/>
+        <location filename="../core/trajectory.py" line="266"/>
         <source>Poses</source>
         <extracomment>A fragment filled into {what}, {role} or {kind} of error messages (a kind of file or CRS, or &apos;is duplicated&apos;): write it to fit those messages&apos; translations, lowercase.</extracomment>
         <translation>poses</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="334"/>
+        <location filename="../core/trajectory.py" line="316"/>
+        <source>Skipped {count} panorama(s) that are missing or unreadable; the first: {path}</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Se omitieron {count} panorámica(s) que faltan o no se pueden leer; la primera: {path}</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="336"/>
         <source>Panorama folder not found: {path}</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró la carpeta de panoramas: {path}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="337"/>
+        <location filename="../core/trajectory.py" line="339"/>
         <source>Give either a per-image pose file, or a trajectory with image times, not both</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Indique un archivo de poses por imagen o una trayectoria con tiempos de imagen, no ambos</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="344"/>
+        <location filename="../core/trajectory.py" line="346"/>
         <source>A trajectory file and an image times file are needed (or a per-image pose file instead)</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se necesitan un archivo de trayectoria y un archivo de tiempos de imagen (o, en su lugar, un archivo de poses por imagen)</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="370"/>
+        <location filename="../core/trajectory.py" line="351"/>
+        <source>SBET trajectory: WGS 84 geographic with ellipsoidal heights, {count} records</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Trayectoria SBET: WGS 84 geográfico con alturas elipsoidales, {count} registros</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="355"/>
+        <source>Trajectory: {count} samples over {span:.1f} s</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Trayectoria: {count} muestras en {span:.1f} s</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="366"/>
+        <source>No target CRS given: using {crs}</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se indicó SRC de destino: se usa {crs}</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="373"/>
         <source>None of the {count} panoramas listed was found in {folder}</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró en {folder} ninguno de los {count} panoramas de la lista</translation>

@@ -50,323 +50,333 @@
         <translation>LAS/LAZ 点云 (*.las *.laz *.LAS *.LAZ);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="112"/>
+        <location filename="../algorithms/base.py" line="125"/>
         <source>Cancelled: nothing was written.</source>
         <translation>已取消：未写入任何内容。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="47"/>
+        <location filename="../algorithms/detectsigns.py" line="38"/>
+        <source>{layer}: missing field(s) {missing}; fields found: {found}; expected the output of Import trajectory</source>
+        <translation>{layer}：缺少字段 {missing}；找到的字段：{found}；应为“导入轨迹”的输出</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="49"/>
         <source>Detect signs in panoramas</source>
         <translation>在全景图中检测标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="49"/>
+        <location filename="../algorithms/detectsigns.py" line="51"/>
         <source>Runs an ONNX sign detector on each panorama; one ray per detected sign.</source>
         <translation>在每张全景图上运行 ONNX 标志检测器；每个检测到的标志生成一条射线。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="51"/>
+        <location filename="../algorithms/detectsigns.py" line="53"/>
         <source>Cuts each station&apos;s equirectangular panorama into overlapping perspective views (a horizon ring, and an upward ring for overhead signs), runs the ONNX detector on each view, maps the boxes back to panorama pixels and merges the same sign found in two views.&lt;br&gt;&lt;br&gt;The &lt;b&gt;model&lt;/b&gt; is the bundled one when left empty, or your own ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model with NMS built in ([1, N, 6]). Class names come from the model&apos;s metadata (Ultralytics &lt;i&gt;names&lt;/i&gt;) or a labels file (one name per line).&lt;br&gt;&lt;br&gt;Output: one line per detection from the panorama centre along the ray through the box centre, &lt;i&gt;Ray length&lt;/i&gt; long, with the box (u0, v0, u1, v1 in panorama pixels; across the ±180° seam u1 exceeds the width) and the station&apos;s pose. A panorama that cannot be read is skipped with a warning and counted.</source>
         <translation>将每个站点的等距柱状全景图切分为相互重叠的透视视图（一圈水平视图，以及一圈用于悬挂式标志的上视视图），在每个视图上运行 ONNX 检测器，将检测框映射回全景图像素，并合并在两个视图中找到的同一标志。&lt;br&gt;&lt;br&gt;&lt;b&gt;模型&lt;/b&gt;留空时使用内置模型，也可以是您自己导出的 ONNX 模型：Ultralytics YOLOv8/11（[1, 4+nc, N]）、YOLOv5/7（[1, N, 5+nc]）或内置 NMS 的模型（[1, N, 6]）。类别名称来自模型元数据（Ultralytics &lt;i&gt;names&lt;/i&gt;）或标签文件（每行一个名称）。&lt;br&gt;&lt;br&gt;输出：每个检测一条线，从全景图中心沿穿过检测框中心的射线延伸，长度为&lt;i&gt;射线长度&lt;/i&gt;，附带检测框（u0、v0、u1、v1，单位为全景图像素；跨越 ±180° 接缝时 u1 大于图像宽度）和站点位姿。无法读取的全景图将被跳过，并给出警告和计数。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="66"/>
+        <location filename="../algorithms/detectsigns.py" line="68"/>
         <source>The output of Import trajectory: one point per panorama with its pose and path.</source>
         <translation>“导入轨迹和全景图”的输出：每张全景图一个点，带有其位姿和路径。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="68"/>
+        <location filename="../algorithms/detectsigns.py" line="70"/>
         <source>ONNX model (empty: the bundled model)</source>
         <translation>ONNX 模型（留空：使用内置模型）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="70"/>
+        <location filename="../algorithms/detectsigns.py" line="72"/>
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>ONNX 模型 (*.onnx);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="71"/>
+        <location filename="../algorithms/detectsigns.py" line="73"/>
         <source>A YOLO-family ONNX detector. Empty uses the model bundled with the plugin.</source>
         <translation>YOLO 系列 ONNX 检测器。留空则使用插件内置的模型。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="73"/>
+        <location filename="../algorithms/detectsigns.py" line="75"/>
         <source>Minimum confidence</source>
         <translation>最低置信度</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="74"/>
+        <location filename="../algorithms/detectsigns.py" line="76"/>
         <source>Detections scoring below this (0-1) are dropped.</source>
         <translation>得分低于此值（0-1）的检测将被丢弃。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="76"/>
+        <location filename="../algorithms/detectsigns.py" line="78"/>
         <source>Class names file (optional)</source>
         <translation>类别名称文件（可选）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="78"/>
+        <location filename="../algorithms/detectsigns.py" line="80"/>
         <source>Text files (*.txt);;All files (*.*)</source>
         <translation>文本文件 (*.txt);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="79"/>
+        <location filename="../algorithms/detectsigns.py" line="81"/>
         <source>One class name per line, in the model&apos;s class order; needed when the model has no names in its metadata and no labels file beside it.</source>
         <translation>每行一个类别名称，按模型的类别顺序排列；当模型元数据中没有名称且旁边没有标签文件时需要提供。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="82"/>
+        <location filename="../algorithms/detectsigns.py" line="84"/>
         <source>Ray length (m)</source>
         <translation>射线长度 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="83"/>
+        <location filename="../algorithms/detectsigns.py" line="85"/>
         <source>Length of each detection ray from the panorama centre, in metres.</source>
         <translation>每条检测射线从全景图中心起算的长度，单位为米。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="85"/>
+        <location filename="../algorithms/detectsigns.py" line="87"/>
         <source>Also look upwards (overhead and gantry signs)</source>
         <translation>同时向上看（悬挂式和门架式标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="86"/>
+        <location filename="../algorithms/detectsigns.py" line="88"/>
         <source>Adds a ring of views tilted 35° up; unchecked halves the work but misses signs high above the road close to the vehicle.</source>
         <translation>增加一圈上仰 35° 的视图；不勾选可将工作量减半，但会漏掉车辆附近高悬于道路上方的标志。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="89"/>
+        <location filename="../algorithms/detectsigns.py" line="91"/>
         <source>CPU threads (0: all)</source>
         <translation>CPU 线程数（0：全部）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="90"/>
+        <location filename="../algorithms/detectsigns.py" line="92"/>
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>onnxruntime 在 CPU 上可使用的线程数；0 表示使用所有核心。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="92"/>
+        <location filename="../algorithms/detectsigns.py" line="94"/>
         <location filename="../algorithms/projectdetections.py" line="63"/>
         <location filename="../algorithms/projectdetections.py" line="40"/>
         <source>Detections</source>
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="93"/>
+        <location filename="../algorithms/detectsigns.py" line="95"/>
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, u0, v0, u1, v1, n_views and the station&apos;s pose fields.</source>
         <translation>LineStringZ 图层，每个检测一条射线，包含字段 det_id、station_id、image、class、score、u0、v0、u1、v1、n_views 以及站点的位姿字段。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="95"/>
+        <location filename="../algorithms/detectsigns.py" line="97"/>
         <source>Number of detections</source>
         <translation>检测数量</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="96"/>
+        <location filename="../algorithms/detectsigns.py" line="98"/>
         <source>Panoramas skipped</source>
         <translation>跳过的全景图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="107"/>
-        <location filename="../algorithms/detectsigns.py" line="65"/>
+        <location filename="../algorithms/detectsigns.py" line="109"/>
+        <location filename="../algorithms/detectsigns.py" line="67"/>
         <location filename="../algorithms/importtrajectory.py" line="107"/>
         <source>Panorama stations</source>
         <translation>全景站点</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="111"/>
+        <location filename="../algorithms/detectsigns.py" line="113"/>
         <source>ONNX model not found: {}{}</source>
         <translation>未找到 ONNX 模型：{}{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="112"/>
+        <location filename="../algorithms/detectsigns.py" line="114"/>
         <source> (no model is bundled with this version: give your own)</source>
         <translation>（此版本未附带模型：请提供您自己的模型）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="128"/>
+        <location filename="../algorithms/detectsigns.py" line="130"/>
         <source>{} panoramas, {} views each</source>
         <translation>{} 张全景图，每张 {} 个视图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="132"/>
+        <location filename="../algorithms/detectsigns.py" line="134"/>
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>跳过了 {} 张无法读取的全景图。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="161"/>
+        <location filename="../algorithms/detectsigns.py" line="163"/>
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} 个检测，来自 {} 张全景图（跳过 {} 张）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="16"/>
+        <location filename="../algorithms/evaluate.py" line="17"/>
         <source>True positives (matched signs)</source>
         <translation>真正例（匹配的标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="16"/>
+        <location filename="../algorithms/evaluate.py" line="17"/>
         <source>False positives (unmatched signs)</source>
         <translation>假正例（未匹配的标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="17"/>
+        <location filename="../algorithms/evaluate.py" line="18"/>
         <source>False negatives (missed reference panels)</source>
         <translation>假反例（漏检的参考标志牌）</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="17"/>
+        <location filename="../algorithms/evaluate.py" line="18"/>
         <source>Precision</source>
         <translation>精确率</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="18"/>
+        <location filename="../algorithms/evaluate.py" line="19"/>
         <source>Recall</source>
         <translation>召回率</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="18"/>
+        <location filename="../algorithms/evaluate.py" line="19"/>
         <source>F1 score</source>
         <translation>F1 分数</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="18"/>
+        <location filename="../algorithms/evaluate.py" line="19"/>
         <source>Class accuracy of matches</source>
         <translation>匹配的类别准确率</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="19"/>
+        <location filename="../algorithms/evaluate.py" line="20"/>
         <source>Median 3D position error (m)</source>
         <translation>三维位置误差中位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="19"/>
+        <location filename="../algorithms/evaluate.py" line="20"/>
         <source>95th percentile 3D error (m)</source>
         <translation>三维误差第 95 百分位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="20"/>
+        <location filename="../algorithms/evaluate.py" line="21"/>
         <source>Median height error (m)</source>
         <translation>高度误差中位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="21"/>
+        <location filename="../algorithms/evaluate.py" line="22"/>
         <source>Median azimuth error (°)</source>
         <translation>方位角误差中位数 (°)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="22"/>
+        <location filename="../algorithms/evaluate.py" line="23"/>
         <source>Median horizontal position error (m)</source>
         <translation>水平位置误差中位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="23"/>
+        <location filename="../algorithms/evaluate.py" line="24"/>
         <source>Median vertical position error (m)</source>
         <translation>垂直位置误差中位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="74"/>
+        <location filename="../algorithms/evaluate.py" line="49"/>
+        <source>{layer}: no field &apos;class&apos;; fields found: {found}</source>
+        <translation>{layer}：没有字段 &apos;class&apos;；找到的字段：{found}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="76"/>
         <source>Evaluate signs against reference</source>
         <translation>对照参考数据评估标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="76"/>
+        <location filename="../algorithms/evaluate.py" line="78"/>
         <source>Scores a sign layer against reference sign panels and writes an HTML report.</source>
         <translation>将标志图层与参考标志牌进行对比评分，并生成 HTML 报告。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="78"/>
+        <location filename="../algorithms/evaluate.py" line="80"/>
         <source>Matches each sign to at most one reference panel by optimal assignment (Hungarian method) on the 3D distance between panel centres, within the match radius and ignoring class, then reports precision (matches / signs), recall (matches / reference panels), F1, the class accuracy of the matches, and the median and 95th percentile position error, the median height error and the median azimuth error.&lt;br&gt;&lt;br&gt;The &lt;b&gt;reference&lt;/b&gt; is a CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt; in the sign layer&apos;s CRS, or a point layer with those fields (reprojected to the sign layer&apos;s CRS).&lt;br&gt;&lt;br&gt;The HTML report has the summary and one row per sign: matched (with its errors), missed or false.</source>
         <translation>通过最优分配（匈牙利算法），依据标志牌中心之间的三维距离，在匹配半径内且不考虑类别，将每个标志与至多一个参考标志牌匹配；然后报告精确率（匹配数 / 标志数）、召回率（匹配数 / 参考标志牌数）、F1、匹配的类别准确率，以及位置误差的中位数和第 95 百分位数、高度误差中位数和方位角误差中位数。&lt;br&gt;&lt;br&gt;&lt;b&gt;参考数据&lt;/b&gt;为位于标志图层坐标参考系中的 CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt;，或具有这些字段的点图层（重投影到标志图层的坐标参考系）。&lt;br&gt;&lt;br&gt;HTML 报告包含汇总信息，并为每个标志列出一行：已匹配（附其误差）、漏检或误检。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="91"/>
+        <location filename="../algorithms/evaluate.py" line="93"/>
         <source>The sign layer to score (PointZ at the panel centres, e.g. the output of Refine signs), with the fields sign_id, class and optionally height, azimuth, best_image.</source>
         <translation>要评分的标志图层（位于标志牌中心的 PointZ，例如“精化与合并标志”的输出），包含字段 sign_id、class，以及可选的 height、azimuth、best_image。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="94"/>
+        <location filename="../algorithms/evaluate.py" line="96"/>
         <source>Reference signs (CSV or point layer)</source>
         <translation>参考标志（CSV 或点图层）</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="96"/>
+        <location filename="../algorithms/evaluate.py" line="98"/>
         <source>Reference signs (*.csv *.txt *.gpkg *.shp *.geojson);;All files (*.*)</source>
         <translation>参考标志 (*.csv *.txt *.gpkg *.shp *.geojson);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="97"/>
+        <location filename="../algorithms/evaluate.py" line="99"/>
         <source>Ground truth: a CSV sign_id,class,x,y,z,height,width,panel_height,azimuth in the sign layer&apos;s CRS, or a point layer with those fields (reprojected if its CRS differs).</source>
         <translation>真值数据：位于标志图层坐标参考系中的 CSV sign_id,class,x,y,z,height,width,panel_height,azimuth，或具有这些字段的点图层（若其坐标参考系不同则进行重投影）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="100"/>
+        <location filename="../algorithms/evaluate.py" line="102"/>
         <source>Match radius (m)</source>
         <translation>匹配半径 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="101"/>
+        <location filename="../algorithms/evaluate.py" line="103"/>
         <source>A sign and a reference panel farther apart than this (3D distance between panel centres, metres) are never matched.</source>
         <translation>距离超过此值（标志牌中心之间的三维距离，单位为米）的标志与参考标志牌永远不会被匹配。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="104"/>
+        <location filename="../algorithms/evaluate.py" line="106"/>
         <source>Evaluation report</source>
         <translation>评估报告</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="104"/>
+        <location filename="../algorithms/evaluate.py" line="106"/>
         <location filename="../algorithms/refinesigns.py" line="79"/>
         <source>HTML files (*.html)</source>
         <translation>HTML 文件 (*.html)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="105"/>
+        <location filename="../algorithms/evaluate.py" line="107"/>
         <source>HTML report: the summary and one row per sign and reference panel.</source>
         <translation>HTML 报告：汇总信息，以及每个标志和参考标志牌各一行。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="111"/>
+        <location filename="../algorithms/evaluate.py" line="113"/>
         <source>Reference file not found: {}</source>
         <translation>未找到参考文件：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="113"/>
+        <location filename="../algorithms/evaluate.py" line="115"/>
         <source>Reference CSV {}: coordinates taken in the sign layer&apos;s CRS ({})</source>
         <translation>参考 CSV {}：坐标按标志图层的坐标参考系（{}）解释</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="120"/>
+        <location filename="../algorithms/evaluate.py" line="122"/>
         <source>Cannot read the reference {}: expected a CSV or a point layer</source>
         <translation>无法读取参考数据 {}：应为 CSV 或点图层</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="123"/>
+        <location filename="../algorithms/evaluate.py" line="125"/>
         <source>Reprojecting the reference from {} to {}</source>
         <translation>正在将参考数据从 {} 重投影到 {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="137"/>
-        <location filename="../algorithms/evaluate.py" line="90"/>
+        <location filename="../algorithms/evaluate.py" line="139"/>
+        <location filename="../algorithms/evaluate.py" line="92"/>
         <source>Sign layer</source>
         <translation>标志图层</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="139"/>
+        <location filename="../algorithms/evaluate.py" line="141"/>
         <source>The sign layer is empty: nothing to evaluate.</source>
         <translation>标志图层为空：没有可评估的内容。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="143"/>
+        <location filename="../algorithms/evaluate.py" line="145"/>
         <source>The reference {} has no sign: nothing to evaluate against.</source>
         <translation>参考数据 {} 中没有标志：无法进行评估。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="148"/>
+        <location filename="../algorithms/evaluate.py" line="150"/>
         <source>Road sign evaluation</source>
         <translation>道路标志评估</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="155"/>
+        <location filename="../algorithms/evaluate.py" line="157"/>
         <source>{} signs, {} reference panels: TP {}, FP {}, FN {}; precision {}, recall {}, median error {} m</source>
         <translation>{} 个标志，{} 个参考标志牌：TP {}，FP {}，FN {}；精确率 {}，召回率 {}，误差中位数 {} m</translation>
     </message>
@@ -725,6 +735,16 @@
         <translation>已写入 {} 个全景站点。</translation>
     </message>
     <message>
+        <location filename="../algorithms/layers.py" line="36"/>
+        <source>{layer}: missing field(s) {missing}; fields found: {found}</source>
+        <translation>{layer}：缺少字段 {missing}；找到的字段：{found}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/layers.py" line="81"/>
+        <source>{layer} is in {layer_crs}, the point cloud {cloud} in {cloud_crs}: import the trajectory with the cloud&apos;s CRS as target CRS so that every stage works in one CRS</source>
+        <translation>{layer} 的坐标参考系为 {layer_crs}，点云 {cloud} 的为 {cloud_crs}：请以点云的坐标参考系作为目标坐标参考系导入轨迹，使每个步骤都在同一坐标参考系中工作</translation>
+    </message>
+    <message>
         <location filename="../algorithms/projectdetections.py" line="21"/>
         <source>Project detections into the point cloud</source>
         <translation>将检测投影到点云</translation>
@@ -955,32 +975,50 @@
         <translation>无法识别的{role} &apos;{crs}&apos;：{error}</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="88"/>
+        <location filename="../core/crs.py" line="69"/>
+        <source>Heights: pass through unchanged (the target CRS has no vertical datum)</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>高程：保持不变（目标坐标参考系没有垂直基准）</translation>
+    </message>
+    <message>
+        <location filename="../core/crs.py" line="72"/>
+        <source>Heights: the geoid grid for {crs} is not installed: heights stay as they are (ellipsoidal), only the horizontal position is transformed</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>高程：未安装 {crs} 的大地水准面格网：高程保持原样（椭球高），只转换平面位置</translation>
+    </message>
+    <message>
+        <location filename="../core/crs.py" line="76"/>
+        <source>Heights: transformed to {crs}: {operation}</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>高程：已转换到 {crs}：{operation}</translation>
+    </message>
+    <message>
+        <location filename="../core/crs.py" line="90"/>
         <source>Cannot transform positions from {source} to {target}: {error}</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法将位置从 {source} 转换到 {target}：{error}</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="93"/>
+        <location filename="../core/crs.py" line="95"/>
         <source>Transforming positions from {source} to {target} gave invalid values (outside the CRS&apos;s area, or a missing vertical grid)</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>将位置从 {source} 转换到 {target} 得到无效值（超出坐标参考系的适用范围，或缺少高程格网）</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="110"/>
-        <location filename="../core/crs.py" line="120"/>
+        <location filename="../core/crs.py" line="112"/>
+        <location filename="../core/crs.py" line="122"/>
         <source>trajectory CRS</source>
         <extracomment>A fragment filled into {what}, {role} or {kind} of error messages (a kind of file or CRS, or &apos;is duplicated&apos;): write it to fit those messages&apos; translations, lowercase.</extracomment>
         <translation>轨迹坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="121"/>
+        <location filename="../core/crs.py" line="123"/>
         <source>target CRS</source>
         <extracomment>A fragment filled into {what}, {role} or {kind} of error messages (a kind of file or CRS, or &apos;is duplicated&apos;): write it to fit those messages&apos; translations, lowercase.</extracomment>
         <translation>目标坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="123"/>
+        <location filename="../core/crs.py" line="125"/>
         <source>The target CRS {crs} is not projected: expected a projected CRS in metres (e.g. a UTM zone)</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>目标坐标参考系 {crs} 不是投影坐标系：应为以米为单位的投影坐标参考系（例如 UTM 分带）</translation>
@@ -1126,6 +1164,12 @@
         <translation>无法读取 {path}：文件已损坏（{detail}）</translation>
     </message>
     <message>
+        <location filename="../core/ground.py" line="700"/>
+        <source>No point of {path} has the returns &apos;{returns}&apos;: nothing was classified</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{path} 中没有回波为 &apos;{returns}&apos; 的点：未分类任何点</translation>
+    </message>
+    <message>
         <location filename="../core/ground.py" line="814"/>
         <source>PDAL executable {path} not found or not executable</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -1173,6 +1217,30 @@
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS&apos;s bin folder)</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>要求使用 PDAL，但既没有找到 pdal Python 模块，也没有找到 pdal 可执行文件（PATH、QGIS 的 bin 文件夹）</translation>
+    </message>
+    <message>
+        <location filename="../core/ground.py" line="956"/>
+        <source>PDAL not found: using the built-in engine</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>未找到 PDAL：使用内置引擎</translation>
+    </message>
+    <message>
+        <location filename="../core/ground.py" line="970"/>
+        <source>PDAL failed, the built-in engine was used instead: {error}</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>PDAL 运行失败，已改用内置引擎：{error}</translation>
+    </message>
+    <message>
+        <location filename="../core/ground.py" line="986"/>
+        <source>No point of {path} is left after the crop: {output} has no points</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>裁剪后 {path} 没有剩余的点：{output} 中没有点</translation>
+    </message>
+    <message>
+        <location filename="../core/ground.py" line="1007"/>
+        <source>No crop polygons: the crop buffer is ignored</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>没有裁剪多边形：忽略裁剪缓冲区</translation>
     </message>
     <message>
         <location filename="../core/panorama.py" line="31"/>
@@ -1266,6 +1334,12 @@
         <translation>{path} 没有坐标参考系，也未提供坐标参考系</translation>
     </message>
     <message>
+        <location filename="../core/pointcloud.py" line="362"/>
+        <source>No point of {path} lies inside the crop area; {output} is empty</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{path} 中没有点位于裁剪区域内；{output} 为空</translation>
+    </message>
+    <message>
         <location filename="../core/pointcloud.py" line="441"/>
         <source>{path} has no dimension {names} (point format {fmt})</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -1332,10 +1406,124 @@
         <translation>最大距离必须大于 {min} m，实际为 {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="578"/>
+        <location filename="../core/projection.py" line="579"/>
+        <source>No detections to project; the candidates are empty</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>没有要投影的检测结果；候选为空</translation>
+    </message>
+    <message>
+        <location filename="../core/projection.py" line="588"/>
+        <source>{path} has no point inside the detections&apos; frusta; no candidate found</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{path} 在检测结果的视锥内没有点；未找到候选</translation>
+    </message>
+    <message>
+        <location filename="../core/projection.py" line="640"/>
+        <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{count} 个检测结果中有 {ok} 个在点云中找到了表面（{no_points} 个没有点，{no_surface} 个没有平面）</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="70"/>
+        <source>curved surface (a convex mirror?)</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>曲面（凸面镜？）</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="71"/>
+        <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>较大平面的一部分（广告牌或墙上的图案？）</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="343"/>
+        <source>too few points</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>点太少</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="357"/>
+        <source>too few points in the boxes</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>框内的点太少</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="378"/>
+        <source>no near-vertical plane</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>没有近似竖直的平面</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="396"/>
+        <source>too few planar points</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>平面点太少</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="668"/>
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>合并半径必须为正数，实际为 {value} m</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="677"/>
+        <source>No candidates to refine; the sign layer is empty</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>没有要精化的候选；标志图层为空</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="697"/>
+        <source>no point cloud</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>没有点云</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="700"/>
+        <source>Candidates {ids} dropped: {reason}</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>已丢弃候选 {ids}：{reason}</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="704"/>
+        <source>Candidates {ids}: {reason}; placed at the candidates&apos; median</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>候选 {ids}：{reason}；位置取候选的中位数</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="793"/>
+        <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>已丢弃候选 {ids}：{width:.2f} x {height:.2f} 米的面板对 {sign_class} 标志来说太大（广告牌？）</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="806"/>
+        <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>已丢弃候选 {ids}：只在一张全景图中出现，得分为 {score:.2f}</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="823"/>
+        <source>the stations&apos; height minus {height} m</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>站点高度减去 {height} 米</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="824"/>
+        <source>the lowest points below the sign</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>标志下方的最低点</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="828"/>
+        <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{count} 个标志在 {radius} 米内没有地面点（类别 2）：其高度从{source}起算</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="832"/>
+        <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>从 {candidates} 个候选得到 {signs} 个标志（{from_images} 个仅由图像定位）</translation>
     </message>
     <message>
         <location filename="../core/tables.py" line="54"/>
@@ -1484,38 +1672,74 @@
         <translation>图像时间文件 {path}，{location}：图像 &apos;{image}&apos; 的时间 {time} 超出轨迹的时间范围 [{start}, {end}]（共有 {count} 张图像超出；可设置选项跳过它们）</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="240"/>
+        <location filename="../core/trajectory.py" line="234"/>
+        <source>Skipped {count} image(s) whose time is outside the trajectory&apos;s span [{start}, {end}], the first: {image}</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>已跳过 {count} 张时间超出轨迹范围 [{start}, {end}] 的图像，第一张：{image}</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="241"/>
         <source>No image time falls inside the trajectory&apos;s span [{start}, {end}]</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有任何图像时间落在轨迹的时间范围 [{start}, {end}] 内</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="262"/>
+        <location filename="../core/trajectory.py" line="251"/>
+        <source>{count} image(s) fall in a trajectory gap longer than {max_gap} s; the longest gap is {gap:.3f} s around image &apos;{image}&apos; at time {time}</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{count} 张图像落在长于 {max_gap} 秒的轨迹间隙中；最长的间隙为 {gap:.3f} 秒，位于图像 &apos;{image}&apos;（时间 {time}）附近</translation>
+    </message>
+    <message>
         <location filename="../core/trajectory.py" line="264"/>
+        <location filename="../core/trajectory.py" line="266"/>
         <source>Poses</source>
         <extracomment>A fragment filled into {what}, {role} or {kind} of error messages (a kind of file or CRS, or &apos;is duplicated&apos;): write it to fit those messages&apos; translations, lowercase.</extracomment>
         <translation>位姿</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="334"/>
+        <location filename="../core/trajectory.py" line="316"/>
+        <source>Skipped {count} panorama(s) that are missing or unreadable; the first: {path}</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>已跳过 {count} 张缺失或无法读取的全景图；第一张：{path}</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="336"/>
         <source>Panorama folder not found: {path}</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到全景图文件夹：{path}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="337"/>
+        <location filename="../core/trajectory.py" line="339"/>
         <source>Give either a per-image pose file, or a trajectory with image times, not both</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>请提供逐图像位姿文件，或带图像时间的轨迹，但不能同时提供两者</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="344"/>
+        <location filename="../core/trajectory.py" line="346"/>
         <source>A trajectory file and an image times file are needed (or a per-image pose file instead)</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>需要轨迹文件和图像时间文件（或改为提供逐图像位姿文件）</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="370"/>
+        <location filename="../core/trajectory.py" line="351"/>
+        <source>SBET trajectory: WGS 84 geographic with ellipsoidal heights, {count} records</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>SBET 轨迹：WGS 84 地理坐标，椭球高，{count} 条记录</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="355"/>
+        <source>Trajectory: {count} samples over {span:.1f} s</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>轨迹：{count} 个采样，历时 {span:.1f} 秒</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="366"/>
+        <source>No target CRS given: using {crs}</source>
+        <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>未指定目标坐标参考系：使用 {crs}</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="373"/>
         <source>None of the {count} panoramas listed was found in {folder}</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>在 {folder} 中未找到所列 {count} 张全景图中的任何一张</translation>

@@ -461,7 +461,7 @@ class Extractor:
                 self._sink(call.args[1], call, "tr", self.translated_params)
             elif name == "translate" and len(call.args) == 1:
                 self._sink(call.args[0], call, "tr", self.translated_params)
-            if name == "InputError":
+            if name in TEMPLATE_CALLS:
                 for kw in call.keywords:
                     if kw.arg in TRANSLATED_FIELDS:
                         self._sink(kw.value, call, "field", self.field_params)
@@ -484,13 +484,19 @@ class Extractor:
                                     done.add((id(call), param, kind))
                                     self._sink(arg, call, kind, param_map)
         if self.templates_translated:
-            for call in calls:
-                name, _ = _call_name(call)
-                if name == "InputError":
+            for module in self.modules:
+                in_core = module.rel.startswith("core/")
+                for call in (n for n in ast.walk(module.tree) if isinstance(n, ast.Call)):
+                    name, attr = _call_name(call)
                     template = call.args[0] if call.args else next(
                         (k.value for k in call.keywords if k.arg == "template"), None)
-                    if template is not None:
+                    if template is None:
+                        continue
+                    if name in TEMPLATE_CALLS:
                         self._sink(template, call, "template", {})
+                    elif in_core and ((attr and name in CORE_CALLS) or (not attr and name == "warn")) \
+                            and isinstance(template, ast.Constant) and isinstance(template.value, str):
+                        self._sink(template, call, "template", {})  # Progress.info/warning(template)
         # order: by file, then line of the first place
         items = sorted(self.found.values(), key=lambda f: ((SOURCES + (MODELS,)).index(_top(f.places[0][0])),
                                                             f.places[0][0], f.places[0][1]))
@@ -848,6 +854,8 @@ def _import(language, data) -> int:
     return 1 if errors else 0
 
 
+#: calls whose first argument is an English template the adapters translate (core/errors.py)
+TEMPLATE_CALLS = {"InputError", "Message"}
 USER_CALLS = {"QgsProcessingException", "pushInfo", "pushWarning", "reportError", "pushFormattedMessage",
               "logMessage", "pushMessage", "pushCommandInfo"}
 CORE_CALLS = {"info", "warning"}
@@ -855,7 +863,9 @@ CORE_CALLS = {"info", "warning"}
 
 def audit() -> List[str]:
     """English text shown to users without tr(): literals in messages of the adapters
-    (exceptions, feedback, message log) and log messages built in core."""
+    (exceptions, feedback, message log), and log messages of core built as finished text
+    (f-strings, ``.format``, ``+``) instead of a template with fields (``Message``,
+    ``progress.info/warning(template, **fields)``), which the adapters cannot translate."""
     out = []
     for m in Extractor().modules:
         in_core = m.rel.startswith("core/")
@@ -866,11 +876,14 @@ def audit() -> List[str]:
         for call in (n for n in ast.walk(m.tree) if isinstance(n, ast.Call)):
             name, attr = _call_name(call)
             target = None
-            if in_core and attr and name in CORE_CALLS:
-                target = call.args[:1]
-            elif in_core and attr and name == "append" and isinstance(call.func.value, ast.Name) and \
-                    call.func.value.id in ("warnings", "messages"):
-                target = call.args[:1]
+            if in_core and ((attr and name in CORE_CALLS) or (not attr and name == "warn") or
+                            name in TEMPLATE_CALLS or (
+                                attr and name == "append" and isinstance(call.func.value, ast.Name)
+                                and call.func.value.id in ("warnings", "messages"))):
+                first = call.args[:1]
+                if first and _built_text(first[0]):
+                    out.append("{}:{}: {}".format(m.rel, call.lineno, ast.unparse(first[0])[:110]))
+                continue
             elif not in_core and name in USER_CALLS:
                 target = call.args
             if not target:
@@ -884,6 +897,17 @@ def audit() -> List[str]:
                         out.append("{}:{}: {}".format(m.rel, call.lineno, ast.unparse(arg)[:110]))
                         break
     return out
+
+
+def _built_text(node) -> bool:
+    """An f-string, ``"...".format(...)`` or a ``+`` of strings: finished English text."""
+    if isinstance(node, ast.JoinedStr):
+        return True
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "format":
+        return True
+    return isinstance(node, ast.BinOp) and any(
+        isinstance(n, (ast.Constant, ast.JoinedStr)) and isinstance(getattr(n, "value", ""), str)
+        for n in (node.left, node.right))
 
 
 def _text(node) -> str:

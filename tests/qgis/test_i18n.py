@@ -304,3 +304,27 @@ def test_chinese_locale_shows_translated_algorithms_and_errors(qgis_localized, f
     run = qgis("--json", "help", "roadsigns:importtrajectory")
     assert run.returncode == 0, run.text
     assert run.json["algorithm_details"]["name"] == zh[strings["DISPLAY_NAME"]].translation
+
+
+def test_no_english_text_reaches_users_outside_tr():
+    """Adapters' messages go through tr; core's log messages are templates with fields
+    (``Message``, ``progress.info/warning``) that the adapters translate."""
+    assert i18n.audit() == []
+
+
+def test_core_log_messages_are_translated(qgis_localized, ts, drive_projected, tmp_path):
+    """A core log message (template, fields, and a field that is a message itself) shows in
+    the locale's language, its fields filled in."""
+    qgis, profile = qgis_localized
+    set_locale(profile, "es")
+    run = qgis.run("roadsigns:importtrajectory", TRAJECTORY=drive_projected["trajectory_csv"],
+                   IMAGE_TIMES=drive_projected["image_times"], IMAGES=drive_projected["images"],
+                   TRAJECTORY_CRS="EPSG:32633", OUTPUT=str(tmp_path / "stations.gpkg"))
+    assert run.returncode == 0, run.text
+    es = ts["es"]
+    samples = es["Trajectory: {count} samples over {span:.1f} s"].translation
+    assert re.search(re.escape(samples).replace(r"\{count\}", r"\d+").replace(r"\{span:\.1f\}", r"[\d.]+"),
+                     run.text), run.text
+    heights = es["Heights: pass through unchanged (the target CRS has no vertical datum)"].translation
+    assert heights in run.text
+    assert "Trajectory: " not in run.text and not re.search(r"\{[a-z_:.0-9]*\}", run.text)
