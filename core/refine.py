@@ -444,19 +444,24 @@ def surface_around_panel(panel: Panel, index: TiledIndex, spacing_m: float,
         (pts.attributes["classification"] != GROUND_CLASS)
     s, t = rel[near] @ right, rel[near] @ up
     cell = max(params.surround_cell_m, 2.5 * spacing_m)
-    shares = []
-    # (across, along, lo, hi, half extent along): across the side's edge, along it
-    for across, along, half_across, half_along, sign in ((s, t, hw, hh, -1), (s, t, hw, hh, 1),
-                                                         (t, s, hh, hw, -1), (t, s, hh, hw, 1)):
-        a = sign * across - half_across - gap
-        m = (a >= 0) & (a < band - gap) & (np.abs(along) <= half_along)
-        n_a = max(1, int(math.ceil((band - gap) / cell)))
-        n_b = max(1, int(math.ceil(2 * half_along / cell)))
-        ia = np.minimum((a[m] / cell).astype(np.int64), n_a - 1)
-        ib = np.minimum(((along[m] + half_along) / cell).astype(np.int64), n_b - 1)
-        shares.append(np.unique(ia * n_b + ib).size / (n_a * n_b))
+    depth = band - gap  # each band starts ``gap`` beyond its edge and runs outwards
+    shares = [_occupied_share(-s - hw - gap, t + hh, depth, 2 * hh, cell),   # left
+              _occupied_share(s - hw - gap, t + hh, depth, 2 * hh, cell),    # right
+              _occupied_share(-t - hh - gap, s + hw, depth, 2 * hw, cell),   # bottom
+              _occupied_share(t - hh - gap, s + hw, depth, 2 * hw, cell)]    # top
     return np.array(shares), pts.attributes["intensity"][near][
         (np.abs(s) > hw + gap) | (np.abs(t) > hh + gap)].astype(float)
+
+
+def _occupied_share(x: np.ndarray, y: np.ndarray, width: float, height: float,
+                    cell: float) -> float:
+    """Share (0..1) of the ``cell``-sized cells of the rectangle [0, width] x [0, height]
+    that hold at least one of the points (x, y)."""
+    inside = (x >= 0) & (x <= width) & (y >= 0) & (y <= height)
+    nx, ny = max(1, math.ceil(width / cell)), max(1, math.ceil(height / cell))
+    ix = np.minimum((x[inside] / cell).astype(np.int64), nx - 1)
+    iy = np.minimum((y[inside] / cell).astype(np.int64), ny - 1)
+    return np.unique(ix * ny + iy).size / (nx * ny)
 
 
 def on_larger_surface(panel: Panel, index: TiledIndex, bright: float, spacing_m: float,
@@ -713,12 +718,12 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
     centres = np.array([p.centre_world if p is not None else np.median(cand.xyz_world[r], axis=0)
                         for r, p, _ in signs]).reshape(-1, 3)
     several = np.array([len(r) >= 2 for r, _, _ in signs], bool)
-    sign_class = [vote_class(cand, r)[0] for r, _, _ in signs]
+    sign_class = np.array([vote_class(cand, r)[0] for r, _, _ in signs], dtype=object)
     lone = [n for n, (r, _, _) in enumerate(signs) if len(r) == 1]
     moved = set()
     for n in lone:
         k = int(signs[n][0][0])
-        same = several & np.array([c == det.class_name[k] for c in sign_class], bool)
+        same = several & (sign_class == det.class_name[k])
         target = _sign_in_box(det, k, centres, same, math.inf)
         if target < 0:
             target = _sign_in_box(det, k, centres, several, cand.range_m[k] + 0.5)
@@ -746,7 +751,7 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
     # it), else triangulate
     still = []
     for k in np.flatnonzero(status != STATUS_OK):
-        same = np.array([c == det.class_name[k] for c in sign_class], bool)
+        same = sign_class == det.class_name[k]
         target = _sign_in_box(det, int(k), centres, same, math.inf, search_m=math.inf)
         if target < 0:
             target = _sign_in_box(det, int(k), centres, np.ones(len(centres), bool), math.inf)

@@ -57,6 +57,13 @@ TRANSLATED_FIELDS = ("what", "role", "kind")
 #: Processing models shipped with the plugin: ``helpContent()`` in the sources reads their help
 #: (the description, ALG_DESC, and each parameter's help)
 MODELS = "models"
+#: calls whose first argument is an English template the adapters translate (core/errors.py)
+TEMPLATE_CALLS = {"InputError", "Message"}
+#: adapter calls whose text reaches users: their literals must go through tr
+USER_CALLS = {"QgsProcessingException", "pushInfo", "pushWarning", "reportError", "pushFormattedMessage",
+              "logMessage", "pushMessage", "pushCommandInfo"}
+#: core log calls whose first argument is such a template (``Progress.info/warning``)
+CORE_CALLS = {"info", "warning"}
 #: lrelease candidates (Debian: qttools5-dev-tools)
 LRELEASE = ("lrelease", "/usr/lib/qt5/bin/lrelease", "lrelease-qt5", "lrelease6")
 
@@ -854,11 +861,6 @@ def _import(language, data) -> int:
     return 1 if errors else 0
 
 
-#: calls whose first argument is an English template the adapters translate (core/errors.py)
-TEMPLATE_CALLS = {"InputError", "Message"}
-USER_CALLS = {"QgsProcessingException", "pushInfo", "pushWarning", "reportError", "pushFormattedMessage",
-              "logMessage", "pushMessage", "pushCommandInfo"}
-CORE_CALLS = {"info", "warning"}
 
 
 def audit() -> List[str]:
