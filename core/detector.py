@@ -476,6 +476,16 @@ def _union_box(kept: np.ndarray, other: np.ndarray, pano_width_px: float) -> np.
                      max(kept[2], other[2] + shift), max(kept[3], other[3])])
 
 
+def _fused_box(kept_box: np.ndarray, boxes: np.ndarray, scores: np.ndarray, pano_width_px: float) -> np.ndarray:
+    """Score-weighted mean of complete ``boxes`` of one sign (weighted box fusion), each
+    shifted by a whole W to sit next to ``kept_box``."""
+    b = np.asarray(boxes, float).copy()
+    shift = np.round(((kept_box[0] + kept_box[2]) - (b[:, 0] + b[:, 2])) / (2 * pano_width_px)) * pano_width_px
+    b[:, [0, 2]] += shift[:, None]
+    w = np.asarray(scores, float)
+    return (b * w[:, None]).sum(axis=0) / max(w.sum(), 1e-12)
+
+
 def merge_view_detections(boxes: np.ndarray, scores: np.ndarray, class_ids: np.ndarray,
                           complete: np.ndarray, centrality: np.ndarray, pano_width_px: int,
                           overlap_threshold: float = 0.5):
@@ -484,11 +494,14 @@ def merge_view_detections(boxes: np.ndarray, scores: np.ndarray, class_ids: np.n
     Candidates are ranked complete (not touching a view edge) first, then by score, then by
     centrality; each is kept unless it overlaps a kept one of the same class by at least
     ``overlap_threshold`` (intersection over the smaller box, seam-aware: a cut box lies
-    inside the complete one). A kept box that is itself cut grows to the union with the cut
-    boxes merged into it. Returns (kept indices, merged boxes, merge counts).
+    inside the complete one). The box of a complete sign is the score-weighted mean of its
+    complete boxes (weighted box fusion: views that see the sign whole each locate it); a
+    kept box that is itself cut grows to the union with the cut boxes merged into it.
+    The kept candidate gives the class and score. Returns (kept indices, merged boxes,
+    merge counts).
     """
     order = np.lexsort((-centrality, -scores, ~complete.astype(bool)))
-    kept, kept_boxes, counts = [], [], []
+    kept, kept_boxes, members = [], [], []
     for i in order:
         match = -1
         same = [k for k, j in enumerate(kept) if class_ids[j] == class_ids[i]]
@@ -500,17 +513,22 @@ def merge_view_detections(boxes: np.ndarray, scores: np.ndarray, class_ids: np.n
         if match < 0:
             kept.append(i)
             kept_boxes.append(boxes[i].astype(float))
-            counts.append(1)
+            members.append([i])
             continue
-        counts[match] += 1
+        members[match].append(i)
         if not complete[kept[match]] and not complete[i]:
             kept_boxes[match] = _union_box(kept_boxes[match], boxes[i], pano_width_px)
+    for k, i in enumerate(kept):
+        whole = [j for j in members[k] if complete[j]]
+        if complete[i] and len(whole) > 1:
+            kept_boxes[k] = _fused_box(kept_boxes[k], boxes[whole], scores[whole], pano_width_px)
     out = np.array(kept_boxes).reshape(-1, 4)
     if len(out):  # the contract: u0 in [0, W)
         shift = np.floor(out[:, 0] / pano_width_px) * pano_width_px
         out[:, 0] -= shift
         out[:, 2] -= shift
-    return np.array(kept, dtype=np.int64), out, np.array(counts, dtype=np.int64)
+    counts = np.array([len(m) for m in members], dtype=np.int64)
+    return np.array(kept, dtype=np.int64), out, counts
 
 
 def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: float = 0.25,

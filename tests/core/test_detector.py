@@ -198,6 +198,25 @@ def test_merge_prefers_complete_boxes_and_joins_cut_ones():
     assert dict(zip(kept.tolist(), counts.tolist())) == {1: 2, 2: 1, 4: 2}
 
 
+def test_merge_fuses_complete_boxes_by_score_across_the_seam():
+    W = 1000
+    boxes = np.array([[990, 20, 1010, 40],   # complete in one view, score 0.75
+                      [-6, 22, 18, 42],      # the same sign, complete in the next view, 0.25
+                      [996, 21, 1006, 39],   # the same sign cut by a view edge: not averaged
+                      [500, 20, 520, 40]])   # another sign, alone: unchanged
+    scores = np.array([0.75, 0.25, 0.9, 0.5])
+    ids = np.zeros(4, np.int64)
+    complete = np.array([True, True, False, True])
+    kept, merged, counts = merge_view_detections(boxes, scores, ids, complete, np.zeros(4), W)
+    by_index = dict(zip(kept.tolist(), merged.tolist()))
+    assert sorted(by_index) == [0, 3]
+    expected = 0.75 * np.array([990, 20, 1010, 40]) + 0.25 * np.array([994, 22, 1018, 42])
+    assert np.allclose(by_index[0], expected)
+    assert 0 <= by_index[0][0] < W < by_index[0][2]
+    assert by_index[3] == [500, 20, 520, 40]
+    assert dict(zip(kept.tolist(), counts.tolist())) == {0: 3, 3: 1}
+
+
 class ColourBlobDetector:
     """Stands in for a model on the views: each red blob is a 'warning' sign."""
 
