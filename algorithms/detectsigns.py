@@ -8,6 +8,7 @@ from qgis.core import (Qgis, QgsFeature, QgsFeatureSink, QgsGeometry,
                        QgsProcessingParameterBoolean, QgsProcessingParameterFeatureSource,
                        QgsProcessingParameterFile, QgsProcessingParameterFeatureSink, QgsProcessingOutputNumber)
 
+from ..core.detector import DEFAULT_MIN_BOX_PX
 from ..provider.i18n import tr
 from .base import RoadSignsAlgorithm
 from .layers import DOUBLE, INT, TEXT, make_fields
@@ -74,6 +75,12 @@ class DetectSigns(RoadSignsAlgorithm):
         self.add_number(
             "CONFIDENCE", "Minimum confidence", 0.4,
             "Detections scoring below this (0-1) are dropped.", minimum=0.0, maximum=1.0)
+        self.add_number(
+            "MIN_SIZE", "Smallest sign kept (panorama pixels)", DEFAULT_MIN_BOX_PX,
+            "Detections whose box is shorter than this on its shorter side are dropped: signs "
+            "that small are boxed a few pixels off and their class is unsure, and the drive sees "
+            "them again, larger, from the next stations. 0 keeps every detection.",
+            minimum=0.0, advanced=True)
         self.add(QgsProcessingParameterFile(
             "LABELS", self.tr("Class names file (optional)"),
             behavior=Qgis.ProcessingFileParameterBehavior.File, optional=True,
@@ -129,6 +136,7 @@ class DetectSigns(RoadSignsAlgorithm):
                                     upward=self.parameterAsBoolean(parameters, "UPWARD_VIEWS", context))
             feedback.pushInfo(self.tr("{} panoramas, {} views each").format(len(stations), len(views)))
             found = detect_drive(detector, [s["path"] for s in stations], views, confidence,
+                                 min_box_px=self.parameterAsDouble(parameters, "MIN_SIZE", context),
                                  progress=progress.sub(0.0, 0.95))
         if found.skipped:
             feedback.pushWarning(self.tr("Skipped {} panorama(s) that could not be read.").format(

@@ -77,7 +77,7 @@ def scene_truth(meta, sign_class):
     return np.array(counted).reshape(-1, 8), np.array(classes, np.int64), small, hidden, back
 
 
-def bench_panoramas(detector, scene_dirs, confidence, max_images=None):
+def bench_panoramas(detector, scene_dirs, confidence, max_images=None, min_box_px=0.0):
     views = panorama_mod.ViewSet.default(size_px=detector.input_size)
     matches, small_matches, hidden_matches, face_on_matches = [], [], [], []
     back_hits = decode_s = detect_s = 0.0
@@ -93,7 +93,7 @@ def bench_panoramas(detector, scene_dirs, confidence, max_images=None):
                 detector_mod.detect_panorama(detector, pano, views, confidence=0.05)
                 warm = True
             t1 = time.perf_counter()
-            found = detector_mod.detect_panorama(detector, pano, views, confidence=0.05)
+            found = detector_mod.detect_panorama(detector, pano, views, confidence=0.05, min_box_px=min_box_px)
             t2 = time.perf_counter()
             decode_s, detect_s, n_images = decode_s + t1 - t0, detect_s + t2 - t1, n_images + 1
             iou = seam_iou(pano.shape[1])
@@ -193,6 +193,8 @@ def main(argv=None):
                     "default bench/out/scene-default-7, generated when missing")
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--confidence", type=float, default=0.4, help="the plugin's default CONFIDENCE")
+    ap.add_argument("--min-size", type=float, default=detector_mod.DEFAULT_MIN_BOX_PX,
+                    help="the plugin's MIN_SIZE: merged boxes with a shorter side under this (px) are dropped")
     ap.add_argument("--max-images", type=int, default=None, help="panoramas per scene (default all)")
     ap.add_argument("--skip-gtsdb", action="store_true")
     ap.add_argument("--json", default=os.path.join(REPO_ROOT, "bench", "out", "detector.json"))
@@ -208,10 +210,11 @@ def main(argv=None):
     print(detector.info().describe())
     result = {"model": os.path.relpath(a.model, REPO_ROOT), "model_mb": os.path.getsize(a.model) / 1e6,
               "threads": a.threads, "confidence": a.confidence, "scenes": scenes}
-    result["panoramas"] = bench_panoramas(detector, scenes, a.confidence, a.max_images)
+    result["min_size_px"] = a.min_size
+    result["panoramas"] = bench_panoramas(detector, scenes, a.confidence, a.max_images, a.min_size)
     p = result["panoramas"]
     print_table(f"Generated panoramas ({p['images']}, held-out seeds), signs >= {MIN_HEIGHT_PX:.0f} px, "
-                f"occlusion <= {MAX_OCCLUSION}, confidence {a.confidence}", p["per_class"])
+                f"occlusion <= {MAX_OCCLUSION}, confidence {a.confidence}, boxes from {a.min_size:g} px", p["per_class"])
     print(f"signs under {MIN_HEIGHT_PX:.0f} px: {p['small_under_20px']}\nsigns more than half hidden: "
           f"{p['occluded_over_half']}\n"
           f"detections on back faces: {p['detections_on_back_faces']}\n"

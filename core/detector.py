@@ -531,15 +531,22 @@ def merge_view_detections(boxes: np.ndarray, scores: np.ndarray, class_ids: np.n
     return np.array(kept, dtype=np.int64), out, counts
 
 
+#: Shorter side (panorama pixels) under which ``roadsigns:detectsigns`` drops a box by
+#: default: signs that small are boxed a few pixels off and their class is unsure, and a
+#: drive sees them again, larger, from the next stations.
+DEFAULT_MIN_BOX_PX = 14.0
+
+
 def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: float = 0.25,
                     iou_threshold: float = 0.45, overlap_threshold: float = 0.5,
-                    progress: Progress = SILENT) -> PanoramaDetections:
+                    min_box_px: float = 0.0, progress: Progress = SILENT) -> PanoramaDetections:
     """Run ``detector`` on each view of ``pano`` (BGR array) and merge the results.
 
     ``detector``: a :class:`Detector`, or any object with ``class_names`` and
     ``detect(image, confidence, iou_threshold) -> ImageDetections`` (``detect_many`` is
     used when present, to batch views). Boxes are mapped to panorama pixels through each
-    view and merged by :func:`merge_view_detections`.
+    view and merged by :func:`merge_view_detections`; merged boxes whose shorter side is
+    under ``min_box_px`` panorama pixels are dropped.
     """
     H, W = pano.shape[:2]
     work = views.prepare(pano)
@@ -571,6 +578,8 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
     kept, boxes, counts = merge_view_detections(
         np.concatenate(all_boxes), scores, ids, np.concatenate(all_complete),
         np.concatenate(all_central), W, overlap_threshold)
+    big_enough = np.minimum(boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1]) >= min_box_px
+    kept, boxes, counts = kept[big_enough], boxes[big_enough], counts[big_enough]
     names = list(detector.class_names)
     return PanoramaDetections(ids[kept], [names[c] for c in ids[kept]], scores[kept],
                               boxes[:, 0], boxes[:, 1], boxes[:, 2], boxes[:, 3],
@@ -592,7 +601,8 @@ class DriveDetections:
 
 
 def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidence: float = 0.25,
-                 iou_threshold: float = 0.45, progress: Progress = SILENT) -> DriveDetections:
+                 iou_threshold: float = 0.45, min_box_px: float = 0.0,
+                 progress: Progress = SILENT) -> DriveDetections:
     """:func:`detect_panorama` on each panorama file; missing or corrupt files are skipped.
 
     Progress advances per view; cancel stops between views. A skipped file adds
@@ -613,6 +623,6 @@ def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidenc
             per_image.append(None)
             continue
         per_image.append(detect_panorama(detector, pano, views, confidence, iou_threshold,
-                                         progress=progress.sub(k / n, (k + 1) / n)))
+                                         min_box_px=min_box_px, progress=progress.sub(k / n, (k + 1) / n)))
     progress.report(1.0)
     return DriveDetections(per_image, skipped)

@@ -55,151 +55,161 @@
         <translation>Cancelado: no se escribió nada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="38"/>
+        <location filename="../algorithms/detectsigns.py" line="39"/>
         <source>{layer}: missing field(s) {missing}; fields found: {found}; expected the output of Import trajectory</source>
         <translation>{layer}: falta(n) el/los campo(s) {missing}; campos encontrados: {found}; se esperaba la salida de Importar trayectoria</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="49"/>
+        <location filename="../algorithms/detectsigns.py" line="50"/>
         <source>Detect signs in panoramas</source>
         <translation>Detectar señales en panoramas</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="51"/>
+        <location filename="../algorithms/detectsigns.py" line="52"/>
         <source>Runs an ONNX sign detector on each panorama; one ray per detected sign.</source>
         <translation>Ejecuta un detector de señales ONNX en cada panorama; un rayo por señal detectada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="53"/>
+        <location filename="../algorithms/detectsigns.py" line="54"/>
         <source>Cuts each station&apos;s equirectangular panorama into overlapping perspective views (a horizon ring, and an upward ring for overhead signs), runs the ONNX detector on each view, maps the boxes back to panorama pixels and merges the same sign found in two views.&lt;br&gt;&lt;br&gt;The &lt;b&gt;model&lt;/b&gt; is the bundled one when left empty, or your own ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model with NMS built in ([1, N, 6]). Class names come from the model&apos;s metadata (Ultralytics &lt;i&gt;names&lt;/i&gt;) or a labels file (one name per line).&lt;br&gt;&lt;br&gt;Output: one line per detection from the panorama centre along the ray through the box centre, &lt;i&gt;Ray length&lt;/i&gt; long, with the box (u0, v0, u1, v1 in panorama pixels; across the ±180° seam u1 exceeds the width) and the station&apos;s pose. A panorama that cannot be read is skipped with a warning and counted.</source>
         <translation>Corta el panorama equirrectangular de cada estación en vistas en perspectiva superpuestas (un anillo horizontal y un anillo hacia arriba para las señales elevadas), ejecuta el detector ONNX en cada vista, devuelve los recuadros a píxeles del panorama y fusiona la misma señal encontrada en dos vistas.&lt;br&gt;&lt;br&gt;El &lt;b&gt;modelo&lt;/b&gt; es el incluido si se deja vacío, o su propia exportación ONNX: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) o un modelo con NMS integrado ([1, N, 6]). Los nombres de clase provienen de los metadatos del modelo (&lt;i&gt;names&lt;/i&gt; de Ultralytics) o de un archivo de etiquetas (un nombre por línea).&lt;br&gt;&lt;br&gt;Salida: una línea por detección desde el centro del panorama a lo largo del rayo que pasa por el centro del recuadro, de &lt;i&gt;Longitud del rayo&lt;/i&gt; de largo, con el recuadro (u0, v0, u1, v1 en píxeles del panorama; a través de la costura de ±180°, u1 supera el ancho) y la pose de la estación. Un panorama que no se puede leer se omite con una advertencia y se contabiliza.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="68"/>
+        <location filename="../algorithms/detectsigns.py" line="69"/>
         <source>The output of Import trajectory: one point per panorama with its pose and path.</source>
         <translation>La salida de «Importar trayectoria y panoramas»: un punto por panorama con su pose y su ruta.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="70"/>
+        <location filename="../algorithms/detectsigns.py" line="71"/>
         <source>ONNX model (empty: the bundled model)</source>
         <translation>Modelo ONNX (vacío: el modelo incluido)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="72"/>
+        <location filename="../algorithms/detectsigns.py" line="73"/>
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>Modelos ONNX (*.onnx);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="73"/>
+        <location filename="../algorithms/detectsigns.py" line="74"/>
         <source>A YOLO-family ONNX detector. Empty uses the model bundled with the plugin.</source>
         <translation>Un detector ONNX de la familia YOLO. Vacío usa el modelo incluido con el complemento.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="75"/>
+        <location filename="../algorithms/detectsigns.py" line="76"/>
         <source>Minimum confidence</source>
         <translation>Confianza mínima</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="76"/>
+        <location filename="../algorithms/detectsigns.py" line="77"/>
         <source>Detections scoring below this (0-1) are dropped.</source>
         <translation>Se descartan las detecciones con una puntuación inferior a este valor (0-1).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="78"/>
+        <location filename="../algorithms/detectsigns.py" line="79"/>
+        <source>Smallest sign kept (panorama pixels)</source>
+        <translation>Señal más pequeña conservada (píxeles de panorama)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="80"/>
+        <source>Detections whose box is shorter than this on its shorter side are dropped: signs that small are boxed a few pixels off and their class is unsure, and the drive sees them again, larger, from the next stations. 0 keeps every detection.</source>
+        <translation>Se descartan las detecciones cuyo recuadro tiene el lado menor por debajo de este valor: en señales tan pequeñas el recuadro se desvía unos píxeles y la clase es dudosa, y el recorrido las vuelve a ver, más grandes, desde las estaciones siguientes. 0 conserva todas las detecciones.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="85"/>
         <source>Class names file (optional)</source>
         <translation>Archivo de nombres de clase (opcional)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="80"/>
+        <location filename="../algorithms/detectsigns.py" line="87"/>
         <source>Text files (*.txt);;All files (*.*)</source>
         <translation>Archivos de texto (*.txt);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="81"/>
+        <location filename="../algorithms/detectsigns.py" line="88"/>
         <source>One class name per line, in the model&apos;s class order; needed when the model has no names in its metadata and no labels file beside it.</source>
         <translation>Un nombre de clase por línea, en el orden de clases del modelo; necesario cuando el modelo no tiene nombres en sus metadatos ni un archivo de etiquetas a su lado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="84"/>
+        <location filename="../algorithms/detectsigns.py" line="91"/>
         <source>Ray length (m)</source>
         <translation>Longitud del rayo (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="85"/>
+        <location filename="../algorithms/detectsigns.py" line="92"/>
         <source>Length of each detection ray from the panorama centre, in metres.</source>
         <translation>Longitud de cada rayo de detección desde el centro del panorama, en metros.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="87"/>
+        <location filename="../algorithms/detectsigns.py" line="94"/>
         <source>Also look upwards (overhead and gantry signs)</source>
         <translation>Mirar también hacia arriba (señales elevadas y de pórtico)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="88"/>
+        <location filename="../algorithms/detectsigns.py" line="95"/>
         <source>Adds a ring of views tilted 35° up; unchecked halves the work but misses signs high above the road close to the vehicle.</source>
         <translation>Añade un anillo de vistas inclinadas 35° hacia arriba; si se desmarca, el trabajo se reduce a la mitad, pero se pierden las señales situadas muy por encima de la calzada cerca del vehículo.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="91"/>
+        <location filename="../algorithms/detectsigns.py" line="98"/>
         <source>CPU threads (0: all)</source>
         <translation>Hilos de CPU (0: todos)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="92"/>
+        <location filename="../algorithms/detectsigns.py" line="99"/>
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>Hilos que onnxruntime puede usar en la CPU; 0 le permite usar todos los núcleos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="94"/>
+        <location filename="../algorithms/detectsigns.py" line="101"/>
         <location filename="../algorithms/projectdetections.py" line="63"/>
         <location filename="../algorithms/projectdetections.py" line="40"/>
         <source>Detections</source>
         <translation>Detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="95"/>
+        <location filename="../algorithms/detectsigns.py" line="102"/>
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, u0, v0, u1, v1, n_views and the station&apos;s pose fields.</source>
         <translation>Capa LineStringZ, un rayo por detección, con det_id, station_id, image, class, score, u0, v0, u1, v1, n_views y los campos de pose de la estación.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="97"/>
+        <location filename="../algorithms/detectsigns.py" line="104"/>
         <source>Number of detections</source>
         <translation>Número de detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="98"/>
+        <location filename="../algorithms/detectsigns.py" line="105"/>
         <source>Panoramas skipped</source>
         <translation>Panoramas omitidos</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="109"/>
-        <location filename="../algorithms/detectsigns.py" line="67"/>
+        <location filename="../algorithms/detectsigns.py" line="116"/>
+        <location filename="../algorithms/detectsigns.py" line="68"/>
         <location filename="../algorithms/importtrajectory.py" line="107"/>
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="113"/>
+        <location filename="../algorithms/detectsigns.py" line="120"/>
         <source>ONNX model not found: {}{}</source>
         <translation>No se encontró el modelo ONNX: {}{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="114"/>
+        <location filename="../algorithms/detectsigns.py" line="121"/>
         <source> (no model is bundled with this version: give your own)</source>
         <translation> (esta versión no incluye ningún modelo: indique el suyo)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="130"/>
+        <location filename="../algorithms/detectsigns.py" line="137"/>
         <source>{} panoramas, {} views each</source>
         <translation>{} panoramas, {} vistas cada uno</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="134"/>
+        <location filename="../algorithms/detectsigns.py" line="142"/>
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>Se omitieron {} panorama(s) que no se pudieron leer.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="163"/>
+        <location filename="../algorithms/detectsigns.py" line="171"/>
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} detecciones en {} panoramas ({} omitidos).</translation>
     </message>
@@ -1460,67 +1470,67 @@
         <translation>muy pocos puntos planos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="668"/>
+        <location filename="../core/refine.py" line="673"/>
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El radio de fusión debe ser positivo; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="677"/>
+        <location filename="../core/refine.py" line="682"/>
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay candidatos que refinar; la capa de señales está vacía</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="697"/>
+        <location filename="../core/refine.py" line="702"/>
         <source>no point cloud</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>sin nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="700"/>
+        <location filename="../core/refine.py" line="705"/>
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: {reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="704"/>
+        <location filename="../core/refine.py" line="709"/>
         <source>Candidates {ids}: {reason}; placed at the candidates&apos; median</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids}: {reason}; situados en la mediana de los candidatos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="793"/>
+        <location filename="../core/refine.py" line="798"/>
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: un panel de {width:.2f} x {height:.2f} m es demasiado grande para una señal {sign_class} (¿una valla publicitaria?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="806"/>
+        <location filename="../core/refine.py" line="811"/>
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: vistos en una sola panorámica, con una puntuación de {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="823"/>
+        <location filename="../core/refine.py" line="828"/>
         <source>the stations&apos; height minus {height} m</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>la altura de las estaciones menos {height} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="824"/>
+        <location filename="../core/refine.py" line="829"/>
         <source>the lowest points below the sign</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>los puntos más bajos bajo la señal</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="828"/>
+        <location filename="../core/refine.py" line="833"/>
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} señal(es) no tienen puntos de suelo (clase 2) a menos de {radius} m: su altura se mide desde {source}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="832"/>
+        <location filename="../core/refine.py" line="837"/>
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} señales a partir de {candidates} candidatos ({from_images} situadas solo a partir de las imágenes)</translation>

@@ -55,151 +55,161 @@
         <translation>已取消：未写入任何内容。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="38"/>
+        <location filename="../algorithms/detectsigns.py" line="39"/>
         <source>{layer}: missing field(s) {missing}; fields found: {found}; expected the output of Import trajectory</source>
         <translation>{layer}：缺少字段 {missing}；找到的字段：{found}；应为“导入轨迹”的输出</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="49"/>
+        <location filename="../algorithms/detectsigns.py" line="50"/>
         <source>Detect signs in panoramas</source>
         <translation>在全景图中检测标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="51"/>
+        <location filename="../algorithms/detectsigns.py" line="52"/>
         <source>Runs an ONNX sign detector on each panorama; one ray per detected sign.</source>
         <translation>在每张全景图上运行 ONNX 标志检测器；每个检测到的标志生成一条射线。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="53"/>
+        <location filename="../algorithms/detectsigns.py" line="54"/>
         <source>Cuts each station&apos;s equirectangular panorama into overlapping perspective views (a horizon ring, and an upward ring for overhead signs), runs the ONNX detector on each view, maps the boxes back to panorama pixels and merges the same sign found in two views.&lt;br&gt;&lt;br&gt;The &lt;b&gt;model&lt;/b&gt; is the bundled one when left empty, or your own ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model with NMS built in ([1, N, 6]). Class names come from the model&apos;s metadata (Ultralytics &lt;i&gt;names&lt;/i&gt;) or a labels file (one name per line).&lt;br&gt;&lt;br&gt;Output: one line per detection from the panorama centre along the ray through the box centre, &lt;i&gt;Ray length&lt;/i&gt; long, with the box (u0, v0, u1, v1 in panorama pixels; across the ±180° seam u1 exceeds the width) and the station&apos;s pose. A panorama that cannot be read is skipped with a warning and counted.</source>
         <translation>将每个站点的等距柱状全景图切分为相互重叠的透视视图（一圈水平视图，以及一圈用于悬挂式标志的上视视图），在每个视图上运行 ONNX 检测器，将检测框映射回全景图像素，并合并在两个视图中找到的同一标志。&lt;br&gt;&lt;br&gt;&lt;b&gt;模型&lt;/b&gt;留空时使用内置模型，也可以是您自己导出的 ONNX 模型：Ultralytics YOLOv8/11（[1, 4+nc, N]）、YOLOv5/7（[1, N, 5+nc]）或内置 NMS 的模型（[1, N, 6]）。类别名称来自模型元数据（Ultralytics &lt;i&gt;names&lt;/i&gt;）或标签文件（每行一个名称）。&lt;br&gt;&lt;br&gt;输出：每个检测一条线，从全景图中心沿穿过检测框中心的射线延伸，长度为&lt;i&gt;射线长度&lt;/i&gt;，附带检测框（u0、v0、u1、v1，单位为全景图像素；跨越 ±180° 接缝时 u1 大于图像宽度）和站点位姿。无法读取的全景图将被跳过，并给出警告和计数。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="68"/>
+        <location filename="../algorithms/detectsigns.py" line="69"/>
         <source>The output of Import trajectory: one point per panorama with its pose and path.</source>
         <translation>“导入轨迹和全景图”的输出：每张全景图一个点，带有其位姿和路径。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="70"/>
+        <location filename="../algorithms/detectsigns.py" line="71"/>
         <source>ONNX model (empty: the bundled model)</source>
         <translation>ONNX 模型（留空：使用内置模型）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="72"/>
+        <location filename="../algorithms/detectsigns.py" line="73"/>
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>ONNX 模型 (*.onnx);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="73"/>
+        <location filename="../algorithms/detectsigns.py" line="74"/>
         <source>A YOLO-family ONNX detector. Empty uses the model bundled with the plugin.</source>
         <translation>YOLO 系列 ONNX 检测器。留空则使用插件内置的模型。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="75"/>
+        <location filename="../algorithms/detectsigns.py" line="76"/>
         <source>Minimum confidence</source>
         <translation>最低置信度</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="76"/>
+        <location filename="../algorithms/detectsigns.py" line="77"/>
         <source>Detections scoring below this (0-1) are dropped.</source>
         <translation>得分低于此值（0-1）的检测将被丢弃。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="78"/>
+        <location filename="../algorithms/detectsigns.py" line="79"/>
+        <source>Smallest sign kept (panorama pixels)</source>
+        <translation>保留的最小标志（全景像素）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="80"/>
+        <source>Detections whose box is shorter than this on its shorter side are dropped: signs that small are boxed a few pixels off and their class is unsure, and the drive sees them again, larger, from the next stations. 0 keeps every detection.</source>
+        <translation>检测框短边小于此值的检测将被丢弃：这么小的标志框会偏差几个像素，类别也不可靠，而车辆在后续站点会以更大的尺寸再次看到它们。0 保留所有检测。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="85"/>
         <source>Class names file (optional)</source>
         <translation>类别名称文件（可选）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="80"/>
+        <location filename="../algorithms/detectsigns.py" line="87"/>
         <source>Text files (*.txt);;All files (*.*)</source>
         <translation>文本文件 (*.txt);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="81"/>
+        <location filename="../algorithms/detectsigns.py" line="88"/>
         <source>One class name per line, in the model&apos;s class order; needed when the model has no names in its metadata and no labels file beside it.</source>
         <translation>每行一个类别名称，按模型的类别顺序排列；当模型元数据中没有名称且旁边没有标签文件时需要提供。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="84"/>
+        <location filename="../algorithms/detectsigns.py" line="91"/>
         <source>Ray length (m)</source>
         <translation>射线长度 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="85"/>
+        <location filename="../algorithms/detectsigns.py" line="92"/>
         <source>Length of each detection ray from the panorama centre, in metres.</source>
         <translation>每条检测射线从全景图中心起算的长度，单位为米。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="87"/>
+        <location filename="../algorithms/detectsigns.py" line="94"/>
         <source>Also look upwards (overhead and gantry signs)</source>
         <translation>同时向上看（悬挂式和门架式标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="88"/>
+        <location filename="../algorithms/detectsigns.py" line="95"/>
         <source>Adds a ring of views tilted 35° up; unchecked halves the work but misses signs high above the road close to the vehicle.</source>
         <translation>增加一圈上仰 35° 的视图；不勾选可将工作量减半，但会漏掉车辆附近高悬于道路上方的标志。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="91"/>
+        <location filename="../algorithms/detectsigns.py" line="98"/>
         <source>CPU threads (0: all)</source>
         <translation>CPU 线程数（0：全部）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="92"/>
+        <location filename="../algorithms/detectsigns.py" line="99"/>
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>onnxruntime 在 CPU 上可使用的线程数；0 表示使用所有核心。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="94"/>
+        <location filename="../algorithms/detectsigns.py" line="101"/>
         <location filename="../algorithms/projectdetections.py" line="63"/>
         <location filename="../algorithms/projectdetections.py" line="40"/>
         <source>Detections</source>
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="95"/>
+        <location filename="../algorithms/detectsigns.py" line="102"/>
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, u0, v0, u1, v1, n_views and the station&apos;s pose fields.</source>
         <translation>LineStringZ 图层，每个检测一条射线，包含字段 det_id、station_id、image、class、score、u0、v0、u1、v1、n_views 以及站点的位姿字段。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="97"/>
+        <location filename="../algorithms/detectsigns.py" line="104"/>
         <source>Number of detections</source>
         <translation>检测数量</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="98"/>
+        <location filename="../algorithms/detectsigns.py" line="105"/>
         <source>Panoramas skipped</source>
         <translation>跳过的全景图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="109"/>
-        <location filename="../algorithms/detectsigns.py" line="67"/>
+        <location filename="../algorithms/detectsigns.py" line="116"/>
+        <location filename="../algorithms/detectsigns.py" line="68"/>
         <location filename="../algorithms/importtrajectory.py" line="107"/>
         <source>Panorama stations</source>
         <translation>全景站点</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="113"/>
+        <location filename="../algorithms/detectsigns.py" line="120"/>
         <source>ONNX model not found: {}{}</source>
         <translation>未找到 ONNX 模型：{}{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="114"/>
+        <location filename="../algorithms/detectsigns.py" line="121"/>
         <source> (no model is bundled with this version: give your own)</source>
         <translation>（此版本未附带模型：请提供您自己的模型）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="130"/>
+        <location filename="../algorithms/detectsigns.py" line="137"/>
         <source>{} panoramas, {} views each</source>
         <translation>{} 张全景图，每张 {} 个视图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="134"/>
+        <location filename="../algorithms/detectsigns.py" line="142"/>
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>跳过了 {} 张无法读取的全景图。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="163"/>
+        <location filename="../algorithms/detectsigns.py" line="171"/>
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} 个检测，来自 {} 张全景图（跳过 {} 张）。</translation>
     </message>
@@ -1460,67 +1470,67 @@
         <translation>平面点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="668"/>
+        <location filename="../core/refine.py" line="673"/>
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>合并半径必须为正数，实际为 {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="677"/>
+        <location filename="../core/refine.py" line="682"/>
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有要精化的候选；标志图层为空</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="697"/>
+        <location filename="../core/refine.py" line="702"/>
         <source>no point cloud</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有点云</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="700"/>
+        <location filename="../core/refine.py" line="705"/>
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="704"/>
+        <location filename="../core/refine.py" line="709"/>
         <source>Candidates {ids}: {reason}; placed at the candidates&apos; median</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>候选 {ids}：{reason}；位置取候选的中位数</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="793"/>
+        <location filename="../core/refine.py" line="798"/>
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{width:.2f} x {height:.2f} 米的面板对 {sign_class} 标志来说太大（广告牌？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="806"/>
+        <location filename="../core/refine.py" line="811"/>
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：只在一张全景图中出现，得分为 {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="823"/>
+        <location filename="../core/refine.py" line="828"/>
         <source>the stations&apos; height minus {height} m</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>站点高度减去 {height} 米</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="824"/>
+        <location filename="../core/refine.py" line="829"/>
         <source>the lowest points below the sign</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志下方的最低点</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="828"/>
+        <location filename="../core/refine.py" line="833"/>
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 个标志在 {radius} 米内没有地面点（类别 2）：其高度从{source}起算</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="832"/>
+        <location filename="../core/refine.py" line="837"/>
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Error message. Keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>从 {candidates} 个候选得到 {signs} 个标志（{from_images} 个仅由图像定位）</translation>

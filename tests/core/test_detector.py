@@ -248,3 +248,16 @@ def test_sign_across_the_seam_is_found_once_in_the_right_place():
     assert found.view_index[seam] == 4 and found.n_views[seam] >= 2  # yaw 180 wins over the cut ones
     other = 1 - seam
     assert 0.5 * (found.u0[other] + found.u1[other]) == pytest.approx((60 / 360 + 0.5) * W, abs=2.0)
+
+
+def test_boxes_under_the_minimum_size_are_dropped():
+    W = 2048  # discs of 6 deg and 2 deg radius: about 68 px and 23 px across
+    pano = paint_discs([(-90.0, 0.0, 6.0, (0, 0, 255)), (90.0, 0.0, 2.0, (0, 0, 255))], W)
+    views = ViewSet.ring(8, 0.0, 80.0, 320)
+    boxes = detect_panorama(ColourBlobDetector(), pano, views).boxes()
+    sizes = np.sort(np.minimum(boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1]))
+    assert len(sizes) == 2 and 15 < sizes[0] < 30 < 60 < sizes[1]
+    kept = detect_panorama(ColourBlobDetector(), pano, views, min_box_px=30.0)
+    assert len(kept) == 1
+    assert min(kept.u1[0] - kept.u0[0], kept.v1[0] - kept.v0[0]) == pytest.approx(sizes[1])
+    assert 0.5 * (kept.u0[0] + kept.u1[0]) == pytest.approx(0.25 * W, abs=2.0)

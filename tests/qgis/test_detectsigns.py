@@ -68,7 +68,8 @@ def contract_ray_world(row):
 def test_one_ray_per_view_along_the_box_centre(qgis_process, stations, tmp_path):
     model = make_model(tmp_path / "m.onnx", yolov8_centre_box(), meta={"names": NAMES})
     out = str(tmp_path / "detections.gpkg")
-    run = qgis_process.run(ALG, STATIONS=stations, MODEL=model, CONFIDENCE=0.5, MAX_RANGE=30, OUTPUT=out)
+    run = qgis_process.run(ALG, STATIONS=stations, MODEL=model, CONFIDENCE=0.5, MAX_RANGE=30, MIN_SIZE=0,
+                           OUTPUT=out)
     assert run.returncode == 0, run.text
     assert run.json["results"]["SKIPPED_IMAGES"] == 1
     assert "broken.jpg" in run.text
@@ -97,10 +98,25 @@ def test_names_from_a_labels_file(qgis_process, stations, tmp_path):
     labels.write_text("warning\nmandatory\n")
     out = str(tmp_path / "d.gpkg")
     run = qgis_process.run(ALG, STATIONS=stations, MODEL=model, LABELS=str(labels), UPWARD_VIEWS=False,
-                           OUTPUT=out)
+                           MIN_SIZE=0, OUTPUT=out)
     assert run.returncode == 0, run.text
     rows = read_rays(out)
     assert len(rows) == 3 * 8 and {r["class"] for r in rows} == {"warning"}
+
+
+def test_boxes_under_min_size_are_dropped(qgis_process, stations, tmp_path):
+    model = make_model(tmp_path / "m.onnx", yolov8_centre_box(), meta={"names": NAMES})
+
+    def sizes(min_size):
+        out = str(tmp_path / "d{}.gpkg".format(min_size))
+        run = qgis_process.run(ALG, STATIONS=stations, MODEL=model, MIN_SIZE=min_size, OUTPUT=out)
+        assert run.returncode == 0, run.text
+        return sorted(min(r["u1"] - r["u0"], r["v1"] - r["v0"]) for r in read_rays(out))
+    every = sizes(0)
+    assert len(every) == 3 * 14 and every[0] < every[-1]  # upward views' boxes are taller
+    cut = 0.5 * (every[0] + every[-1])
+    kept = sizes(cut)
+    assert kept == [s for s in every if s >= cut] and 0 < len(kept) < len(every)
 
 
 @pytest.mark.parametrize("case,message", [
