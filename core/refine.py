@@ -122,6 +122,7 @@ class RefineParams:
     min_panel_points: int = 12
     box_extent_allowance_m: float = 0.10  # boxes may widen the points' outline (corners)
     linear_threshold: float = 0.7        # PCA: a point is on a line (pole) above this a1D
+    min_spread_ratio: float = 0.2        # panel points spread across less than this x along: a line
     min_convex_radius_m: float = 3.0     # more curved than this: a mirror, not a sign
     #: a panel whose plane continues this far beyond a vertical and a horizontal side (share
     #: of occupied cells of the bands there) is part of a larger surface (a billboard)
@@ -390,7 +391,7 @@ def extract_panel(cand: ProjectionResult, rows: np.ndarray, index: TiledIndex, b
     # (edges of a panel look half linear: only clearly linear points go, and isolated ones)
     feats = dimensionality(panel.xyz_world, max(params.pca_radius_m, 3.0 * spacing))
     keep = (feats[:, 0] < params.linear_threshold) & (np.argmax(feats, axis=1) != 2)
-    if keep.sum() >= params.min_panel_points:
+    if keep.sum() >= max(params.min_panel_points, 0.5 * len(panel)):
         panel = panel.subset(keep)
     if len(panel) < params.min_panel_points:
         return None, Message("too few planar points")
@@ -400,6 +401,8 @@ def extract_panel(cand: ProjectionResult, rows: np.ndarray, index: TiledIndex, b
         normal = -normal
     if abs(normal[2]) > math.sin(math.radians(params.max_tilt_deg)):
         normal = plane.normal if plane.normal @ n0 > 0 else -plane.normal
+    if ev[1] < params.min_spread_ratio ** 2 * ev[0]:
+        normal = n0  # the points are a line (a sparse scan across the face): the views' normal
     if convex_radius_m(panel.xyz_world, normal) < params.min_convex_radius_m:
         return None, CURVED_SURFACE
     right, up = panel_frame(normal)

@@ -270,3 +270,37 @@ def test_nearly_parallel_rays_place_no_sign(scene, index):
     sin_max = np.linalg.norm(np.cross(D[0], D[-1]))
     assert R.depth_sigma_m(x, C, R.ray_distance(x, C, D), sin_max, R.RefineParams()) > \
         R.RefineParams().max_depth_sigma_m
+
+
+def _scanned_in_lines(lines_s, seed):
+    """A mandatory sign whose face the scanner crossed in a few vertical profiles only (a
+    face seen at a grazing angle), and a warning sign scanned whole."""
+    Panel = signscene.TruthPanel
+    centre, normal = _oncoming(30, -6.0, 2.6)
+    panels = [Panel(1, "mandatory", "circle", centre, normal, 0.6, 0.6, scan_lines_s=lines_s),
+              Panel(2, "warning", "triangle_up", _oncoming(60, -6.0, 2.5)[0], normal, 0.9, 0.78)]
+    scene = signscene.make_scene(seed=seed, panels=panels, road_length_m=80.0,
+                                 stations_x=np.arange(0.0, 75.0, 5.0))
+    index = make_index(scene)
+    out = R.refine_signs(P.project_detections(P.Detections.from_records(scene.detections), index), index)
+    return scene, panels[0], match(out.signs, scene.signs)
+
+
+def test_a_face_scanned_in_a_few_profiles_keeps_its_points():
+    """Each point of a profile has a linear neighbourhood, like a pole's: the filter that
+    drops the pole must not take most of the panel with it."""
+    scene, panel, matched = _scanned_in_lines([-0.15, 0.0, 0.15], seed=2)
+    rel = scene.xyz_world - panel.centre_world
+    on_face = ((np.abs(rel @ panel.normal) < 0.04) & (np.abs(rel @ panel.right) < 0.31)
+               & (np.abs(rel @ panel.up) < 0.31) & (scene.classification != 2))
+    sign = matched[1]
+    assert sign.n_points >= 0.8 * on_face.sum()
+    assert np.linalg.norm(sign.xyz_world - panel.centre_world) < 0.05
+
+
+def test_a_face_scanned_in_one_profile_faces_the_way_of_its_views():
+    """The points of one profile are a line: their plane is undefined, so the sign takes
+    the normal its views found, not an arbitrary one."""
+    _, panel, matched = _scanned_in_lines([0.2], seed=1)
+    true_azimuth = np.degrees(np.arctan2(panel.normal[0], panel.normal[1])) % 360
+    assert abs((matched[1].azimuth - true_azimuth + 180) % 360 - 180) < 30.0

@@ -62,6 +62,7 @@ class TruthPanel:
     seen_from: Optional[List[int]] = None   # station indices (else: by range and facing)
     detected: bool = True      # False: a surface the detector does not report (a wall)
     reflectance: Optional[float] = None     # of a surface that is not a sign (else 0.55)
+    scan_lines_s: Optional[List[float]] = None  # points only on vertical lines at these s (m)
 
     @property
     def right(self):
@@ -180,6 +181,10 @@ def _sample_panel(p: TruthPanel, density, rng):
     n = rng.poisson(area * density)
     s = rng.uniform(-p.width / 2, p.width / 2, n)
     t = rng.uniform(-p.height / 2, p.height / 2, n)
+    if p.scan_lines_s:  # a face scanned at a grazing angle: a few profiles across it
+        s = rng.choice(np.asarray(p.scan_lines_s, float), n) + rng.normal(0, 0.003, n)
+        n = int(n * 0.1 * len(p.scan_lines_s))
+        s, t = s[:n], t[:n]
     keep = p.inside(s, t)
     pts = p.to_local(s[keep], t[keep]) + rng.normal(0, 0.01, (keep.sum(), 1)) * p.normal
     return pts
