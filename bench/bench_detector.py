@@ -98,16 +98,14 @@ def bench_panoramas(detector, scene_dirs, confidence, max_images=None, min_box_p
             decode_s, detect_s, n_images = decode_s + t1 - t0, detect_s + t2 - t1, n_images + 1
             iou = seam_iou(pano.shape[1])
             counted, classes, small, hidden, back = scene_truth(meta, sign_class)
-            uncounted = [b for b, _ in small + hidden] + back
             boxes, scores, ids = found.boxes(), found.score, found.class_id
-            m = match_image(boxes, scores, ids, counted, classes, 0.5,
-                            ignore_boxes=np.array([b for b, _ in small + hidden]).reshape(-1, 8), iou_fn=iou)
+            uncounted_boxes = np.array([b for b, _ in small + hidden]).reshape(-1, 8)
+            m = match_image(boxes, scores, ids, counted, classes, 0.5, ignore_boxes=uncounted_boxes, iou_fn=iou)
             matches.append(m)
             edge_on = (counted[:, 2] - counted[:, 0]) < EDGE_ON_MAX_WIDTH_PX
             face_on_matches.append(match_image(
                 boxes, scores, ids, counted[~edge_on], classes[~edge_on], 0.5, iou_fn=iou,
-                ignore_boxes=np.concatenate([np.array([b for b, _ in small + hidden]).reshape(-1, 8),
-                                             counted[edge_on]])))
+                ignore_boxes=np.concatenate([uncounted_boxes, counted[edge_on]])))
             if back and len(boxes):
                 back_hits += int(((iou(boxes, np.array(back)).max(1) >= 0.5) & (scores >= confidence)).sum())
             for group, out in ((small, small_matches), (hidden, hidden_matches)):

@@ -469,9 +469,15 @@ def seam_aware_overlap(box: np.ndarray, boxes: np.ndarray, pano_width_px: float)
     return iw * ih / np.maximum(np.minimum(area, areas), 1e-9)
 
 
+def _seam_shift_px(kept_box: np.ndarray, boxes: np.ndarray, pano_width_px: float) -> np.ndarray:
+    """Whole multiples of W that put each of ``boxes`` (n, 4) next to ``kept_box``."""
+    b = np.asarray(boxes, float).reshape(-1, 4)
+    return np.round(((kept_box[0] + kept_box[2]) - (b[:, 0] + b[:, 2])) / (2 * pano_width_px)) * pano_width_px
+
+
 def _union_box(kept: np.ndarray, other: np.ndarray, pano_width_px: float) -> np.ndarray:
     """Union of two overlapping boxes, ``other`` shifted by a whole W to sit next to ``kept``."""
-    shift = np.round(((kept[0] + kept[2]) - (other[0] + other[2])) / (2 * pano_width_px)) * pano_width_px
+    shift = _seam_shift_px(kept, other, pano_width_px)[0]
     return np.array([min(kept[0], other[0] + shift), min(kept[1], other[1]),
                      max(kept[2], other[2] + shift), max(kept[3], other[3])])
 
@@ -480,8 +486,7 @@ def _fused_box(kept_box: np.ndarray, boxes: np.ndarray, scores: np.ndarray, pano
     """Score-weighted mean of complete ``boxes`` of one sign (weighted box fusion), each
     shifted by a whole W to sit next to ``kept_box``."""
     b = np.asarray(boxes, float).copy()
-    shift = np.round(((kept_box[0] + kept_box[2]) - (b[:, 0] + b[:, 2])) / (2 * pano_width_px)) * pano_width_px
-    b[:, [0, 2]] += shift[:, None]
+    b[:, [0, 2]] += _seam_shift_px(kept_box, b, pano_width_px)[:, None]
     w = np.asarray(scores, float)
     return (b * w[:, None]).sum(axis=0) / max(w.sum(), 1e-12)
 

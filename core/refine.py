@@ -122,6 +122,7 @@ class RefineParams:
     min_panel_points: int = 12
     box_extent_allowance_m: float = 0.10  # boxes may widen the points' outline (corners)
     linear_threshold: float = 0.7        # PCA: a point is on a line (pole) above this a1D
+    max_linear_share: float = 0.5        # the pole filter drops at most this share of a panel
     min_spread_ratio: float = 0.2        # panel points spread across less than this x along: a line
     min_convex_radius_m: float = 3.0     # more curved than this: a mirror, not a sign
     #: a panel whose plane continues this far beyond a vertical and a horizontal side (share
@@ -391,7 +392,7 @@ def extract_panel(cand: ProjectionResult, rows: np.ndarray, index: TiledIndex, b
     # (edges of a panel look half linear: only clearly linear points go, and isolated ones)
     feats = dimensionality(panel.xyz_world, max(params.pca_radius_m, 3.0 * spacing))
     keep = (feats[:, 0] < params.linear_threshold) & (np.argmax(feats, axis=1) != 2)
-    if keep.sum() >= max(params.min_panel_points, 0.5 * len(panel)):
+    if keep.sum() >= max(params.min_panel_points, (1.0 - params.max_linear_share) * len(panel)):
         panel = panel.subset(keep)
     if len(panel) < params.min_panel_points:
         return None, Message("too few planar points")
