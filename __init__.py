@@ -6,6 +6,6 @@ provider ``roadsigns`` and whose ``initGui`` adds nothing else for now.
 """
 
 
-def classFactory(iface):  # noqa: N802 (QGIS's name)
+def classFactory(iface):
     from .plugin import RoadSignsPlugin
     return RoadSignsPlugin(iface)

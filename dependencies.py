@@ -10,6 +10,8 @@ import os
 import sys
 from typing import Iterable, List
 
+from .core.errors import Message
+
 #: import name -> pip requirement
 PACKAGES = {
     "numpy": "numpy",
@@ -65,14 +67,15 @@ def install_command(modules: Iterable[str], platform: str = sys.platform) -> str
     return "python3 -m pip install --user --break-system-packages --upgrade {}".format(reqs)
 
 
-#: message templates, translated by the caller before formatting (``translate`` arguments)
-SHAPELY_CONFLICT = ("The installed shapely is a wheel with its own copy of GEOS, which clashes with "
-                    "QGIS's GEOS {geos} on Linux and crashes QGIS. Install shapely built against the "
-                    "system GEOS: sudo apt install libgeos-dev && python3 -m pip install --user "
-                    "--break-system-packages --force-reinstall --no-deps --no-binary shapely "
-                    "\"shapely>=2\"")
-MISSING = ("Road Sign Inventory needs the Python package(s) {packages}, not found in QGIS's Python. "
-           "Install with: {command}")
+#: message templates, translated by the caller before formatting (``translate`` arguments);
+#: ``Message`` marks them as core templates (context RoadSigns, scripts/i18n.py extracts them)
+SHAPELY_CONFLICT = Message(
+    "The installed shapely is a wheel with its own copy of GEOS, which clashes with QGIS's GEOS {geos} "
+    "on Linux and crashes QGIS. Install shapely built against the system GEOS: sudo apt install "
+    "libgeos-dev && python3 -m pip install --user --break-system-packages --force-reinstall --no-deps "
+    "--no-binary shapely \"shapely>=2\"")
+MISSING = Message("Road Sign Inventory needs the Python package(s) {packages}, not found in QGIS's "
+                  "Python. Install with: {command}")
 
 
 def _same(text: str) -> str:

@@ -3,8 +3,8 @@ import sys
 
 from qgis.core import Qgis, QgsApplication, QgsMessageLog
 
+from .algorithms.i18n import install_translator, tr, tr_core
 from .dependencies import PACKAGES, missing_message
-from .provider.i18n import install_translator, tr
 
 
 class RoadSignsPlugin:
@@ -13,12 +13,12 @@ class RoadSignsPlugin:
         self.provider = None
         self._translator = install_translator()
 
-    def initProcessing(self):  # noqa: N802 (called by QGIS and qgis_process)
+    def initProcessing(self):
         from .provider.provider import RoadSignsProvider
         if self.provider is None:
             self.provider = RoadSignsProvider()
             QgsApplication.processingRegistry().addProvider(self.provider)
-        message = missing_message(PACKAGES, tr)
+        message = missing_message(PACKAGES, tr_core)
         if message:
             QgsMessageLog.logMessage(message, tr("Road Sign Inventory"), Qgis.MessageLevel.Warning)
             if self.iface is None and not getattr(self, "_told", False):  # qgis_process: stderr
@@ -26,7 +26,7 @@ class RoadSignsPlugin:
                 self._told = True
         return message
 
-    def initGui(self):  # noqa: N802
+    def initGui(self):
         message = self.initProcessing()
         if message and self.iface is not None:
             self.iface.messageBar().pushMessage(tr("Road Sign Inventory"), message,

@@ -4,25 +4,19 @@ import math
 import os
 
 import numpy as np
-from qgis.core import (Qgis, QgsCoordinateTransform, QgsFeatureRequest, QgsProcessingException,
-                       QgsProcessingOutputNumber, QgsProcessingParameterFeatureSource,
-                       QgsProcessingParameterFile, QgsProcessingParameterFileDestination, QgsVectorLayer)
+from qgis.core import (
+    Qgis,
+    QgsCoordinateTransform,
+    QgsFeatureRequest,
+    QgsProcessingException,
+    QgsProcessingOutputNumber,
+    QgsVectorLayer,
+)
 
 from ..core.evaluate import OUTPUT_NAMES, SignSet, evaluate, read_reference_csv, write_html_report
-from ..provider.i18n import tr
 from .base import RoadSignsAlgorithm
+from .i18n import tr
 
-EXTRA_OUTPUTS = ("MEDIAN_HORIZONTAL_ERROR", "MEDIAN_VERTICAL_ERROR")
-OUTPUT_LABELS = {
-    "TP": "True positives (matched signs)", "FP": "False positives (unmatched signs)",
-    "FN": "False negatives (missed reference panels)", "PRECISION": "Precision",
-    "RECALL": "Recall", "F1": "F1 score", "CLASS_ACCURACY": "Class accuracy of matches",
-    "MEDIAN_ERROR": "Median 3D position error (m)", "P95_ERROR": "95th percentile 3D error (m)",
-    "MEDIAN_HEIGHT_ERROR": "Median height error (m)",
-    "MEDIAN_AZIMUTH_ERROR": "Median azimuth error (°)",
-    "MEDIAN_HORIZONTAL_ERROR": "Median horizontal position error (m)",
-    "MEDIAN_VERTICAL_ERROR": "Median vertical position error (m)",
-}
 CSV_EXTENSIONS = (".csv", ".txt")
 
 
@@ -73,40 +67,67 @@ def sign_set_from_features(features, fields, transform, label, id_field="sign_id
 
 class Evaluate(RoadSignsAlgorithm):
     ALGORITHM_ID = "evaluate"
-    DISPLAY_NAME = "Evaluate signs against reference"
     REQUIRES = ("numpy", "scipy")
-    SHORT_DESCRIPTION = "Scores a sign layer against reference sign panels and writes an HTML report."
-    HELP = (
-        "Matches each sign to at most one reference panel by optimal assignment (Hungarian "
-        "method) on the 3D distance between panel centres, within the match radius and "
-        "ignoring class, then reports precision (matches / signs), recall (matches / "
-        "reference panels), F1, the class accuracy of the matches, and the median and 95th "
-        "percentile position error, the median height error and the median azimuth error."
-        "<br><br>The <b>reference</b> is a CSV <i>sign_id,class,x,y,z,height,width,"
-        "panel_height,azimuth</i> in the sign layer's CRS, or a point layer with those fields "
-        "(reprojected to the sign layer's CRS).<br><br>The HTML report has the summary and one "
-        "row per sign: matched (with its errors), missed or false.")
+    SIGNS = "SIGNS"
+    REFERENCE = "REFERENCE"
+    MATCH_RADIUS = "MATCH_RADIUS"
+    OUTPUT_REPORT = "OUTPUT_REPORT"
+    MEDIAN_HORIZONTAL_ERROR = "MEDIAN_HORIZONTAL_ERROR"
+    MEDIAN_VERTICAL_ERROR = "MEDIAN_VERTICAL_ERROR"
 
-    def initAlgorithm(self, config=None):  # noqa: N802
-        self.add(QgsProcessingParameterFeatureSource(
-            "SIGNS", self.tr("Sign layer"), [Qgis.ProcessingSourceType.VectorPoint]),
-            "The sign layer to score (PointZ at the panel centres, e.g. the output of Refine "
-            "signs), with the fields sign_id, class and optionally height, azimuth, best_image.")
-        self.add(QgsProcessingParameterFile(
-            "REFERENCE", self.tr("Reference signs (CSV or point layer)"),
-            behavior=Qgis.ProcessingFileParameterBehavior.File,
-            fileFilter=self.tr("Reference signs (*.csv *.txt *.gpkg *.shp *.geojson);;All files (*.*)")),
-            "Ground truth: a CSV sign_id,class,x,y,z,height,width,panel_height,azimuth in the sign "
-            "layer's CRS, or a point layer with those fields (reprojected if its CRS differs).")
+    def displayName(self):
+        return self.tr("Evaluate signs against reference")
+
+    def shortDescription(self):
+        return self.tr("Scores a sign layer against reference sign panels and writes an HTML report.")
+
+    def shortHelpString(self):
+        return self.tr(
+            "Matches each sign to at most one reference panel by optimal assignment (Hungarian "
+            "method) on the 3D distance between panel centres, within the match radius and "
+            "ignoring class, then reports precision (matches / signs), recall (matches / "
+            "reference panels), F1, the class accuracy of the matches, and the median and 95th "
+            "percentile position error, the median height error and the median azimuth error."
+            "<br><br>The <b>reference</b> is a CSV <i>sign_id,class,x,y,z,height,width,"
+            "panel_height,azimuth</i> in the sign layer's CRS, or a point layer with those fields "
+            "(reprojected to the sign layer's CRS).<br><br>The HTML report has the summary and one "
+            "row per sign: matched (with its errors), missed or false.")
+
+    def output_labels(self):
+        """Output name (core's ``OUTPUT_NAMES`` and the two extra errors) -> translated label."""
+        return {
+            "TP": self.tr("True positives (matched signs)"), "FP": self.tr("False positives (unmatched signs)"),
+            "FN": self.tr("False negatives (missed reference panels)"), "PRECISION": self.tr("Precision"),
+            "RECALL": self.tr("Recall"), "F1": self.tr("F1 score"),
+            "CLASS_ACCURACY": self.tr("Class accuracy of matches"),
+            "MEDIAN_ERROR": self.tr("Median 3D position error (m)"),
+            "P95_ERROR": self.tr("95th percentile 3D error (m)"),
+            "MEDIAN_HEIGHT_ERROR": self.tr("Median height error (m)"),
+            "MEDIAN_AZIMUTH_ERROR": self.tr("Median azimuth error (°)"),
+            self.MEDIAN_HORIZONTAL_ERROR: self.tr("Median horizontal position error (m)"),
+            self.MEDIAN_VERTICAL_ERROR: self.tr("Median vertical position error (m)"),
+        }
+
+    def initAlgorithm(self, config=None):
+        self.add_source(
+            self.SIGNS, self.tr("Sign layer"), Qgis.ProcessingSourceType.VectorPoint,
+            self.tr("The sign layer to score (PointZ at the panel centres, e.g. the output of Refine "
+                    "signs), with the fields sign_id, class and optionally height, azimuth, best_image."))
+        self.add_file(
+            self.REFERENCE, self.tr("Reference signs (CSV or point layer)"),
+            self.tr("Ground truth: a CSV sign_id,class,x,y,z,height,width,panel_height,azimuth in the sign "
+                    "layer's CRS, or a point layer with those fields (reprojected if its CRS differs)."),
+            file_filter=self.tr("Reference signs (*.csv *.txt *.gpkg *.shp *.geojson);;All files (*.*)"))
         self.add_number(
-            "MATCH_RADIUS", "Match radius (m)", 1.0,
-            "A sign and a reference panel farther apart than this (3D distance between panel "
-            "centres, metres) are never matched.", minimum=0.001)
-        self.add(QgsProcessingParameterFileDestination(
-            "OUTPUT_REPORT", self.tr("Evaluation report"), self.tr("HTML files (*.html)")),
-            "HTML report: the summary and one row per sign and reference panel.")
-        for name in OUTPUT_NAMES + EXTRA_OUTPUTS:
-            self.addOutput(QgsProcessingOutputNumber(name, self.tr(OUTPUT_LABELS[name])))
+            self.MATCH_RADIUS, self.tr("Match radius (m)"), 1.0,
+            self.tr("A sign and a reference panel farther apart than this (3D distance between panel "
+                    "centres, metres) are never matched."), minimum=0.001)
+        self.add_file_destination(
+            self.OUTPUT_REPORT, self.tr("Evaluation report"), self.tr("HTML files (*.html)"),
+            self.tr("HTML report: the summary and one row per sign and reference panel."))
+        labels = self.output_labels()
+        for name in OUTPUT_NAMES + (self.MEDIAN_HORIZONTAL_ERROR, self.MEDIAN_VERTICAL_ERROR):
+            self.addOutput(QgsProcessingOutputNumber(name, labels[name]))
 
     def _reference(self, path, signs_crs, context, feedback):
         if not path or not os.path.isfile(path):
@@ -128,18 +149,16 @@ class Evaluate(RoadSignsAlgorithm):
         return sign_set_from_features(layer.getFeatures(), layer.fields(), transform,
                                       "Reference {}".format(path))
 
-    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+    def processAlgorithm(self, parameters, context, feedback):
         self.check_dependencies()
-        source = self.parameterAsSource(parameters, "SIGNS", context)
-        if source is None:
-            raise QgsProcessingException(self.invalidSourceError(parameters, "SIGNS"))
-        radius_m = self.parameterAsDouble(parameters, "MATCH_RADIUS", context)
-        report_path = self.parameterAsFileOutput(parameters, "OUTPUT_REPORT", context)
+        source = self.source(parameters, self.SIGNS, context)
+        radius_m = self.parameterAsDouble(parameters, self.MATCH_RADIUS, context)
+        report_path = self.parameterAsFileOutput(parameters, self.OUTPUT_REPORT, context)
         signs = sign_set_from_features(source.getFeatures(QgsFeatureRequest()), source.fields(), None,
                                        self.tr("Sign layer"))
         if len(signs) == 0:
             raise QgsProcessingException(self.tr("The sign layer is empty: nothing to evaluate."))
-        reference_path = self.parameterAsFile(parameters, "REFERENCE", context)
+        reference_path = self.parameterAsFile(parameters, self.REFERENCE, context)
         reference = self._reference(reference_path, source.sourceCrs(), context, feedback)
         if len(reference) == 0:
             raise QgsProcessingException(self.tr("The reference {} has no sign: nothing to evaluate against.")
@@ -151,14 +170,14 @@ class Evaluate(RoadSignsAlgorithm):
                               sign_label=source.sourceName(), reference_label=reference_path)
         feedback.setProgress(100)
         outputs = dict(result.as_outputs())
-        outputs["MEDIAN_HORIZONTAL_ERROR"] = result.median_horizontal_error_m
-        outputs["MEDIAN_VERTICAL_ERROR"] = result.median_vertical_error_m
+        outputs[self.MEDIAN_HORIZONTAL_ERROR] = result.median_horizontal_error_m
+        outputs[self.MEDIAN_VERTICAL_ERROR] = result.median_vertical_error_m
         outputs = {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in outputs.items()}
         feedback.pushInfo(self.tr("{} signs, {} reference panels: TP {}, FP {}, FN {}; precision {}, "
                                   "recall {}, median error {} m").format(
             len(signs), len(reference), outputs["TP"], outputs["FP"], outputs["FN"],
             _fmt(outputs["PRECISION"]), _fmt(outputs["RECALL"]), _fmt(outputs["MEDIAN_ERROR"])))
-        outputs["OUTPUT_REPORT"] = report_path
+        outputs[self.OUTPUT_REPORT] = report_path
         return outputs
 
 

@@ -3,13 +3,15 @@ PDAL's CSF or SMRF filter, or the built-in engine when PDAL is not there."""
 import os
 from contextlib import contextmanager
 
-from qgis.core import (Qgis, QgsCoordinateReferenceSystem, QgsCoordinateTransform,
-                       QgsProcessingException, QgsProcessingOutputNumber,
-                       QgsProcessingOutputString, QgsProcessingParameterBoolean,
-                       QgsProcessingParameterCrs, QgsProcessingParameterEnum,
-                       QgsProcessingParameterFeatureSource, QgsProcessingParameterFile,
-                       QgsProcessingParameterFileDestination,
-                       QgsWkbTypes)
+from qgis.core import (
+    Qgis,
+    QgsCoordinateReferenceSystem,
+    QgsCoordinateTransform,
+    QgsProcessingException,
+    QgsProcessingOutputNumber,
+    QgsProcessingOutputString,
+    QgsWkbTypes,
+)
 
 from .base import RoadSignsAlgorithm
 
@@ -31,74 +33,96 @@ def configured_pdal_executable():
 
 class GroundFilter(RoadSignsAlgorithm):
     ALGORITHM_ID = "groundfilter"
-    DISPLAY_NAME = "Ground filter and crop point cloud"
     REQUIRES = ("numpy", "scipy", "pyproj", "laspy", "lazrs", "shapely")
-    SHORT_DESCRIPTION = "Crops a LAS/LAZ cloud and classifies ground (class 2) with CSF or SMRF, PDAL or built-in."
-    METHODS = ["CSF (cloth simulation)", "SMRF (simple morphological filter)"]
-    ENGINES = ["Auto (PDAL when available, else built-in)", "PDAL", "Built-in"]
-    HELP = (
-        "Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and "
-        "classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et "
-        "al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's "
-        "parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m "
-        "cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless <i>Reset existing classes</i> is "
-        "checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are "
-        "written unchanged.<br><br><b>Crop</b>: polygons (grown by the crop buffer), or points "
-        "and lines such as the panorama stations or detection rays, buffered into a corridor. "
-        "The crop layer is reprojected to the cloud's CRS.<br><br><b>Engine</b>: PDAL runs "
-        "filters.csf / filters.smrf through its Python bindings or the <i>pdal</i> executable "
-        "(on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign "
-        "inventory); the built-in engine runs the same filters in Python, tile by tile, so "
-        "clouds larger than memory work. Auto uses PDAL when present and falls back to the "
-        "built-in engine if PDAL fails, saying so in the log.")
+    INPUT = "INPUT"
+    CROP = "CROP"
+    CROP_BUFFER = "CROP_BUFFER"
+    METHOD = "METHOD"
+    ENGINE = "ENGINE"
+    THRESHOLD = "THRESHOLD"
+    CELL_SIZE = "CELL_SIZE"
+    CLOUD_CRS = "CLOUD_CRS"
+    RESET_CLASSES = "RESET_CLASSES"
+    OUTPUT = "OUTPUT"
+    ENGINE_USED = "ENGINE_USED"
+    POINTS_IN = "POINTS_IN"
+    POINTS_OUT = "POINTS_OUT"
+    GROUND_POINTS = "GROUND_POINTS"
 
-    def initAlgorithm(self, config=None):  # noqa: N802
-        self.add(QgsProcessingParameterFile(
-            "INPUT", self.tr("Point cloud (LAS/LAZ)"), behavior=Qgis.ProcessingFileParameterBehavior.File,
-            fileFilter=self.tr("LAS/LAZ point clouds (*.las *.laz *.LAS *.LAZ);;All files (*.*)")),
-            "The mobile-mapping cloud, LAS 1.2-1.4 or LAZ, any size (it is read in chunks).")
-        self.add(QgsProcessingParameterFeatureSource(
-            "CROP", self.tr("Crop layer (optional)"),
-            [Qgis.ProcessingSourceType.VectorAnyGeometry], optional=True),
-            "Keep only points inside these polygons, or within the crop buffer of these points or "
-            "lines (e.g. the panorama stations). Empty keeps the whole cloud.")
+    def displayName(self):
+        return self.tr("Ground filter and crop point cloud")
+
+    def shortDescription(self):
+        return self.tr("Crops a LAS/LAZ cloud and classifies ground (class 2) with CSF or SMRF, PDAL or "
+                       "built-in.")
+
+    def shortHelpString(self):
+        return self.tr(
+            "Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and "
+            "classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et "
+            "al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's "
+            "parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m "
+            "cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless <i>Reset existing classes</i> is "
+            "checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are "
+            "written unchanged.<br><br><b>Crop</b>: polygons (grown by the crop buffer), or points "
+            "and lines such as the panorama stations or detection rays, buffered into a corridor. "
+            "The crop layer is reprojected to the cloud's CRS.<br><br><b>Engine</b>: PDAL runs "
+            "filters.csf / filters.smrf through its Python bindings or the <i>pdal</i> executable "
+            "(on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign "
+            "inventory); the built-in engine runs the same filters in Python, tile by tile, so "
+            "clouds larger than memory work. Auto uses PDAL when present and falls back to the "
+            "built-in engine if PDAL fails, saying so in the log.")
+
+    def initAlgorithm(self, config=None):
+        self.add_las_file(
+            self.INPUT, self.tr("Point cloud (LAS/LAZ)"),
+            self.tr("The mobile-mapping cloud, LAS 1.2-1.4 or LAZ, any size (it is read in chunks)."))
+        self.add_source(
+            self.CROP, self.tr("Crop layer (optional)"), Qgis.ProcessingSourceType.VectorAnyGeometry,
+            self.tr("Keep only points inside these polygons, or within the crop buffer of these points or "
+                    "lines (e.g. the panorama stations). Empty keeps the whole cloud."), optional=True)
         self.add_number(
-            "CROP_BUFFER", "Crop buffer (m)", 0.0,
-            "Grow the crop geometries by this many metres; needed (> 0) for a point or line layer.", minimum=0.0)
-        self.add(QgsProcessingParameterEnum(
-            "METHOD", self.tr("Ground method"), options=[self.tr(m) for m in self.METHODS], defaultValue=0),
-            "CSF suits roads and gentle terrain; SMRF suits steeper or rougher terrain.")
-        self.add(QgsProcessingParameterEnum(
-            "ENGINE", self.tr("Engine"), options=[self.tr(e) for e in self.ENGINES], defaultValue=0),
-            "Auto: PDAL when QGIS has it (Python bindings or the pdal executable), else built-in.")
+            self.CROP_BUFFER, self.tr("Crop buffer (m)"), 0.0,
+            self.tr("Grow the crop geometries by this many metres; needed (> 0) for a point or line layer."),
+            minimum=0.0)
+        self.add_enum(
+            self.METHOD, self.tr("Ground method"),
+            [("csf", self.tr("CSF (cloth simulation)")), ("smrf", self.tr("SMRF (simple morphological filter)"))],
+            "csf", self.tr("CSF suits roads and gentle terrain; SMRF suits steeper or rougher terrain."))
+        self.add_enum(
+            self.ENGINE, self.tr("Engine"),
+            [("auto", self.tr("Auto (PDAL when available, else built-in)")), ("pdal", self.tr("PDAL")),
+             ("builtin", self.tr("Built-in"))],
+            "auto", self.tr("Auto: PDAL when QGIS has it (Python bindings or the pdal executable), else built-in."))
         self.add_number(
-            "THRESHOLD", "Ground distance threshold (m)", 0.2,
-            "Points within this height of the ground surface are ground (PDAL's threshold option). "
-            "PDAL's default is 0.5 m; 0.2 m suits dense mobile-mapping clouds, where it keeps the "
-            "lowest parts of cars, walls and street furniture off the ground class.", minimum=0.01, advanced=True)
+            self.THRESHOLD, self.tr("Ground distance threshold (m)"), 0.2,
+            self.tr("Points within this height of the ground surface are ground (PDAL's threshold option). "
+                    "PDAL's default is 0.5 m; 0.2 m suits dense mobile-mapping clouds, where it keeps the "
+                    "lowest parts of cars, walls and street furniture off the ground class."),
+            minimum=0.01, advanced=True)
         self.add_number(
-            "CELL_SIZE", "Cloth resolution / cell size (m)", 0.5,
-            "CSF's cloth resolution or SMRF's cell size, in metres (PDAL's default: 1 m).", minimum=0.05, advanced=True)
-        self.add(QgsProcessingParameterCrs(
-            "CLOUD_CRS", self.tr("Cloud CRS (when the file has none)"), optional=True),
-            "The cloud's CRS if the file does not record one; a CRS in the file is replaced by it. "
-            "The CRS is never guessed.", advanced=True)
-        self.add(QgsProcessingParameterBoolean(
-            "RESET_CLASSES", self.tr("Reset existing classes"), defaultValue=False),
-            "Set every non-ground point to class 1 (unclassified) instead of keeping its class.",
+            self.CELL_SIZE, self.tr("Cloth resolution / cell size (m)"), 0.5,
+            self.tr("CSF's cloth resolution or SMRF's cell size, in metres (PDAL's default: 1 m)."),
+            minimum=0.05, advanced=True)
+        self.add_crs(
+            self.CLOUD_CRS, self.tr("Cloud CRS (when the file has none)"),
+            self.tr("The cloud's CRS if the file does not record one; a CRS in the file is replaced by it. "
+                    "The CRS is never guessed."), optional=True, advanced=True)
+        self.add_boolean(
+            self.RESET_CLASSES, self.tr("Reset existing classes"), False,
+            self.tr("Set every non-ground point to class 1 (unclassified) instead of keeping its class."),
             advanced=True)
-        self.add(QgsProcessingParameterFileDestination(
-            "OUTPUT", self.tr("Ground-classified cloud"),
-            self.tr("LAZ (*.laz);;LAS (*.las)"), defaultValue=None),
-            "The cropped cloud with ground as class 2; LAZ or LAS by the file extension.")
-        self.addOutput(QgsProcessingOutputString("ENGINE_USED", self.tr("Engine that ran")))
-        self.addOutput(QgsProcessingOutputNumber("POINTS_IN", self.tr("Points read")))
-        self.addOutput(QgsProcessingOutputNumber("POINTS_OUT", self.tr("Points written")))
-        self.addOutput(QgsProcessingOutputNumber("GROUND_POINTS", self.tr("Ground points")))
+        self.add_file_destination(
+            self.OUTPUT, self.tr("Ground-classified cloud"), self.tr("LAZ (*.laz);;LAS (*.las)"),
+            self.tr("The cropped cloud with ground as class 2; LAZ or LAS by the file extension."))
+        self.addOutput(QgsProcessingOutputString(self.ENGINE_USED, self.tr("Engine that ran")))
+        self.addOutput(QgsProcessingOutputNumber(self.POINTS_IN, self.tr("Points read")))
+        self.addOutput(QgsProcessingOutputNumber(self.POINTS_OUT, self.tr("Points written")))
+        self.addOutput(QgsProcessingOutputNumber(self.GROUND_POINTS, self.tr("Ground points")))
 
     def _crop_geometries(self, parameters, context, cloud_crs, buffer_m, feedback):
         """WKB of the crop layer's geometries in the cloud's CRS (None without a crop layer)."""
-        source = self.parameterAsSource(parameters, "CROP", context)
+        source = self.parameterAsSource(parameters, self.CROP, context)
         if source is None:
             return None
         if QgsWkbTypes.geometryType(source.wkbType()) != Qgis.GeometryType.Polygon and buffer_m <= 0:
@@ -128,39 +152,39 @@ class GroundFilter(RoadSignsAlgorithm):
             raise QgsProcessingException(self.tr("PDAL failed: {}\n{}").format(
                 error, getattr(error, "stderr", "")).strip())
 
-    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+    def processAlgorithm(self, parameters, context, feedback):
         self.check_dependencies()
         from ..core import pointcloud
         from ..core.ground import CsfParams, PdalError, SmrfParams, run_ground_filter
 
-        input_path = self.parameterAsFile(parameters, "INPUT", context)
-        output_path = self.parameterAsFileOutput(parameters, "OUTPUT", context)
+        input_path = self.parameterAsFile(parameters, self.INPUT, context)
+        output_path = self.parameterAsFileOutput(parameters, self.OUTPUT, context)
         if os.path.splitext(output_path)[1].lower() not in (".las", ".laz"):
             output_path = os.path.splitext(output_path)[0] + ".laz"
-        user_crs = self.parameterAsCrs(parameters, "CLOUD_CRS", context)
-        buffer_m = self.parameterAsDouble(parameters, "CROP_BUFFER", context)
+        user_crs = self.parameterAsCrs(parameters, self.CLOUD_CRS, context)
+        buffer_m = self.parameterAsDouble(parameters, self.CROP_BUFFER, context)
         with self.core_errors():
             crs_wkt = user_crs.toWkt(Qgis.CrsWktVariant.Wkt2_2019Simplified) if user_crs.isValid() \
                 else pointcloud.read_crs_wkt(input_path)
         cloud_crs = QgsCoordinateReferenceSystem.fromWkt(crs_wkt) if crs_wkt else QgsCoordinateReferenceSystem()
         crop = self._crop_geometries(parameters, context, cloud_crs, buffer_m, feedback)
-        method = self.parameterAsEnum(parameters, "METHOD", context)
-        threshold_m = self.parameterAsDouble(parameters, "THRESHOLD", context)
-        cell_m = self.parameterAsDouble(parameters, "CELL_SIZE", context)
-        params = CsfParams(resolution=cell_m, threshold=threshold_m) if method == 0 else \
+        method = self.enum_name(parameters, self.METHOD, context)
+        threshold_m = self.parameterAsDouble(parameters, self.THRESHOLD, context)
+        cell_m = self.parameterAsDouble(parameters, self.CELL_SIZE, context)
+        params = CsfParams(resolution=cell_m, threshold=threshold_m) if method == "csf" else \
             SmrfParams(cell=cell_m, threshold=threshold_m)
         with self.core_errors(), self._pdal_errors(PdalError):
             result = run_ground_filter(
                 input_path, output_path,
                 method=method, params=params,
-                engine=self.parameterAsEnum(parameters, "ENGINE", context),
+                engine=self.enum_name(parameters, self.ENGINE, context),
                 crop_polygons=crop, crop_buffer_m=buffer_m if crop else 0.0,
                 crs_wkt=crs_wkt if user_crs.isValid() else None,
-                reset_classes=self.parameterAsBoolean(parameters, "RESET_CLASSES", context),
+                reset_classes=self.parameterAsBoolean(parameters, self.RESET_CLASSES, context),
                 pdal_executable=configured_pdal_executable(),
                 progress=self.progress(feedback))
         feedback.pushInfo(self.tr("Engine: {}; method: {}; {} points read, {} written, {} ground").format(
             result.engine, result.method.upper(), result.n_input, result.n_output, result.n_ground))
-        return {"OUTPUT": result.output_path, "ENGINE_USED": result.engine,
-                "POINTS_IN": result.n_input, "POINTS_OUT": result.n_output,
-                "GROUND_POINTS": result.n_ground}
+        return {self.OUTPUT: result.output_path, self.ENGINE_USED: result.engine,
+                self.POINTS_IN: result.n_input, self.POINTS_OUT: result.n_output,
+                self.GROUND_POINTS: result.n_ground}

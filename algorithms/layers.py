@@ -1,24 +1,34 @@
-"""Reading features into plain records and writing records into sinks, for the adapters.
+"""One reader and one writer for the plugin's layers (stations, detections, candidates,
+signs, outlines): features <-> the plain records ``core`` reads and writes.
 
-Records are dicts of Python values (``None`` for NULL), the form ``core`` reads and writes.
-Field specs are ``(name, QMetaType.Type)`` pairs, one list per layer kind.
+Records are dicts of Python values (``None`` for NULL) keyed by field name; each layer's
+fields are a :mod:`core.schema <roadsigns.core.schema>` declared once in core. Here the
+field kinds become QGIS field types.
 """
-import math
-
-from qgis.core import (QgsCoordinateReferenceSystem, QgsFeature, QgsFeatureRequest,
-                       QgsFeatureSink, QgsField, QgsFields, QgsProcessingException)
+from qgis.core import (
+    QgsCoordinateReferenceSystem,
+    QgsFeature,
+    QgsFeatureRequest,
+    QgsFeatureSink,
+    QgsField,
+    QgsFields,
+    QgsProcessingException,
+)
 from qgis.PyQt.QtCore import QMetaType
 
-from ..provider.i18n import tr
+from ..core.schema import names
+from .i18n import tr
 
-INT, DOUBLE, TEXT = QMetaType.Type.Int, QMetaType.Type.Double, QMetaType.Type.QString
+#: core field kind -> QGIS field type
+FIELD_TYPES = {int: QMetaType.Type.Int, float: QMetaType.Type.Double, str: QMetaType.Type.QString}
 
 
-def make_fields(spec):
-    fields = QgsFields()
-    for name, field_type in spec:
-        fields.append(QgsField(name, field_type))
-    return fields
+def qgs_fields(schema):
+    """The QgsFields of a core schema."""
+    out = QgsFields()
+    for field in schema:
+        out.append(QgsField(field.name, FIELD_TYPES[field.kind]))
+    return out
 
 
 def _plain(value):
@@ -27,36 +37,30 @@ def _plain(value):
     return value
 
 
-def read_records(source, required, label, feedback=None):
-    """Attribute dicts of every feature of ``source``; error naming missing fields."""
-    names = source.fields().names()
-    missing = [f for f in required if f not in names]
+def read_records(source, schema, label, feedback=None, required=None):
+    """Attribute dicts of every feature of ``source`` (every field the layer has).
+
+    The fields of ``schema`` (or only those named in ``required``) must be there: else an
+    error naming the layer, the missing fields and the fields found.
+    """
+    found = source.fields().names()
+    missing = [f for f in (required or names(schema)) if f not in found]
     if missing:
         raise QgsProcessingException(
             tr("{layer}: missing field(s) {missing}; fields found: {found}").format(
-                layer=label, missing=", ".join(missing), found=", ".join(names)))
+                layer=label, missing=", ".join(missing), found=", ".join(found)))
     records = []
     for feature in source.getFeatures(QgsFeatureRequest()):
         if feedback is not None and feedback.isCanceled():
             break
-        records.append({name: _plain(feature[name]) for name in names})
+        records.append({name: _plain(feature[name]) for name in found})
     return records
 
 
-def _value(value, field_type):
-    if value is None:
-        return None
-    if field_type == DOUBLE:
-        value = float(value)
-        return None if math.isnan(value) else value
-    if field_type == INT:
-        return int(value)
-    return str(value)
-
-
-def write_records(sink, fields, spec, records, geometries, feedback=None, progress_span=(0, 100)):
-    """Add one feature per record (values taken by field name) with ``geometries[k]``
-    (a QgsGeometry, or None for a feature without geometry)."""
+def write_records(sink, schema, records, geometries, feedback=None, progress_span=(0, 100)):
+    """Add one feature per record, its values taken by ``schema``'s field names and kinds,
+    with ``geometries[k]`` (a QgsGeometry, or None for a feature without geometry)."""
+    fields = qgs_fields(schema)
     n = max(len(records), 1)
     start, end = progress_span
     for k, (record, geometry) in enumerate(zip(records, geometries)):
@@ -65,7 +69,7 @@ def write_records(sink, fields, spec, records, geometries, feedback=None, progre
         feature = QgsFeature(fields)
         if geometry is not None:
             feature.setGeometry(geometry)
-        feature.setAttributes([_value(record.get(name), field_type) for name, field_type in spec])
+        feature.setAttributes([field.value(record.get(field.name)) for field in schema])
         sink.addFeature(feature, QgsFeatureSink.Flag.FastInsert)
         if feedback is not None and k % 100 == 0:
             feedback.setProgress(start + (end - start) * k / n)

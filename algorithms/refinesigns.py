@@ -2,146 +2,139 @@
 cloud: the sign layer handed to a road authority."""
 import os
 
-from qgis.core import (Qgis, QgsGeometry, QgsLineString, QgsPoint, QgsPolygon,
-                       QgsProcessingException, QgsProcessingParameterFeatureSink,
-                       QgsProcessingParameterFeatureSource, QgsProcessingParameterFile,
-                       QgsProcessingParameterFileDestination)
+from qgis.core import Qgis, QgsGeometry, QgsLineString, QgsPoint, QgsPolygon
 
+from ..core.review import CHIP_FIELD
 from .base import RoadSignsAlgorithm
-from .layers import DOUBLE, INT, TEXT, check_same_crs, make_fields, read_records, write_records
+from .layers import check_same_crs, qgs_fields, read_records, write_records
 from .style import SignLayerStyler, file_of, write_sign_style
-
-SIGN_SPEC = [("sign_id", INT), ("class", TEXT), ("score", DOUBLE), ("height", DOUBLE),
-             ("bottom_height", DOUBLE), ("width", DOUBLE), ("panel_height", DOUBLE),
-             ("azimuth", DOUBLE), ("n_views", INT), ("n_points", INT), ("source_images", TEXT),
-             ("best_image", TEXT), ("mean_intensity", DOUBLE), ("planarity", DOUBLE),
-             ("position_source", TEXT), ("x", DOUBLE), ("y", DOUBLE), ("z", DOUBLE)]
-#: beyond the contract: the review chip's path, relative to the sign layer's folder
-SIGN_SPEC_WITH_CHIP = SIGN_SPEC + [("chip", TEXT)]
-OUTLINE_SPEC = [("sign_id", INT), ("class", TEXT), ("width", DOUBLE), ("panel_height", DOUBLE)]
 
 
 class RefineSigns(RoadSignsAlgorithm):
     ALGORITHM_ID = "refinesigns"
-    DISPLAY_NAME = "Refine and merge signs"
     REQUIRES = ("numpy", "scipy", "laspy", "lazrs", "shapely")
-    SHORT_DESCRIPTION = "Merges the views of each sign and refines it in the cloud: the sign layer."
-    HELP = (
-        "Groups the candidates of different panoramas that are the same physical sign (same "
-        "class, within the merge radius, plane normals agreeing; panels stacked on one pole "
-        "stay apart), then refines each sign in the cloud: Euclidean clustering, an intensity "
-        "filter whose threshold adapts to the cloud (Otsu), a near-vertical RANSAC plane and "
-        "PCA dimensionality to keep the panel and drop the pole.<br><br>Each sign gets its "
-        "panel centre, width and panel height, the azimuth its face looks towards (clockwise "
-        "from grid north), its height above the ground directly below (class-2 points near "
-        "the sign; the log names any fallback), the bottom height, the number of views and "
-        "points, the images it was seen in and the best of them (closest, most frontal), the "
-        "mean intensity and planarity. A sign seen in two or more panoramas but with no cloud "
-        "points is placed by triangulating its rays (position_source = image).<br><br>"
-        "Optional outputs: panel outlines (PolygonZ) and the sign points (LAS/LAZ).<br><br>"
-        "<b>Review</b>: with the panorama folder, each sign gets an image chip from its best "
-        "panorama (its box with a margin, undistorted), written into a folder beside the sign "
-        "layer and linked by the <i>chip</i> field (a relative path); the review report shows "
-        "every sign's chip and attributes. The sign layer is styled with a symbol per class "
-        "and its height as label (a .qml file beside it).")
+    CANDIDATES = "CANDIDATES"
+    POINT_CLOUD = "POINT_CLOUD"
+    MERGE_RADIUS = "MERGE_RADIUS"
+    IMAGES = "IMAGES"
+    OUTPUT = "OUTPUT"
+    OUTLINES = "OUTLINES"
+    SIGN_POINTS = "SIGN_POINTS"
+    REVIEW_REPORT = "REVIEW_REPORT"
 
-    def initAlgorithm(self, config=None):  # noqa: N802
-        self.add(QgsProcessingParameterFeatureSource(
-            "CANDIDATES", self.tr("Sign candidates"), [Qgis.ProcessingSourceType.VectorPoint]),
-            "The output of Project detections.")
-        self.add(QgsProcessingParameterFile(
-            "POINT_CLOUD", self.tr("Ground-classified point cloud (LAS/LAZ)"),
-            behavior=Qgis.ProcessingFileParameterBehavior.File,
-            fileFilter=self.tr("LAS/LAZ point clouds (*.las *.laz *.LAS *.LAZ);;All files (*.*)")),
-            "The same cloud as for Project detections (ground as class 2).")
+    def displayName(self):
+        return self.tr("Refine and merge signs")
+
+    def shortDescription(self):
+        return self.tr("Merges the views of each sign and refines it in the cloud: the sign layer.")
+
+    def shortHelpString(self):
+        return self.tr(
+            "Groups the candidates of different panoramas that are the same physical sign (same "
+            "class, within the merge radius, plane normals agreeing; panels stacked on one pole "
+            "stay apart), then refines each sign in the cloud: Euclidean clustering, an intensity "
+            "filter whose threshold adapts to the cloud (Otsu), a near-vertical RANSAC plane and "
+            "PCA dimensionality to keep the panel and drop the pole.<br><br>Each sign gets its "
+            "panel centre, width and panel height, the azimuth its face looks towards (clockwise "
+            "from grid north), its height above the ground directly below (class-2 points near "
+            "the sign; the log names any fallback), the bottom height, the number of views and "
+            "points, the images it was seen in and the best of them (closest, most frontal), the "
+            "mean intensity and planarity. A sign seen in two or more panoramas but with no cloud "
+            "points is placed by triangulating its rays (position_source = image).<br><br>"
+            "Optional outputs: panel outlines (PolygonZ) and the sign points (LAS/LAZ).<br><br>"
+            "<b>Review</b>: with the panorama folder, each sign gets an image chip from its best "
+            "panorama (its box with a margin, undistorted), written into a folder beside the sign "
+            "layer and linked by the <i>chip</i> field (a relative path); the review report shows "
+            "every sign's chip and attributes. The sign layer is styled with a symbol per class "
+            "and its height as label (a .qml file beside it).")
+
+    def initAlgorithm(self, config=None):
+        self.add_source(
+            self.CANDIDATES, self.tr("Sign candidates"), Qgis.ProcessingSourceType.VectorPoint,
+            self.tr("The output of Project detections."))
+        self.add_las_file(
+            self.POINT_CLOUD, self.tr("Ground-classified point cloud (LAS/LAZ)"),
+            self.tr("The same cloud as for Project detections (ground as class 2)."))
         self.add_number(
-            "MERGE_RADIUS", "Merge radius (m)", 1.0,
-            "Candidates of the same class closer than this (metres) with agreeing plane normals "
-            "are taken as one sign.", minimum=0.05)
-        self.add(QgsProcessingParameterFile(
-            "IMAGES", self.tr("Panorama folder (for review chips)"),
-            behavior=Qgis.ProcessingFileParameterBehavior.Folder, optional=True),
-            "The folder of the panoramas (as for Import trajectory). When given, an image chip of "
-            "each sign is cut from its best panorama for review.")
-        self.add(QgsProcessingParameterFeatureSink(
-            "OUTPUT", self.tr("Signs"), type=Qgis.ProcessingSourceType.VectorPoint),
-            "PointZ sign layer at the panel centres with the contract's fields, and chip: the "
-            "relative path of the sign's review picture.")
-        self.add(QgsProcessingParameterFeatureSink(
-            "OUTLINES", self.tr("Panel outlines"), type=Qgis.ProcessingSourceType.VectorPolygon,
-            optional=True, createByDefault=False),
-            "PolygonZ layer of each panel's rectangle in its plane (signs placed from the cloud).")
-        self.add(QgsProcessingParameterFileDestination(
-            "SIGN_POINTS", self.tr("Sign points"), self.tr("LAZ (*.laz);;LAS (*.las)"),
-            optional=True, createByDefault=False),
-            "A LAS/LAZ file of the points of every sign panel, all dimensions kept.")
-        self.add(QgsProcessingParameterFileDestination(
-            "REVIEW_REPORT", self.tr("Review report"), self.tr("HTML files (*.html)"),
-            optional=True, createByDefault=False),
-            "An HTML page with every sign's chip and attributes, to confirm signs without opening "
-            "panoramas (needs the panorama folder).")
+            self.MERGE_RADIUS, self.tr("Merge radius (m)"), 1.0,
+            self.tr("Candidates of the same class closer than this (metres) with agreeing plane normals "
+                    "are taken as one sign."), minimum=0.05)
+        self.add_file(
+            self.IMAGES, self.tr("Panorama folder (for review chips)"),
+            self.tr("The folder of the panoramas (as for Import trajectory). When given, an image chip of "
+                    "each sign is cut from its best panorama for review."), folder=True, optional=True)
+        self.add_sink(
+            self.OUTPUT, self.tr("Signs"), Qgis.ProcessingSourceType.VectorPoint,
+            self.tr("PointZ sign layer at the panel centres (fields in docs/formats.md), and chip: the "
+                    "relative path of the sign's review picture."))
+        self.add_sink(
+            self.OUTLINES, self.tr("Panel outlines"), Qgis.ProcessingSourceType.VectorPolygon,
+            self.tr("PolygonZ layer of each panel's rectangle in its plane (signs placed from the cloud)."),
+            optional=True)
+        self.add_file_destination(
+            self.SIGN_POINTS, self.tr("Sign points"), self.tr("LAZ (*.laz);;LAS (*.las)"),
+            self.tr("A LAS/LAZ file of the points of every sign panel, all dimensions kept."), optional=True)
+        self.add_file_destination(
+            self.REVIEW_REPORT, self.tr("Review report"), self.tr("HTML files (*.html)"),
+            self.tr("An HTML page with every sign's chip and attributes, to confirm signs without opening "
+                    "panoramas (needs the panorama folder)."), optional=True)
 
-    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+    def processAlgorithm(self, parameters, context, feedback):
         self.check_dependencies()
         from ..core.pointcloud import read_crs_wkt
-        from ..core.projection import CANDIDATE_FIELDS, DETECTION_FIELDS, ProjectionResult
-        from ..core.refine import refine_signs, write_sign_points
+        from ..core.projection import CANDIDATE_FIELDS, ProjectionResult
+        from ..core.refine import OUTLINE_FIELDS, SIGN_FIELDS, refine_signs, write_sign_points
 
-        source = self.parameterAsSource(parameters, "CANDIDATES", context)
-        if source is None:
-            raise QgsProcessingException(self.invalidSourceError(parameters, "CANDIDATES"))
-        cloud_path = self.parameterAsFile(parameters, "POINT_CLOUD", context)
-        rows = read_records(source, DETECTION_FIELDS + CANDIDATE_FIELDS, self.tr("Sign candidates"),
-                            feedback)
+        sign_layer_fields = SIGN_FIELDS + (CHIP_FIELD,)  # the sign fields and the review chip's path
+
+        source = self.source(parameters, self.CANDIDATES, context)
+        cloud_path = self.parameterAsFile(parameters, self.POINT_CLOUD, context)
+        rows = read_records(source, CANDIDATE_FIELDS, self.tr("Sign candidates"), feedback)
         progress = self.progress(feedback)
         with self.core_errors():
             check_same_crs(source.sourceCrs(), read_crs_wkt(cloud_path), self.tr("The candidates"),
                            cloud_path)
             candidates = ProjectionResult.from_records(rows)
             result = refine_signs(candidates, cloud_path,
-                                  merge_radius_m=self.parameterAsDouble(parameters, "MERGE_RADIUS", context),
+                                  merge_radius_m=self.parameterAsDouble(parameters, self.MERGE_RADIUS, context),
                                   progress=progress.sub(0.0, 0.85))
         records = result.records()
-        fields = make_fields(SIGN_SPEC_WITH_CHIP)
-        sink, dest_id = self.parameterAsSink(parameters, "OUTPUT", context, fields,
-                                             Qgis.WkbType.PointZ, source.sourceCrs())
-        if sink is None:
-            raise QgsProcessingException(self.invalidSinkError(parameters, "OUTPUT"))
+        sink, dest_id = self.sink(parameters, self.OUTPUT, context, qgs_fields(sign_layer_fields),
+                                  Qgis.WkbType.PointZ, source.sourceCrs())
         layer_file = file_of(dest_id)
-        images_dir = self.parameterAsFile(parameters, "IMAGES", context)
-        report_path = self.parameterAsFileOutput(parameters, "REVIEW_REPORT", context)
+        images_dir = self.parameterAsFile(parameters, self.IMAGES, context)
+        report_path = self.parameterAsFileOutput(parameters, self.REVIEW_REPORT, context)
         if images_dir:
             self._review(records, candidates, result, images_dir, layer_file,
                          report_path, progress.sub(0.85, 0.9), feedback)
         elif report_path:
             feedback.pushWarning(self.tr("The review report needs the panorama folder: not written."))
-        write_records(sink, fields, SIGN_SPEC_WITH_CHIP, records,
+        write_records(sink, sign_layer_fields, records,
                       [QgsGeometry(QgsPoint(r["x"], r["y"], r["z"])) for r in records], feedback, (90, 92))
-        outputs = {"OUTPUT": dest_id}
+        outputs = {self.OUTPUT: dest_id}
         if report_path and images_dir:
-            outputs["REVIEW_REPORT"] = report_path
+            outputs[self.REVIEW_REPORT] = report_path
         if layer_file:
             write_sign_style(os.path.splitext(layer_file)[0] + ".qml", source.sourceCrs())
         if context.willLoadLayerOnCompletion(dest_id):
             context.layerToLoadOnCompletionDetails(dest_id).setPostProcessor(SignLayerStyler.create())
 
-        outline_fields = make_fields(OUTLINE_SPEC)
-        outline_sink, outline_id = self.parameterAsSink(parameters, "OUTLINES", context, outline_fields,
-                                                        Qgis.WkbType.PolygonZ, source.sourceCrs())
+        outline_sink, outline_id = self.sink(parameters, self.OUTLINES, context, qgs_fields(OUTLINE_FIELDS),
+                                             Qgis.WkbType.PolygonZ, source.sourceCrs())
         if outline_sink is not None:
             placed = [(r, c) for r, c in zip(records, result.outlines_world) if c is not None]
             polygons = [QgsGeometry(QgsPolygon(QgsLineString([QgsPoint(*p) for p in list(c) + [c[0]]])))
                         for _, c in placed]
-            write_records(outline_sink, outline_fields, OUTLINE_SPEC, [r for r, _ in placed], polygons,
+            write_records(outline_sink, OUTLINE_FIELDS, [r for r, _ in placed], polygons,
                           feedback, (92, 95))
-            outputs["OUTLINES"] = outline_id
-        points_path = self.parameterAsFileOutput(parameters, "SIGN_POINTS", context)
+            outputs[self.OUTLINES] = outline_id
+        points_path = self.parameterAsFileOutput(parameters, self.SIGN_POINTS, context)
         if points_path:
             with self.core_errors():
                 n = write_sign_points(cloud_path, points_path, result.point_index,
                                       progress=progress.sub(0.95, 1.0))
             feedback.pushInfo(self.tr("{} sign points written to {}").format(n, points_path))
-            outputs["SIGN_POINTS"] = points_path
+            outputs[self.SIGN_POINTS] = points_path
         by_source = {}
         for r in records:
             by_source[r["position_source"]] = by_source.get(r["position_source"], 0) + 1

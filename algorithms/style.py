@@ -3,12 +3,19 @@ label with the sign's height; written as a QML beside the output and applied whe
 loads the output layer."""
 import os
 
-from qgis.core import (QgsCategorizedSymbolRenderer, QgsMarkerSymbol, QgsPalLayerSettings,
-                       QgsProcessingLayerPostProcessorInterface, QgsRendererCategory,
-                       QgsTextBufferSettings, QgsTextFormat, QgsVectorLayer,
-                       QgsVectorLayerSimpleLabeling)
+from qgis.core import (
+    QgsCategorizedSymbolRenderer,
+    QgsMarkerSymbol,
+    QgsPalLayerSettings,
+    QgsProcessingLayerPostProcessorInterface,
+    QgsRendererCategory,
+    QgsTextBufferSettings,
+    QgsTextFormat,
+    QgsVectorLayer,
+    QgsVectorLayerSimpleLabeling,
+)
 
-from ..provider.i18n import tr
+from .i18n import tr
 
 RED, BLUE, WHITE, DARK = "208,28,31,255", "31,95,191,255", "255,255,255,255", "29,29,27,255"
 #: class -> (marker shape name, fill, stroke, rotation in degrees)
@@ -29,9 +36,16 @@ def _symbol(shape, fill, stroke, rotation_deg):
                                          "angle": str(rotation_deg)})
 
 
+def class_labels():
+    """Sign class -> its name in the user's language, for the legend."""
+    return {"warning": tr("warning"), "prohibitory": tr("prohibitory"), "mandatory": tr("mandatory"),
+            "information": tr("information"), "stop": tr("stop"), "yield": tr("yield")}
+
+
 def style_sign_layer(layer):
     """Categorised symbols by ``class`` (others grey) and a height label."""
-    categories = [QgsRendererCategory(name, _symbol(*spec), tr(name)) for name, spec in CLASS_SYMBOLS.items()]
+    labels = class_labels()
+    categories = [QgsRendererCategory(name, _symbol(*spec), labels[name]) for name, spec in CLASS_SYMBOLS.items()]
     categories.append(QgsRendererCategory("", _symbol("diamond", "154,154,154,255", DARK, 0.0), tr("other")))
     layer.setRenderer(QgsCategorizedSymbolRenderer("class", categories))
     settings = QgsPalLayerSettings()
@@ -62,7 +76,7 @@ class SignLayerStyler(QgsProcessingLayerPostProcessorInterface):
     """Applies the sign style to the output layer QGIS loads after the algorithm."""
     instance = None
 
-    def postProcessLayer(self, layer, context, feedback):  # noqa: N802
+    def postProcessLayer(self, layer, context, feedback):
         if isinstance(layer, QgsVectorLayer):
             style_sign_layer(layer)
 

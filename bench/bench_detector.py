@@ -173,7 +173,8 @@ def bench_gtsdb(detector, confidence, ids=GTSDB_HELDOUT_IDS):
         out[mode] = {"images": len(rows), "per_class": summarise(matches, CLASSES, confidence),
                      "signs_20px_and_up": summarise(matches_20, CLASSES, confidence)["all"],
                      "seconds_per_image": (time.perf_counter() - t0) / len(rows),
-                     "threshold_sweep": {f"{t:.2f}": summarise(matches, CLASSES, t)["all"] for t in (0.2, 0.3, 0.4, 0.5, 0.6)}}
+                     "threshold_sweep": {f"{t:.2f}": summarise(matches, CLASSES, t)["all"]
+                                         for t in (0.2, 0.3, 0.4, 0.5, 0.6)}}
     return out
 
 
@@ -212,7 +213,8 @@ def main(argv=None):
     result["panoramas"] = bench_panoramas(detector, scenes, a.confidence, a.max_images, a.min_size)
     p = result["panoramas"]
     print_table(f"Generated panoramas ({p['images']}, held-out seeds), signs >= {MIN_HEIGHT_PX:.0f} px, "
-                f"occlusion <= {MAX_OCCLUSION}, confidence {a.confidence}, boxes from {a.min_size:g} px", p["per_class"])
+                f"occlusion <= {MAX_OCCLUSION}, confidence {a.confidence}, boxes from {a.min_size:g} px",
+                p["per_class"])
     print(f"signs under {MIN_HEIGHT_PX:.0f} px: {p['small_under_20px']}\nsigns more than half hidden: "
           f"{p['occluded_over_half']}\n"
           f"detections on back faces: {p['detections_on_back_faces']}\n"

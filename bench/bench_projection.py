@@ -53,9 +53,10 @@ def main(argv=None) -> int:
     parser.add_argument("--keep", help="folder for the LAS files (default: a temporary one)")
     args = parser.parse_args(argv)
     _import_package()
-    from helpers import signscene
-    from roadsigns.core import projection as P
     import shapely
+    from helpers import signscene
+
+    from roadsigns.core import projection as P
     from roadsigns.core.pointcloud import CropRegion, TiledIndex
 
     base = signscene.make_scene(seed=1)

@@ -63,7 +63,7 @@ class WorldTransform:
 
     def __post_init__(self):
         if self.heights_transformed and self.source.is_geographic and len(self.source.axis_info) == 2:
-            self.source = self.source.to_3d()  # lon/lat + ellipsoidal height, per the contract
+            self.source = self.source.to_3d()  # lon/lat + ellipsoidal height, as docs/formats.md states
         self._to_target = Transformer.from_crs(self.source, self.target, always_xy=True)
         if not self.heights_transformed:
             self.height_note = Message("Heights: pass through unchanged (the target CRS has no "

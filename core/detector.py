@@ -223,9 +223,9 @@ def nms_per_class(boxes_xyxy: np.ndarray, scores: np.ndarray, class_ids: np.ndar
     if len(scores) == 0:
         return np.zeros(0, dtype=np.int64)
     xywh = np.concatenate([boxes_xyxy[:, :2], boxes_xyxy[:, 2:] - boxes_xyxy[:, :2]], axis=1)
-    keep = cv2.dnn.NMSBoxesBatched(xywh.astype(np.float64), scores.astype(np.float32),
-                                   class_ids.astype(np.int32), 0.0, float(iou_threshold))
-    keep = np.asarray(keep, dtype=np.int64).reshape(-1)
+    kept_by_cv2 = cv2.dnn.NMSBoxesBatched(xywh.tolist(), np.asarray(scores, float).tolist(),
+                                          np.asarray(class_ids, int).tolist(), 0.0, float(iou_threshold))
+    keep = np.asarray(kept_by_cv2, dtype=np.int64).reshape(-1)
     keep = keep[np.argsort(-scores[keep], kind="stable")]
     return keep[:max_detections]
 
@@ -434,7 +434,7 @@ def model_info(model_path: str, class_names: Optional[Sequence[str]] = None, **k
 class PanoramaDetections:
     """Signs found in one panorama, one row each (after merging across views).
 
-    ``u0, v0, u1, v1``: panorama pixels, the contract's form (u0 in [0, W), u1 > u0,
+    ``u0, v0, u1, v1``: panorama pixels in the detections layer's form (u0 in [0, W), u1 > u0,
     past W across the +-180 deg seam). ``view_index``: the view the box comes from;
     ``n_views``: how many view detections were merged into it.
     """
@@ -506,7 +506,9 @@ def merge_view_detections(boxes: np.ndarray, scores: np.ndarray, class_ids: np.n
     merge counts).
     """
     order = np.lexsort((-centrality, -scores, ~complete.astype(bool)))
-    kept, kept_boxes, members = [], [], []
+    kept: List[int] = []
+    kept_boxes: List[np.ndarray] = []
+    members: List[List[int]] = []
     for i in order:
         match = -1
         same = [k for k, j in enumerate(kept) if class_ids[j] == class_ids[i]]
@@ -528,7 +530,7 @@ def merge_view_detections(boxes: np.ndarray, scores: np.ndarray, class_ids: np.n
         if complete[i] and len(whole) > 1:
             kept_boxes[k] = _fused_box(kept_boxes[k], boxes[whole], scores[whole], pano_width_px)
     out = np.array(kept_boxes).reshape(-1, 4)
-    if len(out):  # the contract: u0 in [0, W)
+    if len(out):  # the detections layer: u0 in [0, W)
         shift = np.floor(out[:, 0] / pano_width_px) * pano_width_px
         out[:, 0] -= shift
         out[:, 2] -= shift

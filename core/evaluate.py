@@ -1,6 +1,6 @@
 """Evaluation of a sign layer against reference (ground-truth) sign panels.
 
-Conventions (``shared/CONTRACT.md``, "Reference (ground truth) signs CSV" and
+Conventions (``docs/formats.md``, "Reference (ground truth) signs CSV" and
 "Evaluation"):
 
 * Both sets come in one projected CRS (East, North, Up, metres); the adapter reprojects.
@@ -37,12 +37,12 @@ from scipy.spatial import cKDTree
 from .errors import InputError
 from .tables import read_table
 
-#: Reference CSV columns (contract order), all required; header names are case-insensitive.
+#: Reference CSV columns (docs/formats.md order), all required; header names are case-insensitive.
 REFERENCE_COLUMNS = ("sign_id", "class", "x", "y", "z", "height", "width",
                      "panel_height", "azimuth")
 REFERENCE_NUMERIC = ("x", "y", "z", "height", "width", "panel_height", "azimuth")
 
-#: Numeric output names of ``roadsigns:evaluate`` (contract), in order.
+#: Numeric output names of ``roadsigns:evaluate``, in order.
 OUTPUT_NAMES = ("TP", "FP", "FN", "PRECISION", "RECALL", "F1", "CLASS_ACCURACY",
                 "MEDIAN_ERROR", "P95_ERROR", "MEDIAN_HEIGHT_ERROR", "MEDIAN_AZIMUTH_ERROR")
 
@@ -101,7 +101,7 @@ class SignSet:
 # --------------------------------------------------------------------------- reference CSV
 
 def read_reference_csv(path: str) -> SignSet:
-    """Read a reference signs CSV (contract columns, comma/semicolon/tab separated).
+    """Read a reference signs CSV (the columns of docs/formats.md, comma/semicolon/tab separated).
 
     Raises :class:`InputError` naming the file (and line and field) for missing columns,
     values that are not finite numbers, empty ids or classes, duplicate ``sign_id`` and a
@@ -121,7 +121,7 @@ def read_reference_csv(path: str) -> SignSet:
                              "already used on line {first}", path=path, line=int(line),
                              sign_id=sign_id, first=first_line[sign_id])
         first_line[sign_id] = int(line)
-    return SignSet(ids=columns["sign_id"], classes=columns["class"],
+    return SignSet(ids=list(columns["sign_id"]), classes=list(columns["class"]),
                    xyz=np.column_stack([columns["x"], columns["y"], columns["z"]]),
                    height=columns["height"], azimuth_deg=columns["azimuth"],
                    width_m=columns["width"], panel_height_m=columns["panel_height"])
@@ -290,7 +290,7 @@ class EvaluationResult:
     rows: List[ReportRow] = field(default_factory=list)
 
     def as_outputs(self) -> Dict[str, float]:
-        """The contract's numeric outputs of ``roadsigns:evaluate`` (counts as int)."""
+        """The numeric outputs of ``roadsigns:evaluate`` (counts as int)."""
         values = (self.tp, self.fp, self.fn, self.precision, self.recall, self.f1,
                   self.class_accuracy, self.median_error_m, self.p95_error_m,
                   self.median_height_error_m, self.median_azimuth_error_deg)
@@ -308,13 +308,14 @@ def evaluate(signs: SignSet, reference: SignSet, match_radius_m: float) -> Evalu
     s, r = matching.sign_index, matching.reference_index
     delta = signs.xyz[s] - reference.xyz[r]
     horizontal = np.hypot(delta[:, 0], delta[:, 1])
-    height_error = signs.height[s] - reference.height[r]
-    azimuth_error = azimuth_difference_deg(signs.azimuth_deg[s], reference.azimuth_deg[r])
+    height_error = np.asarray(signs.height)[s] - np.asarray(reference.height)[r]
+    azimuth_error = azimuth_difference_deg(np.asarray(signs.azimuth_deg)[s], np.asarray(reference.azimuth_deg)[r])
     class_agrees = np.array([signs.classes[i] == reference.classes[j] for i, j in zip(s, r)],
                             dtype=bool)
 
     tp, fp, fn = int(s.size), len(signs) - int(s.size), len(reference) - int(s.size)
     distance = matching.distance_m
+    sign_images = list(signs.images or [""] * len(signs))
     result = EvaluationResult(
         match_radius_m=float(match_radius_m), n_signs=len(signs), n_reference=len(reference),
         tp=tp, fp=fp, fn=fn,
@@ -340,13 +341,13 @@ def evaluate(signs: SignSet, reference: SignSet, match_radius_m: float) -> Evalu
         result.rows.append(ReportRow(
             MATCHED, sign_id=signs.ids[i], sign_class=signs.classes[i],
             reference_id=reference.ids[j], reference_class=reference.classes[j],
-            image=signs.images[i], distance_m=float(distance[k]),
+            image=sign_images[i], distance_m=float(distance[k]),
             horizontal_m=float(horizontal[k]), dz_m=float(delta[k, 2]),
             height_error_m=float(height_error[k]),
             azimuth_error_deg=float(azimuth_error[k])))
     for i in matching.unmatched_signs:
         result.rows.append(ReportRow(FALSE, sign_id=signs.ids[i], sign_class=signs.classes[i],
-                                     image=signs.images[i]))
+                                     image=sign_images[i]))
     return result
 
 

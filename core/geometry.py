@@ -1,9 +1,9 @@
-"""Frames, rotations and the equirectangular pixel <-> ray mapping of the contract.
+"""Frames, rotations and the equirectangular pixel <-> ray mapping (docs/formats.md).
 
 Every later stage goes through these functions; they are vectorised (leading axes
 broadcast) and take angles in degrees unless the name says ``_rad``.
 
-Conventions (``shared/CONTRACT.md``):
+Conventions (``docs/formats.md``):
 
 * World: target projected CRS, axes East, North, Up (metres).
 * Body: x forward, y right, z down. ``R_ned_from_body = Rz(heading) Ry(pitch) Rx(roll)``.
@@ -54,7 +54,7 @@ def rot_z(angle_deg) -> np.ndarray:
 
 
 def euler_zyx_matrix(roll_deg, pitch_deg, yaw_deg) -> np.ndarray:
-    """``Rz(yaw) @ Ry(pitch) @ Rx(roll)``: the contract's attitude and boresight form.
+    """``Rz(yaw) @ Ry(pitch) @ Rx(roll)``: the attitude and boresight form of docs/formats.md.
 
     For an INS attitude pass ``yaw_deg = heading_deg``; the result maps body vectors to NED.
     """
@@ -182,7 +182,7 @@ def pano_forward_azimuth_deg(R_world_from_pano_) -> np.ndarray:
 
 
 def box_centre_pixel(u0, v0, u1, v1, width):
-    """Centre of panorama boxes (contract form, u1 may exceed W across the seam), u in [0, W)."""
+    """Centre of panorama boxes (detections layer form, u1 may exceed W across the seam), u in [0, W)."""
     return np.mod((np.asarray(u0, float) + np.asarray(u1, float)) / 2.0, width), \
         (np.asarray(v0, float) + np.asarray(v1, float)) / 2.0
 

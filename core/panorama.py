@@ -10,7 +10,7 @@ from __future__ import annotations
 import functools
 import os
 from dataclasses import dataclass, field
-from typing import Tuple
+from typing import Optional, Tuple
 
 import numpy as np
 
@@ -43,7 +43,7 @@ def check_equirectangular(path: str, width_px: int, height_px: int) -> None:
 # --- pixels and perspective views -----------------------------------------------------
 #
 # A perspective view is a pinhole camera at the panorama centre, looking along the ray of
-# azimuth ``yaw_deg`` (the contract's azimuth: 0 = centre column, clockwise +) and
+# azimuth ``yaw_deg`` (the panorama azimuth: 0 = centre column, clockwise +) and
 # elevation ``pitch_deg`` (up +), without roll. Its image has x to the right and y down,
 # square pixels, continuous coordinates with pixel centres at +0.5 (as the panorama's).
 # In the panorama frame (x forward, y right, z down) its axes are
@@ -144,7 +144,7 @@ class PerspectiveView:
     def boxes_to_pano(self, boxes_xyxy, pano_width_px: int, pano_height_px: int) -> np.ndarray:
         """View boxes ``(n, 4)`` x0, y0, x1, y1 -> panorama boxes ``(n, 4)`` u0, v0, u1, v1.
 
-        The contract's form: u0 in [0, W) and u1 > u0, unwrapped past W for a box across
+        The detections layer's form: u0 in [0, W) and u1 > u0, unwrapped past W for a box across
         the +-180 deg seam. A box holding the zenith (nadir) spans all columns and reaches
         row 0 (row H).
         """
@@ -181,7 +181,7 @@ class PerspectiveView:
         off = np.degrees(np.arccos(np.clip(d @ self.axes()[:, 2], -1.0, 1.0)))
         return 1.0 - off / (0.5 * self.hfov_deg)
 
-    def touches_edge(self, boxes_xyxy, margin_px: float = None) -> np.ndarray:
+    def touches_edge(self, boxes_xyxy, margin_px: Optional[float] = None) -> np.ndarray:
         """Boxes within ``margin_px`` (default 1 % of the view size, at least 2) of the border:
         likely cut by the view edge."""
         b = np.asarray(boxes_xyxy, float).reshape(-1, 4)
@@ -218,7 +218,7 @@ class ViewSet:
 
         ``size_px``: an int (square) or ``(width, height)``.
         """
-        w, h = (size_px, size_px) if np.isscalar(size_px) else size_px
+        w, h = (size_px, size_px) if isinstance(size_px, (int, float, np.number)) else size_px
         return cls(tuple(PerspectiveView(float(first_yaw_deg + k * 360.0 / n_views), float(pitch_deg),
                                          float(hfov_deg), int(w), int(h)) for k in range(n_views)))
 

@@ -31,6 +31,9 @@ from .errors import SILENT, InputError, Progress
 LAS_SUFFIXES = (".las", ".laz")
 #: Points per chunk: about 60-100 MB of laspy records for the common point formats.
 DEFAULT_CHUNK_POINTS = 1_000_000
+#: ASPRS LAS classification codes the plugin reads or writes.
+UNCLASSIFIED_CLASS = 1
+GROUND_CLASS = 2
 
 _NOT_LAS = "Cannot read {path}: expected a LAS or LAZ file ({detail})"
 _CORRUPT = "Cannot read {path}: the file is truncated or corrupt ({detail})"

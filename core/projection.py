@@ -14,7 +14,7 @@ How the cloud is searched (cost ~ linear in points + detections):
   touches the tiles under its own frustum (``ProjectionResult.tiles_visited``);
 * points of class 2 (ground) are never candidates.
 
-Conventions: world ENU metres; boxes in the contract's form (``u0 < W``, ``u1`` may exceed
+Conventions: world ENU metres; boxes in the detections layer's form (``u0 < W``, ``u1`` may exceed
 ``W`` across the seam); ``q_world_from_pano_wxyz`` maps panorama rays to world
 (Hamilton, scalar first); normals are unit world vectors oriented towards the station.
 """
@@ -31,126 +31,23 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 from . import geometry
+from .detections import DETECTION_POSE_FIELDS, Detections
 from .errors import SILENT, InputError, Progress
-from .pointcloud import CropRegion, TiledIndex
+from .pointcloud import GROUND_CLASS, CropRegion, TiledIndex
+from .schema import Schema, fields
 
 #: Default search depth along the rays, metres (Balado et al. use 15 m).
 DEFAULT_MAX_RANGE_M = 30.0
-#: LAS classification code of ground points.
-GROUND_CLASS = 2
 #: Candidate status flags.
 STATUS_OK, STATUS_NO_POINTS, STATUS_NO_SURFACE = "ok", "no_points", "no_surface"
 
-#: Detection fields as the detections layer names them (contract + station pose).
-DETECTION_FIELDS = ("det_id", "station_id", "image", "class", "score", "u0", "v0", "u1", "v1",
-                    "width", "height", "x", "y", "z", "qw", "qx", "qy", "qz")
-#: Fields a candidate adds (``cand_*``: the surface point, NaN when there is none).
-CANDIDATE_FIELDS = ("cand_x", "cand_y", "cand_z", "range_m", "n_points", "normal_e",
-                    "normal_n", "normal_u", "quality", "status")
-
-
-# --------------------------------------------------------------------------------------
-# Detections
-# --------------------------------------------------------------------------------------
-
-@dataclass
-class Detections:
-    """Detections with the pose of their panorama, one row each.
-
-    ``box_px`` (n, 4): u0, v0, u1, v1; ``pano_size_px`` (n, 2): W, H; ``centre_world`` (n, 3):
-    panorama centre; ``q_world_from_pano_wxyz`` (n, 4).
-    """
-
-    det_id: np.ndarray
-    station_id: np.ndarray
-    image: List[str]
-    class_name: List[str]
-    score: np.ndarray
-    box_px: np.ndarray
-    pano_size_px: np.ndarray
-    centre_world: np.ndarray
-    q_world_from_pano_wxyz: np.ndarray
-
-    def __len__(self) -> int:
-        return len(self.det_id)
-
-    @classmethod
-    def empty(cls) -> "Detections":
-        return cls(np.zeros(0, np.int64), np.zeros(0, np.int64), [], [], np.zeros(0),
-                   np.zeros((0, 4)), np.zeros((0, 2)), np.zeros((0, 3)), np.zeros((0, 4)))
-
-    @classmethod
-    def from_records(cls, rows: Sequence[Dict]) -> "Detections":
-        """From dicts with :data:`DETECTION_FIELDS` (the detections layer's attributes)."""
-        rows = list(rows)
-        if not rows:
-            return cls.empty()
-        missing = [f for f in DETECTION_FIELDS if f not in rows[0]]
-        if missing:
-            raise InputError("The detections lack the field(s) {fields}; expected the output of "
-                             "Detect signs", fields=", ".join(missing))
-
-        def col(name, dtype=float):
-            values = [r[name] for r in rows]
-            for r, v in zip(rows, values):
-                if v is None or (isinstance(v, float) and math.isnan(v)):
-                    raise InputError("Detection {det_id}: the field {field} is empty",
-                                     det_id=r.get("det_id"), field=name)
-            return np.asarray(values, dtype=dtype)
-
-        det = cls(col("det_id", np.int64), col("station_id", np.int64),
-                  [str(r["image"]) for r in rows], [str(r["class"]) for r in rows],
-                  col("score"), np.column_stack([col(k) for k in ("u0", "v0", "u1", "v1")]),
-                  np.column_stack([col("width"), col("height")]),
-                  np.column_stack([col(k) for k in ("x", "y", "z")]),
-                  np.column_stack([col(k) for k in ("qw", "qx", "qy", "qz")]))
-        det.validate()
-        return det
-
-    def validate(self) -> None:
-        """:class:`InputError` for boxes or poses that break the contract."""
-        b, W, H = self.box_px, self.pano_size_px[:, 0], self.pano_size_px[:, 1]
-        bad = ~((b[:, 0] < b[:, 2]) & (b[:, 1] < b[:, 3]) & (W > 0) & (H > 0)
-                & (b[:, 2] - b[:, 0] <= W) & np.all(np.isfinite(b), axis=1))
-        if np.any(bad):
-            k = int(np.flatnonzero(bad)[0])
-            raise InputError("Detection {det_id}: the box ({u0}, {v0}, {u1}, {v1}) is not "
-                             "u0 < u1, v0 < v1 inside a {w} x {h} panorama",
-                             det_id=int(self.det_id[k]), u0=b[k, 0], v0=b[k, 1], u1=b[k, 2],
-                             v1=b[k, 3], w=int(W[k]), h=int(H[k]))
-        qn = np.linalg.norm(self.q_world_from_pano_wxyz, axis=1)
-        bad = ~(np.abs(qn - 1.0) < 1e-3) | ~np.all(np.isfinite(self.centre_world), axis=1)
-        if np.any(bad):
-            k = int(np.flatnonzero(bad)[0])
-            raise InputError("Detection {det_id}: the station pose is invalid (quaternion "
-                             "norm {norm:.4f}, position {xyz})", det_id=int(self.det_id[k]),
-                             norm=float(qn[k]), xyz=self.centre_world[k].tolist())
-
-    def take(self, index) -> "Detections":
-        index = np.asarray(index, dtype=np.int64)
-        return Detections(self.det_id[index], self.station_id[index],
-                          [self.image[i] for i in index], [self.class_name[i] for i in index],
-                          self.score[index], self.box_px[index], self.pano_size_px[index],
-                          self.centre_world[index], self.q_world_from_pano_wxyz[index])
-
-    def R_world_from_pano(self) -> np.ndarray:
-        return geometry.matrix_from_quat_wxyz(self.q_world_from_pano_wxyz)
-
-    def centre_rays_world(self) -> np.ndarray:
-        b = self.box_px
-        return geometry.box_centre_ray_world(b[:, 0], b[:, 1], b[:, 2], b[:, 3],
-                                             self.pano_size_px[:, 0], self.pano_size_px[:, 1],
-                                             self.q_world_from_pano_wxyz)
-
-    def records(self) -> List[Dict]:
-        return [{"det_id": int(self.det_id[k]), "station_id": int(self.station_id[k]),
-                 "image": self.image[k], "class": self.class_name[k],
-                 "score": float(self.score[k]),
-                 **dict(zip(("u0", "v0", "u1", "v1"), map(float, self.box_px[k]))),
-                 "width": int(self.pano_size_px[k, 0]), "height": int(self.pano_size_px[k, 1]),
-                 **dict(zip(("x", "y", "z"), map(float, self.centre_world[k]))),
-                 **dict(zip(("qw", "qx", "qy", "qz"), map(float, self.q_world_from_pano_wxyz[k])))}
-                for k in range(len(self))]
+#: Fields a candidate adds to its detection's (``cand_*``: the surface point, NULL when
+#: there is none; ``normal_*``: unit world normal towards the station).
+CANDIDATE_OWN_FIELDS: Schema = fields(
+    ("cand_x", float), ("cand_y", float), ("cand_z", float), ("range_m", float), ("n_points", int),
+    ("normal_e", float), ("normal_n", float), ("normal_u", float), ("quality", float), ("status", str))
+#: The candidates layer (PointZ at the surface; no geometry unless ``status`` is ok).
+CANDIDATE_FIELDS: Schema = DETECTION_POSE_FIELDS + CANDIDATE_OWN_FIELDS
 
 
 # --------------------------------------------------------------------------------------
@@ -331,7 +228,7 @@ def convex_radius_m(xyz: np.ndarray, normal_to_viewer: np.ndarray) -> float:
 # Projection
 # --------------------------------------------------------------------------------------
 
-@dataclass
+@dataclass(frozen=True)
 class ProjectionParams:
     """Tuning of :func:`project_detections` (defaults suit 5-50 points/dm^2 MLS clouds)."""
 
@@ -386,9 +283,9 @@ class ProjectionResult:
                    np.zeros(n, np.int64), np.zeros(n, np.int64))
 
     def records(self) -> List[Dict]:
-        """Detection fields + :data:`CANDIDATE_FIELDS` per candidate (the output layer)."""
+        """One dict of :data:`CANDIDATE_FIELDS` per candidate (the candidates layer)."""
         out = []
-        for k, rec in enumerate(self.detections.records()):
+        for k, rec in enumerate(self.detections.records(DETECTION_POSE_FIELDS)):
             rec.update({"cand_x": float(self.xyz_world[k, 0]),
                         "cand_y": float(self.xyz_world[k, 1]),
                         "cand_z": float(self.xyz_world[k, 2]), "range_m": float(self.range_m[k]),
@@ -408,7 +305,7 @@ class ProjectionResult:
         res = cls.unprojected(det)
         if not rows:
             return res
-        missing = [f for f in CANDIDATE_FIELDS if f not in rows[0]]
+        missing = [f.name for f in CANDIDATE_OWN_FIELDS if f.name not in rows[0]]
         if missing:
             raise InputError("The candidates lack the field(s) {fields}; expected the output of "
                              "Project detections", fields=", ".join(missing))

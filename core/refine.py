@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, field
-from typing import Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 from scipy.cluster.hierarchy import fcluster, linkage
@@ -52,18 +52,42 @@ from scipy.spatial import cKDTree
 from scipy.spatial.distance import squareform
 
 from . import geometry
+from .detections import Detections
 from .errors import SILENT, InputError, Message, Progress
-from .pointcloud import (CloudWriter, CropRegion, PointSet, TiledIndex, iter_chunks,
-                         output_header, read_header)
-from .projection import (GROUND_CLASS, STATUS_NO_POINTS, STATUS_OK, ProjectionResult,
-                         box_coordinates, build_index, convex_radius_m, euclidean_clusters,
-                         fit_plane_ransac, grow_boxes, pca)
+from .pointcloud import (
+    GROUND_CLASS,
+    CloudWriter,
+    CropRegion,
+    PointSet,
+    TiledIndex,
+    iter_chunks,
+    output_header,
+    read_header,
+)
+from .projection import (
+    STATUS_NO_POINTS,
+    STATUS_OK,
+    Plane,
+    ProjectionResult,
+    box_coordinates,
+    build_index,
+    convex_radius_m,
+    euclidean_clusters,
+    fit_plane_ransac,
+    grow_boxes,
+    pca,
+)
+from .schema import Schema, fields, select
 
 DEFAULT_MERGE_RADIUS_M = 1.0
-#: The sign layer's fields, in the contract's order.
-SIGN_FIELDS = ("sign_id", "class", "score", "height", "bottom_height", "width", "panel_height",
-               "azimuth", "n_views", "n_points", "source_images", "best_image",
-               "mean_intensity", "planarity", "position_source", "x", "y", "z")
+#: The sign layer (PointZ at the panel centre), one field per :class:`SignRecord` attribute.
+SIGN_FIELDS: Schema = fields(
+    ("sign_id", int), ("class", str), ("score", float), ("height", float), ("bottom_height", float),
+    ("width", float), ("panel_height", float), ("azimuth", float), ("n_views", int),
+    ("n_points", int), ("source_images", str), ("best_image", str), ("mean_intensity", float),
+    ("planarity", float), ("position_source", str), ("x", float), ("y", float), ("z", float))
+#: The panel outlines layer (PolygonZ: the panel's rectangle in its plane).
+OUTLINE_FIELDS: Schema = select(SIGN_FIELDS, ("sign_id", "class", "width", "panel_height"))
 GROUND_POINTS, LOWEST_POINTS, CAMERA_HEIGHT = "ground_points", "lowest_points", "camera_height"
 #: reasons of :func:`extract_panel` that mean "not a sign" (the views are dropped); other
 #: reasons only mean the panel could not be isolated (the views' candidates are kept)
@@ -98,14 +122,14 @@ class SignRecord:
     def as_dict(self) -> Dict:
         d = asdict(self)
         d["class"] = d.pop("klass")
-        return {k: d[k] for k in SIGN_FIELDS}
+        return {f.name: d[f.name] for f in SIGN_FIELDS}
 
     @property
     def xyz_world(self) -> np.ndarray:
         return np.array([self.x, self.y, self.z])
 
 
-@dataclass
+@dataclass(frozen=True)
 class RefineParams:
     """Tuning of :func:`refine_signs`; lengths in metres, angles in degrees."""
 
@@ -174,6 +198,10 @@ class RefineResult:
 # Merging views
 # --------------------------------------------------------------------------------------
 
+#: Candidate rows (positions in a :class:`ProjectionResult`): a list or an integer array.
+Rows = Union[Sequence[int], np.ndarray]
+
+
 def box_size_estimate_m(cand: ProjectionResult, rows: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
     """Panel width and height (m) implied by the boxes at the candidates' range, the width
     corrected for the obliquity of the view (at most 3x)."""
@@ -238,7 +266,7 @@ def merge_candidates(cand: ProjectionResult, merge_radius_m: float,
     return sorted(groups, key=lambda g: int(cand.detections.det_id[g].min()))
 
 
-def vote_class(cand: ProjectionResult, rows: Sequence[int]) -> Tuple[str, float]:
+def vote_class(cand: ProjectionResult, rows: Rows) -> Tuple[str, float]:
     """Score-weighted class vote; score = 1 - prod(1 - s) over the winner's views."""
     det = cand.detections
     weights: Dict[str, float] = {}
@@ -330,91 +358,163 @@ def panel_frame(normal: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
 
 def extract_panel(cand: ProjectionResult, rows: np.ndarray, index: TiledIndex, bright: float,
                   params: RefineParams) -> Tuple[Optional[Panel], str]:
-    """The panel of one group of views from the cloud, or (None, reason)."""
-    det = cand.detections
+    """The panel of one group of views (candidate rows) from the cloud, or (None, reason);
+    ``bright``: :func:`bright_level` of the cloud. The steps of the module doc, 2."""
     X, N = cand.xyz_world[rows], cand.normal_world[rows]
     c0 = np.median(X, axis=0)
     n0 = N.mean(axis=0)
     n0 /= np.linalg.norm(n0)
-    w_est, h_est = box_size_estimate_m(cand, rows)
-    radius = 0.75 * float(max(w_est.max(), h_est.max())) + 0.3
-    pts = index.query_radius(c0, radius)
-    pts = pts.subset((pts.attributes["classification"] != GROUND_CLASS)
-                     & (np.abs((pts.xyz_world - c0) @ n0) < params.slab_m))
+    pts = points_near_views(cand, rows, index, c0, n0, params)
     if len(pts) < params.min_panel_points:
         return None, Message("too few points")
-    # inside the boxes of most views
+    pts = points_in_boxes(cand, rows, pts, params)
+    if len(pts) < params.min_panel_points:
+        return None, Message("too few points in the boxes")
+    spacing = point_spacing_m(pts.xyz_world)
+    pts = seeded_clusters(pts, X, params)
+    bright_mask = retroreflective_mask(pts.attributes["intensity"].astype(float), bright, params)
+    on_plane = points_on_plane(pts, bright_mask, spacing, params)
+    if on_plane is None:
+        return None, Message("no near-vertical plane")
+    panel_pts, plane = on_plane
+    panel_pts = drop_linear_points(panel_pts, spacing, params)
+    if len(panel_pts) < params.min_panel_points:
+        return None, Message("too few planar points")
+    centroid, ev, V = pca(panel_pts.xyz_world)
+    normal = panel_normal(ev, V, plane.normal, n0, params)
+    if convex_radius_m(panel_pts.xyz_world, normal) < params.min_convex_radius_m:
+        return None, CURVED_SURFACE
+    planarity = float(1.0 - ev[2] / ev[1]) if ev[1] > 0 else 0.0
+    panel, spacing_in_plane = panel_outline(cand, rows, panel_pts, centroid, normal, planarity,
+                                            params)
+    if on_larger_surface(panel, index, bright, spacing_in_plane, params):
+        return None, LARGER_SURFACE
+    return panel, ""
+
+
+def points_near_views(cand: ProjectionResult, rows: np.ndarray, index: TiledIndex,
+                      centre: np.ndarray, normal: np.ndarray, params: RefineParams) -> PointSet:
+    """The non-ground points within reach of a panel at ``centre`` (world; 0.75 x the largest
+    side the views' boxes imply, plus 0.3 m) and within ``slab_m`` of the plane through it
+    facing ``normal`` (unit, world)."""
+    w_est, h_est = box_size_estimate_m(cand, rows)
+    radius = 0.75 * float(max(w_est.max(), h_est.max())) + 0.3
+    pts = index.query_radius(centre, radius)
+    return pts.subset((pts.attributes["classification"] != GROUND_CLASS)
+                      & (np.abs((pts.xyz_world - centre) @ normal) < params.slab_m))
+
+
+def points_in_boxes(cand: ProjectionResult, rows: np.ndarray, pts: PointSet,
+                    params: RefineParams) -> PointSet:
+    """The points ``pts`` that project inside the boxes (grown by ``box_margin_deg`` /
+    ``box_margin_frac``) of at least half the views ``rows``."""
+    det = cand.detections
     boxes = grow_boxes(det.box_px[rows], det.pano_size_px[rows], params.box_margin_deg,
                        params.box_margin_frac)
     R = geometry.matrix_from_quat_wxyz(det.q_world_from_pano_wxyz[rows])
     votes = np.zeros(len(pts), np.int64)
     for j, k in enumerate(rows):
-        Rk = R[j]
         W, H = det.pano_size_px[k]
-        u, v, _ = geometry.world_to_pixel(pts.xyz_world, det.centre_world[k], Rk, W, H)
+        u, v, _ = geometry.world_to_pixel(pts.xyz_world, det.centre_world[k], R[j], W, H)
         a, b = box_coordinates(u, v, boxes[j], W)
         votes += (a >= 0) & (a <= 1) & (b >= 0) & (b <= 1)
-    pts = pts.subset(votes >= max(1, math.ceil(0.5 * len(rows))))
-    if len(pts) < params.min_panel_points:
-        return None, Message("too few points in the boxes")
-    # Euclidean clusters grown from the candidates
-    spacing = point_spacing_m(pts.xyz_world)
+    return pts.subset(votes >= max(1, math.ceil(0.5 * len(rows))))
+
+
+def seeded_clusters(pts: PointSet, seeds_world: np.ndarray, params: RefineParams) -> PointSet:
+    """The points of the Euclidean clusters (tolerance ``cluster_tolerance_m``, at least twice
+    the 4th-neighbour spacing: across scan lines) holding the point nearest a seed (the
+    candidates' surface points, world), and of those holding ``major_cluster_share`` of the
+    points or more (a scan gap may split a panel)."""
     labels = euclidean_clusters(pts.xyz_world, max(params.cluster_tolerance_m,
                                                    2.0 * point_spacing_m(pts.xyz_world, 4)))
-    _, seeds = cKDTree(pts.xyz_world).query(X)
+    _, seeds = cKDTree(pts.xyz_world).query(seeds_world)
     counts = np.bincount(labels)
-    big = np.flatnonzero(counts >= params.major_cluster_share * len(pts))  # scan gaps split panels
-    pts = pts.subset(np.isin(labels, np.union1d(labels[seeds], big)))
-    # intensity: the retroreflective mode, when the cluster has one, defines the plane
-    inten = pts.attributes["intensity"].astype(float)
-    bright_mask = np.ones(len(pts), bool)
-    if len(pts) >= 2 * params.min_panel_points and np.ptp(inten) > 0:
-        high = inten >= otsu_threshold(inten)
-        if (high.sum() >= params.min_panel_points and inten[high].mean() >= bright
-                and inten[~high].mean() < bright):
-            bright_mask = high
-    # near-vertical plane
+    big = np.flatnonzero(counts >= params.major_cluster_share * len(pts))
+    return pts.subset(np.isin(labels, np.union1d(labels[seeds], big)))
+
+
+def retroreflective_mask(intensity: np.ndarray, bright: float, params: RefineParams) -> np.ndarray:
+    """Intensity filter: the points (bool mask) above the Otsu threshold of ``intensity``
+    when they are a retroreflective mode (at least ``min_panel_points``, mean at least
+    ``bright`` while the others' is below it); else all points (a faded face)."""
+    mask = np.ones(len(intensity), bool)
+    if len(intensity) >= 2 * params.min_panel_points and np.ptp(intensity) > 0:
+        high = intensity >= otsu_threshold(intensity)
+        if (high.sum() >= params.min_panel_points and intensity[high].mean() >= bright
+                and intensity[~high].mean() < bright):
+            mask = high
+    return mask
+
+
+def points_on_plane(pts: PointSet, bright_mask: np.ndarray, spacing_m: float,
+                    params: RefineParams) -> Optional[Tuple[PointSet, Plane]]:
+    """RANSAC plane (leaning at most ``max_tilt_deg`` from vertical) through the points
+    ``bright_mask``, and the points within 2.5 sigma of it (1.5 cm to ``plane_threshold_m``):
+    the bright ones, and the darker ones whose neighbourhood (radius ``pca_radius_m``, at
+    least 3 x ``spacing_m``) is planar (the back face seen where the front was not scanned),
+    not linear (the pole). None when the plane has fewer than ``min_panel_points`` inliers."""
     plane = fit_plane_ransac(pts.xyz_world[bright_mask], params.plane_threshold_m,
                              params.max_tilt_deg)
     if plane is None or plane.inliers.sum() < params.min_panel_points:
-        return None, Message("no near-vertical plane")
+        return None
     res = plane.distance(pts.xyz_world)
     sigma = 1.4826 * float(np.median(np.abs(res[bright_mask][plane.inliers])))
     tight = np.abs(res) < min(params.plane_threshold_m, max(0.015, 2.5 * sigma))
-    # darker points on the plane stay when they form a surface of their own (the back face
-    # seen where the front was not scanned), not a line (the pole)
+    keep = bright_mask.copy()
     dark = np.flatnonzero(tight & ~bright_mask)
     if dark.size >= 5:
-        feats = dimensionality(pts.xyz_world[dark], max(params.pca_radius_m, 3.0 * spacing))
-        bright_mask[dark[np.argmax(feats, axis=1) == 1]] = True
-    panel = pts.subset(tight & bright_mask)
-    # PCA dimensionality: keep the planar points (drops the pole)
-    # (edges of a panel look half linear: only clearly linear points go, and isolated ones)
-    feats = dimensionality(panel.xyz_world, max(params.pca_radius_m, 3.0 * spacing))
+        feats = dimensionality(pts.xyz_world[dark], max(params.pca_radius_m, 3.0 * spacing_m))
+        keep[dark[np.argmax(feats, axis=1) == 1]] = True
+    return pts.subset(tight & keep), plane
+
+
+def drop_linear_points(panel: PointSet, spacing_m: float, params: RefineParams) -> PointSet:
+    """Pole filter: drop the points whose neighbourhood (radius ``pca_radius_m``, at least
+    3 x ``spacing_m``) is clearly linear (a1D >= ``linear_threshold``) or scattered (isolated
+    points), unless that would take more than ``max_linear_share`` of the panel or leave
+    fewer than ``min_panel_points`` (a face scanned in a few profiles looks linear
+    everywhere). Edges of a panel look half linear: they stay."""
+    feats = dimensionality(panel.xyz_world, max(params.pca_radius_m, 3.0 * spacing_m))
     keep = (feats[:, 0] < params.linear_threshold) & (np.argmax(feats, axis=1) != 2)
     if keep.sum() >= max(params.min_panel_points, (1.0 - params.max_linear_share) * len(panel)):
-        panel = panel.subset(keep)
-    if len(panel) < params.min_panel_points:
-        return None, Message("too few planar points")
-    centroid, ev, V = pca(panel.xyz_world)
+        return panel.subset(keep)
+    return panel
+
+
+def panel_normal(ev: np.ndarray, V: np.ndarray, plane_normal: np.ndarray, views_normal: np.ndarray,
+                 params: RefineParams) -> np.ndarray:
+    """The panel's unit normal (world) towards the viewers (the side of ``views_normal``),
+    from its points' PCA (eigenvalues ``ev`` descending, eigenvectors ``V`` in columns): the
+    least-spread axis; the RANSAC ``plane_normal`` when that leans more than
+    ``max_tilt_deg`` from horizontal; ``views_normal`` when the points are a line (spread
+    across less than ``min_spread_ratio`` x along: a sparse scan across the face)."""
     normal = V[:, 2]
-    if (normal @ n0) < 0:
+    if (normal @ views_normal) < 0:
         normal = -normal
     if abs(normal[2]) > math.sin(math.radians(params.max_tilt_deg)):
-        normal = plane.normal if plane.normal @ n0 > 0 else -plane.normal
+        normal = plane_normal if plane_normal @ views_normal > 0 else -plane_normal
     if ev[1] < params.min_spread_ratio ** 2 * ev[0]:
-        normal = n0  # the points are a line (a sparse scan across the face): the views' normal
-    if convex_radius_m(panel.xyz_world, normal) < params.min_convex_radius_m:
-        return None, CURVED_SURFACE
+        normal = views_normal
+    return normal
+
+
+def panel_outline(cand: ProjectionResult, rows: np.ndarray, points: PointSet, centroid: np.ndarray,
+                  normal: np.ndarray, planarity: float, params: RefineParams) -> Tuple[Panel, float]:
+    """The panel of ``points`` whose outline in the plane through ``centroid``
+    facing ``normal`` is the points' extent, each side widened to the views' boxes cast on
+    the plane by at most ``box_extent_allowance_m`` (or 4 point spacings), else by half a
+    spacing (sampled points miss sharp corners); centre = centre of the outline. Also the
+    points' spacing in the plane (m)."""
     right, up = panel_frame(normal)
-    rel = panel.xyz_world - centroid
+    rel = points.xyz_world - centroid
     s, t = rel @ right, rel @ up
     spacing = point_spacing_m(np.column_stack([s, t, np.zeros_like(s)]))
     box_ext = box_extents_in_plane(cand, rows, centroid, normal, right, up)
     allowance = max(4.0 * spacing, params.box_extent_allowance_m)
     ext = []
-    for side, (e_pts, e_box) in enumerate(zip((-s.min(), s.max(), -t.min(), t.max()),
-                                              (-box_ext[0], box_ext[1], -box_ext[2], box_ext[3]))):
+    for e_pts, e_box in zip((-s.min(), s.max(), -t.min(), t.max()),
+                            (-box_ext[0], box_ext[1], -box_ext[2], box_ext[3])):
         # points lie inside the outline and miss its corners by up to a point spacing or so;
         # the boxes' edges, cast on the plane, say how far: trust them within an allowance
         delta = e_box - e_pts
@@ -426,11 +526,7 @@ def extract_panel(cand: ProjectionResult, rows: np.ndarray, index: TiledIndex, b
     centre = centroid + 0.5 * (s0 + s1) * right + 0.5 * (t0 + t1) * up
     corners = np.array([centroid + ss * right + tt * up
                         for ss, tt in ((s0, t1), (s1, t1), (s1, t0), (s0, t0))])
-    planarity = float(1.0 - ev[2] / ev[1]) if ev[1] > 0 else 0.0
-    result = Panel(centre, normal, float(s1 - s0), float(t1 - t0), corners, panel, planarity)
-    if on_larger_surface(result, index, bright, spacing, params):
-        return None, LARGER_SURFACE
-    return result, ""
+    return Panel(centre, normal, float(s1 - s0), float(t1 - t0), corners, points, planarity), spacing
 
 
 def surface_around_panel(panel: Panel, index: TiledIndex, spacing_m: float,
@@ -482,7 +578,7 @@ def on_larger_surface(panel: Panel, index: TiledIndex, bright: float, spacing_m:
     return not (own >= bright and around.size and float(np.median(around)) < bright)
 
 
-def box_extents_in_plane(cand: ProjectionResult, rows: Sequence[int], origin: np.ndarray,
+def box_extents_in_plane(cand: ProjectionResult, rows: Rows, origin: np.ndarray,
                          normal: np.ndarray, right: np.ndarray, up: np.ndarray,
                          samples: int = 17) -> np.ndarray:
     """The views' boxes cast on a panel's plane: median over the views of (left, right,
@@ -493,7 +589,7 @@ def box_extents_in_plane(cand: ProjectionResult, rows: Sequence[int], origin: np
     top is the lowest hit (the bottom, the highest). NaN where no view meets the plane."""
     det = cand.detections
     g = np.linspace(0.0, 1.0, samples)
-    out = []
+    out: List[List[float]] = []
     for k in rows:
         u0, v0, u1, v1 = det.box_px[k]
         W, H = det.pano_size_px[k]
@@ -512,15 +608,16 @@ def box_extents_in_plane(cand: ProjectionResult, rows: Sequence[int], origin: np
         valid = (denom < -0.05) & (lam > 0)
         parts = np.split(np.arange(4 * samples), 4)
         vals = []
-        reducers = ((s, np.median), (s, np.median), (t, np.max), (t, np.min))
+        reducers: Tuple[Tuple[np.ndarray, Callable[[np.ndarray], Any]], ...] = (
+            (s, np.median), (s, np.median), (t, np.max), (t, np.min))
         for j, (coord, reduce) in enumerate(reducers):
             m = valid[parts[j]]
-            vals.append(reduce(coord[parts[j]][m]) if m.any() else np.nan)
+            vals.append(float(reduce(coord[parts[j]][m])) if m.any() else np.nan)
         out.append(vals)
-    out = np.array(out, float)
-    if not np.any(np.isfinite(out)):
+    extents = np.array(out, float)
+    if not np.any(np.isfinite(extents)):
         return np.full(4, np.nan)
-    return np.nanmedian(out, axis=0)
+    return np.nanmedian(extents, axis=0)
 
 
 # --------------------------------------------------------------------------------------
@@ -569,7 +666,7 @@ def ground_with_fallbacks(index: Optional[TiledIndex], centre: np.ndarray, botto
     return float(np.median(station_z)) - params.camera_height_m, CAMERA_HEIGHT
 
 
-def best_view(cand: ProjectionResult, rows: Sequence[int], centre: np.ndarray,
+def best_view(cand: ProjectionResult, rows: Rows, centre: np.ndarray,
               normal: Optional[np.ndarray]) -> int:
     """The view (candidate row) closest and most frontal: minimal range / cos(incidence)."""
     C = cand.detections.centre_world[list(rows)]
@@ -650,7 +747,8 @@ def triangulate_groups(cand: ProjectionResult, rows: np.ndarray, params: RefineP
             tol = params.ray_gap_m + 0.01 * np.linalg.norm(x - C[members], axis=1)
             worst = int(np.argmax(dist - tol))
             if dist[worst] <= tol[worst]:
-                sin_max = max(np.linalg.norm(np.cross(D[a], D[b])) for a in members for b in members)
+                sin_max = max(float(np.linalg.norm(np.cross(D[a], D[b])))
+                              for a in members for b in members)
                 if sin_max >= sin_min and depth_sigma_m(x, C[members], dist, sin_max,
                                                         params) <= params.max_depth_sigma_m:
                     out.append((rows[members], x))
@@ -662,6 +760,45 @@ def triangulate_groups(cand: ProjectionResult, rows: np.ndarray, params: RefineP
 # --------------------------------------------------------------------------------------
 # The whole step
 # --------------------------------------------------------------------------------------
+
+@dataclass
+class SignDraft:
+    """A sign before its record: the views (candidate rows) that found it, its panel in the
+    cloud (None: placed at the views' median surface point, or triangulated), the
+    triangulated point (world; image-only signs), the views (candidate rows) that joined it
+    later, and whether another sign absorbed it (its views then count there)."""
+
+    rows: np.ndarray
+    panel: Optional[Panel] = None
+    x_image: Optional[np.ndarray] = None
+    joined: List[int] = field(default_factory=list)
+    absorbed: bool = False
+
+    @property
+    def views(self) -> List[int]:
+        """All its views (candidate rows): its own, then those that joined it."""
+        return list(self.rows) + self.joined
+
+
+@dataclass
+class Placement:
+    """Where a sign is: ``centre`` (world), unit ``normal`` (world, towards the viewers),
+    panel width and height (m), ``bottom_z`` (world z of its lower edge), the LAS indices of
+    its points, their mean intensity and the panel's planarity (NaN without points),
+    ``source`` (the ``position_source``: lidar or image) and its outline (4 corners TL, TR,
+    BR, BL seen from the front, world; None without a panel)."""
+
+    centre: np.ndarray
+    normal: np.ndarray
+    width_m: float
+    height_m: float
+    bottom_z: float
+    point_index: np.ndarray
+    mean_intensity: float
+    planarity: float
+    source: str
+    outline: Optional[np.ndarray]
+
 
 def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, None],
                  merge_radius_m: float = DEFAULT_MERGE_RADIUS_M,
@@ -675,32 +812,61 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
     """
     if not merge_radius_m or merge_radius_m <= 0:
         raise InputError("The merge radius must be positive, got {value} m", value=merge_radius_m)
-    cand = candidates
-    det = cand.detections
-    result = RefineResult([], [], [], [], np.full(len(cand), -1, np.int64))
-
-    def warn(template, **fields):
-        result.warnings.append(progress.warning(template, **fields))
-
-    if len(cand) == 0:
-        warn("No candidates to refine; the sign layer is empty")
+    result = RefineResult([], [], [], [], np.full(len(candidates), -1, np.int64))
+    if len(candidates) == 0:
+        warn(result, progress, "No candidates to refine; the sign layer is empty")
         return result
-    status = np.array(cand.status)
-    groups = merge_candidates(cand, merge_radius_m, params)
+    groups = merge_candidates(candidates, merge_radius_m, params)
     progress.report(0.05)
-
-    # the cloud around the candidates
-    ok_xyz = cand.xyz_world[status == STATUS_OK]
-    index = None
-    if isinstance(cloud, TiledIndex):
-        index, _ = build_index(cloud, None, 5.0)
-    elif cloud is not None and len(ok_xyz):
-        region = CropRegion.corridor(max(3.5, merge_radius_m + 2.5), points_xy=ok_xyz[:, :2])
-        index, _ = build_index(cloud, region, 5.0, progress.sub(0.05, 0.4))
+    index = cloud_around_candidates(candidates, cloud, merge_radius_m, progress.sub(0.05, 0.4))
     bright = bright_level(index) if index is not None else math.inf
+    drafts = extract_signs(candidates, groups, index, bright, params, progress.sub(0.4, 0.9))
+    join_lone_views(candidates, drafts)
+    join_signs_on_one_panel(candidates, drafts, params)
+    unplaced = join_views_without_surface(candidates, drafts)
+    drafts += triangulate_image_only(candidates, unplaced, params)
+    for draft in drafts:
+        if not draft.absorbed:
+            add_sign(result, candidates, draft, index, params, progress)
+    warn_ground_fallbacks(result, params, progress)
+    n_img = sum(s.position_source == "image" for s in result.signs)
+    progress.info("{signs} signs from {candidates} candidates ({from_images} placed from the "
+                  "images alone)", signs=len(result.signs), candidates=len(candidates),
+                  from_images=n_img)
+    progress.report(1.0)
+    return result
 
-    sub = progress.sub(0.4, 0.9)
-    signs: List[Tuple[np.ndarray, Optional[Panel], Optional[np.ndarray]]] = []
+
+def warn(result: RefineResult, progress: Progress, template: str, **values: object) -> None:
+    """Log the warning ``template`` (English, ``{named}`` fields) and keep it in ``result``."""
+    result.warnings.append(progress.warning(template, **values))
+
+
+def cloud_around_candidates(cand: ProjectionResult, cloud: Union[str, TiledIndex, None],
+                            merge_radius_m: float, progress: Progress = SILENT
+                            ) -> Optional[TiledIndex]:
+    """The cloud indexed in 5 m tiles with intensity and classification: ``cloud`` itself when
+    it is an index, else read from the LAS/LAZ path within max(3.5, ``merge_radius_m`` + 2.5)
+    m (horizontally) of the ``ok`` candidates; None without a cloud or such candidates.
+    :class:`InputError` when it has no ground points (class 2)."""
+    if isinstance(cloud, TiledIndex):
+        return build_index(cloud, None, 5.0)[0]
+    ok_xyz = cand.xyz_world[np.array(cand.status) == STATUS_OK]
+    if cloud is None or not len(ok_xyz):
+        return None
+    region = CropRegion.corridor(max(3.5, merge_radius_m + 2.5), points_xy=ok_xyz[:, :2])
+    return build_index(cloud, region, 5.0, progress)[0]
+
+
+def extract_signs(cand: ProjectionResult, groups: Sequence[np.ndarray], index: Optional[TiledIndex],
+                  bright: float, params: RefineParams, progress: Progress = SILENT
+                  ) -> List[SignDraft]:
+    """One sign per group of views (candidate rows), with its panel from the cloud
+    (:func:`extract_panel`). Groups whose panel is not a sign (:data:`NOT_A_SIGN`) are
+    dropped; those whose panel could not be isolated (or without a cloud) keep no panel:
+    the views agree on a surface, the sign is placed at their median. Both are logged."""
+    det = cand.detections
+    drafts = []
     for g, rows in enumerate(groups):
         panel, reason = (extract_panel(cand, rows, index, bright, params) if index is not None
                          else (None, Message("no point cloud")))
@@ -709,142 +875,204 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
                 progress.info("Candidates {ids} dropped: {reason}", ids=det.det_id[rows].tolist(),
                               reason=reason)
                 continue
-            # the views agree on a surface the refinement could not isolate: keep their mean
             progress.info("Candidates {ids}: {reason}; placed at the candidates' median",
                           ids=det.det_id[rows].tolist(), reason=reason)
-        signs.append((rows, panel, None))
-        sub.report((g + 1) / max(1, len(groups)))
+        drafts.append(SignDraft(rows, panel))
+        progress.report((g + 1) / max(1, len(groups)))
+    return drafts
 
-    # a lone view whose box holds a sign found by several views saw that sign: its own
-    # candidate is a surface behind (a wall), in front (an occluder) or a stray part of it;
-    # it joins the sign (across classes only when the sign is not behind its surface)
-    extra: Dict[int, List[int]] = {}
-    centres = np.array([p.centre_world if p is not None else np.median(cand.xyz_world[r], axis=0)
-                        for r, p, _ in signs]).reshape(-1, 3)
-    several = np.array([len(r) >= 2 for r, _, _ in signs], bool)
-    sign_class = np.array([vote_class(cand, r)[0] for r, _, _ in signs], dtype=object)
-    lone = [n for n, (r, _, _) in enumerate(signs) if len(r) == 1]
-    moved = set()
-    for n in lone:
-        k = int(signs[n][0][0])
-        same = several & (sign_class == det.class_name[k])
-        target = _sign_in_box(det, k, centres, same, math.inf)
+
+def sign_centres(cand: ProjectionResult, drafts: Sequence[SignDraft]) -> np.ndarray:
+    """Centre (world, ``(n, 3)``) of each sign: its panel's, else its own views' median
+    surface point."""
+    return np.array([d.panel.centre_world if d.panel is not None
+                     else np.median(cand.xyz_world[d.rows], axis=0) for d in drafts]).reshape(-1, 3)
+
+
+def sign_classes(cand: ProjectionResult, drafts: Sequence[SignDraft]) -> np.ndarray:
+    """Class of each sign as its own views vote (:func:`vote_class`; joined views left out)."""
+    return np.array([vote_class(cand, d.rows)[0] for d in drafts], dtype=np.str_)
+
+
+def join_lone_views(cand: ProjectionResult, drafts: Sequence[SignDraft]) -> None:
+    """A sign of a single view whose box holds the centre of a sign found by several views:
+    that view saw the other sign, its own candidate is a surface behind it (a wall), in front
+    (an occluder) or a stray part of it. The view joins the sign (of its class at any range,
+    of another class only when not behind its own surface, 0.5 m allowed) and its own sign is
+    absorbed. Updates ``drafts`` in place."""
+    det = cand.detections
+    centres, classes = sign_centres(cand, drafts), sign_classes(cand, drafts)
+    several = np.array([len(d.rows) >= 2 for d in drafts], bool)
+    for draft in drafts:
+        if len(draft.rows) != 1:
+            continue
+        k = int(draft.rows[0])
+        target = _sign_in_box(det, k, centres, several & (classes == det.class_name[k]), math.inf)
         if target < 0:
-            target = _sign_in_box(det, k, centres, several, cand.range_m[k] + 0.5)
+            target = _sign_in_box(det, k, centres, several, float(cand.range_m[k]) + 0.5)
         if target >= 0:
-            extra.setdefault(target, []).append(k)
-            moved.add(n)
-    # two groups on one panel (the detector gave one panel two classes, or its views split):
-    # one sign whose class is the vote of all its views; the group with more views absorbs
-    normals = [p.normal_world if p is not None else None for _, p, _ in signs]
+            drafts[target].joined.append(k)
+            draft.absorbed = True
+
+
+def join_signs_on_one_panel(cand: ProjectionResult, drafts: Sequence[SignDraft],
+                            params: RefineParams) -> None:
+    """Two signs whose centres are within ``same_panel_radius_m`` and whose normals agree
+    (within ``normal_agreement_deg``, either way; or one has none) are one panel: the
+    detector gave it two classes, or its views split. The sign with more views absorbs the
+    other's views and those that joined it (its class is then the vote of all). Updates
+    ``drafts`` in place."""
+    centres = sign_centres(cand, drafts)
+    normals = [d.panel.normal_world if d.panel is not None else None for d in drafts]
     cos_agree = math.cos(math.radians(params.normal_agreement_deg))
-    by_views = sorted(range(len(signs)), key=lambda n: -len(signs[n][0]))
+    by_views = sorted(range(len(drafts)), key=lambda n: -len(drafts[n].rows))
     for i, a in enumerate(by_views):
-        if a in moved:
+        if drafts[a].absorbed:
             continue
         for b in by_views[i + 1:]:
-            if b in moved or np.linalg.norm(centres[a] - centres[b]) > params.same_panel_radius_m:
+            if drafts[b].absorbed or \
+                    np.linalg.norm(centres[a] - centres[b]) > params.same_panel_radius_m:
                 continue
-            if normals[a] is not None and normals[b] is not None and \
-                    abs(float(np.dot(normals[a], normals[b]))) < cos_agree:
+            na, nb = normals[a], normals[b]
+            if na is not None and nb is not None and abs(float(np.dot(na, nb))) < cos_agree:
                 continue
-            extra.setdefault(a, []).extend(list(signs[b][0]) + extra.pop(b, []))
-            moved.add(b)
-    # views without a surface: attach to a sign whose centre lies in their box (of their class
-    # at any range: a sign far ahead, beyond the scanner, found by the views that came near
-    # it), else triangulate
-    still = []
-    for k in np.flatnonzero(status != STATUS_OK):
-        same = sign_class == det.class_name[k]
-        target = _sign_in_box(det, int(k), centres, same, math.inf, search_m=math.inf)
+            drafts[a].joined.extend(list(drafts[b].rows) + drafts[b].joined)
+            drafts[b].joined = []
+            drafts[b].absorbed = True
+
+
+def join_views_without_surface(cand: ProjectionResult, drafts: Sequence[SignDraft]) -> np.ndarray:
+    """Views whose candidate found no surface (status not ``ok``) join the sign whose centre
+    lies in their box: of their class at any range (a sign far ahead, beyond the scanner's
+    reach, found by the views that came near it), else of any class within 60 m. Updates
+    ``drafts`` in place; returns the candidate rows of the views that joined none."""
+    det = cand.detections
+    centres, classes = sign_centres(cand, drafts), sign_classes(cand, drafts)
+    unplaced = []
+    for k in np.flatnonzero(np.array(cand.status) != STATUS_OK):
+        target = _sign_in_box(det, int(k), centres, classes == det.class_name[k], math.inf,
+                              search_m=math.inf)
         if target < 0:
             target = _sign_in_box(det, int(k), centres, np.ones(len(centres), bool), math.inf)
         if target >= 0:
-            extra.setdefault(target, []).append(int(k))
+            drafts[target].joined.append(int(k))
         else:
-            still.append(int(k))
-    loose = np.array(still, np.int64)
-    no_points = np.array([k for k in loose if status[k] == STATUS_NO_POINTS], np.int64)
-    for rows, x in triangulate_groups(cand, no_points, params):
-        signs.append((rows, None, x))
+            unplaced.append(int(k))
+    return np.array(unplaced, np.int64)
 
-    # records
-    sources = []
-    kept = [n for n in range(len(signs)) if n not in moved]
-    for n_old in kept:
-        rows, panel, x_img = signs[n_old]
-        views = list(rows) + extra.get(n_old, [])
-        klass, score = vote_class(cand, views)
-        if panel is not None:
-            centre, normal = panel.centre_world, panel.normal_world
-            width, panel_h = panel.width_m, panel.height_m
-            bottom = float(panel.corners_world[:, 2].min())
-            pidx = panel.points.point_index
-            mean_int = float(np.mean(panel.points.attributes["intensity"]))
-            planarity, source, outline = panel.planarity, "lidar", panel.corners_world
-        else:
-            w_est, h_est = (box_size_estimate_m(cand, np.asarray(rows)) if x_img is None else
-                            _image_size_estimate(cand, np.asarray(rows), x_img))
-            if x_img is None:
-                centre = np.median(cand.xyz_world[rows], axis=0)
-                normal = cand.normal_world[rows].mean(axis=0)
-                source = "lidar"
-            else:
-                centre = x_img
-                to = det.centre_world[rows].mean(axis=0) - centre
-                normal = np.array([to[0], to[1], 0.0])
-                source = "image"
-            normal = normal / np.linalg.norm(normal)
-            width, panel_h = float(np.median(w_est)), float(np.median(h_est))
-            bottom = float(centre[2] - panel_h / 2)
-            pidx, mean_int, planarity, outline = np.zeros(0, np.int64), math.nan, math.nan, None
-        if max(width, panel_h) > params.max_side_m(klass):
-            progress.info("Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too "
-                          "large for a {sign_class} sign (a billboard?)",
-                          ids=det.det_id[views].tolist(), width=width, height=panel_h,
-                          sign_class=klass)
-            continue
-        ground_z, gsource = ground_with_fallbacks(index, centre, bottom, det.centre_world[views, 2],
-                                                  params)
-        n_sign = len(result.signs)
-        images = []
-        for k in sorted(views, key=lambda k: det.det_id[k]):
-            if det.image[k] not in images:
-                images.append(det.image[k])
-        if len(images) == 1 and score < params.min_single_view_score:
-            progress.info("Candidates {ids} dropped: seen in one panorama only, with a score of "
-                          "{score:.2f}", ids=det.det_id[views].tolist(), score=score)
-            continue
-        rec = SignRecord(
-            sign_id=n_sign + 1, klass=klass, score=score, height=float(centre[2] - ground_z),
-            bottom_height=float(bottom - ground_z), width=float(width), panel_height=float(panel_h),
-            azimuth=float(geometry.azimuth_deg_of_enu(normal)), n_views=len(images),
-            n_points=int(len(pidx)), source_images=";".join(images),
-            best_image=det.image[best_view(cand, views, centre, normal)],
-            mean_intensity=mean_int, planarity=planarity, position_source=source,
-            x=float(centre[0]), y=float(centre[1]), z=float(centre[2]))
-        result.signs.append(rec)
-        result.outlines_world.append(outline)
-        result.point_index.append(pidx)
-        result.ground_source.append(gsource)
-        sources.append(gsource)
-        result.candidate_sign[views] = n_sign
+
+def triangulate_image_only(cand: ProjectionResult, rows: np.ndarray, params: RefineParams
+                           ) -> List[SignDraft]:
+    """Signs placed from the images alone: the views ``rows`` (candidate rows) whose ray met
+    no points (``no_points``; not those whose points held no surface), triangulated by
+    :func:`triangulate_groups`."""
+    no_points = np.array([k for k in rows if cand.status[k] == STATUS_NO_POINTS], np.int64)
+    return [SignDraft(group, x_image=x) for group, x in triangulate_groups(cand, no_points, params)]
+
+
+def placement(cand: ProjectionResult, draft: SignDraft) -> Placement:
+    """Where the sign is: its panel; else the median of its own views' surface points (their
+    mean normal) or its triangulated point (facing the views' mean station horizontally),
+    sized by the boxes at that range (:func:`box_size_estimate_m`, frontal for a
+    triangulated point), ``bottom_z`` half the panel height below the centre."""
+    if draft.panel is not None:
+        p = draft.panel
+        return Placement(p.centre_world, p.normal_world, p.width_m, p.height_m,
+                         float(p.corners_world[:, 2].min()), p.points.point_index,
+                         float(np.mean(p.points.attributes["intensity"])), p.planarity, "lidar",
+                         p.corners_world)
+    det, rows = cand.detections, np.asarray(draft.rows)
+    if draft.x_image is None:
+        w_est, h_est = box_size_estimate_m(cand, rows)
+        centre = np.median(cand.xyz_world[rows], axis=0)
+        normal = cand.normal_world[rows].mean(axis=0)
+        source = "lidar"
+    else:
+        w_est, h_est = _image_size_estimate(cand, rows, draft.x_image)
+        centre = draft.x_image
+        to = det.centre_world[rows].mean(axis=0) - centre
+        normal = np.array([to[0], to[1], 0.0])
+        source = "image"
+    width, height = float(np.median(w_est)), float(np.median(h_est))
+    return Placement(centre, normal / np.linalg.norm(normal), width, height,
+                     float(centre[2] - height / 2), np.zeros(0, np.int64), math.nan, math.nan,
+                     source, None)
+
+
+def source_images(cand: ProjectionResult, views: Sequence[int]) -> List[str]:
+    """The images of the views (candidate rows), each once, in the order of the detection ids."""
+    det = cand.detections
+    images: List[str] = []
+    for k in sorted(views, key=lambda k: det.det_id[k]):
+        if det.image[k] not in images:
+            images.append(det.image[k])
+    return images
+
+
+def plausible(cand: ProjectionResult, views: Sequence[int], klass: str, score: float,
+              place: Placement, n_images: int, params: RefineParams,
+              progress: Progress = SILENT) -> bool:
+    """False, logged, for a panel larger than its class allows (:meth:`RefineParams.max_side_m`:
+    a billboard?) and for a sign seen in one panorama only (``n_images``) with a score below
+    ``min_single_view_score``."""
+    ids = cand.detections.det_id[list(views)].tolist()
+    if max(place.width_m, place.height_m) > params.max_side_m(klass):
+        progress.info("Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too "
+                      "large for a {sign_class} sign (a billboard?)",
+                      ids=ids, width=place.width_m, height=place.height_m, sign_class=klass)
+        return False
+    if n_images == 1 and score < params.min_single_view_score:
+        progress.info("Candidates {ids} dropped: seen in one panorama only, with a score of "
+                      "{score:.2f}", ids=ids, score=score)
+        return False
+    return True
+
+
+def add_sign(result: RefineResult, cand: ProjectionResult, draft: SignDraft,
+             index: Optional[TiledIndex], params: RefineParams, progress: Progress = SILENT
+             ) -> None:
+    """Append the record of a sign (numbered on from 1), its outline, points and ground
+    source to ``result`` and point its views there in ``result.candidate_sign``, unless it is
+    not :func:`plausible`. Heights are above the ground under the centre
+    (:func:`ground_with_fallbacks`)."""
+    det = cand.detections
+    views = draft.views
+    klass, score = vote_class(cand, views)
+    place = placement(cand, draft)
+    images = source_images(cand, views)
+    if not plausible(cand, views, klass, score, place, len(images), params, progress):
+        return
+    ground_z, ground_source = ground_with_fallbacks(index, place.centre, place.bottom_z,
+                                                    det.centre_world[views, 2], params)
+    n_sign = len(result.signs)
+    result.signs.append(SignRecord(
+        sign_id=n_sign + 1, klass=klass, score=score, height=float(place.centre[2] - ground_z),
+        bottom_height=float(place.bottom_z - ground_z), width=float(place.width_m),
+        panel_height=float(place.height_m), azimuth=float(geometry.azimuth_deg_of_enu(place.normal)),
+        n_views=len(images), n_points=int(len(place.point_index)), source_images=";".join(images),
+        best_image=det.image[best_view(cand, views, place.centre, place.normal)],
+        mean_intensity=place.mean_intensity, planarity=place.planarity,
+        position_source=place.source, x=float(place.centre[0]), y=float(place.centre[1]),
+        z=float(place.centre[2])))
+    result.outlines_world.append(place.outline)
+    result.point_index.append(place.point_index)
+    result.ground_source.append(ground_source)
+    result.candidate_sign[views] = n_sign
+
+
+def warn_ground_fallbacks(result: RefineResult, params: RefineParams, progress: Progress) -> None:
+    """One warning per ground fallback that signs of ``result`` used, with their count."""
     camera = Message("the stations' height minus {height} m", height=params.camera_height_m)
     for fallback, what in ((LOWEST_POINTS, Message("the lowest points below the sign")),
                            (CAMERA_HEIGHT, camera)):
-        count = sources.count(fallback)
+        count = result.ground_source.count(fallback)
         if count:
-            warn("{count} sign(s) have no ground points (class 2) within {radius} m: their "
-                 "height is measured from {source}", count=count,
+            warn(result, progress, "{count} sign(s) have no ground points (class 2) within "
+                 "{radius} m: their height is measured from {source}", count=count,
                  radius=max(params.ground_radii_m), source=what)
-    n_img = sum(s.position_source == "image" for s in result.signs)
-    progress.info("{signs} signs from {candidates} candidates ({from_images} placed from the "
-                  "images alone)", signs=len(result.signs), candidates=len(cand), from_images=n_img)
-    progress.report(1.0)
-    return result
 
 
-def _sign_in_box(det, k: int, centres: np.ndarray, eligible: np.ndarray, max_range_m: float,
+def _sign_in_box(det: Detections, k: int, centres: np.ndarray, eligible: np.ndarray, max_range_m: float,
                  search_m: float = 60.0) -> int:
     """The nearest eligible sign centre inside detection ``k``'s box (grown by 15 %, 0.5 deg)
     closer to its station than ``max_range_m``; -1 when there is none."""
@@ -859,7 +1087,8 @@ def _sign_in_box(det, k: int, centres: np.ndarray, eligible: np.ndarray, max_ran
     return int(np.flatnonzero(ok)[np.argmin(rng[ok])]) if np.any(ok) else -1
 
 
-def _image_size_estimate(cand: ProjectionResult, rows: np.ndarray, x: np.ndarray):
+def _image_size_estimate(cand: ProjectionResult, rows: np.ndarray, x: np.ndarray
+                         ) -> Tuple[np.ndarray, np.ndarray]:
     """Panel size from the boxes at the triangulated point's range (frontal assumption)."""
     det = cand.detections
     b, W, H = det.box_px[rows], det.pano_size_px[rows, 0], det.pano_size_px[rows, 1]

@@ -17,13 +17,16 @@ import numpy as np
 from . import geometry
 from .errors import SILENT, InputError, Progress
 from .panorama import PerspectiveView, read_panorama
+from .schema import Field
 
 CHIP_SIZE_PX = 256
+#: The field the sign layer gains with review chips: the chip's path relative to the layer's folder.
+CHIP_FIELD = Field("chip", str)
 
 
 def chip_view(u0, v0, u1, v1, width_px: int, height_px: int, margin_frac: float = 0.5,
               size_px: int = CHIP_SIZE_PX) -> PerspectiveView:
-    """The square perspective view showing a panorama box (contract form) with a margin."""
+    """The square perspective view showing a panorama box (detections layer form) with a margin."""
     u, v = geometry.box_centre_pixel(u0, v0, u1, v1, width_px)
     yaw_rad, pitch_rad = geometry.pixel_to_angles_rad(u, v, width_px, height_px)
     box_w_deg = (float(u1) - float(u0)) / width_px * 360.0 * np.cos(pitch_rad)
@@ -68,7 +71,8 @@ def write_chips(signs: Sequence[Dict], boxes: Sequence[Optional[Sequence[float]]
             continue
         height_px, width_px = pano.shape[:2]
         for k in members:
-            chip = chip_view(*boxes[k], width_px, height_px).cut(pano)
+            u0, v0, u1, v1 = boxes[k]  # type: ignore[misc]  # members only hold signs with a box
+            chip = chip_view(u0, v0, u1, v1, width_px, height_px).cut(pano)
             name = "sign_{}.jpg".format(signs[k]["sign_id"])
             ok, data = cv2.imencode(".jpg", chip, [cv2.IMWRITE_JPEG_QUALITY, 90])
             if ok:

@@ -1,22 +1,23 @@
 """Trajectory, image times and per-image poses -> panorama stations with full pose.
 
-Inputs follow ``shared/CONTRACT.md``: a trajectory CSV (``time,x,y,z,roll,pitch,heading``)
+Inputs follow ``docs/formats.md``: a trajectory CSV (``time,x,y,z,roll,pitch,heading``)
 or an Applanix SBET, plus an image-times CSV (``image,time``); or a per-image pose CSV
 (``image,x,y,z,roll,pitch,heading[,time]``). Attitudes are INS angles in degrees with a
 TRUE heading; positions are in the trajectory CRS (lon/lat/ellipsoidal height for a
 geographic one). Poses at image times: positions interpolated linearly (in the world
 CRS, between the two bracketing samples), attitudes by SLERP (scipy ``Slerp``).
 
-Each station's panorama frame then follows the contract:
+Each station's panorama frame then follows docs/formats.md:
 ``R_world_from_pano = R_enu_from_ned @ Rz(-gamma) @ R_ned_from_body @ R_body_from_pano`` with
 gamma the meridian convergence at the station (grid heading = true heading - gamma), and
 the panorama centre at ``C + R_enu_from_ned @ Rz(-gamma) @ R_ned_from_body @ t_lever``.
 """
 from __future__ import annotations
 
+import math
 import os
 from dataclasses import dataclass, field
-from typing import List, Optional, Sequence
+from typing import Dict, List, Optional, Sequence
 
 import numpy as np
 from scipy.spatial.transform import Rotation, Slerp
@@ -25,6 +26,7 @@ from . import geometry
 from .crs import WorldTransform, default_target_crs, world_transform
 from .errors import SILENT, InputError, Message, Progress
 from .panorama import check_equirectangular, read_image_size
+from .schema import Schema, fields
 from .tables import read_table
 
 TRAJECTORY_COLUMNS = ("time", "x", "y", "z", "roll", "pitch", "heading")
@@ -58,7 +60,7 @@ class Trajectory:
             [self.heading_deg, self.pitch_deg, self.roll_deg]), degrees=True)
 
 
-@dataclass
+@dataclass(frozen=True)
 class CameraMount:
     """Panorama camera on the vehicle: lever arm (body frame, m) and boresight (deg)."""
     lever_arm_m: Sequence[float] = (0.0, 0.0, 0.0)
@@ -87,9 +89,56 @@ class Stations:
     heading_deg: np.ndarray
     width_px: np.ndarray
     height_px: np.ndarray
+    #: ids as written in the layer; 1, 2, ... in input order when not given
+    station_id: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
+
+    def __post_init__(self) -> None:
+        if len(self.station_id) != len(self.image):
+            self.station_id = np.arange(1, len(self.image) + 1, dtype=np.int64)
 
     def __len__(self):
         return len(self.image)
+
+    def records(self) -> List[Dict]:
+        """One dict of :data:`STATION_FIELDS` per station (the stations layer)."""
+        out = []
+        for k in range(len(self)):
+            time_s = float(self.time_s[k])
+            out.append({"station_id": int(self.station_id[k]), "image": self.image[k],
+                        "path": self.path[k], "time": None if math.isnan(time_s) else time_s,
+                        **dict(zip(("x", "y", "z"), map(float, self.xyz_world[k]))),
+                        **dict(zip(("qw", "qx", "qy", "qz"), map(float, self.q_world_from_pano_wxyz[k]))),
+                        "heading": float(self.heading_deg[k]), "width": int(self.width_px[k]),
+                        "height": int(self.height_px[k])})
+        return out
+
+    @classmethod
+    def from_records(cls, rows: Sequence[Dict], layer: str = "Panorama stations") -> "Stations":
+        """Read back a stations layer: dicts with :data:`STATION_FIELDS` (``time`` may be NULL).
+        :class:`InputError` naming the station and the field for any other NULL value."""
+        rows = list(rows)
+        for row in rows:
+            for f in STATION_FIELDS:
+                if f.name != "time" and row.get(f.name) is None:
+                    raise InputError("{layer}: station {station} has no value in the field {field}; "
+                                     "expected the output of Import trajectory", layer=layer,
+                                     station=row.get("station_id", "?"), field=f.name)
+
+        def col(names, dtype=float):
+            return np.array([[r[n] for n in names] for r in rows], dtype=dtype).reshape(len(rows), len(names))
+
+        time_s = np.array([np.nan if r["time"] is None else float(r["time"]) for r in rows])
+        return cls([str(r["image"]) for r in rows], [str(r["path"]) for r in rows], time_s,
+                   col(("x", "y", "z")), col(("qw", "qx", "qy", "qz")), col(("heading",))[:, 0],
+                   col(("width",), np.int64)[:, 0], col(("height",), np.int64)[:, 0],
+                   col(("station_id",), np.int64)[:, 0])
+
+
+#: The stations layer (PointZ at the panorama centre), one row per :class:`Stations` row.
+STATION_FIELDS: Schema = fields(
+    ("station_id", int), ("image", str), ("path", str), ("time", float),
+    ("x", float), ("y", float), ("z", float), ("qw", float), ("qx", float), ("qy", float),
+    ("qz", float), ("heading", float), ("width", int), ("height", int))
 
 
 @dataclass
@@ -178,7 +227,7 @@ def read_image_times(path: str):
 
 
 def _check_names(names, lines, path, what):
-    seen = {}
+    seen: Dict[str, int] = {}
     for name, line in zip(names, lines):
         if not name:
             raise InputError("{what} file {path}, line {line}, field 'image': empty image name",

@@ -1,42 +1,48 @@
-"""The Processing provider ``roadsigns``: lists the algorithms, one per module."""
+"""The Processing provider ``roadsigns``: lists the algorithms, one per module, and the
+Processing models shipped in ``models/``."""
 import glob
 import os
 
 from qgis.core import QgsApplication, QgsProcessingModelAlgorithm, QgsProcessingProvider
 from qgis.PyQt.QtGui import QIcon
 
-from .i18n import tr
+from ..algorithms.detectsigns import DetectSigns
+from ..algorithms.evaluate import Evaluate
+from ..algorithms.groundfilter import PDAL_SETTING, GroundFilter
+from ..algorithms.i18n import Translatable, tr_core
+from ..algorithms.importtrajectory import ImportTrajectory
+from ..algorithms.paths import ICON_PATH, MODELS_DIR
+from ..algorithms.projectdetections import ProjectDetections
+from ..algorithms.refinesigns import RefineSigns
 
-PLUGIN_DIR = os.path.dirname(os.path.dirname(__file__))
-ICON_PATH = os.path.join(PLUGIN_DIR, "icons", "roadsigns.svg")
-MODELS_DIR = os.path.join(PLUGIN_DIR, "models")
+#: The algorithms, in the order of the chain.
+ALGORITHMS = (ImportTrajectory, DetectSigns, GroundFilter, ProjectDetections, RefineSigns, Evaluate)
 
 
-class RoadSignsProvider(QgsProcessingProvider):
+class RoadSignsProvider(Translatable, QgsProcessingProvider):
     def id(self):
         return "roadsigns"
 
     def name(self):
-        return tr("Road sign inventory")
+        return self.tr("Road sign inventory")
 
-    def longName(self):  # noqa: N802
-        return tr("Road sign inventory from mobile mapping (panoramas, trajectory, LiDAR)")
+    def longName(self):
+        return self.tr("Road sign inventory from mobile mapping (panoramas, trajectory, LiDAR)")
 
     def icon(self):
         return QIcon(ICON_PATH)
 
-    def svgIconPath(self):  # noqa: N802
+    def svgIconPath(self):
         return ICON_PATH
 
     def load(self):
         """Register the provider's settings (Processing ▸ Options ▸ Providers)."""
         try:
             from processing.core.ProcessingConfig import ProcessingConfig, Setting
-            from ..algorithms.groundfilter import PDAL_SETTING
             ProcessingConfig.settingIcons[self.name()] = self.icon()
             ProcessingConfig.addSetting(Setting(
                 self.name(), PDAL_SETTING,
-                tr("PDAL executable for the ground filter (empty: search PATH and QGIS)"), "",
+                self.tr("PDAL executable for the ground filter (empty: search PATH and QGIS)"), "",
                 valuetype=Setting.FILE))
             ProcessingConfig.readSettings()
         except ImportError:  # the processing plugin is not there: no settings dialog
@@ -55,21 +61,13 @@ class RoadSignsProvider(QgsProcessingProvider):
     def unload(self):
         try:
             from processing.core.ProcessingConfig import ProcessingConfig
-            from ..algorithms.groundfilter import PDAL_SETTING
             ProcessingConfig.removeSetting(PDAL_SETTING)
         except ImportError:
             pass
 
-    def loadAlgorithms(self):  # noqa: N802
-        from ..algorithms.detectsigns import DetectSigns
-        from ..algorithms.evaluate import Evaluate
-        from ..algorithms.groundfilter import GroundFilter
-        from ..algorithms.importtrajectory import ImportTrajectory
-        from ..algorithms.projectdetections import ProjectDetections
-        from ..algorithms.refinesigns import RefineSigns
-        for algorithm in (ImportTrajectory(), DetectSigns(), GroundFilter(), ProjectDetections(),
-                          RefineSigns(), Evaluate()):
-            self.addAlgorithm(algorithm)
+    def loadAlgorithms(self):
+        for algorithm in ALGORITHMS:
+            self.addAlgorithm(algorithm())
         self._load_models()
 
     def _load_models(self):
@@ -83,28 +81,28 @@ class RoadSignsProvider(QgsProcessingProvider):
                 self.addAlgorithm(model)
 
 
-class ShippedModel(QgsProcessingModelAlgorithm):
-    """A model shipped with the plugin: its id is the model's name (``signinventory``), its
-    display name and help are translated."""
+class ShippedModel(Translatable, QgsProcessingModelAlgorithm):
+    """A model shipped with the plugin: its id is the model's name (``signinventory``); its
+    display name and help are translated (the help texts as ``scripts/i18n.py`` extracts
+    them from the .model3 file)."""
 
-    DISPLAY_NAMES = {"signinventory": "Sign inventory (whole chain)"}
+    def displayName(self):
+        names = {"signinventory": self.tr("Sign inventory (whole chain)")}
+        return names.get(self.name(), self.name())
 
-    def displayName(self):  # noqa: N802
-        return tr(self.DISPLAY_NAMES.get(self.name(), self.name()))
+    def shortHelpString(self):
+        return tr_core(self.helpContent().get("ALG_DESC", ""))
 
-    def shortHelpString(self):  # noqa: N802
-        return tr(self.helpContent().get("ALG_DESC", ""))
-
-    def shortDescription(self):  # noqa: N802
+    def shortDescription(self):
         return self.shortHelpString()
 
     def icon(self):
         return QIcon(ICON_PATH)
 
     def group(self):
-        return tr("Road sign inventory")
+        return self.tr("Road sign inventory")
 
-    def helpString(self):  # noqa: N802
+    def helpString(self):
         return self.shortHelpString()
 
     def apply_parameter_help(self):
@@ -112,9 +110,9 @@ class ShippedModel(QgsProcessingModelAlgorithm):
         help_content = self.helpContent()
         for parameter in self.parameterDefinitions():
             if help_content.get(parameter.name()):
-                parameter.setHelp(tr(help_content[parameter.name()]))
+                parameter.setHelp(tr_core(help_content[parameter.name()]))
 
-    def createInstance(self):  # noqa: N802
+    def createInstance(self):
         model = ShippedModel()
         model.loadVariant(self.toVariant())
         model.apply_parameter_help()

@@ -17,7 +17,6 @@ from devtools.qgisrun import QgisProcess  # noqa: E402
 from devtools.scenegen import generate_scene  # noqa: E402
 
 
-
 def main():
     out_dir = os.path.join(REPO_ROOT, "demo_out")
     sample = os.path.join(out_dir, "sample")

@@ -14,8 +14,9 @@ log() { printf '[setup] %s\n' "$*"; }
 # --- 1. QGIS 3.40 LTR and Debian's scientific Python --------------------------------
 # libgeos-dev: shapely is built against the system GEOS (the one QGIS links): a shapely wheel
 # bundles another GEOS whose C++ symbols clash with QGIS's inside qgis_process and crash it.
+# qttools5-dev-tools (lrelease) and pyqt5-dev-tools (pylupdate5): translations, make i18n.
 apt_pkgs=(qgis python3-qgis qgis-providers python3-venv python3-pip python3-dev python3-scipy python3-pyproj
-          python3-numpy libgeos-dev qttools5-dev-tools)
+          python3-numpy libgeos-dev qttools5-dev-tools pyqt5-dev-tools)
 need_apt=0
 if ! command -v qgis_process >/dev/null 2>&1; then need_apt=1; fi
 for p in "${apt_pkgs[@]}"; do

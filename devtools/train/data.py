@@ -114,7 +114,8 @@ def shape_mask(shape: str, w: int, h: int) -> np.ndarray:
         cv2.fillPoly(m, [np.int32([[W / 2, 0], [W, H / 2], [W / 2, H], [0, H / 2]])], 255, cv2.LINE_AA)
     elif shape == "octagon":
         a = np.pi / 8 + 2 * np.pi * np.arange(8) / 8
-        pts = np.stack([W / 2 + W / 2 / np.cos(np.pi / 8) * np.cos(a), H / 2 + H / 2 / np.cos(np.pi / 8) * np.sin(a)], 1)
+        r = 0.5 / np.cos(np.pi / 8)
+        pts = np.stack([W / 2 + W * r * np.cos(a), H / 2 + H * r * np.sin(a)], 1)
         cv2.fillPoly(m, [np.int32(np.clip(pts, 0, [W, H]))], 255, cv2.LINE_AA)
     else:
         m[:] = 255

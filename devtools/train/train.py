@@ -2,11 +2,11 @@
 validation on held-out GTSDB frames and panorama views, checkpoints, ONNX export."""
 from __future__ import annotations
 
+import copy
 import json
 import math
 import os
 import time
-import copy
 
 import cv2
 import numpy as np
@@ -108,7 +108,8 @@ class DataMix:
     def _paste_many(self, s: Sample, patches, classes, n, lo, hi):
         for _ in range(n):
             k = int(self.rng.integers(len(patches)))
-            data.paste(s, patches[k], log_uniform(self.rng, lo, hi), None if classes is None else int(classes[k]), self.rng)
+            klass = None if classes is None else int(classes[k])
+            data.paste(s, patches[k], log_uniform(self.rng, lo, hi), klass, self.rng)
 
     def _background(self) -> Sample:
         """A crop of a real scene or a view to paste onto (its own signs stay labelled)."""
@@ -290,7 +291,8 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
         frac = min(elapsed / budget_s, 1.0)
         for group in opt.param_groups:
             group["lr"] = lr * min(1.0, (step + 1) / 300) * (0.02 + 0.98 * 0.5 * (1 + math.cos(math.pi * frac)))
-        x, (heat, valid, ind, reg, mask) = batch_tensors([mix.sample() for _ in range(batch_size)], crop_px, len(CLASSES))
+        samples = [mix.sample() for _ in range(batch_size)]
+        x, (heat, valid, ind, reg, mask) = batch_tensors(samples, crop_px, len(CLASSES))
         logits, regression = net(x)
         l_heat = focal_loss(logits, heat, valid)
         l_off, l_size = regression_loss(regression, ind, reg, mask)

@@ -7,9 +7,9 @@ the candidates written here.
 import cv2
 import numpy as np
 import pytest
-
 from helpers.synthpano import disc_pano_box, paint_discs
 from helpers.tinyonnx import make_model
+
 from roadsigns.core import detector as det
 from roadsigns.core.detector import Detector, ImageDetections, detect_panorama, merge_view_detections
 from roadsigns.core.errors import InputError

@@ -11,10 +11,19 @@ import numpy as np
 import pytest
 
 from roadsigns.core.errors import InputError
-from roadsigns.core.evaluate import (FALSE, MATCHED, MISSED, OUTPUT_NAMES, SignSet,
-                                     azimuth_difference_deg, evaluate, match_signs,
-                                     read_reference_csv, render_html_report,
-                                     write_html_report)
+from roadsigns.core.evaluate import (
+    FALSE,
+    MATCHED,
+    MISSED,
+    OUTPUT_NAMES,
+    SignSet,
+    azimuth_difference_deg,
+    evaluate,
+    match_signs,
+    read_reference_csv,
+    render_html_report,
+    write_html_report,
+)
 
 # A realistic UTM origin: coordinates are offsets from it.
 E0, N0, H0 = 500000.0, 5300000.0, 200.0

@@ -1,7 +1,8 @@
 """core.geometry against hand-worked answers, scipy's Rotation and round trips."""
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
 from roadsigns.core import geometry as g

@@ -9,13 +9,14 @@ import numpy as np
 import pyproj
 import pytest
 import shapely
+from helpers import cloudgen
 from shapely.geometry import box
 
-from helpers import cloudgen  # noqa: E402
-
-from roadsigns.core import ground  # noqa: E402
-from roadsigns.core import pointcloud as pc  # noqa: E402
-from roadsigns.core.errors import InputError, Progress  # noqa: E402
+from roadsigns.core import ground
+from roadsigns.core import pointcloud as pc
+from roadsigns.core.errors import InputError, Progress
+from roadsigns.core.ground import lattice
+from roadsigns.core.ground import pdal as ground_pdal
 
 #: Options documented for each PDAL stage (pdal.io stage pages / doc/stages/*.rst).
 PDAL_DOCUMENTED = {
@@ -61,8 +62,7 @@ def test_builtin_agreement_with_truth(tmp_path, scenes, method, terrain):
     src = str(tmp_path / "scene.laz")
     cloudgen.write_scene(src, scene, point_format=6)
     out = str(tmp_path / "ground.laz")
-    res = ground.run_ground_filter(src, out, method=ground.METHODS.index(method),
-                                   engine=2, chunk_points=70_000)
+    res = ground.run_ground_filter(src, out, method=method, engine="builtin", chunk_points=70_000)
     assert res.engine == "builtin" and res.n_output == len(scene)
     predicted = _classes(out) == 2
     assert res.n_ground == predicted.sum()
@@ -103,7 +103,7 @@ def test_csf_thinning_gives_the_full_cloth():
     xyz[car, 2] += 1.4
     params = ground.CsfParams()
     full = ground.run_csf_cloth(xyz, params)
-    grid = ground._CsfGrid((0, 0, 30, 20), 0.0, params, tile_size_m=1000)
+    grid = ground.CsfGrid((0, 0, 30, 20), 0.0, params, tile_size_m=1000)
     grid.accumulate(xyz[:, 0], xyz[:, 1], xyz[:, 2])
     have = ~np.isnan(grid.rep_du)
     rows, cols = np.nonzero(have)
@@ -320,8 +320,8 @@ def test_pdal_success_path_moves_output_in_place(tmp_path, small_cloud):
 
 def test_pdal_requested_but_missing(tmp_path, small_cloud, monkeypatch):
     src, _ = small_cloud
-    monkeypatch.setattr(ground, "pdal_python_module", lambda: None)
-    monkeypatch.setattr(ground, "find_pdal_executable", lambda exe=None: None)
+    monkeypatch.setattr(ground_pdal, "pdal_python_module", lambda: None)
+    monkeypatch.setattr(ground_pdal, "find_pdal_executable", lambda exe=None: None)
     with pytest.raises(InputError, match="PDAL was asked for"):
         ground.run_ground_filter(src, str(tmp_path / "o.las"), engine="pdal")
     res = ground.run_ground_filter(src, str(tmp_path / "o.las"), engine="auto")
@@ -351,3 +351,231 @@ def test_smrf_net_cutting_option(scenes):
     eligible = ground.returns_mask(scene.return_number, scene.number_of_returns)
     g = ground.classify_ground_arrays(scene.xyz[eligible], "smrf", ground.SmrfParams(cut=10.0))
     assert (g == scene.is_ground[eligible]).mean() > 0.98
+
+
+# ----------------------------------------------------------------------------- names and parameters
+
+@pytest.mark.parametrize("bad", ["0", 0, 1, "CSF", " csf", "built-in", None, True, 1.0])
+def test_methods_and_engines_are_names_only(tmp_path, bad):
+    """Names of METHODS / ENGINES, nothing else (no enum index, no spelling variant);
+    the error names the value and the accepted names, before any file is touched."""
+    for check, names, what in ((ground.method_name, ground.METHODS, "ground method"),
+                               (ground.engine_name, ground.ENGINES, "engine")):
+        with pytest.raises(InputError) as e:
+            check(bad)
+        assert e.value.template == "Unknown {what} {value!r}: expected one of {names}"
+        assert e.value.fields == {"what": what, "value": bad, "names": ", ".join(names)}
+        assert repr(bad) in str(e.value) and ", ".join(names) in str(e.value)
+    src, out = tmp_path / "missing.las", tmp_path / "o.las"
+    with pytest.raises(InputError, match="Unknown ground method"):
+        ground.run_ground_filter(str(src), str(out), method=bad)
+    with pytest.raises(InputError, match="Unknown engine"):
+        ground.run_ground_filter(str(src), str(out), engine=bad)
+    with pytest.raises(InputError, match="Unknown ground method"):
+        ground.classify_ground_arrays(np.zeros((3, 3)), bad)
+    with pytest.raises(InputError, match="Unknown ground method"):
+        ground.pdal_filter_stage(bad)
+    assert not list(tmp_path.iterdir())
+
+
+def test_names_accepted():
+    assert ground.METHODS == ("csf", "smrf") and ground.ENGINES == ("auto", "pdal", "builtin")
+    assert [ground.method_name(m) for m in ground.METHODS] == list(ground.METHODS)
+    assert [ground.engine_name(e) for e in ground.ENGINES] == list(ground.ENGINES)
+    assert ground.default_params("csf") == ground.CsfParams()
+    assert ground.default_params("smrf") == ground.SmrfParams()
+    assert ground.pdal_filter_stage("smrf")["type"] == "filters.smrf"
+
+
+def test_params_are_frozen_and_belong_to_their_method(tmp_path):
+    import dataclasses
+
+    for params in (ground.CsfParams(), ground.SmrfParams()):
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            params.threshold = 0.2
+    changed = dataclasses.replace(ground.CsfParams(), threshold=0.2)
+    assert changed.threshold == 0.2 and ground.CsfParams().threshold == 0.5
+    with pytest.raises(InputError, match="Parameters SmrfParams do not belong to method csf"):
+        ground.classify_ground_arrays(np.zeros((3, 3)), "csf", ground.SmrfParams())
+    with pytest.raises(InputError, match="Parameters CsfParams do not belong to method smrf"):
+        ground.run_ground_filter(str(tmp_path / "in.las"), str(tmp_path / "o.las"), "smrf",
+                                 params=ground.CsfParams())
+    with pytest.raises(InputError, match="do not belong to method smrf"):
+        ground.build_pdal_pipeline("/d/in.las", "/d/o.las", "smrf", ground.CsfParams())
+    assert not list(tmp_path.iterdir())
+
+
+# ----------------------------------------------------------------------------- lattice and tiles
+
+def test_lattice_is_world_aligned_and_covers_its_bounds():
+    step = 0.5
+    a = lattice.Lattice.covering((10.3, 20.7, 15.2, 25.1), step)
+    b = lattice.Lattice.covering((12.9, 18.1, 30.0, 22.2), step)
+    for lat in (a, b):
+        assert lat.x0 % step == 0 and lat.y0 % step == 0 and lat.step == step
+        assert lat.shape == (lat.ny, lat.nx)
+    assert a.x0 == 9.0 and a.y0 == 19.5 and (a.nx, a.ny) == (15, 14)
+    # nodes of two grids over overlapping areas coincide
+    u, v = b.local(a.x0 + 3 * step, a.y0 + 5 * step)
+    assert float(u) == round(float(u)) and float(v) == round(float(v))
+    # the bounds (and the padding around them) are inside the grid
+    u, v = a.local([10.3, 15.2], [20.7, 25.1])
+    a.check(np.floor(u).astype(np.int64), np.floor(v).astype(np.int64))
+    a.check(np.floor(u + 0.5).astype(np.int64), np.floor(v + 0.5).astype(np.int64))
+    a.check(np.zeros(0, np.int64), np.zeros(0, np.int64))
+    for col, row in ((-1, 0), (0, -1), (a.nx, 0), (0, a.ny)):
+        with pytest.raises(lattice.OutsideGridError):
+            a.check(np.array([col]), np.array([row]))
+
+
+def test_lattice_refuses_too_many_cells():
+    with pytest.raises(InputError, match="needs .* grid cells of 0.1 m, more than 1000") as e:
+        lattice.Lattice.covering((0.0, 0.0, 10.0, 10.0), 0.1, max_cells=1000)
+    assert e.value.fields["limit"] == 1000 and e.value.fields["cells"] > 1000
+
+
+@pytest.mark.parametrize("shape,core,halo", [((23, 41), 8, 3), ((5, 5), 16, 40), ((16, 32), 16, 0)])
+def test_tiles_cover_the_grid_once_with_clipped_halos(shape, core, halo):
+    covered = np.zeros(shape, dtype=int)
+    grid = np.arange(shape[0] * shape[1]).reshape(shape)
+    windows = list(lattice.tiles(shape, core, halo))
+    assert len(windows) == -(-shape[0] // core) * -(-shape[1] // core)
+    for c, e in windows:
+        covered[c] += 1
+        for axis in (0, 1):
+            assert c[axis].stop - c[axis].start <= core
+            assert e[axis].start == max(c[axis].start - halo, 0)
+            assert e[axis].stop == min(c[axis].stop + halo, shape[axis])
+        np.testing.assert_array_equal(grid[e][lattice.inner_window(c, e)], grid[c])
+    np.testing.assert_array_equal(covered, 1)
+
+
+def test_group_first_picks_the_smallest_per_key():
+    keys = np.array([3, 1, 3, 2, 1, 3])
+    order_by = np.array([5.0, 2.0, 1.0, 7.0, 0.0, 4.0])
+    picked = lattice.group_first(keys, order_by)
+    assert sorted(picked.tolist()) == [2, 3, 4]
+    rng = np.random.default_rng(5)
+    keys = rng.integers(0, 50, 2000)
+    order_by = rng.random(2000)
+    picked = lattice.group_first(keys, order_by)
+    assert sorted(keys[picked].tolist()) == sorted(set(keys.tolist()))
+    for i in picked:
+        assert order_by[i] == order_by[keys == keys[i]].min()
+
+
+@pytest.mark.parametrize("params", [ground.CsfParams(), ground.SmrfParams()])
+def test_grids_refuse_outside_points_and_classify_before_finish(params):
+    grid = ground.make_grid(params, (0.0, 0.0, 10.0, 10.0), 0.0)
+    assert isinstance(grid, ground.CsfGrid if isinstance(params, ground.CsfParams) else ground.SmrfGrid)
+    with pytest.raises(lattice.OutsideGridError):
+        grid.accumulate(np.array([5.0, 50.0]), np.array([5.0, 5.0]), np.array([0.0, 0.0]))
+    with pytest.raises(RuntimeError, match="before finish"):
+        grid.classify(np.array([5.0]), np.array([5.0]), np.array([0.0]))
+
+
+def test_csf_library_output_kept_off_stdout(capfd):
+    """The CSF library prints with std::cout; stdout belongs to ``qgis_process --json``."""
+    rng = np.random.default_rng(1)
+    xyz = np.column_stack([rng.uniform(0, 10, 2000), rng.uniform(0, 10, 2000),
+                           rng.normal(0, 0.02, 2000)])
+    cloth = ground.run_csf_cloth(xyz, ground.CsfParams())
+    assert cloth.shape[1] == 3 and len(cloth)
+    print("after")
+    assert capfd.readouterr().out == "after\n"
+
+
+# ----------------------------------------------------------------------------- finding and running PDAL
+
+def test_find_pdal_executable(tmp_path, monkeypatch):
+    name = "pdal.exe" if sys.platform == "win32" else "pdal"
+    exe = _fake_pdal(tmp_path, "pass\n")
+    assert ground.find_pdal_executable(exe) == exe
+    assert ground.find_pdal_executable(str(tmp_path)) == exe        # the folder holding it
+    with pytest.raises(InputError, match="not found or not executable"):
+        ground.find_pdal_executable(str(tmp_path / "nothing"))
+    plain = tmp_path / "plain"
+    plain.mkdir()
+    (plain / name).write_text("")                                    # not executable
+    with pytest.raises(InputError, match="not found or not executable"):
+        ground.find_pdal_executable(str(plain))
+    # on PATH
+    monkeypatch.setenv("PATH", str(tmp_path))
+    assert ground.find_pdal_executable() == exe
+    # in QGIS's bin folder
+    prefix = tmp_path / "qgis"
+    (prefix / "bin").mkdir(parents=True)
+    in_qgis = _fake_pdal(prefix / "bin", "pass\n")
+    monkeypatch.setenv("PATH", str(plain))
+    monkeypatch.setenv("QGIS_PREFIX_PATH", str(prefix))
+    assert ground.find_pdal_executable() == in_qgis
+    assert str(prefix / "bin") == ground_pdal._qgis_bin_dirs()[0]
+    monkeypatch.setattr(ground_pdal, "_qgis_bin_dirs", lambda: [str(plain)])
+    assert ground.find_pdal_executable() is None
+
+
+def test_pdal_runner_choice(tmp_path, monkeypatch):
+    import types
+
+    exe = _fake_pdal(tmp_path, "pass\n")
+    fake = types.ModuleType("pdal")
+    monkeypatch.setitem(sys.modules, "pdal", None)                   # import fails
+    assert ground.pdal_python_module() is None
+    monkeypatch.setitem(sys.modules, "pdal", fake)                   # not the bindings
+    assert ground.pdal_python_module() is None
+    fake.Pipeline = object
+    assert ground.pdal_python_module() is fake
+    # an executable given wins, then the bindings, then an executable found
+    assert ground_pdal.find_pdal_runner(exe) == ("cli", exe)
+    assert ground_pdal.find_pdal_runner() == ("python", None)
+    monkeypatch.setitem(sys.modules, "pdal", None)
+    monkeypatch.setattr(ground_pdal, "find_pdal_executable", lambda exe=None: "/opt/pdal")
+    assert ground_pdal.find_pdal_runner() == ("cli", "/opt/pdal")
+    monkeypatch.setattr(ground_pdal, "find_pdal_executable", lambda exe=None: None)
+    assert ground_pdal.find_pdal_runner() is None
+
+
+def test_run_pdal_pipeline_with_the_python_bindings(monkeypatch):
+    import types
+
+    runs = []
+
+    class Pipeline:
+        def __init__(self, text):
+            self.text, self.log = text, "stage log"
+
+        def execute(self):
+            runs.append(self.text)
+            if "fail" in self.text:
+                raise RuntimeError("readers.las: cannot open")
+
+    fake = types.ModuleType("pdal")
+    fake.Pipeline = Pipeline
+    monkeypatch.setitem(sys.modules, "pdal", fake)
+    assert ground.run_pdal_pipeline('{"pipeline": []}') == "stage log"
+    with pytest.raises(ground.PdalError, match="cannot open") as e:
+        ground.run_pdal_pipeline('{"fail": 1}')
+    assert e.value.stderr == "readers.las: cannot open\nstage log"
+    assert runs == ['{"pipeline": []}', '{"fail": 1}']
+    monkeypatch.setitem(sys.modules, "pdal", None)
+    with pytest.raises(ground.PdalError, match="not available"):
+        ground.run_pdal_pipeline("{}")
+
+
+def test_cancel_kills_a_running_pdal(tmp_path):
+    import time
+
+    from roadsigns.core.errors import Cancelled
+
+    started = tmp_path / "started"
+    exe = _fake_pdal(tmp_path, f"""
+        import sys, time
+        sys.stdin.read()
+        open({str(started)!r}, "w").close()
+        time.sleep(60)
+    """)
+    t0 = time.monotonic()
+    with pytest.raises(Cancelled):
+        ground.run_pdal_pipeline("{}", exe, Progress(is_cancelled=started.exists))
+    assert time.monotonic() - t0 < 30
+    assert ground.run_pdal_pipeline("{}", _fake_pdal(tmp_path, "print('ok')\n")) == "ok\n"

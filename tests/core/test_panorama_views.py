@@ -7,8 +7,10 @@ the view's ray, image x right, y down) and checked against what ``cv2.remap`` pr
 import cv2
 import numpy as np
 import pytest
+from helpers.synthpano import disc_pano_box as _disc_pano_box
+from helpers.synthpano import paint_discs as _paint_discs
+from helpers.synthpano import ray
 
-from helpers.synthpano import disc_pano_box as _disc_pano_box, paint_discs as _paint_discs, ray
 from roadsigns.core.errors import InputError
 from roadsigns.core.panorama import PerspectiveView, ViewSet, read_panorama
 

@@ -5,9 +5,8 @@ import numpy as np
 import pyproj
 import pytest
 import shapely
-from shapely.geometry import Polygon, box
-
 from helpers import cloudgen  # noqa: E402
+from shapely.geometry import Polygon, box
 
 from roadsigns.core import pointcloud as pc  # noqa: E402
 from roadsigns.core.errors import InputError  # noqa: E402

@@ -1,13 +1,16 @@
 """Candidates -> signs (core.refine) on a scene of known sign panels."""
+import dataclasses
+
 import numpy as np
 import pytest
+from helpers import signscene
 from scipy.optimize import linear_sum_assignment
 
-from helpers import signscene
-from roadsigns.core import projection as P
-from roadsigns.core import refine as R
-from roadsigns.core.errors import Progress
-from roadsigns.core.pointcloud import TiledIndex, read_header
+from roadsigns.core import projection as P  # noqa: N812 (the tests' short module names)
+from roadsigns.core import refine as R  # noqa: N812 (the tests' short module names)
+from roadsigns.core.errors import Message, Progress
+from roadsigns.core.pointcloud import PointSet, TiledIndex, read_header
+from roadsigns.core.schema import names
 
 
 def make_index(scene, classification=None):
@@ -86,7 +89,7 @@ def test_out_of_reach_sign_is_triangulated(scene, refined):
 
 def test_records_follow_the_contract(refined, scene):
     for rec, s, outline in zip(refined.records(), refined.signs, refined.outlines_world):
-        assert tuple(rec) == R.SIGN_FIELDS
+        assert tuple(rec) == names(R.SIGN_FIELDS)
         assert 0.0 <= rec["azimuth"] < 360.0 and 0.0 < rec["score"] <= 1.0
         images = rec["source_images"].split(";")
         assert len(images) == rec["n_views"] and rec["best_image"] in images
@@ -304,3 +307,439 @@ def test_a_face_scanned_in_one_profile_faces_the_way_of_its_views():
     _, panel, matched = _scanned_in_lines([0.2], seed=1)
     true_azimuth = np.degrees(np.arctan2(panel.normal[0], panel.normal[1])) % 360
     assert abs((matched[1].azimuth - true_azimuth + 180) % 360 - 180) < 30.0
+
+
+# --------------------------------------------------------------------------------------
+# The steps of refine_signs, one by one
+# --------------------------------------------------------------------------------------
+
+def truth(scene, sign_id):
+    return next(p for p in scene.panels if p.sign_id == sign_id)
+
+
+def views_of(scene, candidates, sign_id, status=P.STATUS_OK):
+    """Candidate rows of the detections of truth panel ``sign_id`` with that status."""
+    return np.array([k for k, d in enumerate(scene.detections)
+                     if d["truth_id"] == sign_id and candidates.status[k] == status], np.int64)
+
+
+def point_set(xyz, intensity=None, classification=None, first_index=0):
+    xyz = np.asarray(xyz, float).reshape(-1, 3)
+    n = len(xyz)
+    return PointSet(xyz, first_index + np.arange(n, dtype=np.int64),
+                    {"intensity": np.full(n, 20000, np.uint16) if intensity is None else intensity,
+                     "classification": np.ones(n, np.uint8) if classification is None
+                     else classification})
+
+
+def face_points(scene, panel):
+    """The scene's points of a retroreflective face (not its pole behind it)."""
+    rel = scene.xyz_world - panel.centre_world
+    m = ((np.abs(rel @ panel.normal) < 0.04) & panel.inside(rel @ panel.right, rel @ panel.up)
+         & (scene.classification != 2) & (scene.intensity > 0.6 * signscene.SCALE))
+    return PointSet(scene.xyz_world[m], np.flatnonzero(m),
+                    {"intensity": scene.intensity[m], "classification": scene.classification[m]})
+
+
+def grid(centre, right, up, half_w, half_h, step):
+    """Points on a regular grid in the plane spanned by ``right`` and ``up``."""
+    s, t = np.meshgrid(np.arange(-half_w, half_w + 1e-9, step), np.arange(-half_h, half_h + 1e-9, step))
+    return (np.asarray(centre, float) + np.multiply.outer(s.ravel(), right)
+            + np.multiply.outer(t.ravel(), up))
+
+
+def a_panel(centre, normal, points=None):
+    normal = np.asarray(normal, float) / np.linalg.norm(normal)
+    right, up = R.panel_frame(normal)
+    corners = np.array([centre + a * 0.3 * right + b * 0.3 * up
+                        for a, b in ((-1, 1), (1, 1), (1, -1), (-1, -1))])
+    return R.Panel(np.asarray(centre, float), normal, 0.6, 0.6, corners,
+                   point_set(np.zeros((0, 3))) if points is None else points, 0.95)
+
+
+def changed(candidates, k, **fields):
+    """The candidates with the fields of row ``k`` changed (as read back from the layer)."""
+    rows = candidates.records()
+    rows[k] = dict(rows[k], **fields)
+    return P.ProjectionResult.from_records(rows)
+
+
+EAST, NORTH, UP = np.eye(3)
+
+
+def test_points_near_views_are_off_the_ground_in_a_slab_around_the_plane(scene, candidates):
+    p, params = truth(scene, 1), R.RefineParams()
+    face = grid(p.centre_world, p.right, p.up, 0.25, 0.25, 0.05)
+    n = len(face)
+    xyz = np.concatenate([face, face - (params.slab_m - 0.1) * p.normal,   # kept
+                          face - (params.slab_m + 0.1) * p.normal,         # beyond the slab
+                          face + 0.05 * p.normal,                          # ground class
+                          face + 3.0 * p.right])                           # beyond reach
+    cls = np.ones(len(xyz), np.uint8)
+    cls[3 * n:4 * n] = 2
+    index = TiledIndex.from_arrays(xyz, {"intensity": np.zeros(len(xyz), np.uint16),
+                                         "classification": cls}, tile_size_m=5.0)
+    out = R.points_near_views(candidates, views_of(scene, candidates, 1), index, p.centre_world,
+                              p.normal, params)
+    assert sorted(out.point_index.tolist()) == list(range(2 * n))
+
+
+def test_points_in_boxes_need_half_the_views(scene, candidates):
+    p, params = truth(scene, 1), R.RefineParams()
+    face = face_points(scene, p)
+    rel = face.xyz_world - p.centre_world
+    face = face.subset(np.hypot(rel @ p.right, rel @ p.up) < 0.2)   # inside every view's box
+    beside = point_set(face.xyz_world + 1.5 * p.right, first_index=len(scene.xyz_world))
+    pts = PointSet(np.concatenate([face.xyz_world, beside.xyz_world]),
+                   np.concatenate([face.point_index, beside.point_index]),
+                   {k: np.concatenate([face.attributes[k], beside.attributes[k]])
+                    for k in face.attributes})
+    rows, far = views_of(scene, candidates, 1), views_of(scene, candidates, 6)
+    assert len(face) > 50 and len(far) > len(rows)
+    kept = R.points_in_boxes(candidates, rows, pts, params)
+    assert set(kept.point_index.tolist()) == set(face.point_index.tolist())
+    # the views of a sign 60 m away as many as the face's: half the views see the face
+    half = R.points_in_boxes(candidates, np.r_[rows, far[:len(rows)]], pts, params)
+    assert set(half.point_index.tolist()) == set(face.point_index.tolist())
+    assert len(R.points_in_boxes(candidates, np.r_[rows, far[:len(rows) + 1]], pts, params)) == 0
+
+
+def test_seeded_clusters_keep_the_candidates_clusters_and_large_ones():
+    centre = signscene.ORIGIN + [10.0, -6.0, 2.5]
+    seeded = grid(centre, EAST, UP, 0.15, 0.15, 0.02)
+    large = grid(centre + 1.0 * EAST, EAST, UP, 0.15, 0.15, 0.02)   # a panel split by a scan gap
+    small = grid(centre - 1.0 * EAST, EAST, UP, 0.02, 0.02, 0.02)   # something else nearby
+    pts = point_set(np.concatenate([seeded, large, small]))
+    groups = np.repeat([0, 1, 2], [len(seeded), len(large), len(small)])
+    params = R.RefineParams()
+    assert len(small) < params.major_cluster_share * len(pts) <= len(large)
+    out = R.seeded_clusters(pts, centre[None], params)
+    assert sorted(out.point_index.tolist()) == np.flatnonzero(groups < 2).tolist()
+    out = R.seeded_clusters(pts, np.array([centre, centre - 1.0 * EAST]), params)
+    assert len(out) == len(pts)
+
+
+@pytest.mark.parametrize("dark,light,bright,filtered", [
+    (10000, 60000, 30000, True),    # a retroreflective face on a darker pole
+    (10000, 20000, 30000, False),   # a faded face: two modes, neither bright for this cloud
+    (40000, 60000, 30000, False),   # both modes bright: no darker thing to filter out
+])
+def test_retroreflective_mask_keeps_a_bright_mode_only(dark, light, bright, filtered):
+    rng = np.random.default_rng(0)
+    inten = np.concatenate([rng.normal(dark, 500, 60), rng.normal(light, 500, 100)])
+    mask = R.retroreflective_mask(inten, bright, R.RefineParams())
+    assert mask.tolist() == ([False] * 60 + [True] * 100 if filtered else [True] * 160)
+    # too few points (23) to tell modes apart, though the bright one has min_panel_points (12)
+    few = np.r_[inten[:12], inten[-12:]][1:]
+    assert R.retroreflective_mask(few, bright, R.RefineParams()).all()
+
+
+def test_points_on_plane_keep_the_back_face_not_the_pole_nor_points_off_the_plane():
+    rng = np.random.default_rng(1)
+    base = signscene.ORIGIN + [10.0, -6.0, 0.0]
+    face = grid(base + 2.3 * UP, EAST, UP, 0.3, 0.3, 0.02)             # bright
+    back = grid(base + 0.65 * EAST + 2.15 * UP, EAST, UP, 0.15, 0.15, 0.02)  # dark, on the plane
+    pole = base + np.multiply.outer(np.arange(0.5, 1.8, 0.01), UP)     # dark line on the plane
+    off = grid(base + 2.3 * UP + 0.2 * NORTH, EAST, UP, 0.3, 0.3, 0.05)  # bright, 20 cm in front
+    xyz = np.concatenate([face, back, pole, off])
+    xyz = xyz + rng.normal(0, 0.002, xyz.shape)
+    part = np.repeat([0, 1, 2, 3], [len(face), len(back), len(pole), len(off)])
+    pts = point_set(xyz)
+    out = R.points_on_plane(pts, (part == 0) | (part == 3), 0.02, R.RefineParams())
+    assert out is not None
+    kept, plane = out
+    assert sorted(kept.point_index.tolist()) == np.flatnonzero(part <= 1).tolist()
+    assert abs(plane.normal @ NORTH) > 0.99
+    assert R.points_on_plane(pts, np.arange(len(pts)) < 5, 0.02, R.RefineParams()) is None
+
+
+def test_drop_linear_points_drops_the_pole_but_not_most_of_the_panel():
+    base = signscene.ORIGIN + [10.0, -6.0, 0.0]
+    params = R.RefineParams()
+    panel = grid(base + 2.3 * UP, EAST, UP, 0.3, 0.3, 0.02)
+    pole = base + np.multiply.outer(np.arange(1.0, 2.0, 0.01), UP)
+    out = R.drop_linear_points(point_set(np.concatenate([panel, pole])), 0.02, params)
+    kept = set(out.point_index.tolist())
+    reach = params.pca_radius_m
+    far_pole = len(panel) + np.flatnonzero(pole[:, 2] < base[2] + 2.0 - reach)
+    assert not kept & set(far_pole.tolist())
+    assert len(kept & set(range(len(panel)))) >= 0.98 * len(panel)
+    # a face scanned in three vertical profiles (and a small patch above): linear nearly
+    # everywhere, it stays whole
+    profiles = np.concatenate([base + x * EAST + np.multiply.outer(np.arange(2.0, 2.6, 0.005), UP)
+                               for x in (-0.2, 0.0, 0.2)] + [grid(base + 2.85 * UP, EAST, UP, 0.05, 0.05, 0.01)])
+    assert len(R.drop_linear_points(point_set(profiles), 0.02, params)) == len(profiles)
+
+
+def test_panel_normal_faces_the_views_and_falls_back_when_the_points_cannot_tell():
+    params = R.RefineParams()
+    n = np.array([-1.0, 0.1, 0.0]) / np.linalg.norm([-1.0, 0.1, 0.0])
+    right, up = R.panel_frame(n)
+    centre = signscene.ORIGIN + [10.0, -6.0, 2.5]
+    _, ev, V = P.pca(grid(centre, right, up, 0.3, 0.3, 0.02))
+    np.testing.assert_allclose(R.panel_normal(ev, V, n, n, params), n, atol=1e-9)
+    np.testing.assert_allclose(R.panel_normal(ev, V, n, -n, params), -n, atol=1e-9)
+    # the points lean 45 degrees: the RANSAC plane (near-vertical), towards the views
+    leaning = (up - n) / np.sqrt(2)
+    _, ev, V = P.pca(grid(centre, right, leaning, 0.3, 0.3, 0.02))
+    np.testing.assert_allclose(R.panel_normal(ev, V, -n, n, params), n, atol=1e-9)
+    # a line (one scan profile): the views' normal
+    _, ev, V = P.pca(grid(centre, right, up, 0.005, 0.3, 0.005))
+    views = np.array([-0.9, 0.4, 0.0]) / np.linalg.norm([-0.9, 0.4, 0.0])
+    np.testing.assert_allclose(R.panel_normal(ev, V, n, views, params), views)
+
+
+def test_panel_outline_widens_the_points_to_the_boxes_within_an_allowance(scene, candidates):
+    p, params = truth(scene, 1), R.RefineParams()
+    face, rows = face_points(scene, p), views_of(scene, candidates, 1)
+    centroid = face.xyz_world.mean(axis=0)
+    panel, spacing = R.panel_outline(candidates, rows, face, centroid, p.normal, 0.93, params)
+    assert 0 < spacing < 0.05 and panel.planarity == 0.93 and panel.points is face
+    assert abs(panel.width_m - p.width) < 0.03 and abs(panel.height_m - p.height) < 0.03
+    assert np.linalg.norm(panel.centre_world - p.centre_world) < 0.02
+    tl, tr, br, bl = panel.corners_world
+    np.testing.assert_allclose((panel.corners_world - centroid) @ p.normal, 0.0, atol=1e-9)
+    assert (tr - tl) @ p.right == pytest.approx(panel.width_m)
+    assert (tl - bl) @ p.up == pytest.approx(panel.height_m) and br @ p.up == pytest.approx(bl @ p.up)
+    # only the left half of the face scanned: the boxes reach 0.3 m further, beyond the
+    # allowance: the outline keeps to the points
+    s = (face.xyz_world - p.centre_world) @ p.right
+    left = face.subset(s < 0)
+    half, _ = R.panel_outline(candidates, rows, left, left.xyz_world.mean(axis=0), p.normal, 0.9,
+                              params)
+    assert half.width_m < 0.5 * p.width + 0.05
+
+
+def test_cloud_around_candidates(scene, candidates, index, tmp_path):
+    assert R.cloud_around_candidates(candidates, index, 1.0) is index
+    assert R.cloud_around_candidates(candidates, None, 1.0) is None
+    las = str(tmp_path / "cloud.las")
+    signscene.write_las(scene, las)
+    near = R.cloud_around_candidates(candidates, las, 2.0)
+    ok = candidates.xyz_world[np.array(candidates.status) == P.STATUS_OK]
+    buffer_m = 2.0 + 2.5
+    dist = np.min(np.linalg.norm(scene.xyz_world[:, None, :2] - ok[None, :, :2], axis=2), axis=1)
+    got = np.zeros(len(scene.xyz_world), bool)
+    got[near.point_index] = True
+    assert np.all(dist[got] <= buffer_m + 1e-3)
+    assert np.all(got[dist < 0.99 * buffer_m]) and got.sum() < 0.5 * len(got)
+    no_ok = P.ProjectionResult.unprojected(candidates.detections)
+    assert R.cloud_around_candidates(no_ok, las, 2.0) is None
+
+
+def test_extract_signs_drops_non_signs_and_keeps_groups_without_a_panel(candidates, index,
+                                                                        monkeypatch):
+    groups = R.merge_candidates(candidates, 1.0)
+    det, panel = candidates.detections, a_panel(np.zeros(3), EAST)
+    outcomes = {int(groups[0][0]): (None, R.CURVED_SURFACE),
+                int(groups[1][0]): (None, Message("too few points"))}
+    monkeypatch.setattr(R, "extract_panel",
+                        lambda cand, rows, *_: outcomes.get(int(rows[0]), (panel, "")))
+    messages, reports = [], []
+    drafts = R.extract_signs(candidates, groups, index, 0.0, R.RefineParams(),
+                             Progress(on_progress=reports.append, on_info=messages.append))
+    assert [d.rows.tolist() for d in drafts] == [g.tolist() for g in groups[1:]]
+    assert drafts[0].panel is None and all(d.panel is panel for d in drafts[1:])
+    assert messages == [f"Candidates {det.det_id[groups[0]].tolist()} dropped: {R.CURVED_SURFACE}",
+                        f"Candidates {det.det_id[groups[1]].tolist()}: too few points; placed at "
+                        "the candidates' median"]
+    assert reports[-1] == pytest.approx(100.0)
+    messages.clear()
+    drafts = R.extract_signs(candidates, groups, None, 0.0, R.RefineParams(),
+                             Progress(on_info=messages.append))
+    assert len(drafts) == len(groups) and all(d.panel is None for d in drafts)
+    assert len(messages) == len(groups) and all("no point cloud" in m for m in messages)
+
+
+def test_sign_centres_and_classes_come_from_the_signs_own_views(scene, candidates):
+    rows1, rows2 = views_of(scene, candidates, 1), views_of(scene, candidates, 2)
+    p2 = truth(scene, 2)
+    drafts = [R.SignDraft(rows1, joined=list(rows2)), R.SignDraft(rows2, a_panel(p2.centre_world, p2.normal))]
+    centres = R.sign_centres(candidates, drafts)
+    np.testing.assert_allclose(centres[0], np.median(candidates.xyz_world[rows1], axis=0))
+    np.testing.assert_allclose(centres[1], p2.centre_world)
+    assert R.sign_classes(candidates, drafts).tolist() == ["prohibitory", "warning"]
+    assert R.sign_centres(candidates, []).shape == (0, 3)
+
+
+@pytest.mark.parametrize("klass,in_front_m,joins", [
+    ("prohibitory", 0.0, True), ("prohibitory", 2.0, True),   # same class: at any range
+    ("mandatory", 0.0, True),     # another class, the sign on its surface (a stray part)
+    ("mandatory", 2.0, False),    # another class, the sign 2 m behind its surface
+])
+def test_a_lone_view_joins_the_sign_found_by_several_in_its_box(scene, candidates, klass,
+                                                                 in_front_m, joins):
+    rows = views_of(scene, candidates, 1)
+    k = int(rows[0])
+    station = candidates.detections.centre_world[k]
+    ray = candidates.xyz_world[k] - station
+    rng = float(np.linalg.norm(ray))
+    xyz = station + (rng - in_front_m) * ray / rng
+    cand = changed(candidates, k, **{"class": klass, "range_m": rng - in_front_m,
+                                     "cand_x": xyz[0], "cand_y": xyz[1], "cand_z": xyz[2]})
+    several, lone = R.SignDraft(rows[1:]), R.SignDraft(rows[:1])
+    R.join_lone_views(cand, [several, lone])
+    assert (several.joined, lone.absorbed) == (([k], True) if joins else ([], False))
+
+
+def test_a_lone_view_does_not_join_another_lone_view(scene, candidates):
+    rows = views_of(scene, candidates, 1)
+    drafts = [R.SignDraft(rows[:1]), R.SignDraft(rows[1:2])]
+    R.join_lone_views(candidates, drafts)
+    assert [(d.joined, d.absorbed) for d in drafts] == [([], False), ([], False)]
+
+
+@pytest.mark.parametrize("offset_m,normal,joins", [
+    (0.1, EAST, True), (0.1, -EAST, True),   # the normals agree, either way
+    (0.1, NORTH, False),                      # they do not
+    (0.5, EAST, False),                       # too far apart
+])
+def test_two_signs_on_one_panel_are_one(candidates, offset_m, normal, joins):
+    centre = signscene.ORIGIN + [10.0, -6.0, 2.5]
+    more = R.SignDraft(np.array([0, 1, 2]), a_panel(centre, EAST))
+    fewer = R.SignDraft(np.array([3, 4]), a_panel(centre + offset_m * UP, normal), joined=[5])
+    drafts = [fewer, more]
+    R.join_signs_on_one_panel(candidates, drafts, R.RefineParams())
+    if joins:
+        assert more.joined == [3, 4, 5] and fewer.absorbed and fewer.joined == []
+    else:
+        assert more.joined == [] and not fewer.absorbed and fewer.joined == [5]
+
+
+def test_a_sign_without_a_panel_joins_any_on_its_place(scene, candidates):
+    rows = views_of(scene, candidates, 1)
+    fewer = R.SignDraft(rows[:1])
+    more = R.SignDraft(rows[1:], a_panel(np.median(candidates.xyz_world[rows[:1]], axis=0), NORTH))
+    R.join_signs_on_one_panel(candidates, [fewer, more], R.RefineParams())
+    assert fewer.absorbed and more.joined == rows[:1].tolist()
+
+
+def test_views_without_a_surface_join_the_sign_in_their_box(scene, index):
+    p = truth(scene, 10)
+    far = _views_from(scene, p, range(0, 5))
+    cand = P.project_detections(P.Detections.from_records(scene.detections + far), index)
+    far_rows = list(range(len(scene.detections), len(cand)))
+    no_surface = np.flatnonzero(np.array(cand.status) != P.STATUS_OK).tolist()
+    assert set(far_rows) < set(no_surface)
+    drafts = [R.SignDraft(views_of(scene, cand, 10), a_panel(p.centre_world, p.normal))]
+    unplaced = R.join_views_without_surface(cand, drafts)
+    assert drafts[0].joined == far_rows    # of their class, 120-145 m away
+    assert sorted(unplaced.tolist()) == sorted(set(no_surface) - set(far_rows))
+    # of another class they join only a sign within 60 m
+    other = P.project_detections(P.Detections.from_records(
+        scene.detections + [dict(d, **{"class": "warning"}) for d in far]), index)
+    drafts = [R.SignDraft(views_of(scene, other, 10), a_panel(p.centre_world, p.normal))]
+    assert sorted(R.join_views_without_surface(other, drafts).tolist()) == no_surface
+    assert drafts[0].joined == []
+
+
+def test_image_only_signs_are_triangulated_from_views_without_points(scene, candidates):
+    p = truth(scene, 8)
+    rows = views_of(scene, candidates, 8, P.STATUS_NO_POINTS)
+    unplaced = np.flatnonzero(np.array(candidates.status) != P.STATUS_OK)
+    assert len(rows) == 3 and len(unplaced) > len(rows)
+    drafts = R.triangulate_image_only(candidates, unplaced, R.RefineParams())
+    assert len(drafts) == 1 and sorted(drafts[0].rows.tolist()) == rows.tolist()
+    assert drafts[0].panel is None and np.linalg.norm(drafts[0].x_image - p.centre_world) < 0.3
+    # the same views, had their rays met points without a surface: no image-only sign
+    cand = candidates
+    for k in rows:
+        cand = changed(cand, int(k), status=P.STATUS_NO_SURFACE)
+    assert R.triangulate_image_only(cand, unplaced, R.RefineParams()) == []
+
+
+def test_placement_of_a_panel_of_the_views_median_and_of_a_triangulated_point(scene, candidates):
+    p1, p8 = truth(scene, 1), truth(scene, 8)
+    rows1, rows8 = views_of(scene, candidates, 1), views_of(scene, candidates, 8, P.STATUS_NO_POINTS)
+    face = face_points(scene, p1)
+    panel = a_panel(p1.centre_world, p1.normal, face)
+    place = R.placement(candidates, R.SignDraft(rows1, panel))
+    assert place.centre is panel.centre_world and place.outline is panel.corners_world
+    assert place.bottom_z == pytest.approx(p1.centre_world[2] - 0.3)
+    assert place.point_index is face.point_index and place.source == "lidar"
+    assert place.mean_intensity == pytest.approx(float(np.mean(face.attributes["intensity"])))
+    # no panel: at the views' median surface point, sized by the boxes
+    place = R.placement(candidates, R.SignDraft(rows1))
+    np.testing.assert_allclose(place.centre, np.median(candidates.xyz_world[rows1], axis=0))
+    assert np.linalg.norm(place.centre - p1.centre_world) < 0.15
+    assert abs(place.width_m - p1.width) < 0.1 and abs(place.height_m - p1.height) < 0.1
+    assert place.bottom_z == pytest.approx(place.centre[2] - place.height_m / 2)
+    assert np.linalg.norm(place.normal) == pytest.approx(1.0) and place.normal @ p1.normal > 0.95
+    assert place.outline is None and len(place.point_index) == 0 and place.source == "lidar"
+    assert np.isnan(place.mean_intensity) and np.isnan(place.planarity)
+    # triangulated: facing the stations that saw it, horizontally
+    place = R.placement(candidates, R.SignDraft(rows8, x_image=p8.centre_world))
+    np.testing.assert_allclose(place.centre, p8.centre_world)
+    stations = candidates.detections.centre_world[rows8].mean(axis=0)
+    assert place.source == "image" and place.normal[2] == 0.0
+    assert np.linalg.norm(place.normal) == pytest.approx(1.0)
+    assert place.normal @ (stations - place.centre) > 0
+    assert abs(place.width_m - p8.width) < 0.1 and abs(place.height_m - p8.height) < 0.1
+
+
+def test_source_images_are_listed_once_in_the_order_of_the_detections(scene, candidates):
+    rows2, rows3 = views_of(scene, candidates, 2), views_of(scene, candidates, 3)
+    det = candidates.detections
+    images = [det.image[k] for k in rows2]
+    assert sorted(images) == sorted(det.image[k] for k in rows3)   # one pole, the same stations
+    assert R.source_images(candidates, list(rows3[::-1]) + list(rows2)) == sorted(images)
+
+
+@pytest.mark.parametrize("klass,width,n_images,score,kept,says", [
+    ("prohibitory", 0.6, 3, 0.7, True, None),
+    ("prohibitory", 2.0, 3, 0.7, False, "too large for a prohibitory sign"),
+    ("information", 2.0, 3, 0.7, True, None),
+    ("prohibitory", 0.6, 1, 0.5, False, "seen in one panorama only, with a score of 0.50"),
+    ("prohibitory", 0.6, 1, 0.7, True, None),
+    ("prohibitory", 0.6, 2, 0.1, True, None),
+])
+def test_plausible_signs(candidates, klass, width, n_images, score, kept, says):
+    place = R.Placement(np.zeros(3), EAST, width, 0.6, -0.3, np.zeros(0, np.int64), np.nan,
+                        np.nan, "lidar", None)
+    messages = []
+    assert R.plausible(candidates, [0, 1], klass, score, place, n_images, R.RefineParams(),
+                       Progress(on_info=messages.append)) == kept
+    assert messages == ([] if kept else [messages[0]])
+    if says:
+        assert says in messages[0] and str(candidates.detections.det_id[[0, 1]].tolist()) in messages[0]
+
+
+def test_add_sign_appends_a_numbered_record_unless_implausible(scene, candidates, index):
+    p1 = truth(scene, 1)
+    rows1, rows7 = views_of(scene, candidates, 1), views_of(scene, candidates, 7)
+    result = R.RefineResult([], [], [], [], np.full(len(candidates), -1, np.int64))
+    R.add_sign(result, candidates, R.SignDraft(rows1), index, R.RefineParams())
+    R.add_sign(result, candidates, R.SignDraft(rows7), index,
+               R.RefineParams(max_panel_side_default_m=0.1))
+    R.add_sign(result, candidates, R.SignDraft(rows7[:2], joined=list(rows7[2:])), index,
+               R.RefineParams())
+    assert [s.sign_id for s in result.signs] == [1, 2]
+    assert [s.klass for s in result.signs] == ["prohibitory", "yield"]
+    assert [s.n_views for s in result.signs] == [len(rows1), len(rows7)]
+    assert result.ground_source == [R.GROUND_POINTS] * 2 and result.outlines_world == [None, None]
+    assert abs(result.signs[0].height - p1.height_above_ground) < 0.15
+    expected = np.full(len(candidates), -1)
+    expected[rows1], expected[rows7] = 0, 1
+    assert result.candidate_sign.tolist() == expected.tolist()
+
+
+def test_ground_fallbacks_are_counted_in_one_warning_each():
+    result = R.RefineResult([], [], [], [R.GROUND_POINTS, R.CAMERA_HEIGHT, R.LOWEST_POINTS,
+                                         R.CAMERA_HEIGHT], np.zeros(0, np.int64))
+    warnings = []
+    R.warn_ground_fallbacks(result, R.RefineParams(camera_height_m=2.1),
+                            Progress(on_warning=warnings.append))
+    assert result.warnings == warnings and len(warnings) == 2
+    assert warnings[0].startswith("1 sign(s)") and "the lowest points below the sign" in warnings[0]
+    assert warnings[1].startswith("2 sign(s)") and "stations' height minus 2.1 m" in warnings[1]
+    result = R.RefineResult([], [], [], [R.GROUND_POINTS], np.zeros(0, np.int64))
+    R.warn_ground_fallbacks(result, R.RefineParams(), Progress(on_warning=warnings.append))
+    assert result.warnings == [] and len(warnings) == 2
+
+
+def test_refine_params_are_frozen():
+    params = R.RefineParams()
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        params.min_panel_points = 3
+    assert dataclasses.replace(params, min_panel_points=3).min_panel_points == 3
+    assert params.min_panel_points == R.RefineParams().min_panel_points

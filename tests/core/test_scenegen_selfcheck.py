@@ -22,8 +22,9 @@ import pyproj  # noqa: E402
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 if REPO not in sys.path:
     sys.path.insert(0, REPO)
-from devtools.scenegen import generate_scene  # noqa: E402
 from helpers.contract import NED_TO_ENU, Rx, Ry, Rz  # noqa: E402
+
+from devtools.scenegen import generate_scene  # noqa: E402
 
 PANO_WIDTH = 2048
 UTM = "EPSG:32633"
@@ -102,7 +103,8 @@ def test_reference_centres_project_onto_their_sign_pixels(projected):
     W, H = meta["image_width"], meta["image_height"]
     assert (W, H) == (PANO_WIDTH, PANO_WIDTH // 2)
     signs = {int(r["sign_id"]): r for r in read_csv(os.path.join(projected, "reference_signs.csv"))}
-    assert {r["class"] for r in signs.values()} >= {"warning", "prohibitory", "mandatory", "information", "stop", "yield"}
+    assert {r["class"] for r in signs.values()} >= {"warning", "prohibitory", "mandatory", "information", "stop",
+                                                    "yield"}
     claimed = {m["image"]: {b["sign_id"]: b for b in m["signs"]} for m in meta["images"]}
     checked = 0
     for row in read_csv(os.path.join(projected, "poses.csv")):

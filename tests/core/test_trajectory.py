@@ -3,10 +3,10 @@ and every bad input giving a clear InputError."""
 
 import numpy as np
 import pytest
+from helpers.contract import angle_between_deg, expected_stations, quat_to_matrix
 from pyproj import Proj, Transformer
 
 from devtools import trajsample
-from helpers.contract import angle_between_deg, expected_stations, quat_to_matrix
 from roadsigns.core import crs as rcrs
 from roadsigns.core.errors import InputError
 from roadsigns.core.trajectory import CameraMount, import_stations
@@ -175,7 +175,7 @@ def test_gap_around_an_image_warns_with_its_length(tmp_path, drive_projected):
     t, *_ = drive_projected["drive"].samples()
     keep = np.abs(t - drive_projected["times"][2]) > 0.4  # a 0.8 s hole around image 2
     lines = open(drive_projected["trajectory_csv"]).read().splitlines()
-    text = "\n".join([lines[0]] + [l for l, k in zip(lines[1:], keep) if k]) + "\n"
+    text = "\n".join([lines[0]] + [line for line, k in zip(lines[1:], keep) if k]) + "\n"
     result = run_csv(drive_projected, write(tmp_path, "t.csv", text), max_gap_s=0.5)
     assert any("gap" in w and "0.8" in w and "pano_0002.jpg" in w for w in result.warnings)
 

@@ -4,9 +4,9 @@ The profile (``QGIS_CUSTOM_CONFIG_PATH``) is made once per test session and the 
 enabled in it with ``qgis_process plugins enable roadsigns`` (see devtools/qgisrun.py).
 """
 import pytest
+from helpers.scenes import scene_inputs
 
 from devtools.qgisrun import QgisProcess
-from helpers.scenes import scene_inputs
 
 
 @pytest.fixture(scope="session")

@@ -81,7 +81,8 @@ def test_candidates_lie_on_their_panels(qgis_process, chain):
         normal = np.array(best["normal"])
         assert abs(np.dot(p - np.array(best["centre"]), normal)) < 0.05
         offset = p - np.array(best["centre"])
-        assert np.linalg.norm(offset - np.dot(offset, normal) * normal) < max(best["width"], best["panel_height"]) / 2 + 0.1
+        in_plane = offset - np.dot(offset, normal) * normal
+        assert np.linalg.norm(in_plane) < max(best["width"], best["panel_height"]) / 2 + 0.1
 
 
 def test_sign_layer_meets_the_goals(qgis_process, chain):

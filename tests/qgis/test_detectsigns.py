@@ -8,10 +8,9 @@ import shutil
 
 import numpy as np
 import pytest
-from osgeo import ogr
-
 from helpers.contract import quat_to_matrix
 from helpers.tinyonnx import make_model
+from osgeo import ogr
 
 ALG = "roadsigns:detectsigns"
 NAMES = "{0: 'stop', 1: 'yield'}"

@@ -71,7 +71,7 @@ def test_counts_errors_and_report(qgis_process, tmp_path, reference_csv):
 def test_reference_layer_in_another_crs_is_reprojected(qgis_process, tmp_path, reference_csv):
     from pyproj import Transformer
     to_geo = Transformer.from_crs("EPSG:32633", "EPSG:4326", always_xy=True)
-    rows = [l.split(",") for l in REFERENCE.strip().splitlines()[1:]]
+    rows = [line.split(",") for line in REFERENCE.strip().splitlines()[1:]]
     reference = []
     for r in rows:
         lon, lat = to_geo.transform(float(r[2]), float(r[3]))
@@ -100,7 +100,7 @@ def test_bad_input_leaves_no_report(qgis_process, tmp_path, reference_csv, case,
     reference = reference_csv
     if case == "missing columns":
         reference = str(tmp_path / "ref_cols.csv")
-        open(reference, "w").write("\n".join(l.rsplit(",", 1)[0] for l in REFERENCE.splitlines()) + "\n")
+        open(reference, "w").write("\n".join(line.rsplit(",", 1)[0] for line in REFERENCE.splitlines()) + "\n")
     elif case == "bad number":
         reference = str(tmp_path / "ref_bad.csv")
         open(reference, "w").write(REFERENCE.replace("102.5", "high"))

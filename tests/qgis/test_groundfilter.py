@@ -8,10 +8,9 @@ import laspy
 import numpy as np
 import pytest
 import shapely
+from helpers import cloudgen
 from osgeo import ogr, osr
 from pyproj import Transformer
-
-from helpers import cloudgen
 
 ALG = "roadsigns:groundfilter"
 

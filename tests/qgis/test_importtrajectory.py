@@ -3,9 +3,8 @@ import os
 
 import numpy as np
 import pytest
-from osgeo import ogr
-
 from helpers.contract import angle_between_deg, expected_stations, quat_to_matrix
+from osgeo import ogr
 
 ALG = "roadsigns:importtrajectory"
 FIELDS = ["station_id", "image", "path", "time", "x", "y", "z", "qw", "qx", "qy", "qz", "heading",

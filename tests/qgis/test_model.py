@@ -4,9 +4,8 @@ signs against the reference."""
 import os
 
 import pytest
-from osgeo import ogr
-
 from helpers.scenes import scene_inputs
+from osgeo import ogr
 
 SIGN_FIELDS = ["sign_id", "class", "score", "height", "bottom_height", "width", "panel_height",
                "azimuth", "n_views", "n_points", "source_images", "best_image", "mean_intensity",

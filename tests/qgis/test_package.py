@@ -5,11 +5,11 @@ import sys
 import zipfile
 
 import pytest
+from helpers.scenes import scene_mount
 
 from devtools import REPO_ROOT
 from devtools.oracle import oracle_detections
 from devtools.qgisrun import QgisProcess
-from helpers.scenes import scene_mount
 
 DEV_ONLY = ("tests/", "bench/", "devtools/", "scripts/", ".ci/", "Makefile", "requirements-dev.txt",
             "pytest.ini", ".gitignore")
@@ -28,7 +28,7 @@ def test_zip_holds_the_runtime_files_only(plugin_zip):
         names = archive.namelist()
     assert all(n.startswith("roadsigns/") for n in names)
     inner = [n[len("roadsigns/"):] for n in names]
-    for required in ("metadata.txt", "__init__.py", "plugin.py", "provider/provider.py",
+    for required in ("metadata.txt", "__init__.py", "plugin.py", "provider/provider.py", "docs/formats.md",
                      "algorithms/importtrajectory.py", "core/geometry.py", "icons/roadsigns.svg"):
         assert required in inner
     assert not [n for n in inner if n.startswith(DEV_ONLY) or "__pycache__" in n or n.endswith(".pyc")]

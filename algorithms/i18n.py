@@ -1,14 +1,46 @@
-"""Translation of user-visible strings: ``tr()`` and the translator for the QGIS locale."""
+"""Translation of user-visible strings, and the translator for the user's QGIS locale.
+
+Contexts, as Qt's ``pylupdate5`` extracts them (``make i18n``):
+
+* ``self.tr("...")`` in a class: the class's name. :class:`Translatable` looks the text up
+  in the contexts of the class and its bases, so a literal written in a base class
+  (``RoadSignsAlgorithm``) is found from every algorithm;
+* ``tr("...")`` in a module-level function: ``@default``;
+* texts that are not literals at a ``tr`` call, the core's English message templates
+  (``Message``, ``InputError``), the words of their translated fields and the shipped
+  models' help: :data:`CORE_CONTEXT`, extracted by ``scripts/i18n.py``.
+"""
 import os
 
 from qgis.PyQt.QtCore import QCoreApplication, QLocale, QSettings, QTranslator
 
-CONTEXT = "RoadSigns"
-I18N_DIR = os.path.join(os.path.dirname(os.path.dirname(__file__)), "i18n")
+from .paths import I18N_DIR
+
+DEFAULT_CONTEXT = "@default"
+CORE_CONTEXT = "RoadSigns"
 
 
 def tr(text: str) -> str:
-    return QCoreApplication.translate(CONTEXT, text)
+    """``text`` in the user's language (for module-level code: context ``@default``)."""
+    return QCoreApplication.translate(DEFAULT_CONTEXT, text)
+
+
+def tr_core(text: str) -> str:
+    """A core message template, field word or model help text in the user's language."""
+    return QCoreApplication.translate(CORE_CONTEXT, text)
+
+
+class Translatable:
+    """``self.tr(text)``: translated in the context of the class that wrote the literal."""
+
+    def tr(self, text: str) -> str:
+        for klass in type(self).__mro__:
+            if klass is object:
+                break
+            translated = QCoreApplication.translate(klass.__name__, text)
+            if translated != text:
+                return translated
+        return text
 
 
 def qgis_locale() -> str:

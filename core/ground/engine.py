@@ -1,0 +1,298 @@
+"""The entry points of ground classification and the built-in engine on files.
+
+Conventions:
+
+* Methods and engines are names (:data:`~.params.METHODS`, :data:`~.params.ENGINES`).
+* The built-in engine streams the file twice (pass 1 into the method's grid, pass 2
+  classifying and writing) and never holds the cloud in memory; the output goes through
+  :class:`~..pointcloud.CloudWriter` (a temporary file moved into place on success).
+* Ground is class 2 (:data:`~..pointcloud.GROUND_CLASS`); only the ``returns`` of the
+  parameters are classified, the other points keep their class.
+* Log messages are :class:`~..errors.Message` templates, reported through ``progress``.
+"""
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from typing import Any, Iterable, List, Optional, Tuple
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..errors import SILENT, InputError, Message, Progress
+from ..pointcloud import (
+    DEFAULT_CHUNK_POINTS,
+    GROUND_CLASS,
+    LAS_SUFFIXES,
+    UNCLASSIFIED_CLASS,
+    CloudWriter,
+    CropRegion,
+    crs_wkt_of_header,
+    iter_chunks,
+    output_header,
+    read_header,
+)
+from .csf import CSF_BUFFER_M, CSF_TILE_M, CsfGrid, CsfParams
+from .lattice import BoundsXY, GroundGrid, OutsideGridError
+from .params import Params, engine_name, method_name, method_params
+from .pdal import PdalError, find_pdal_runner, run_pdal_engine
+from .smrf import SMRF_TILE_M, SmrfGrid
+
+
+@dataclass
+class GroundResult:
+    """What a ground filter run did."""
+    output_path: str
+    method: str
+    engine: str                 # "pdal-python", "pdal-cli" or "builtin"
+    n_input: int
+    n_output: int
+    n_ground: int
+    crs_wkt: Optional[str]
+    warnings: List[str] = field(default_factory=list)
+    pipeline_json: Optional[str] = None
+
+
+def returns_mask(return_number: ArrayLike, number_of_returns: ArrayLike,
+                 returns: str = "last,only") -> np.ndarray:
+    """Points of the given return types (PDAL's ``returns``: first, last, intermediate, only).
+
+    Points whose return numbers are 0 (not recorded) are always selected.
+    """
+    rn = np.asarray(return_number).astype(np.int16)
+    nr = np.asarray(number_of_returns).astype(np.int16)
+    kinds = {k.strip() for k in returns.split(",") if k.strip()}
+    unknown = kinds - {"first", "last", "intermediate", "only"}
+    if unknown:
+        raise InputError("Unknown return type {kinds} in '{returns}'",
+                         kinds=", ".join(sorted(unknown)), returns=returns)
+    selected = (rn == 0) | (nr == 0)
+    if "only" in kinds:
+        selected |= nr == 1
+    if "first" in kinds:
+        selected |= (rn == 1) & (nr > 1)
+    if "last" in kinds:
+        selected |= (rn == nr) & (nr > 1)
+    if "intermediate" in kinds:
+        selected |= (rn > 1) & (rn < nr)
+    return selected
+
+
+def make_grid(params: Params, bounds_xy: BoundsXY, z_ref: float,
+              tile_size_m: Optional[float] = None,
+              tile_buffer_m: Optional[float] = None) -> GroundGrid:
+    """The built-in grid of the method ``params`` belong to, over ``bounds_xy``; tiles of
+    ``tile_size_m`` (default per method) and, for CSF, a buffer of ``tile_buffer_m``."""
+    if isinstance(params, CsfParams):
+        return CsfGrid(bounds_xy, z_ref, params,
+                       tile_size_m=tile_size_m or CSF_TILE_M,
+                       tile_buffer_m=CSF_BUFFER_M if tile_buffer_m is None else tile_buffer_m)
+    # SMRF's buffer follows from its window (exact results across tiles)
+    return SmrfGrid(bounds_xy, params, tile_size_m=tile_size_m or SMRF_TILE_M)
+
+
+def classify_ground_arrays(xyz_world: ArrayLike, method: str = "csf", params: Optional[Params] = None,
+                           tile_size_m: Optional[float] = None,
+                           tile_buffer_m: Optional[float] = None,
+                           progress: Progress = SILENT) -> np.ndarray:
+    """Ground mask of in-memory points ``(n, 3)`` with the built-in engine (all points
+    taken as eligible returns). Same grids and tiles as the file-based run."""
+    params = method_params(method_name(method), params)
+    xyz = np.asarray(xyz_world, dtype=np.float64).reshape(-1, 3)
+    if len(xyz) == 0:
+        return np.zeros(0, dtype=bool)
+    bounds = (xyz[:, 0].min(), xyz[:, 1].min(), xyz[:, 0].max(), xyz[:, 1].max())
+    grid = make_grid(params, bounds, float(xyz[:, 2].min()), tile_size_m, tile_buffer_m)
+    grid.accumulate(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+    grid.finish(progress)
+    return grid.classify(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+
+
+# --------------------------------------------------------------------------------------
+# Built-in engine on files (two streaming passes)
+# --------------------------------------------------------------------------------------
+
+def _new_classes(classification: np.ndarray, eligible: np.ndarray, ground: np.ndarray,
+                 reset_classes: bool) -> np.ndarray:
+    cls = np.array(classification, dtype=np.uint8, copy=True)
+    if reset_classes:
+        cls[:] = UNCLASSIFIED_CLASS
+    else:
+        cls[eligible & ~ground & (cls == GROUND_CLASS)] = UNCLASSIFIED_CLASS
+    cls[ground] = GROUND_CLASS
+    return cls
+
+
+def _builtin_engine(input_path: str, output_path: str, params: Params,
+                    region: Optional[CropRegion], header: Any, out_crs_wkt: Optional[str],
+                    reset_classes: bool, chunk_points: int, tile_size_m: Optional[float],
+                    tile_buffer_m: Optional[float], progress: Progress) -> Tuple[int, int, List[str]]:
+    warnings: List[str] = []
+    xmin, ymin, xmax, ymax = header.mins[0], header.mins[1], header.maxs[0], header.maxs[1]
+    bounds: Optional[BoundsXY] = (xmin, ymin, xmax, ymax)
+    if region is not None:
+        rb = region.bounds
+        if rb is None:  # an empty region
+            bounds = None
+        else:
+            bounds = (max(xmin, rb[0]), max(ymin, rb[1]), min(xmax, rb[2]), min(ymax, rb[3]))
+            if bounds[0] > bounds[2] or bounds[1] > bounds[3]:
+                bounds = None
+    grid: Optional[GroundGrid] = None
+    if bounds is not None and header.point_count > 0:
+        grid = make_grid(params, bounds, float(header.mins[2]), tile_size_m, tile_buffer_m)
+
+    def kept(chunk: Any, masks: List[np.ndarray], k: int) -> Any:
+        if region is None:
+            return chunk
+        if len(masks) <= k:
+            masks.append(np.packbits(region.mask(chunk.x, chunk.y)))
+        return chunk[np.unpackbits(masks[k], count=len(chunk)).astype(bool)]
+
+    masks: List[np.ndarray] = []
+    n_eligible = 0
+    try:
+        if grid is not None:
+            for k, chunk in enumerate(iter_chunks(input_path, chunk_points,
+                                                  progress.sub(0.0, 0.45))):
+                pts = kept(chunk, masks, k)
+                eligible = returns_mask(pts.return_number, pts.number_of_returns,
+                                        params.returns)
+                n_eligible += int(eligible.sum())
+                grid.accumulate(np.asarray(pts.x)[eligible], np.asarray(pts.y)[eligible],
+                                np.asarray(pts.z)[eligible])
+            grid.finish(progress.sub(0.45, 0.55))
+    except OutsideGridError as e:
+        raise InputError("Cannot read {path}: the file is corrupt ({detail})",
+                         path=input_path, detail=str(e))
+    n_out = n_ground = 0
+    with CloudWriter(output_path, output_header(header, out_crs_wkt)) as writer:
+        if grid is not None:
+            for k, chunk in enumerate(iter_chunks(input_path, chunk_points,
+                                                  progress.sub(0.55, 1.0))):
+                pts = kept(chunk, masks, k)
+                if len(pts) == 0:
+                    continue
+                eligible = returns_mask(pts.return_number, pts.number_of_returns,
+                                        params.returns)
+                ground = np.zeros(len(pts), dtype=bool)
+                if n_eligible:
+                    ground[eligible] = grid.classify(np.asarray(pts.x)[eligible],
+                                                     np.asarray(pts.y)[eligible],
+                                                     np.asarray(pts.z)[eligible])
+                pts.classification = _new_classes(pts.classification, eligible, ground,
+                                                  reset_classes)
+                writer.write(pts)
+                n_ground += int(ground.sum())
+        n_out = writer.point_count
+    if n_out and not n_eligible:
+        warnings.append(Message("No point of {path} has the returns '{returns}': nothing was "
+                                "classified", path=input_path, returns=params.returns))
+    return n_out, n_ground, warnings
+
+
+# --------------------------------------------------------------------------------------
+# Entry points
+# --------------------------------------------------------------------------------------
+
+def classify_ground(input_path: str, output_path: str, method: str = "csf",
+                    engine: str = "auto", params: Optional[Params] = None,
+                    region: Optional[CropRegion] = None, crs_wkt: Optional[str] = None,
+                    reset_classes: bool = False, pdal_executable: Optional[str] = None,
+                    chunk_points: int = DEFAULT_CHUNK_POINTS,
+                    tile_size_m: Optional[float] = None,
+                    tile_buffer_m: Optional[float] = None,
+                    progress: Progress = SILENT) -> GroundResult:
+    """Crop ``input_path`` to ``region`` and write it to ``output_path`` with ground as
+    class 2, by ``engine`` ("auto", "pdal", "builtin").
+
+    ``crs_wkt`` replaces the file's CRS; without it the file must have one (an error
+    otherwise: a CRS is never guessed). Under "auto" a failing PDAL is reported as a
+    warning and the built-in engine runs; under "pdal" its :class:`PdalError` is raised.
+    """
+    input_path = os.fspath(input_path)
+    output_path = os.path.abspath(os.fspath(output_path))
+    method = method_name(method)
+    engine = engine_name(engine)
+    params = method_params(method, params)
+    if os.path.splitext(output_path)[1].lower() not in LAS_SUFFIXES:
+        raise InputError("Cannot write {path}: the output must end in .las or .laz",
+                         path=output_path)
+    if os.path.exists(input_path) and os.path.exists(output_path) and os.path.samefile(
+            input_path, output_path):
+        raise InputError("The output {path} must not be the input file", path=output_path)
+    header = read_header(input_path)
+    file_crs = crs_wkt_of_header(header)
+    if crs_wkt:
+        from ..crs import parse_crs
+
+        parse_crs(crs_wkt, "point cloud CRS")
+    elif not file_crs:
+        raise InputError("{path} has no coordinate reference system: give the cloud's CRS "
+                         "(it is never guessed)", path=input_path)
+    result = GroundResult(output_path, method, "builtin", int(header.point_count), 0, 0,
+                          crs_wkt or file_crs)
+
+    if engine in ("auto", "pdal"):
+        runner = find_pdal_runner(pdal_executable)
+        if runner is None:
+            if engine == "pdal":
+                raise InputError("PDAL was asked for, but neither the pdal Python module nor "
+                                 "a pdal executable was found (PATH, QGIS's bin folder)")
+            progress.info("PDAL not found: using the built-in engine")
+        else:
+            try:
+                n_out, n_ground, pipeline, used = run_pdal_engine(
+                    input_path, output_path, method, params, region, header, crs_wkt,
+                    reset_classes, runner.executable, chunk_points, progress)
+                result.n_output, result.n_ground, result.engine = n_out, n_ground, used
+                result.pipeline_json = pipeline
+                _warn_if_empty(result, input_path, progress)
+                return result
+            except PdalError as e:
+                if engine == "pdal":
+                    raise
+                result.warnings.append(progress.warning(
+                    "PDAL failed, the built-in engine was used instead: {error}", error=str(e)))
+
+    n_out, n_ground, warnings = _builtin_engine(
+        input_path, output_path, params, region, header, crs_wkt, reset_classes,
+        chunk_points, tile_size_m, tile_buffer_m, progress)
+    result.n_output, result.n_ground, result.engine = n_out, n_ground, "builtin"
+    for w in warnings:
+        result.warnings.append(w)
+        progress.warning(w)
+    _warn_if_empty(result, input_path, progress)
+    return result
+
+
+def _warn_if_empty(result: GroundResult, input_path: str, progress: Progress) -> None:
+    if result.n_output == 0:
+        result.warnings.append(progress.warning(
+            "No point of {path} is left after the crop: {output} has no points",
+            path=input_path, output=result.output_path))
+
+
+def run_ground_filter(input_path: str, output_path: str, method: str = "csf", engine: str = "auto",
+                      crop_polygons: Optional[Iterable[Any]] = None, crop_buffer_m: float = 0.0,
+                      crs_wkt: Optional[str] = None, reset_classes: bool = False,
+                      pdal_executable: Optional[str] = None, params: Optional[Params] = None,
+                      chunk_points: int = DEFAULT_CHUNK_POINTS,
+                      progress: Progress = SILENT) -> GroundResult:
+    """The ``roadsigns:groundfilter`` algorithm: crop by polygons (shapely, WKB or WKT in
+    the cloud's CRS) grown by ``crop_buffer_m``, then classify ground.
+
+    ``method``: a name of :data:`METHODS` ("csf", "smrf"); ``engine``: a name of
+    :data:`ENGINES` ("auto", "pdal", "builtin"). Anything else (a list index included)
+    raises :class:`InputError`.
+    """
+    region = None
+    polygons = list(crop_polygons) if crop_polygons is not None else []
+    if polygons:
+        region = CropRegion.from_polygons(polygons, crop_buffer_m)
+    elif crop_buffer_m:
+        progress.info("No crop polygons: the crop buffer is ignored")
+    return classify_ground(input_path, output_path, method=method, engine=engine,
+                           params=params, region=region, crs_wkt=crs_wkt,
+                           reset_classes=reset_classes, pdal_executable=pdal_executable,
+                           chunk_points=chunk_points, progress=progress)

@@ -1,0 +1,133 @@
+"""The world-aligned grid and the tiling shared by the built-in SMRF and CSF.
+
+Conventions:
+
+* A :class:`Lattice` has its origin ``(x0, y0)`` on multiples of its ``step`` (metres, in
+  the cloud's CRS), so grids built over overlapping areas share their nodes/cells.
+  Arrays over a lattice have shape ``(ny, nx)`` and are indexed ``[row, col]``, row along
+  y and col along x.
+* A tile is a pair of windows ``(core, ext)`` of ``(row slice, col slice)``: the cores
+  cover the grid once; ``ext`` is the core grown by a halo, clipped at the grid edge.
+* A :class:`GroundGrid` is a built-in method in three steps: ``accumulate`` (pass 1,
+  streaming the points), ``finish`` (the grid stage, tile by tile) and ``classify``
+  (pass 2, a ground mask per point).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Iterator, Optional, Protocol, Tuple
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..errors import SILENT, InputError, Progress
+
+#: ``(row slice, col slice)`` of a grid.
+Window = Tuple[slice, slice]
+#: A grid's bounds ``(xmin, ymin, xmax, ymax)`` in metres.
+BoundsXY = Tuple[float, float, float, float]
+
+
+class OutsideGridError(ValueError):
+    """Points outside the area the grid was built for (a header with wrong bounds)."""
+
+
+@dataclass
+class Lattice:
+    """A world-aligned grid: node/cell (row, col) at ``(x0 + col*step, y0 + row*step)``.
+
+    ``x0, y0`` are multiples of ``step``, so two grids over overlapping areas agree.
+    SMRF cells are ``[x0 + col*step, x0 + (col+1)*step)``; CSF nodes sit on the points
+    ``x0 + col*step`` and take the points that round to them.
+    """
+    x0: float
+    y0: float
+    step: float
+    nx: int
+    ny: int
+
+    @classmethod
+    def covering(cls, bounds_xy: BoundsXY, step: float, pad: int = 2,
+                 max_cells: int = 80_000_000) -> "Lattice":
+        xmin, ymin, xmax, ymax = bounds_xy
+        x0 = (math.floor(xmin / step) - pad) * step
+        y0 = (math.floor(ymin / step) - pad) * step
+        nx = int(math.floor((xmax - x0) / step)) + 1 + pad
+        ny = int(math.floor((ymax - y0) / step)) + 1 + pad
+        if nx * ny > max_cells:
+            raise InputError(
+                "The area to classify ({w:.0f} m x {h:.0f} m) needs {cells} grid cells of "
+                "{step} m, more than {limit}: crop the cloud or use a larger cell/resolution",
+                w=xmax - xmin, h=ymax - ymin, cells=nx * ny, step=step, limit=max_cells)
+        return cls(x0, y0, float(step), nx, ny)
+
+    @property
+    def shape(self) -> Tuple[int, int]:
+        """``(ny, nx)``: the shape of an array over the grid."""
+        return self.ny, self.nx
+
+    def local(self, x: ArrayLike, y: ArrayLike) -> Tuple[np.ndarray, np.ndarray]:
+        """Coordinates in grid steps from node/cell corner (0, 0)."""
+        return ((np.asarray(x, dtype=np.float64) - self.x0) / self.step,
+                (np.asarray(y, dtype=np.float64) - self.y0) / self.step)
+
+    def check(self, col: np.ndarray, row: np.ndarray) -> None:
+        """Raise :class:`OutsideGridError` when an index falls outside the grid."""
+        if col.size and (col.min() < 0 or row.min() < 0 or col.max() >= self.nx
+                         or row.max() >= self.ny):
+            raise OutsideGridError("points outside the bounds in the file header")
+
+
+def tiles(shape: Tuple[int, int], core: int, halo: int) -> Iterator[Tuple[Window, Window]]:
+    """Yield ``(core_window, ext_window)`` covering a grid with squares of ``core`` cells,
+    each extended by ``halo`` cells (clipped at the grid edge)."""
+    ny, nx = shape
+    for r0 in range(0, ny, core):
+        for c0 in range(0, nx, core):
+            r1, c1 = min(r0 + core, ny), min(c0 + core, nx)
+            er0, ec0 = max(r0 - halo, 0), max(c0 - halo, 0)
+            er1, ec1 = min(r1 + halo, ny), min(c1 + halo, nx)
+            yield (slice(r0, r1), slice(c0, c1)), (slice(er0, er1), slice(ec0, ec1))
+
+
+def inner_window(core: Window, ext: Window) -> Window:
+    """``core`` in the coordinates of an array cut to ``ext``."""
+    return (slice(core[0].start - ext[0].start, core[0].stop - ext[0].start),
+            slice(core[1].start - ext[1].start, core[1].stop - ext[1].start))
+
+
+def group_first(keys: np.ndarray, order_by: np.ndarray) -> np.ndarray:
+    """Indices of the element with the smallest ``order_by`` for each distinct key (one
+    index per key, in the order of the sorted keys)."""
+    order = np.argsort(keys)
+    k = keys[order]
+    v = order_by[order]
+    starts = np.flatnonzero(np.r_[True, k[1:] != k[:-1]])
+    group_min = np.minimum.reduceat(v, starts)
+    group = np.repeat(np.arange(len(starts)), np.diff(np.r_[starts, len(k)]))
+    at_min = np.flatnonzero(v == group_min[group])
+    first = np.r_[True, group[at_min[1:]] != group[at_min[:-1]]]
+    return order[at_min[first]]
+
+
+def finished(array: Optional[np.ndarray]) -> np.ndarray:
+    """A grid's result array, which exists once ``finish`` has run."""
+    if array is None:
+        raise RuntimeError("the ground grid is classified before finish() ran")
+    return array
+
+
+class GroundGrid(Protocol):
+    """A built-in ground method over a :class:`Lattice` (the SMRF and CSF grids)."""
+
+    lattice: Lattice
+
+    def accumulate(self, x: np.ndarray, y: np.ndarray, z: np.ndarray) -> None:
+        """Take a chunk of points (pass 1)."""
+
+    def finish(self, progress: Progress = SILENT) -> None:
+        """Compute the ground surface, tile by tile."""
+
+    def classify(self, x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.ndarray:
+        """Ground mask of a chunk of points (pass 2)."""

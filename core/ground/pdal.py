@@ -1,0 +1,264 @@
+"""Everything PDAL: the pipeline JSON, finding PDAL (Python bindings or a ``pdal``
+executable) and running it, and the PDAL engine.
+
+Conventions:
+
+* Pipelines use PDAL's documented stage and option names only (``readers.las ->
+  filters.crop -> filters.csf|filters.smrf -> writers.las``); :func:`build_pdal_pipeline`
+  returns the JSON text that is run and reported.
+* A pipeline runs with the ``pdal`` Python module when no executable is given, else with
+  the executable through ``pdal pipeline --stdin``. PDAL's failures raise
+  :class:`PdalError` carrying PDAL's own stderr; cancelling kills the process.
+* PDAL writes to a temporary file in the destination folder, moved into place only on
+  success (no partial output).
+"""
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import types
+from dataclasses import asdict
+from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Set, Tuple
+
+import numpy as np
+
+from ..errors import SILENT, InputError, Progress
+from ..pointcloud import GROUND_CLASS, UNCLASSIFIED_CLASS, CloudWriter, CropRegion, iter_chunks, output_header
+from .params import Params, method_name, method_params
+
+#: Temporary PDAL dimension holding the classes from before the filter.
+_KEEP_CLASS_DIM = "RoadsignsClassBefore"
+
+
+class PdalError(RuntimeError):
+    """PDAL ran and failed; ``stderr`` holds PDAL's own message."""
+
+    def __init__(self, message: str, stderr: str = ""):
+        super().__init__(message)
+        self.stderr = stderr
+
+
+# --------------------------------------------------------------------------------------
+# Pipeline
+# --------------------------------------------------------------------------------------
+
+_PDAL_TYPES = {"i1": "int8", "u1": "uint8", "i2": "int16", "u2": "uint16", "i4": "int32",
+               "u4": "uint32", "i8": "int64", "u8": "uint64", "f4": "float", "f8": "double"}
+
+
+def pdal_extra_dims(header: Any) -> List[str]:
+    """``writers.las`` ``extra_dims`` entries (``name=type``) for the extra bytes of a
+    header; array dimensions are named as PDAL reads them (``name0``, ``name1``, ...)."""
+    entries: List[str] = []
+    for dim in header.point_format.extra_dimensions:
+        dtype = np.dtype(dim.dtype)
+        base = dtype.base if dtype.subdtype else dtype
+        count = int(np.prod(dtype.shape)) if dtype.subdtype else 1
+        pdal_type = _PDAL_TYPES.get(base.str.lstrip("<>|="))
+        if pdal_type is None:
+            continue
+        names = [dim.name] if count == 1 else [f"{dim.name}{i}" for i in range(count)]
+        entries.extend(f"{n}={pdal_type}" for n in names)
+    return entries
+
+
+def pdal_filter_stage(method: str, params: Optional[Params] = None) -> Dict[str, Any]:
+    """The ``filters.csf`` / ``filters.smrf`` stage: every option by its PDAL name."""
+    method = method_name(method)
+    params = method_params(method, params)
+    return {"type": f"filters.{method}", **asdict(params)}
+
+
+def build_pdal_pipeline(input_path: str, output_path: str, method: str = "csf",
+                        params: Optional[Params] = None, crop_wkt: Optional[str] = None,
+                        crs_wkt: Optional[str] = None, reset_classes: bool = False,
+                        extra_dims: Sequence[str] = ()) -> str:
+    """PDAL pipeline JSON: ``readers.las -> filters.crop -> filters.csf|smrf ->
+    writers.las``, keeping classes (``filters.ferry`` + ``filters.assign``) unless
+    ``reset_classes`` (then ``filters.assign`` sets every class to 1 first).
+
+    The writer forwards the whole header, VLRs, scales and offsets (``forward: all``)
+    and the input's extra bytes; ``crs_wkt`` overrides the reader's CRS and is written.
+    """
+    reader: Dict[str, Any] = {"type": "readers.las", "filename": input_path}
+    if crs_wkt:
+        reader["override_srs"] = crs_wkt
+    stages: List[Dict[str, Any]] = [reader]
+    if crop_wkt:
+        stages.append({"type": "filters.crop", "polygon": crop_wkt})
+    if reset_classes:
+        stages.append({"type": "filters.assign",
+                       "value": f"Classification = {UNCLASSIFIED_CLASS}"})
+    else:
+        stages.append({"type": "filters.ferry",
+                       "dimensions": f"Classification => {_KEEP_CLASS_DIM}"})
+    stages.append(pdal_filter_stage(method, params))
+    if not reset_classes:
+        stages.append({"type": "filters.assign", "value": [
+            f"Classification = {_KEEP_CLASS_DIM} WHERE Classification == "
+            f"{UNCLASSIFIED_CLASS} && {_KEEP_CLASS_DIM} != {GROUND_CLASS}"]})
+    writer: Dict[str, Any] = {"type": "writers.las", "filename": output_path, "forward": "all"}
+    if extra_dims:
+        writer["extra_dims"] = ",".join(extra_dims)
+    if output_path.lower().endswith(".laz"):
+        writer["compression"] = "laszip"
+    if crs_wkt:
+        writer["a_srs"] = crs_wkt
+    stages.append(writer)
+    return json.dumps({"pipeline": stages}, indent=2)
+
+
+def pdal_python_module() -> Optional[types.ModuleType]:
+    """The ``pdal`` Python bindings when they import, else ``None``."""
+    try:
+        import pdal  # the bindings (absolute import), not this module
+    except Exception:
+        return None
+    return pdal if hasattr(pdal, "Pipeline") else None
+
+
+def _qgis_bin_dirs() -> List[str]:
+    dirs: List[str] = []
+    prefix = os.environ.get("QGIS_PREFIX_PATH")
+    if prefix:
+        dirs.append(os.path.join(prefix, "bin"))
+    exe_dir = os.path.dirname(sys.executable or "")
+    dirs += [exe_dir, os.path.join(sys.prefix, "bin"),
+             os.path.normpath(os.path.join(sys.prefix, "..", "..", "bin")),  # OSGeo4W
+             os.path.normpath(os.path.join(exe_dir, "..", "bin"))]
+
+# --------------------------------------------------------------------------------------
+# Finding and running PDAL
+# --------------------------------------------------------------------------------------
+
+    if ".app/Contents" in exe_dir:  # QGIS.app on macOS
+        contents = exe_dir[:exe_dir.index(".app/Contents") + len(".app/Contents")]
+        dirs += [os.path.join(contents, "MacOS", "bin"), os.path.join(contents, "MacOS")]
+    seen: Set[str] = set()
+    out: List[str] = []
+    for d in dirs:
+        if d and d not in seen:
+            seen.add(d)
+            out.append(d)
+    return out
+
+
+def find_pdal_executable(pdal_executable: Optional[str] = None) -> Optional[str]:
+    """A ``pdal`` executable: the given file (or folder holding it), else on PATH, else in
+    QGIS's own bin folder; ``None`` when there is none."""
+    name = "pdal.exe" if os.name == "nt" else "pdal"
+    if pdal_executable:
+        path = os.fspath(pdal_executable)
+        if os.path.isdir(path):
+            path = os.path.join(path, name)
+        if os.path.isfile(path) and os.access(path, os.X_OK):
+            return path
+        raise InputError("PDAL executable {path} not found or not executable", path=path)
+    found = shutil.which(name)
+    if found:
+        return found
+    for folder in _qgis_bin_dirs():
+        candidate = os.path.join(folder, name)
+        if os.path.isfile(candidate) and os.access(candidate, os.X_OK):
+            return candidate
+    return None
+
+
+class PdalRunner(NamedTuple):
+    """How PDAL is run: ``kind`` "python" (the bindings) or "cli" (``executable``)."""
+    kind: str
+    executable: Optional[str]
+
+
+def find_pdal_runner(pdal_executable: Optional[str] = None) -> Optional[PdalRunner]:
+    """The given ``pdal`` executable, else the Python bindings, else a ``pdal`` executable
+    on PATH or in QGIS's bin folder; ``None`` when there is no PDAL."""
+    if pdal_executable:
+        return PdalRunner("cli", find_pdal_executable(pdal_executable))
+    if pdal_python_module() is not None:
+        return PdalRunner("python", None)
+    exe = find_pdal_executable()
+    return PdalRunner("cli", exe) if exe else None
+
+
+def run_pdal_pipeline(pipeline_json: str, executable: Optional[str] = None,
+                      progress: Progress = SILENT) -> str:
+    """Run a pipeline with the given ``pdal`` executable (``pdal pipeline --stdin``), or
+    with the Python module when ``executable`` is ``None``. Returns PDAL's log; raises
+    :class:`PdalError` with PDAL's stderr on failure (the process is killed on cancel)."""
+    if executable is None:
+        pdal = pdal_python_module()
+        if pdal is None:
+            raise PdalError("The pdal Python module is not available")
+        pipeline = pdal.Pipeline(pipeline_json)
+        try:
+            pipeline.execute()
+        except Exception as e:
+            log = getattr(pipeline, "log", "") or ""
+            raise PdalError(f"PDAL failed: {e}\n{log}".strip(), stderr=f"{e}\n{log}".strip())
+        return getattr(pipeline, "log", "") or ""
+    proc = subprocess.Popen([executable, "pipeline", "--stdin"], stdin=subprocess.PIPE,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    pending_input: Optional[str] = pipeline_json
+    while True:
+        try:
+            out, err = proc.communicate(pending_input, timeout=0.5)
+            break
+        except subprocess.TimeoutExpired:
+            pending_input = None
+            try:
+                progress.check()
+            except BaseException:
+                proc.kill()
+                proc.communicate()
+                raise
+    if proc.returncode != 0:
+        err = (err or "").strip()
+        raise PdalError(f"PDAL ({executable}) failed with exit status {proc.returncode}: "
+                        f"{err or '(no message on stderr)'}", stderr=err)
+    return (out or "") + (err or "")
+
+
+def _count_classes(path: str, chunk_points: int) -> Tuple[int, int]:
+    n = ground = 0
+    for chunk in iter_chunks(path, chunk_points):
+        n += len(chunk)
+        ground += int(np.count_nonzero(np.asarray(chunk.classification) == GROUND_CLASS))
+    return n, ground
+
+
+def run_pdal_engine(input_path: str, output_path: str, method: str, params: Params,
+                    region: Optional[CropRegion], header: Any, crs_wkt: Optional[str],
+                    reset_classes: bool, executable: Optional[str], chunk_points: int,
+                    progress: Progress) -> Tuple[int, int, str, str]:
+    """Crop and classify ``input_path`` into ``output_path`` with PDAL (``executable``, or
+    the Python module when ``None``). Returns ``(points written, ground points, pipeline
+    JSON, engine used: "pdal-cli" or "pdal-python")``."""
+    folder = os.path.dirname(os.path.abspath(output_path))
+    suffix = os.path.splitext(output_path)[1].lower()
+    fd, temp_path = tempfile.mkstemp(prefix=".roadsigns-pdal-", suffix=suffix, dir=folder)
+    os.close(fd)
+    try:
+        pipeline = build_pdal_pipeline(
+            input_path, temp_path, method, params,
+            crop_wkt=region.wkt if region is not None else None, crs_wkt=crs_wkt,
+            reset_classes=reset_classes, extra_dims=pdal_extra_dims(header))
+        progress.report(0.0)
+        run_pdal_pipeline(pipeline, executable, progress)
+        if os.path.getsize(temp_path) == 0:  # PDAL wrote nothing (no point left)
+            with CloudWriter(temp_path, output_header(header, crs_wkt)):
+                pass
+        n_out, n_ground = _count_classes(temp_path, chunk_points)
+        os.replace(temp_path, output_path)
+    finally:
+        if os.path.exists(temp_path):
+            os.unlink(temp_path)
+    progress.report(1.0)
+    return n_out, n_ground, pipeline, "pdal-cli" if executable else "pdal-python"
+
+
+# --------------------------------------------------------------------------------------
