@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Dict, List, Optional, Sequence, Tuple, Union
+from typing import Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import shapely
@@ -32,12 +32,15 @@ from scipy.spatial import cKDTree
 
 from . import geometry
 from .detections import DETECTION_POSE_FIELDS, Detections
+from .drivewindows import DriveAxis, Track, WindowSpool, make_windows
 from .errors import SILENT, InputError, Progress
-from .pointcloud import GROUND_CLASS, CropRegion, TiledIndex
+from .pointcloud import GROUND_CLASS, CropRegion, TiledIndex, iter_chunks, xyz_of
 from .schema import Schema, fields
 
 #: Default search depth along the rays, metres (Balado et al. use 15 m).
 DEFAULT_MAX_RANGE_M = 30.0
+#: What projection spools of each point: world position and its row in the LAS file.
+SPOOL_DTYPE = np.dtype([("x", "f8"), ("y", "f8"), ("z", "f8"), ("index", "i8")])
 #: Candidate status flags.
 STATUS_OK, STATUS_NO_POINTS, STATUS_NO_SURFACE = "ok", "no_points", "no_surface"
 
@@ -236,6 +239,7 @@ class ProjectionParams:
     margin_frac: float = 0.10         # ... or this share of the box size per side
     min_range_m: float = 0.5
     tile_size_m: float = 5.0
+    block_m: float = 150.0            # metres of drive indexed at a time (memory follows it)
     cluster_tolerance_m: float = 0.15  # Euclidean clustering: at least this, or
     cluster_tolerance_per_m: float = 0.008  # this x range
     min_points: int = 12              # points a surface needs
@@ -310,8 +314,20 @@ class ProjectionResult:
             raise InputError("The candidates lack the field(s) {fields}; expected the output of "
                              "Project detections", fields=", ".join(missing))
 
+        def number(row, name):
+            try:
+                return np.nan if row[name] is None else float(row[name])
+            except (TypeError, ValueError, OverflowError):
+                raise InputError("Detection {det_id}, field {field}: expected a number, found '{value}'",
+                                 det_id=row.get("det_id"), field=name, value=str(row[name])[:60])
+
         def col(name):
-            return np.array([np.nan if r[name] is None else float(r[name]) for r in rows])
+            return np.array([number(r, name) for r in rows])
+
+        for r in rows:
+            if r["status"] is None:
+                raise InputError("Detection {det_id}: the field {field} is empty",
+                                 det_id=r.get("det_id"), field="status")
 
         res.xyz_world = np.column_stack([col("cand_x"), col("cand_y"), col("cand_z")])
         res.normal_world = np.column_stack([col("normal_e"), col("normal_n"), col("normal_u")])
@@ -354,12 +370,13 @@ def build_index(cloud: Union[str, TiledIndex], region: Optional[CropRegion], til
     return index, source
 
 
-def _assign_tiles(frusta: Frusta, tile_size_m: float,
-                  present: set) -> Dict[Tuple[int, int], List[int]]:
-    """Tile key -> detections whose footprint crosses that (non-empty) tile."""
+def _assign_tiles(frusta: Frusta, tile_size_m: float, present: set,
+                  rows: np.ndarray) -> Dict[Tuple[int, int], List[int]]:
+    """Tile key -> detections (of ``rows``) whose footprint crosses that (non-empty) tile."""
     per_tile: Dict[Tuple[int, int], List[int]] = {}
     t = tile_size_m
-    for k, fp in enumerate(frusta.footprints):
+    for k in map(int, rows):
+        fp = frusta.footprints[k]
         i0, j0 = np.floor(frusta.lo_world[k, :2] / t).astype(int)
         i1, j1 = np.floor(frusta.hi_world[k, :2] / t).astype(int)
         ii, jj = np.meshgrid(np.arange(i0, i1 + 1), np.arange(j0, j1 + 1), indexing="ij")
@@ -463,9 +480,10 @@ def project_detections(detections: Detections, cloud: Union[str, TiledIndex],
                        progress: Progress = SILENT) -> ProjectionResult:
     """Candidate sign surface per detection (see the module doc).
 
-    ``cloud``: a LAS/LAZ path (ground-classified) or a :class:`TiledIndex` holding
-    ``intensity`` and ``classification``. Empty detections give an empty result and a
-    warning; a cloud without ground class raises :class:`InputError`.
+    ``cloud``: a LAS/LAZ path (ground-classified), read once and worked through block by
+    block along the drive (:func:`drive_blocks`), or a :class:`TiledIndex` holding
+    ``intensity`` and ``classification`` (one block). Empty detections give an empty result
+    and a warning; a cloud without ground class raises :class:`InputError`.
     """
     if not max_range_m or max_range_m <= params.min_range_m:
         raise InputError("The maximum range must exceed {min} m, got {value} m",
@@ -477,46 +495,126 @@ def project_detections(detections: Detections, cloud: Union[str, TiledIndex],
         return result
     det.validate()
     frusta = Frusta.build(det, max_range_m, params.margin_deg, params.margin_frac)
-    region = CropRegion(shapely.union_all(frusta.footprints))
-    index, source = build_index(cloud, region, params.tile_size_m, progress.sub(0.0, 0.5))
-    result.n_indexed = len(index)
-    if len(index) == 0:
+    if isinstance(cloud, TiledIndex):
+        index, source = build_index(cloud, None, params.tile_size_m)
+        result.n_indexed, result.n_tiles = len(index), len(index.tile_keys)
+        blocks: Iterator[Tuple[np.ndarray, TiledIndex]] = iter(
+            [(np.arange(len(det)), _non_ground(index, params.tile_size_m))])
+        searching = progress
+    else:
+        source = str(cloud)
+        reading, searching = progress.sub(0.0, 0.5), progress.sub(0.5, 1.0)
+        blocks = drive_blocks(det, frusta, source, max_range_m, params, reading)
+    n_done = 0
+    for rows, index in blocks:
+        if not isinstance(cloud, TiledIndex):  # a block of the spooled cloud
+            result.n_indexed += len(index)
+            result.n_tiles += len(index.tile_keys)
+        _project_block(det, rows, index, frusta, max_range_m, params, result)
+        n_done += len(rows)
+        searching.report(n_done / len(det))
+    if result.n_indexed == 0:
         result.warnings.append(progress.warning(
             "{path} has no point inside the detections' frusta; no candidate found", path=source))
         return result
+    n_ok = sum(s == STATUS_OK for s in result.status)
+    progress.info("{ok} of {count} detections found a surface in the cloud ({no_points} "
+                  "without points, {no_surface} without a planar surface)", ok=n_ok,
+                  count=len(det), no_points=result.status.count(STATUS_NO_POINTS),
+                  no_surface=result.status.count(STATUS_NO_SURFACE))
+    return result
 
-    # one pass over the tiles, every detection crossing a tile tested there
+
+def _non_ground(index: TiledIndex, tile_size_m: float) -> TiledIndex:
+    """The points of ``index`` that are not ground (class 2), in a new index."""
+    keep = index.attributes["classification"] != GROUND_CLASS
+    return TiledIndex(index.xyz_world[keep], index.point_index[keep], {}, tile_size_m, index.crs_wkt)
+
+
+def station_track(det: Detections) -> Optional[Track]:
+    """The drive's track through the detections' panorama centres, in station order; None
+    when they stand at fewer than two places (one block then)."""
+    ids, first = np.unique(det.station_id, return_index=True)
+    xyz = det.centre_world[first[np.argsort(ids)]]
+    moving = np.r_[True, np.linalg.norm(np.diff(xyz[:, :2], axis=0), axis=1) > 1e-6]
+    return Track(xyz[moving]) if moving.sum() >= 2 else None
+
+
+def drive_blocks(det: Detections, frusta: Frusta, path: str, max_range_m: float,
+                 params: ProjectionParams, progress: Progress = SILENT
+                 ) -> Iterator[Tuple[np.ndarray, TiledIndex]]:
+    """``(detection rows, index of the points their frusta may hold)`` block by block.
+
+    One streaming read of the LAS/LAZ keeps the non-ground points inside the union of the
+    frusta and spools them to disk by their arc length along the drive (the track through
+    the stations, :mod:`.drivewindows`), each into every block of ``params.block_m`` metres
+    of drive whose range grown by twice ``max_range_m`` holds it. A detection belongs to the
+    block of its station. Blocks are then indexed one at a time, so memory follows the
+    block, not the drive. :class:`InputError` when the cloud has points inside the frusta
+    but none of class 2.
+    """
+    region = CropRegion(shapely.union_all(frusta.footprints))
+    track = station_track(det)
+    axis = DriveAxis(track) if track is not None else None
+    length_m = axis.length_m if axis is not None else 0.0
+    windows = make_windows(length_m, params.block_m)
+    owner_s = axis.locate(det.centre_world)[0] if axis is not None else np.zeros(len(det))
+    n_ground = n_inside = 0
+    with WindowSpool(windows, 2.0 * max_range_m, {"points": SPOOL_DTYPE}) as spool:
+        offset = 0
+        for chunk in iter_chunks(path, progress=progress):
+            inside = region.mask(chunk.x, chunk.y)
+            classes = np.asarray(chunk.classification)[inside]
+            ground = classes == GROUND_CLASS
+            n_inside += int(inside.sum())
+            n_ground += int(ground.sum())
+            rows = np.empty(int((~ground).sum()), SPOOL_DTYPE)
+            xyz = xyz_of(chunk[inside])[~ground]
+            rows["x"], rows["y"], rows["z"] = xyz[:, 0], xyz[:, 1], xyz[:, 2]
+            rows["index"] = offset + np.flatnonzero(inside)[~ground]
+            offset += len(chunk)
+            s_m = axis.locate(xyz)[0] if axis is not None else np.zeros(len(rows))
+            spool.add("points", s_m, rows)
+        spool.flush()
+        if n_inside and not n_ground:
+            raise InputError("{source} has no ground points (class 2) where the signs are: run "
+                             "roadsigns:groundfilter on it first (or classify the ground with "
+                             "another tool)", source=path)
+        for window in windows:
+            rows_k = np.flatnonzero(window.owns(owner_s))
+            if rows_k.size == 0:
+                continue
+            points = spool.read("points", window.index)
+            xyz = np.column_stack([points["x"], points["y"], points["z"]])
+            yield rows_k, TiledIndex(xyz, points["index"], {}, params.tile_size_m)
+
+
+def _project_block(det: Detections, rows: np.ndarray, index: TiledIndex, frusta: Frusta,
+                   max_range_m: float, params: ProjectionParams, result: ProjectionResult) -> None:
+    """Project the detections ``rows`` into ``index`` (non-ground points only), filling
+    their rows of ``result``: one pass over the tiles, every detection crossing a tile
+    tested there, then the surface search per detection."""
+    if len(index) == 0:
+        return
     tile = index.tile_size_m
-    keys = index.tile_keys
-    result.n_tiles = len(keys)
-    per_tile = _assign_tiles(frusta, tile, set(keys))
+    per_tile = _assign_tiles(frusta, tile, set(index.tile_keys), rows)
     R = det.R_world_from_pano()
-    found: List[List[Tuple[np.ndarray, np.ndarray]]] = [[] for _ in range(len(det))]
-    tiles_visited = np.zeros(len(det), np.int64)
-    points_tested = np.zeros(len(det), np.int64)
-    sweep = progress.sub(0.5, 0.8)
-    for n_done, (key, members) in enumerate(sorted(per_tile.items())):
+    found: Dict[int, List[Tuple[np.ndarray, np.ndarray]]] = {int(k): [] for k in rows}
+    for key, members in sorted(per_tile.items()):
         pts = index.query_box([key[0] * tile, key[1] * tile, -np.inf],
                               [(key[0] + 1) * tile, (key[1] + 1) * tile, np.inf])
-        pts = pts.subset(pts.attributes["classification"] != GROUND_CLASS)
         for k in members:
-            tiles_visited[k] += 1
-            points_tested[k] += len(pts)
-            rows = _frustum_members(pts.xyz_world, det, k, frusta, R, max_range_m,
-                                    params.min_range_m)
-            if rows.size:
-                found[k].append((pts.xyz_world[rows], pts.point_index[rows]))
-        if n_done % 16 == 0:
-            sweep.report(n_done / max(1, len(per_tile)))
-    result.tiles_visited, result.points_tested = tiles_visited, points_tested
-
+            result.tiles_visited[k] += 1
+            result.points_tested[k] += len(pts)
+            inside = _frustum_members(pts.xyz_world, det, k, frusta, R, max_range_m, params.min_range_m)
+            if inside.size:
+                found[k].append((pts.xyz_world[inside], pts.point_index[inside]))
     rays = det.centre_rays_world()
-    search = progress.sub(0.8, 1.0)
-    for k in range(len(det)):
-        if not found[k]:
+    for k, parts in found.items():
+        if not parts:
             continue
-        xyz = np.concatenate([f[0] for f in found[k]])
-        pidx = np.concatenate([f[1] for f in found[k]])
+        xyz = np.concatenate([f[0] for f in parts])
+        pidx = np.concatenate([f[1] for f in parts])
         pidx, first = np.unique(pidx, return_index=True)  # a point on a tile edge comes twice
         xyz = xyz[first]
         W, H = det.pano_size_px[k]
@@ -531,11 +629,3 @@ def project_detections(detections: Detections, cloud: Union[str, TiledIndex],
             result.n_points[k] = len(surface.members)
             result.quality[k] = surface.quality
             result.point_index[k] = pidx[surface.members]
-        if k % 32 == 0:
-            search.report(k / len(det))
-    n_ok = sum(s == STATUS_OK for s in result.status)
-    progress.info("{ok} of {count} detections found a surface in the cloud ({no_points} "
-                  "without points, {no_surface} without a planar surface)", ok=n_ok,
-                  count=len(det), no_points=result.status.count(STATUS_NO_POINTS),
-                  no_surface=result.status.count(STATUS_NO_SURFACE))
-    return result

@@ -1,4 +1,6 @@
 """Detections -> candidate surfaces (core.projection) on a scene of known sign panels."""
+import dataclasses
+
 import numpy as np
 import pytest
 from helpers import signscene
@@ -142,3 +144,25 @@ def test_bad_detections_are_refused(scene):
     rows = [{k: v for k, v in scene.detections[0].items() if k != "qw"}]
     with pytest.raises(InputError, match="qw"):
         P.Detections.from_records(rows)
+
+
+def test_block_by_block_projection_equals_one_index(scene, detections, las_path, result):
+    """Streaming the LAS block by block along the drive (here 20 m blocks: the 160 m drive in
+    many blocks, each holding only its share of the frusta's points) finds the same
+    surfaces as one index over everything."""
+    index = TiledIndex.from_arrays(scene.xyz_world, {"intensity": scene.intensity,
+                                                     "classification": scene.classification},
+                                   tile_size_m=5.0)
+    whole = P.project_detections(detections, index)
+    blocks = list(P.drive_blocks(detections, P.Frusta.build(detections, 30.0, 0.25, 0.1), las_path, 30.0,
+                                 dataclasses.replace(P.ProjectionParams(), block_m=20.0)))
+    assert len(blocks) >= 4
+    assert sorted(np.concatenate([rows for rows, _ in blocks]).tolist()) == list(range(len(detections)))
+    assert max(len(block) for _, block in blocks) < 0.8 * sum(len(block) for _, block in blocks)
+    small = P.project_detections(detections, las_path,
+                                 params=dataclasses.replace(P.ProjectionParams(), block_m=20.0))
+    assert small.status == whole.status == result.status
+    np.testing.assert_allclose(small.xyz_world, result.xyz_world, atol=1e-9, equal_nan=True)
+    np.testing.assert_allclose(small.xyz_world, whole.xyz_world, atol=0.002, equal_nan=True)  # LAS: mm
+    for a, b in zip(small.point_index, result.point_index):
+        assert np.array_equal(np.sort(a), np.sort(b))

@@ -1,0 +1,238 @@
+"""The drive as an axis: arc length along the track, a corridor, and windows spooled to disk.
+
+Cloud stages that must hold neighbourhoods of points (planes, poles) but never the whole
+cloud use this module: points are read in chunks, each is located on the drive (arc length
+``s_m`` of its nearest track position, signed offset ``offset_m``, positive to the right
+of the driving direction), those kept are appended to the window of ``window_m`` metres of
+drive that holds them, and to its neighbours when within ``margin_m`` of the boundary, in
+files of a temporary folder. Windows are then read back one at a time; an object found in
+a window is reported only by the window whose core range holds its centre, so objects that
+straddle a boundary are found whole (in the margin) and once.
+
+Conventions: world coordinates of the cloud's CRS (metres, E, N, U); ``xyz_world`` arrays
+``(n, 3)``; the track is the sensor's positions in driving order, with times in the same
+time base as the cloud's ``gps_time`` when known.
+"""
+from __future__ import annotations
+
+import os
+import shutil
+import tempfile
+from dataclasses import dataclass
+from typing import Dict, List, Optional, Tuple
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from .errors import InputError
+
+#: Spacing of the densified track used to locate points on the drive, metres.
+AXIS_STEP_M = 0.5
+#: Rows buffered in memory, all windows together, before they are appended to the files.
+SPOOL_FLUSH_ROWS = 1_000_000
+
+
+@dataclass
+class Track:
+    """Sensor positions along the drive: ``xyz_world`` ``(n, 3)`` in driving order and,
+    when known, ``time_s`` ``(n,)`` (increasing, the cloud's ``gps_time`` base)."""
+
+    xyz_world: np.ndarray
+    time_s: Optional[np.ndarray] = None
+
+    def __post_init__(self) -> None:
+        self.xyz_world = np.asarray(self.xyz_world, dtype=np.float64).reshape(-1, 3)
+        if self.time_s is not None:
+            t = np.asarray(self.time_s, dtype=np.float64).reshape(-1)
+            if len(t) != len(self.xyz_world):
+                raise InputError("The track has {n} positions but {m} times", n=len(self.xyz_world),
+                                 m=len(t))
+            ok = np.isfinite(t)
+            self.time_s = t if ok.all() and np.all(np.diff(t) > 0) else None
+        if len(self.xyz_world) < 2 or not np.isfinite(self.xyz_world).all():
+            raise InputError("The track needs at least 2 finite positions, got {n}",
+                             n=len(self.xyz_world))
+
+    @classmethod
+    def from_stations(cls, stations, height_offset_m: float = 0.0) -> "Track":
+        """The track of panorama ``Stations`` (centres and times), raised by ``height_offset_m``
+        (the scanner above the camera; 0 when unknown)."""
+        xyz = np.asarray(stations.xyz_world, dtype=np.float64).copy()
+        xyz[:, 2] += height_offset_m
+        return cls(xyz, np.asarray(stations.time_s, dtype=np.float64))
+
+    @classmethod
+    def from_polyline(cls, xyz_world) -> "Track":
+        """A track without times (a drawn trajectory line): sensor positions are the nearest
+        points of the line."""
+        return cls(np.asarray(xyz_world, dtype=np.float64), None)
+
+    @property
+    def bounds_xy(self) -> Tuple[float, float, float, float]:
+        lo = self.xyz_world[:, :2].min(axis=0)
+        hi = self.xyz_world[:, :2].max(axis=0)
+        return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])
+
+
+class DriveAxis:
+    """Arc length, lateral offset, direction and sensor position along a :class:`Track`.
+
+    The track is densified every ``step_m``; a point is located at its nearest densified
+    vertex (``s_m``, the signed lateral ``offset_m``: right of the driving direction is
+    positive, the unit ``tangent_xy`` there). Repeated passes over the same road take the
+    nearest pass.
+    """
+
+    def __init__(self, track: Track, step_m: float = AXIS_STEP_M):
+        self.track = track
+        xyz = track.xyz_world
+        seg = np.linalg.norm(np.diff(xyz[:, :2], axis=0), axis=1)
+        s_vertex = np.r_[0.0, np.cumsum(seg)]
+        keep = np.r_[True, seg > 1e-6]          # duplicate positions would give no direction
+        xyz, s_vertex = xyz[keep], s_vertex[keep]
+        self.times = track.time_s[keep] if track.time_s is not None else None
+        if len(xyz) < 2:
+            raise InputError("The track does not move: all its positions are at one place")
+        self.length_m = float(s_vertex[-1])
+        n = max(2, int(np.ceil(self.length_m / step_m)) + 1)
+        self.s_m = np.linspace(0.0, self.length_m, n)
+        self.xyz_world = np.column_stack([np.interp(self.s_m, s_vertex, xyz[:, k]) for k in range(3)])
+        d = np.gradient(self.xyz_world[:, :2], axis=0)
+        self.tangent_xy = d / np.maximum(np.linalg.norm(d, axis=1, keepdims=True), 1e-12)
+        self._vertex_s = s_vertex
+        self._vertex_xyz = xyz
+        self._tree = cKDTree(self.xyz_world[:, :2])
+
+    def locate(self, xy: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(s_m, offset_m, index)`` of points ``xy`` ``(n, 2+)``: arc length and signed
+        lateral offset at the nearest densified vertex (its index into :attr:`s_m`)."""
+        xy = np.asarray(xy, dtype=np.float64)[:, :2]
+        if len(xy) == 0:
+            return np.zeros(0), np.zeros(0), np.zeros(0, np.int64)
+        _, idx = self._tree.query(xy)
+        rel = xy - self.xyz_world[idx, :2]
+        t = self.tangent_xy[idx]
+        along = np.einsum("ij,ij->i", rel, t)
+        offset = rel[:, 0] * t[:, 1] - rel[:, 1] * t[:, 0]   # right of the direction: +
+        return self.s_m[idx] + along, offset, idx
+
+    def has_times(self) -> bool:
+        return self.times is not None
+
+    def sensor_positions(self, xyz_world: np.ndarray, time_s: Optional[np.ndarray]) -> np.ndarray:
+        """The sensor's position ``(n, 3)`` when each point was measured: the track
+        interpolated at the point's time when both have times and the time lies on the track
+        (within 1 s), else the nearest densified track position."""
+        xyz_world = np.asarray(xyz_world, dtype=np.float64)
+        out = np.empty_like(xyz_world)
+        by_time = np.zeros(len(xyz_world), bool)
+        if self.times is not None and time_s is not None:
+            t = np.asarray(time_s, dtype=np.float64)
+            by_time = (t >= self.times[0] - 1.0) & (t <= self.times[-1] + 1.0)
+            if by_time.any():
+                tt = t[by_time]
+                for k in range(3):
+                    out[by_time, k] = np.interp(tt, self.times, self._vertex_xyz[:, k])
+        rest = ~by_time
+        if rest.any():
+            _, idx = self._tree.query(xyz_world[rest, :2])
+            out[rest] = self.xyz_world[idx]
+        return out
+
+    def times_overlap(self, time_min: float, time_max: float) -> bool:
+        """Whether the cloud's time span ``[time_min, time_max]`` meets the track's."""
+        if self.times is None:
+            return False
+        return bool(time_max >= self.times[0] and time_min <= self.times[-1])
+
+
+@dataclass(frozen=True)
+class Window:
+    """Window ``index`` of the drive: core arc lengths ``[s0_m, s1_m)``."""
+
+    index: int
+    s0_m: float
+    s1_m: float
+
+    def owns(self, s_m) -> np.ndarray:
+        s = np.asarray(s_m, dtype=np.float64)
+        return (s >= self.s0_m) & (s < self.s1_m)
+
+
+def make_windows(length_m: float, window_m: float) -> List[Window]:
+    """Windows of ``window_m`` covering ``[0, length_m]``; the first and last own everything
+    before and after the drive's ends."""
+    n = max(1, int(np.ceil(length_m / window_m)))
+    edges = np.linspace(0.0, length_m, n + 1)
+    edges[0], edges[-1] = -np.inf, np.inf
+    return [Window(k, float(edges[k]), float(edges[k + 1])) for k in range(n)]
+
+
+class WindowSpool:
+    """Rows of a structured dtype appended per window to files in a temporary folder.
+
+    :meth:`add` takes the rows and their arc lengths; a row goes to every window whose core
+    range grown by ``margin_m`` holds it. At most :data:`SPOOL_FLUSH_ROWS` rows wait in
+    memory. Use as a context manager (the folder is deleted on exit).
+    """
+
+    def __init__(self, windows: List[Window], margin_m: float, dtypes: Dict[str, np.dtype],
+                 folder: Optional[str] = None, flush_rows: int = SPOOL_FLUSH_ROWS):
+        self.windows = windows
+        self.margin_m = float(margin_m)
+        self.dtypes = {k: np.dtype(v) for k, v in dtypes.items()}
+        self.folder = tempfile.mkdtemp(prefix="roadsigns-windows-", dir=folder)
+        self.flush_rows = int(flush_rows)
+        self._pending: Dict[Tuple[str, int], List[np.ndarray]] = {}
+        self._pending_rows = 0
+        self.rows_written = {k: 0 for k in self.dtypes}
+        starts = np.array([w.s0_m for w in windows])
+        ends = np.array([w.s1_m for w in windows])
+        self._lo = starts - self.margin_m
+        self._hi = ends + self.margin_m
+
+    def _path(self, kind: str, index: int) -> str:
+        return os.path.join(self.folder, "{}-{:06d}.bin".format(kind, index))
+
+    def add(self, kind: str, s_m: np.ndarray, rows: np.ndarray) -> None:
+        """Append ``rows`` (dtype of ``kind``) located at arc lengths ``s_m``."""
+        if len(rows) == 0:
+            return
+        rows = np.asarray(rows, dtype=self.dtypes[kind])
+        s_m = np.asarray(s_m, dtype=np.float64)
+        first = np.searchsorted(self._hi, s_m, side="right")   # first window whose end > s
+        last = np.searchsorted(self._lo, s_m, side="right") - 1  # last window whose start <= s
+        for k in range(int(first.min(initial=len(self.windows))),
+                       int(min(last.max(initial=-1), len(self.windows) - 1)) + 1):
+            mine = (first <= k) & (last >= k)
+            if mine.any():
+                self._pending.setdefault((kind, k), []).append(rows[mine])
+                self._pending_rows += int(mine.sum())
+        if self._pending_rows >= self.flush_rows:
+            self.flush()
+
+    def flush(self) -> None:
+        for (kind, k), parts in self._pending.items():
+            with open(self._path(kind, k), "ab") as f:
+                for part in parts:
+                    part.tofile(f)
+                    self.rows_written[kind] += len(part)
+        self._pending.clear()
+        self._pending_rows = 0
+
+    def read(self, kind: str, index: int) -> np.ndarray:
+        """All rows of ``kind`` spooled to window ``index`` (flush first)."""
+        path = self._path(kind, index)
+        if not os.path.exists(path):
+            return np.zeros(0, dtype=self.dtypes[kind])
+        return np.fromfile(path, dtype=self.dtypes[kind])
+
+    def close(self) -> None:
+        self._pending.clear()
+        shutil.rmtree(self.folder, ignore_errors=True)
+
+    def __enter__(self) -> "WindowSpool":
+        return self
+
+    def __exit__(self, exc_type, exc, tb) -> None:
+        self.close()
