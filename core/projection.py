@@ -7,12 +7,16 @@ first dense planar surface along the box-centre ray: the sign, not the wall behi
 
 How the cloud is searched (cost ~ linear in points + detections):
 
-* one streaming read of the LAS/LAZ keeps only the points under the union of the frusta's
-  2D footprints, in a :class:`~.pointcloud.TiledIndex` of small tiles;
-* one pass over those tiles serves all detections together: each tile is visited once and
-  tested against the detections whose footprint crosses it, so a detection only ever
-  touches the tiles under its own frustum (``ProjectionResult.tiles_visited``);
-* points of class 2 (ground) are never candidates.
+* one streaming read of the LAS/LAZ keeps only the non-ground points under the union of
+  the frusta's 2D footprints and spools them to disk by their arc length along the drive
+  (:func:`drive_blocks`, :mod:`.drivewindows`); the drive is then worked through in blocks
+  of ``ProjectionParams.block_m`` metres, each held in a :class:`~.pointcloud.TiledIndex`
+  of small tiles, so memory follows the block, not the drive;
+* within a block, one pass over its tiles serves all its detections together: each tile is
+  visited once and tested against the detections whose footprint crosses it, so a
+  detection only ever touches the tiles under its own frustum
+  (``ProjectionResult.tiles_visited``);
+* points of class 2 (ground) are never candidates, nor stored.
 
 Conventions: world ENU metres; boxes in the detections layer's form (``u0 < W``, ``u1`` may exceed
 ``W`` across the seam); ``q_world_from_pano_wxyz`` maps panorama rays to world
