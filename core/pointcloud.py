@@ -8,7 +8,8 @@ Conventions:
   backend for LAZ); nothing here loads a whole file.
 * Written files keep the input's point format, version, every dimension, extra bytes,
   VLRs and EVLRs, scales and offsets and the CRS. Output goes to a temporary file in the
-  destination folder that replaces the destination only on success (no partial files).
+  destination folder that replaces the destination only on success (no partial files),
+  with the user's normal permissions (0666 less the umask, see :mod:`.outputs`).
 * Crops are 2D (x, y): a shapely geometry in the cloud's CRS, points on its boundary kept.
 """
 from __future__ import annotations
@@ -16,6 +17,7 @@ from __future__ import annotations
 import copy
 import math
 import os
+import struct
 import tempfile
 from dataclasses import dataclass, field
 from typing import Callable, Dict, Iterable, Iterator, List, Optional, Sequence, Tuple
@@ -26,16 +28,23 @@ import shapely
 from shapely.geometry.base import BaseGeometry
 
 from .errors import SILENT, InputError, Progress
+from .outputs import TEMP_PREFIX, set_default_mode
 
 #: File name endings read and written as point clouds.
 LAS_SUFFIXES = (".las", ".laz")
 #: Points per chunk: about 60-100 MB of laspy records for the common point formats.
 DEFAULT_CHUNK_POINTS = 1_000_000
+#: Cell size (m) of the quick inside/outside test of :meth:`CropRegion.mask`.
+CROP_CELL_M = 1.0
 #: ASPRS LAS classification codes the plugin reads or writes.
 UNCLASSIFIED_CLASS = 1
 GROUND_CLASS = 2
 
 _NOT_LAS = "Cannot read {path}: expected a LAS or LAZ file ({detail})"
+#: What damaged files make laspy and lazrs raise: any Exception, and lazrs's Rust panics,
+#: which pyo3 raises as ``PanicException``, a BaseException.
+_READ_ERRORS = BaseException
+_NOT_READ_ERRORS = (KeyboardInterrupt, SystemExit, GeneratorExit)
 _CORRUPT = "Cannot read {path}: the file is truncated or corrupt ({detail})"
 
 
@@ -59,6 +68,48 @@ def _check_signature(path: str) -> None:
     if signature != b"LASF":
         raise InputError(_NOT_LAS, path=path,
                          detail="no LASF signature; is it another format?")
+    _check_vlr_count(path)
+
+
+#: Bytes of a VLR's header: a VLR count that cannot fit before the points is damage.
+_VLR_HEADER_BYTES = 54
+
+
+def _check_vlr_count(path: str) -> None:
+    """Header counts that damage makes absurd, checked before laspy and lazrs read them: a
+    VLR count that cannot fit between the header and the points (laspy would try to read
+    billions of VLRs and hang), and a LAZ chunk count beyond the points or the file (lazrs
+    would try to allocate it and abort the whole process, QGIS with it)."""
+    try:
+        size = os.path.getsize(path)
+        with open(path, "rb") as f:
+            head = f.read(375)
+            if len(head) < 227:
+                raise InputError(_CORRUPT, path=path, detail="the header is cut short")
+            header_size, offset_to_points, n_vlrs = struct.unpack_from("<HII", head, 94)
+            if n_vlrs * _VLR_HEADER_BYTES > max(offset_to_points - header_size, 0):
+                raise InputError(_CORRUPT, path=path, detail=f"the header announces {n_vlrs} VLRs, "
+                                 "more than fit before the points")
+            if not head[104] & 0xC0:  # not compressed
+                return
+            n_points = struct.unpack_from("<I", head, 107)[0]
+            if head[25] >= 4 and len(head) >= 255:  # LAS 1.4: the 64-bit count
+                n_points = max(n_points, struct.unpack_from("<Q", head, 247)[0])
+            f.seek(offset_to_points)
+            table_offset = struct.unpack("<q", f.read(8).rjust(8, b"\xff"))[0]
+            if table_offset == -1:  # written at the very end by writers that cannot seek back
+                f.seek(max(size - 8, 0))
+                table_offset = struct.unpack("<q", f.read(8).rjust(8, b"\xff"))[0]
+            if 0 < table_offset <= size - 8:
+                f.seek(table_offset)
+                _, n_chunks = struct.unpack("<II", f.read(8))
+                if n_chunks > min(n_points + 1, size):
+                    raise InputError(_CORRUPT, path=path, detail=f"the LAZ chunk table announces "
+                                     f"{n_chunks} chunks for {n_points} points")
+    except OSError as e:
+        raise InputError("Cannot read {path}: {detail}", path=path, detail=str(e))
+    except struct.error:
+        raise InputError(_CORRUPT, path=path, detail="the header is cut short")
 
 
 def open_reader(path: str) -> laspy.LasReader:
@@ -70,7 +121,9 @@ def open_reader(path: str) -> laspy.LasReader:
     _check_signature(path)
     try:
         return laspy.open(path, mode="r", laz_backend=laz_backends())
-    except Exception as e:  # laspy raises LaspyException, ValueError, struct.error, ...
+    except _READ_ERRORS as e:  # laspy raises LaspyException, ValueError, struct.error, ...
+        if isinstance(e, _NOT_READ_ERRORS):
+            raise
         raise InputError(_CORRUPT, path=path, detail=f"{type(e).__name__}: {e}")
 
 
@@ -119,7 +172,9 @@ def iter_chunks(path: str, chunk_points: int = DEFAULT_CHUNK_POINTS,
                 chunk = next(iterator)
             except StopIteration:
                 break
-            except Exception as e:
+            except _READ_ERRORS as e:
+                if isinstance(e, _NOT_READ_ERRORS):
+                    raise
                 raise InputError(_CORRUPT, path=path, detail=f"{type(e).__name__}: {e}")
             if len(chunk) == 0:
                 break
@@ -177,8 +232,9 @@ class CloudWriter:
     """Write a LAS/LAZ file in chunks; the destination appears only on :meth:`commit`.
 
     Points go to a temporary file in the destination folder, which ``commit`` moves over
-    the destination with ``os.replace``; ``abort`` (or leaving a ``with`` block by an
-    exception) deletes it. LAZ when the path ends in ``.laz`` (lazrs, parallel).
+    the destination with ``os.replace`` after giving it the umask's permissions (not
+    mkstemp's 0600); ``abort`` (or leaving a ``with`` block by an exception) deletes it.
+    LAZ when the path ends in ``.laz`` (lazrs, parallel).
     """
 
     def __init__(self, output_path: str, header: laspy.LasHeader):
@@ -193,7 +249,11 @@ class CloudWriter:
                              path=self.output_path)
         self.compress = suffix == ".laz"
         self._evlrs = header.evlrs
-        fd, self.temp_path = tempfile.mkstemp(prefix=".roadsigns-", suffix=suffix, dir=folder)
+        try:
+            fd, self.temp_path = tempfile.mkstemp(prefix=TEMP_PREFIX, suffix=suffix, dir=folder)
+        except OSError as e:
+            raise InputError("Cannot write {path}: {error}", path=self.output_path,
+                             error=e.strerror or str(e))
         self._file = os.fdopen(fd, "wb")
         self.point_count = 0
         try:
@@ -224,6 +284,7 @@ class CloudWriter:
                 self._writer.write_evlrs(self._evlrs)
             self._writer.close()
             self._file.close()
+            set_default_mode(self.temp_path)
             os.replace(self.temp_path, self.output_path)
         except BaseException:
             self.abort()
@@ -313,7 +374,12 @@ class CropRegion:
         return self.bounds is None
 
     def mask(self, x, y) -> np.ndarray:
-        """Boolean mask of the points ``(x, y)`` inside (or on the edge of) the region."""
+        """Boolean mask of the points ``(x, y)`` inside (or on the edge of) the region.
+
+        Exact, and fast on large regions (the frusta of a whole drive): the points' cells of
+        :data:`CROP_CELL_M` are classified first (cell inside the region: its points are in;
+        cell apart from it: out), and only points in cells that the boundary crosses are
+        tested one by one. Nothing is cached, so memory does not grow with the region."""
         x = np.asarray(x, dtype=np.float64)
         y = np.asarray(y, dtype=np.float64)
         inside = np.zeros(x.shape, dtype=bool)
@@ -321,8 +387,21 @@ class CropRegion:
             return inside
         xmin, ymin, xmax, ymax = self.bounds
         candidates = np.flatnonzero((x >= xmin) & (x <= xmax) & (y >= ymin) & (y <= ymax))
-        if candidates.size:
-            inside[candidates] = shapely.intersects_xy(self.geometry, x[candidates], y[candidates])
+        if not candidates.size:
+            return inside
+        cx = np.floor((x[candidates] - xmin) / CROP_CELL_M).astype(np.int64)
+        cy = np.floor((y[candidates] - ymin) / CROP_CELL_M).astype(np.int64)
+        cells, cell_of_point = np.unique(cx * (1 << 31) + cy, return_inverse=True)
+        i, j = cells // (1 << 31), cells % (1 << 31)
+        boxes = shapely.box(xmin + i * CROP_CELL_M, ymin + j * CROP_CELL_M,
+                            xmin + (i + 1) * CROP_CELL_M, ymin + (j + 1) * CROP_CELL_M)
+        cell_inside = shapely.contains(self.geometry, boxes)
+        cell_crossed = shapely.intersects(self.geometry, boxes) & ~cell_inside
+        whole, crossed = cell_inside[cell_of_point], cell_crossed[cell_of_point]
+        inside[candidates[whole]] = True
+        test = candidates[crossed]
+        if test.size:
+            inside[test] = shapely.intersects_xy(self.geometry, x[test], y[test])
         return inside
 
     @property

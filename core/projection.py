@@ -45,6 +45,8 @@ from .schema import Schema, fields
 DEFAULT_MAX_RANGE_M = 30.0
 #: What projection spools of each point: world position and its row in the LAS file.
 SPOOL_DTYPE = np.dtype([("x", "f8"), ("y", "f8"), ("z", "f8"), ("index", "i8")])
+#: Cells (m) of the coarse frustum test that decides which points are spooled.
+FRUSTUM_CELL_M = 2.0
 #: Candidate status flags.
 STATUS_OK, STATUS_NO_POINTS, STATUS_NO_SURFACE = "ok", "no_points", "no_surface"
 
@@ -549,15 +551,17 @@ def drive_blocks(det: Detections, frusta: Frusta, path: str, max_range_m: float,
                  ) -> Iterator[Tuple[np.ndarray, TiledIndex]]:
     """``(detection rows, index of the points their frusta may hold)`` block by block.
 
-    One streaming read of the LAS/LAZ keeps the non-ground points inside the union of the
-    frusta and spools them to disk by their arc length along the drive (the track through
-    the stations, :mod:`.drivewindows`), each into every block of ``params.block_m`` metres
-    of drive whose range grown by twice ``max_range_m`` holds it. A detection belongs to the
+    One streaming read of the LAS/LAZ keeps the non-ground points in the cells of
+    :data:`FRUSTUM_CELL_M` that a frustum's footprint touches (:func:`frustum_cells`; the
+    exact frustum test comes later, per detection) and spools them to disk by their arc
+    length along the drive (the track through the stations, :mod:`.drivewindows`), each
+    into every block of ``params.block_m`` metres of drive whose range grown by twice
+    ``max_range_m`` holds it. A detection belongs to the
     block of its station. Blocks are then indexed one at a time, so memory follows the
     block, not the drive. :class:`InputError` when the cloud has points inside the frusta
     but none of class 2.
     """
-    region = CropRegion(shapely.union_all(frusta.footprints))
+    cells = frustum_cells(frusta, FRUSTUM_CELL_M)
     track = station_track(det)
     axis = DriveAxis(track) if track is not None else None
     length_m = axis.length_m if axis is not None else 0.0
@@ -567,7 +571,7 @@ def drive_blocks(det: Detections, frusta: Frusta, path: str, max_range_m: float,
     with WindowSpool(windows, 2.0 * max_range_m, {"points": SPOOL_DTYPE}) as spool:
         offset = 0
         for chunk in iter_chunks(path, progress=progress):
-            inside = region.mask(chunk.x, chunk.y)
+            inside = np.isin(cell_keys(np.asarray(chunk.x), np.asarray(chunk.y), FRUSTUM_CELL_M), cells)
             classes = np.asarray(chunk.classification)[inside]
             ground = classes == GROUND_CLASS
             n_inside += int(inside.sum())
@@ -591,6 +595,23 @@ def drive_blocks(det: Detections, frusta: Frusta, path: str, max_range_m: float,
             points = spool.read("points", window.index)
             xyz = np.column_stack([points["x"], points["y"], points["z"]])
             yield rows_k, TiledIndex(xyz, points["index"], {}, params.tile_size_m)
+
+
+def cell_keys(x: np.ndarray, y: np.ndarray, cell_m: float) -> np.ndarray:
+    """One int64 key per point for its square cell of ``cell_m`` metres (world grid)."""
+    return (np.floor(x / cell_m).astype(np.int64) << 32) + (np.floor(y / cell_m).astype(np.int64) & 0xFFFFFFFF)
+
+
+def frustum_cells(frusta: Frusta, cell_m: float) -> np.ndarray:
+    """Sorted keys (:func:`cell_keys`) of the cells that some frustum's footprint touches."""
+    keys = []
+    for k, footprint in enumerate(frusta.footprints):
+        i0, j0 = np.floor(frusta.lo_world[k, :2] / cell_m).astype(np.int64)
+        i1, j1 = np.floor(frusta.hi_world[k, :2] / cell_m).astype(np.int64)
+        i, j = (a.ravel() for a in np.meshgrid(np.arange(i0, i1 + 1), np.arange(j0, j1 + 1), indexing="ij"))
+        hit = shapely.intersects(footprint, shapely.box(i * cell_m, j * cell_m, (i + 1) * cell_m, (j + 1) * cell_m))
+        keys.append(cell_keys((i[hit] + 0.5) * cell_m, (j[hit] + 0.5) * cell_m, cell_m))
+    return np.unique(np.concatenate(keys)) if keys else np.zeros(0, np.int64)
 
 
 def _project_block(det: Detections, rows: np.ndarray, index: TiledIndex, frusta: Frusta,

@@ -244,3 +244,19 @@ def test_tiled_index_from_arrays():
     np.testing.assert_array_equal(got.point_index, want)
     np.testing.assert_array_equal(got.attributes["i"], want)
     assert len(idx.query_box([100, 100, 100], [200, 200, 200])) == 0
+
+
+def test_crop_mask_by_cells_equals_the_exact_test():
+    """The cell-first mask gives exactly shapely's answer: on a union of thin wedges (the
+    frusta of a drive), for random points and for points on the boundary and the cells' edges."""
+    rng = np.random.default_rng(4)
+    wedges = [Polygon([(x0, 0), (x0 + 30, 4 + k % 3), (x0 + 30, -3 - k % 5)]) for k, x0 in
+              enumerate(np.arange(0.0, 400.0, 7.3))]
+    region = pc.CropRegion(shapely.union_all(wedges))
+    x = np.concatenate([rng.uniform(-5, 440, 200_000), np.repeat(np.arange(0.0, 430.0, 1.0), 3)])
+    y = np.concatenate([rng.uniform(-10, 10, 200_000), np.tile([0.0, 4.0, -3.0], 430)])
+    boundary = np.asarray(shapely.get_coordinates(region.geometry.boundary))
+    x, y = np.concatenate([x, boundary[:, 0]]), np.concatenate([y, boundary[:, 1]])
+    exact = shapely.intersects_xy(region.geometry, x, y)
+    assert 0.1 < exact.mean() < 0.9
+    assert np.array_equal(region.mask(x, y), exact)
