@@ -2,7 +2,7 @@
 
 Importing this package imports nothing from QGIS; ``classFactory`` (QGIS desktop and
 ``qgis_process``) loads the plugin class, whose ``initProcessing`` registers the
-provider ``roadsigns`` and whose ``initGui`` adds nothing else for now.
+provider ``roadsigns`` and whose ``initGui`` (QGIS desktop) adds the sign review panel.
 """
 
 

@@ -1,15 +1,34 @@
-"""What every Road Sign Inventory algorithm shares: tr, icon, parameter helpers, core errors.
+"""What every Road Sign Inventory algorithm shares: tr, icon, parameter helpers, core errors,
+and the boundary every run goes through.
 
 Adapters declare their parameter names as class constants (``POINT_CLOUD = "POINT_CLOUD"``),
 add parameters through the ``add_*`` helpers below with literal ``self.tr("...")`` labels
 and help texts, read them, call ``core`` with a :class:`~roadsigns.core.errors.Progress`
 bound to the Processing feedback, turn :class:`InputError` into a translated
 ``QgsProcessingException`` and write outputs only once core has finished.
+
+**The boundary.** Every subclass's ``processAlgorithm`` is wrapped (``__init_subclass__``,
+so an algorithm written later gets it too) so that a run either delivers all its outputs
+or leaves nothing behind:
+
+* layers created with :meth:`RoadSignsAlgorithm.sink` are closed and deleted if the run
+  fails or is cancelled (a file they overwrite is moved aside first and put back);
+* files and folders are written under the temporary names :meth:`output_file` and
+  :meth:`output_folder` give, beside their destinations, and moved into place (with the
+  user's normal permissions) only when ``processAlgorithm`` has returned and the user has
+  not cancelled;
+* every exception becomes a ``QgsProcessingException`` with a one-line cause: a core
+  :class:`InputError` its translated message, a cancel "Cancelled: nothing was written.",
+  anything else a short "Unexpected error" line, its traceback going to the QGIS message
+  log (tab :data:`LOG_TAG`) only.
 """
+import functools
+import traceback
 from contextlib import contextmanager
 
 from qgis.core import (
     Qgis,
+    QgsMessageLog,
     QgsProcessingAlgorithm,
     QgsProcessingException,
     QgsProcessingParameterBoolean,
@@ -26,7 +45,40 @@ from qgis.PyQt.QtGui import QIcon
 from ..core.errors import Cancelled, InputError, Message, Progress
 from ..dependencies import missing_message, shapely_geos_conflict
 from .i18n import Translatable, tr_core
+from .layers import RunOutputs
 from .paths import ICON_PATH
+
+#: The QGIS message log tab that gets the tracebacks of unexpected errors.
+LOG_TAG = "Road sign inventory"
+
+
+def _one_line(text):
+    return " ".join(line.strip() for line in str(text).splitlines() if line.strip())
+
+
+def _boundary(process):
+    """``processAlgorithm`` run inside the boundary (see the module doc)."""
+
+    @functools.wraps(process)
+    def processAlgorithm(self, parameters, context, feedback):
+        self._run_outputs = RunOutputs(context)
+        try:
+            result = process(self, parameters, context, feedback)
+            if feedback is not None and feedback.isCanceled():
+                raise Cancelled("cancelled")
+            self._run_outputs.commit()
+            return result
+        except (KeyboardInterrupt, SystemExit, GeneratorExit):
+            self._run_outputs.rollback()
+            raise
+        except BaseException as error:  # Rust panics in lazrs reach Python as BaseException
+            left = self._run_outputs.rollback()
+            raise self.failure(error, left) from None
+        finally:
+            self._run_outputs = None
+
+    processAlgorithm.roadsigns_boundary = True
+    return processAlgorithm
 
 
 class RoadSignsAlgorithm(Translatable, QgsProcessingAlgorithm):
@@ -37,6 +89,12 @@ class RoadSignsAlgorithm(Translatable, QgsProcessingAlgorithm):
     GROUP_ID = "roadsigns"
     #: import names of the third-party packages the algorithm needs
     REQUIRES = ("numpy", "scipy", "pyproj")
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        process = cls.__dict__.get("processAlgorithm")
+        if process is not None and not getattr(process, "roadsigns_boundary", False):
+            cls.processAlgorithm = _boundary(process)
 
     def createInstance(self):
         return type(self)()
@@ -132,12 +190,31 @@ class RoadSignsAlgorithm(Translatable, QgsProcessingAlgorithm):
 
     def sink(self, parameters, name, context, fields, wkb_type, crs):
         """``(sink, destination id)`` of the output ``name``; ``(None, None)`` for an optional
-        output that was not asked for; a clear error when it cannot be created."""
+        output that was not asked for; a clear error when it cannot be created.
+
+        Create it once every record is computed: should the run fail or be cancelled, the
+        boundary closes and deletes it (and puts back the file it replaced)."""
+        outputs = getattr(self, "_run_outputs", None)
+        if outputs is not None:
+            outputs.protect_layer(self.parameterAsOutputLayer(parameters, name, context))
         sink, dest_id = self.parameterAsSink(parameters, name, context, fields, wkb_type, crs)
         if sink is None and self.parameterDefinition(name) is not None and \
                 not (self.parameterDefinition(name).flags() & Qgis.ProcessingParameterFlag.Optional):
             raise QgsProcessingException(self.invalidSinkError(parameters, name))
+        if outputs is not None and sink is not None:
+            outputs.add_layer(sink, dest_id)
         return sink, dest_id
+
+    def output_file(self, path):
+        """The temporary name (beside ``path``) to write the output file ``path`` to; the
+        boundary moves it into place when the run succeeds. ``path`` itself outside a run."""
+        outputs = getattr(self, "_run_outputs", None)
+        return outputs.staged.file(path) if outputs is not None else path
+
+    def output_folder(self, path):
+        """As :meth:`output_file`, for a folder of outputs (created empty)."""
+        outputs = getattr(self, "_run_outputs", None)
+        return outputs.staged.folder(path) if outputs is not None else path
 
     # --- running core -------------------------------------------------------------------
 
@@ -178,3 +255,32 @@ class RoadSignsAlgorithm(Translatable, QgsProcessingAlgorithm):
             raise QgsProcessingException(self.localise(error))
         except Cancelled:
             raise QgsProcessingException(self.tr("Cancelled: nothing was written."))
+
+    def failure(self, error, left=()):
+        """The ``QgsProcessingException`` (one line) a run that raised ``error`` ends with;
+        ``left``: partial outputs that could not be removed."""
+        if isinstance(error, QgsProcessingException):
+            text = str(error)
+        elif isinstance(error, InputError):
+            text = self.localise(error)
+        elif isinstance(error, Cancelled):
+            text = self.tr("Cancelled: nothing was written.")
+        else:
+            QgsMessageLog.logMessage("{}: {}\n{}".format(self.displayName(), error, "".join(
+                traceback.format_exception(type(error), error, error.__traceback__))), LOG_TAG,
+                Qgis.MessageLevel.Warning)
+            if isinstance(error, MemoryError):
+                text = self.tr("Out of memory: nothing was written. Crop the point cloud (Ground filter with a "
+                               "crop layer) or process the drive in parts.")
+            elif isinstance(error, OSError):
+                text = self.tr("Cannot read or write {}: {}. Nothing was written.").format(
+                    error.filename or "", error.strerror or error)
+            else:
+                text = self.tr("Unexpected error ({}: {}); nothing was written. The details are in the QGIS "
+                               "message log (Road sign inventory); please report them.").format(
+                    type(error).__name__, _one_line(error)[:300])
+        text = _one_line(text)
+        if left:
+            text = self.tr("{} However, these partial outputs could not be removed: {}").format(
+                text, ", ".join(left))
+        return QgsProcessingException(text)

@@ -15,7 +15,7 @@ from ..core.detections import DETECTION_FIELDS, drive_detections
 from ..core.detector import DEFAULT_MIN_BOX_PX
 from ..core.trajectory import STATION_FIELDS, Stations
 from .base import RoadSignsAlgorithm
-from .layers import qgs_fields, read_records, write_records
+from .layers import check_layer_extent, check_metric_crs, qgs_fields, read_records, write_records
 from .paths import BUNDLED_MODEL
 
 
@@ -101,6 +101,7 @@ class DetectSigns(RoadSignsAlgorithm):
         from ..core.panorama import ViewSet
 
         source = self.source(parameters, self.STATIONS, context)
+        check_metric_crs(source.sourceCrs(), self.tr("Panorama stations"))
         rows = read_records(source, STATION_FIELDS, self.tr("Panorama stations"), feedback)
         model_path = self.parameterAsFile(parameters, self.MODEL, context) or BUNDLED_MODEL
         if not os.path.isfile(model_path):
@@ -111,6 +112,7 @@ class DetectSigns(RoadSignsAlgorithm):
         progress = self.progress(feedback)
         with self.core_errors():
             stations = Stations.from_records(rows, self.tr("Panorama stations"))
+            check_layer_extent(source, self.tr("Panorama stations"))
             class_names = read_labels_file(labels_path) if labels_path else None
             detector = Detector(model_path, class_names=class_names,
                                 threads=self.parameterAsInt(parameters, self.THREADS, context))
@@ -126,11 +128,13 @@ class DetectSigns(RoadSignsAlgorithm):
                 len(found.skipped)))
 
         detections = drive_detections(stations, found.per_image)
-        sink, dest_id = self.sink(parameters, self.OUTPUT, context, qgs_fields(DETECTION_FIELDS),
-                                  Qgis.WkbType.LineStringZ, source.sourceCrs())
-        ends = detections.ray_ends_world(ray_length_m)
+        if len(detections) == 0:
+            feedback.pushWarning(self.tr("No sign was detected: the detections layer is empty."))
+        ends = detections.ray_ends_world(ray_length_m) if len(detections) else []
         rays = [QgsGeometry(QgsLineString([QgsPoint(*start), QgsPoint(*end)]))
                 for start, end in zip(detections.centre_world, ends)]
+        sink, dest_id = self.sink(parameters, self.OUTPUT, context, qgs_fields(DETECTION_FIELDS),
+                                  Qgis.WkbType.LineStringZ, source.sourceCrs())
         write_records(sink, DETECTION_FIELDS, detections.records(), rays, feedback, (95, 100))
         feedback.setProgress(100)
         feedback.pushInfo(self.tr("{} detections in {} panoramas ({} skipped).").format(

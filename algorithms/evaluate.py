@@ -7,15 +7,25 @@ import numpy as np
 from qgis.core import (
     Qgis,
     QgsCoordinateTransform,
+    QgsCsException,
     QgsFeatureRequest,
     QgsProcessingException,
     QgsProcessingOutputNumber,
     QgsVectorLayer,
 )
 
-from ..core.evaluate import OUTPUT_NAMES, SignSet, evaluate, read_reference_csv, write_html_report
+from ..core.crs import check_extent
+from ..core.evaluate import (
+    OUTPUT_NAMES,
+    SignSet,
+    check_overlap,
+    evaluate,
+    read_reference_csv,
+    write_html_report,
+)
 from .base import RoadSignsAlgorithm
 from .i18n import tr
+from .layers import check_layer_extent, check_metric_crs, crs_for_pyproj
 
 CSV_EXTENSIONS = (".csv", ".txt")
 
@@ -49,7 +59,11 @@ def sign_set_from_features(features, fields, transform, label, id_field="sign_id
             point = [_number_or_nan(_field_values(fields, feature, c, None)) for c in "xyz"]
         else:
             if transform is not None:
-                geometry.transform(transform)
+                try:
+                    geometry.transform(transform)
+                except QgsCsException as error:
+                    raise QgsProcessingException(tr("{layer}: cannot reproject feature {feature}: {error}").format(
+                        layer=label, feature=k + 1, error=error))
             vertex = geometry.vertexAt(0)  # the point (the first one of a multipoint)
             z = vertex.z() if vertex.is3D() else _number_or_nan(_field_values(fields, feature, "z", None))
             point = [vertex.x(), vertex.y(), z]
@@ -61,6 +75,10 @@ def sign_set_from_features(features, fields, transform, label, id_field="sign_id
         width.append(_number_or_nan(_field_values(fields, feature, "width", None)))
         panel_height.append(_number_or_nan(_field_values(fields, feature, "panel_height", None)))
         images.append(str(_field_values(fields, feature, "best_image", "")))
+        if not np.isfinite(point).all():
+            raise QgsProcessingException(tr(
+                "{layer}: sign '{sign_id}' has no valid x, y, z position (no point geometry, and no numbers "
+                "in the fields x, y, z)").format(layer=label, sign_id=ids[-1]))
     return SignSet(ids, classes, np.array(xyz, float).reshape(-1, 3), np.array(height),
                    np.array(azimuth), np.array(width), np.array(panel_height), images)
 
@@ -136,7 +154,12 @@ class Evaluate(RoadSignsAlgorithm):
             feedback.pushInfo(self.tr("Reference CSV {}: coordinates taken in the sign layer's CRS "
                                       "({})").format(path, signs_crs.authid() or signs_crs.description()))
             with self.core_errors():
-                return read_reference_csv(path)
+                reference = read_reference_csv(path)
+                finite = reference.xyz[np.isfinite(reference.xyz).all(axis=1)]
+                if signs_crs.isValid() and len(finite):
+                    check_extent(crs_for_pyproj(signs_crs), (finite[:, 0].min(), finite[:, 1].min(),
+                                                             finite[:, 0].max(), finite[:, 1].max()), path)
+                return reference
         layer = QgsVectorLayer(path, "reference", "ogr")
         if not layer.isValid():
             raise QgsProcessingException(self.tr(
@@ -152,6 +175,9 @@ class Evaluate(RoadSignsAlgorithm):
     def processAlgorithm(self, parameters, context, feedback):
         self.check_dependencies()
         source = self.source(parameters, self.SIGNS, context)
+        check_metric_crs(source.sourceCrs(), self.tr("Sign layer"))
+        with self.core_errors():
+            check_layer_extent(source, self.tr("Sign layer"))
         radius_m = self.parameterAsDouble(parameters, self.MATCH_RADIUS, context)
         report_path = self.parameterAsFileOutput(parameters, self.OUTPUT_REPORT, context)
         signs = sign_set_from_features(source.getFeatures(QgsFeatureRequest()), source.fields(), None,
@@ -165,8 +191,9 @@ class Evaluate(RoadSignsAlgorithm):
                                          .format(reference_path))
         feedback.setProgress(30)
         with self.core_errors():
+            check_overlap(signs, reference, radius_m, source.sourceName(), reference_path)
             result = evaluate(signs, reference, radius_m)
-            write_html_report(result, report_path, title=self.tr("Road sign evaluation"),
+            write_html_report(result, self.output_file(report_path), title=self.tr("Road sign evaluation"),
                               sign_label=source.sourceName(), reference_label=reference_path)
         feedback.setProgress(100)
         outputs = dict(result.as_outputs())

@@ -14,6 +14,7 @@ from qgis.core import (
 )
 
 from .base import RoadSignsAlgorithm
+from .layers import check_cloud_extent, check_metric_crs
 
 #: Provider setting (Processing ▸ Options ▸ Providers) and environment variable for a
 #: ``pdal`` executable that is neither on PATH nor in QGIS's bin folder.
@@ -121,7 +122,9 @@ class GroundFilter(RoadSignsAlgorithm):
         self.addOutput(QgsProcessingOutputNumber(self.GROUND_POINTS, self.tr("Ground points")))
 
     def _crop_geometries(self, parameters, context, cloud_crs, buffer_m, feedback):
-        """WKB of the crop layer's geometries in the cloud's CRS (None without a crop layer)."""
+        """WKB of the crop layer's geometries in the cloud's CRS (None without a crop layer).
+        A crop layer without features or geometries is an error: cropping by nothing must
+        not turn into processing the whole cloud."""
         source = self.parameterAsSource(parameters, self.CROP, context)
         if source is None:
             return None
@@ -134,23 +137,50 @@ class GroundFilter(RoadSignsAlgorithm):
             feedback.pushInfo(self.tr("Reprojecting the crop layer from {} to {}").format(
                 source.sourceCrs().authid(), cloud_crs.authid() or cloud_crs.description()))
             transform = QgsCoordinateTransform(source.sourceCrs(), cloud_crs, context.transformContext())
-        geometries = []
+        geometries, n_features = [], 0
         for feature in source.getFeatures():
+            if feedback.isCanceled():
+                raise QgsProcessingException(self.tr("Cancelled: nothing was written."))
+            n_features += 1
             geometry = feature.geometry()
             if geometry.isNull() or geometry.isEmpty():
                 continue
             if transform is not None:
                 geometry.transform(transform)
             geometries.append(bytes(geometry.asWkb()))
+        if n_features == 0:
+            raise QgsProcessingException(self.tr(
+                "The crop layer {} has no feature: nothing to crop by. Leave the crop layer empty to "
+                "process the whole cloud").format(source.sourceName()))
+        if not geometries:
+            raise QgsProcessingException(self.tr(
+                "The crop layer {} has no geometry (its {} features are empty): nothing to crop by").format(
+                source.sourceName(), n_features))
         return geometries
 
+    def _check_crop_overlaps(self, crop, buffer_m, header, input_path):
+        """Error when the crop area (grown by the buffer) misses the cloud's bounds."""
+        import shapely
+
+        area = shapely.union_all([shapely.from_wkb(g) for g in crop])
+        xmin, ymin, xmax, ymax = area.bounds
+        if not (xmin - buffer_m <= header.maxs[0] and xmax + buffer_m >= header.mins[0]
+                and ymin - buffer_m <= header.maxs[1] and ymax + buffer_m >= header.mins[1]):
+            raise QgsProcessingException(self.tr(
+                "The crop area (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}) does not overlap the point cloud "
+                "{} (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}): nothing would be kept").format(
+                xmin - buffer_m, xmax + buffer_m, ymin - buffer_m, ymax + buffer_m, input_path,
+                header.mins[0], header.maxs[0], header.mins[1], header.maxs[1]))
+
     @contextmanager
-    def _pdal_errors(self, pdal_error_type):
+    def _pdal_errors(self, pdal_error_type, feedback):
         try:
             yield
         except pdal_error_type as error:
-            raise QgsProcessingException(self.tr("PDAL failed: {}\n{}").format(
-                error, getattr(error, "stderr", "")).strip())
+            details = str(getattr(error, "stderr", "") or "").strip()
+            if details:
+                feedback.pushWarning(self.tr("PDAL said: {}").format(details))
+            raise QgsProcessingException(self.tr("PDAL failed: {}").format(error))
 
     def processAlgorithm(self, parameters, context, feedback):
         self.check_dependencies()
@@ -161,21 +191,30 @@ class GroundFilter(RoadSignsAlgorithm):
         output_path = self.parameterAsFileOutput(parameters, self.OUTPUT, context)
         if os.path.splitext(output_path)[1].lower() not in (".las", ".laz"):
             output_path = os.path.splitext(output_path)[0] + ".laz"
+        if os.path.exists(input_path) and os.path.exists(output_path) and os.path.samefile(input_path, output_path):
+            raise QgsProcessingException(self.tr("The output {} must not be the input file").format(output_path))
         user_crs = self.parameterAsCrs(parameters, self.CLOUD_CRS, context)
         buffer_m = self.parameterAsDouble(parameters, self.CROP_BUFFER, context)
         with self.core_errors():
+            header = pointcloud.read_header(input_path)
             crs_wkt = user_crs.toWkt(Qgis.CrsWktVariant.Wkt2_2019Simplified) if user_crs.isValid() \
-                else pointcloud.read_crs_wkt(input_path)
+                else pointcloud.crs_wkt_of_header(header)
         cloud_crs = QgsCoordinateReferenceSystem.fromWkt(crs_wkt) if crs_wkt else QgsCoordinateReferenceSystem()
+        if crs_wkt:
+            check_metric_crs(user_crs if user_crs.isValid() else cloud_crs, input_path)
+            with self.core_errors():
+                check_cloud_extent(input_path, crs_wkt)
         crop = self._crop_geometries(parameters, context, cloud_crs, buffer_m, feedback)
+        if crop:
+            self._check_crop_overlaps(crop, buffer_m, header, input_path)
         method = self.enum_name(parameters, self.METHOD, context)
         threshold_m = self.parameterAsDouble(parameters, self.THRESHOLD, context)
         cell_m = self.parameterAsDouble(parameters, self.CELL_SIZE, context)
         params = CsfParams(resolution=cell_m, threshold=threshold_m) if method == "csf" else \
             SmrfParams(cell=cell_m, threshold=threshold_m)
-        with self.core_errors(), self._pdal_errors(PdalError):
+        with self.core_errors(), self._pdal_errors(PdalError, feedback):
             result = run_ground_filter(
-                input_path, output_path,
+                input_path, self.output_file(output_path),
                 method=method, params=params,
                 engine=self.enum_name(parameters, self.ENGINE, context),
                 crop_polygons=crop, crop_buffer_m=buffer_m if crop else 0.0,
@@ -185,6 +224,6 @@ class GroundFilter(RoadSignsAlgorithm):
                 progress=self.progress(feedback))
         feedback.pushInfo(self.tr("Engine: {}; method: {}; {} points read, {} written, {} ground").format(
             result.engine, result.method.upper(), result.n_input, result.n_output, result.n_ground))
-        return {self.OUTPUT: result.output_path, self.ENGINE_USED: result.engine,
+        return {self.OUTPUT: output_path, self.ENGINE_USED: result.engine,
                 self.POINTS_IN: result.n_input, self.POINTS_OUT: result.n_output,
                 self.GROUND_POINTS: result.n_ground}

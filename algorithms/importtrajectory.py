@@ -4,14 +4,7 @@ from qgis.core import Qgis, QgsCoordinateReferenceSystem, QgsGeometry, QgsPoint
 
 from ..core.trajectory import STATION_FIELDS, CameraMount, import_stations
 from .base import RoadSignsAlgorithm
-from .layers import qgs_fields, write_records
-
-
-def crs_for_pyproj(crs: QgsCoordinateReferenceSystem):
-    """Authority id when QGIS has one (what pyproj reads best), else WKT2; None if invalid."""
-    if not crs.isValid():
-        return None
-    return crs.authid() or crs.toWkt(Qgis.CrsWktVariant.Wkt2_2019Simplified)
+from .layers import crs_for_pyproj, qgs_fields, write_records
 
 
 class ImportTrajectory(RoadSignsAlgorithm):

@@ -1,10 +1,10 @@
 """roadsigns:projectdetections - each detection's viewing frustum searched in the point
 cloud for the first dense planar surface: one candidate sign position per detection."""
-from qgis.core import Qgis, QgsGeometry, QgsPoint
+from qgis.core import Qgis, QgsCoordinateReferenceSystem, QgsGeometry, QgsPoint
 
 from ..core.detections import DETECTION_POSE_FIELDS
 from .base import RoadSignsAlgorithm
-from .layers import check_same_crs, qgs_fields, read_records, write_records
+from .layers import check_cloud_extent, check_same_crs, cloud_crs_wkt, qgs_fields, read_records, write_records
 
 
 class ProjectDetections(RoadSignsAlgorithm):
@@ -13,6 +13,7 @@ class ProjectDetections(RoadSignsAlgorithm):
     DETECTIONS = "DETECTIONS"
     POINT_CLOUD = "POINT_CLOUD"
     MAX_RANGE = "MAX_RANGE"
+    CLOUD_CRS = "CLOUD_CRS"
     OUTPUT = "OUTPUT"
 
     def displayName(self):
@@ -46,28 +47,36 @@ class ProjectDetections(RoadSignsAlgorithm):
         self.add_number(
             self.MAX_RANGE, self.tr("Maximum range (m)"), 30.0,
             self.tr("Search each frustum up to this distance from the panorama centre, in metres."), minimum=1.0)
+        self.add_crs(
+            self.CLOUD_CRS, self.tr("Cloud CRS (when the file has none)"),
+            self.tr("The cloud's CRS when the file records none (it must be the detections' CRS); it overrides "
+                    "a CRS in the file. The CRS is never guessed."), optional=True, advanced=True)
         self.add_sink(
             self.OUTPUT, self.tr("Sign candidates"), Qgis.ProcessingSourceType.VectorPoint,
             self.tr("PointZ layer, one candidate per detection (no geometry where no surface was found)."))
 
     def processAlgorithm(self, parameters, context, feedback):
         self.check_dependencies()
-        from ..core.pointcloud import read_crs_wkt
         from ..core.projection import CANDIDATE_FIELDS, Detections, project_detections
 
         source = self.source(parameters, self.DETECTIONS, context)
         cloud_path = self.parameterAsFile(parameters, self.POINT_CLOUD, context)
-        rows = read_records(source, DETECTION_POSE_FIELDS, self.tr("Detections"), feedback)
         with self.core_errors():
-            check_same_crs(source.sourceCrs(), read_crs_wkt(cloud_path), self.tr("The detections"),
-                           cloud_path)
+            crs_wkt = cloud_crs_wkt(self.parameterAsCrs(parameters, self.CLOUD_CRS, context), cloud_path)
+            check_same_crs(source.sourceCrs(), crs_wkt, self.tr("The detections"), cloud_path)
+            check_cloud_extent(cloud_path, crs_wkt)
+        rows = read_records(source, DETECTION_POSE_FIELDS, self.tr("Detections"), feedback,
+                            allow_empty=True)  # no detections: a warning and an empty layer
+        with self.core_errors():
             result = project_detections(
                 Detections.from_records(rows), cloud_path,
                 max_range_m=self.parameterAsDouble(parameters, self.MAX_RANGE, context),
                 progress=self.progress(feedback).sub(0.0, 0.95))
         records = result.records()
+        output_crs = source.sourceCrs() if source.sourceCrs().isValid() else \
+            QgsCoordinateReferenceSystem.fromWkt(crs_wkt)
         sink, dest_id = self.sink(parameters, self.OUTPUT, context, qgs_fields(CANDIDATE_FIELDS),
-                                  Qgis.WkbType.PointZ, source.sourceCrs())
+                                  Qgis.WkbType.PointZ, output_crs)
         geometries = [QgsGeometry(QgsPoint(r["cand_x"], r["cand_y"], r["cand_z"]))
                       if r["status"] == "ok" else None for r in records]
         write_records(sink, CANDIDATE_FIELDS, records, geometries, feedback, (95, 100))

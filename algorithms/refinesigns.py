@@ -2,12 +2,28 @@
 cloud: the sign layer handed to a road authority."""
 import os
 
-from qgis.core import Qgis, QgsGeometry, QgsLineString, QgsPoint, QgsPolygon
+from qgis.core import (
+    Qgis,
+    QgsCoordinateReferenceSystem,
+    QgsGeometry,
+    QgsLineString,
+    QgsPoint,
+    QgsPolygon,
+    QgsProcessingException,
+)
 
 from ..core.review import CHIP_FIELD
 from .base import RoadSignsAlgorithm
-from .layers import check_same_crs, qgs_fields, read_records, write_records
-from .style import SignLayerStyler, file_of, write_sign_style
+from .layers import (
+    check_cloud_extent,
+    check_same_crs,
+    cloud_crs_wkt,
+    destination_file,
+    qgs_fields,
+    read_records,
+    write_records,
+)
+from .style import SignLayerStyler, write_sign_style
 
 
 class RefineSigns(RoadSignsAlgorithm):
@@ -17,6 +33,7 @@ class RefineSigns(RoadSignsAlgorithm):
     POINT_CLOUD = "POINT_CLOUD"
     MERGE_RADIUS = "MERGE_RADIUS"
     IMAGES = "IMAGES"
+    CLOUD_CRS = "CLOUD_CRS"
     OUTPUT = "OUTPUT"
     OUTLINES = "OUTLINES"
     SIGN_POINTS = "SIGN_POINTS"
@@ -63,6 +80,10 @@ class RefineSigns(RoadSignsAlgorithm):
             self.IMAGES, self.tr("Panorama folder (for review chips)"),
             self.tr("The folder of the panoramas (as for Import trajectory). When given, an image chip of "
                     "each sign is cut from its best panorama for review."), folder=True, optional=True)
+        self.add_crs(
+            self.CLOUD_CRS, self.tr("Cloud CRS (when the file has none)"),
+            self.tr("The cloud's CRS when the file records none (it must be the candidates' CRS); it overrides "
+                    "a CRS in the file. The CRS is never guessed."), optional=True, advanced=True)
         self.add_sink(
             self.OUTPUT, self.tr("Signs"), Qgis.ProcessingSourceType.VectorPoint,
             self.tr("PointZ sign layer at the panel centres (fields in docs/formats.md), and chip: the "
@@ -81,7 +102,6 @@ class RefineSigns(RoadSignsAlgorithm):
 
     def processAlgorithm(self, parameters, context, feedback):
         self.check_dependencies()
-        from ..core.pointcloud import read_crs_wkt
         from ..core.projection import CANDIDATE_FIELDS, ProjectionResult
         from ..core.refine import OUTLINE_FIELDS, SIGN_FIELDS, refine_signs, write_sign_points
 
@@ -89,52 +109,63 @@ class RefineSigns(RoadSignsAlgorithm):
 
         source = self.source(parameters, self.CANDIDATES, context)
         cloud_path = self.parameterAsFile(parameters, self.POINT_CLOUD, context)
-        rows = read_records(source, CANDIDATE_FIELDS, self.tr("Sign candidates"), feedback)
+        with self.core_errors():
+            crs_wkt = cloud_crs_wkt(self.parameterAsCrs(parameters, self.CLOUD_CRS, context), cloud_path)
+            check_same_crs(source.sourceCrs(), crs_wkt, self.tr("The candidates"), cloud_path)
+            check_cloud_extent(cloud_path, crs_wkt)
+        rows = read_records(source, CANDIDATE_FIELDS, self.tr("Sign candidates"), feedback,
+                            allow_empty=True)  # no candidates: a warning and an empty layer
+        images_dir = self.parameterAsFile(parameters, self.IMAGES, context)
+        if images_dir and not os.path.isdir(images_dir):
+            raise QgsProcessingException(self.tr("Panorama folder not found: {}").format(images_dir))
+        output_crs = source.sourceCrs() if source.sourceCrs().isValid() else \
+            QgsCoordinateReferenceSystem.fromWkt(crs_wkt)
         progress = self.progress(feedback)
         with self.core_errors():
-            check_same_crs(source.sourceCrs(), read_crs_wkt(cloud_path), self.tr("The candidates"),
-                           cloud_path)
             candidates = ProjectionResult.from_records(rows)
             result = refine_signs(candidates, cloud_path,
                                   merge_radius_m=self.parameterAsDouble(parameters, self.MERGE_RADIUS, context),
                                   progress=progress.sub(0.0, 0.85))
         records = result.records()
-        sink, dest_id = self.sink(parameters, self.OUTPUT, context, qgs_fields(sign_layer_fields),
-                                  Qgis.WkbType.PointZ, source.sourceCrs())
-        layer_file = file_of(dest_id)
-        images_dir = self.parameterAsFile(parameters, self.IMAGES, context)
+
+        # files first, under temporary names (moved into place when the run succeeds), then the layers
+        layer_file, _ = destination_file(self.parameterAsOutputLayer(parameters, self.OUTPUT, context), context)
         report_path = self.parameterAsFileOutput(parameters, self.REVIEW_REPORT, context)
+        outputs = {}
         if images_dir:
             self._review(records, candidates, result, images_dir, layer_file,
                          report_path, progress.sub(0.85, 0.9), feedback)
+            if report_path:
+                outputs[self.REVIEW_REPORT] = report_path
         elif report_path:
             feedback.pushWarning(self.tr("The review report needs the panorama folder: not written."))
-        write_records(sink, sign_layer_fields, records,
-                      [QgsGeometry(QgsPoint(r["x"], r["y"], r["z"])) for r in records], feedback, (90, 92))
-        outputs = {self.OUTPUT: dest_id}
-        if report_path and images_dir:
-            outputs[self.REVIEW_REPORT] = report_path
+        points_path = self.parameterAsFileOutput(parameters, self.SIGN_POINTS, context)
+        if points_path:
+            with self.core_errors():
+                n = write_sign_points(cloud_path, self.output_file(points_path), result.point_index,
+                                      progress=progress.sub(0.9, 0.95))
+            feedback.pushInfo(self.tr("{} sign points written to {}").format(n, points_path))
+            outputs[self.SIGN_POINTS] = points_path
         if layer_file:
-            write_sign_style(os.path.splitext(layer_file)[0] + ".qml", source.sourceCrs())
+            write_sign_style(self.output_file(os.path.splitext(layer_file)[0] + ".qml"), output_crs)
+
+        sink, dest_id = self.sink(parameters, self.OUTPUT, context, qgs_fields(sign_layer_fields),
+                                  Qgis.WkbType.PointZ, output_crs)
+        write_records(sink, sign_layer_fields, records,
+                      [QgsGeometry(QgsPoint(r["x"], r["y"], r["z"])) for r in records], feedback, (95, 97))
+        outputs[self.OUTPUT] = dest_id
         if context.willLoadLayerOnCompletion(dest_id):
             context.layerToLoadOnCompletionDetails(dest_id).setPostProcessor(SignLayerStyler.create())
 
         outline_sink, outline_id = self.sink(parameters, self.OUTLINES, context, qgs_fields(OUTLINE_FIELDS),
-                                             Qgis.WkbType.PolygonZ, source.sourceCrs())
+                                             Qgis.WkbType.PolygonZ, output_crs)
         if outline_sink is not None:
             placed = [(r, c) for r, c in zip(records, result.outlines_world) if c is not None]
             polygons = [QgsGeometry(QgsPolygon(QgsLineString([QgsPoint(*p) for p in list(c) + [c[0]]])))
                         for _, c in placed]
             write_records(outline_sink, OUTLINE_FIELDS, [r for r, _ in placed], polygons,
-                          feedback, (92, 95))
+                          feedback, (97, 100))
             outputs[self.OUTLINES] = outline_id
-        points_path = self.parameterAsFileOutput(parameters, self.SIGN_POINTS, context)
-        if points_path:
-            with self.core_errors():
-                n = write_sign_points(cloud_path, points_path, result.point_index,
-                                      progress=progress.sub(0.95, 1.0))
-            feedback.pushInfo(self.tr("{} sign points written to {}").format(n, points_path))
-            outputs[self.SIGN_POINTS] = points_path
         by_source = {}
         for r in records:
             by_source[r["position_source"]] = by_source.get(r["position_source"], 0) + 1
@@ -143,7 +174,8 @@ class RefineSigns(RoadSignsAlgorithm):
         return outputs
 
     def _review(self, records, candidates, result, images_dir, layer_file, report_path, progress, feedback):
-        """Chips beside the sign layer (or the report), their relative paths in ``chip``."""
+        """Chips beside the sign layer (or the report), their relative paths in ``chip``; the
+        chips folder and the report are written under temporary names (see the boundary)."""
         from ..core.review import best_view_boxes, write_chips, write_review_report
         base = layer_file or report_path
         if not base:
@@ -151,7 +183,8 @@ class RefineSigns(RoadSignsAlgorithm):
             return
         chips_dir = os.path.splitext(base)[0] + "_chips"
         with self.core_errors():
-            names = write_chips(records, best_view_boxes(candidates, result), images_dir, chips_dir, progress)
+            names = write_chips(records, best_view_boxes(candidates, result), images_dir,
+                                self.output_folder(chips_dir), progress)
         layer_dir = os.path.dirname(layer_file or report_path)
         for record, name in zip(records, names):
             record["chip"] = os.path.relpath(os.path.join(chips_dir, name), layer_dir) if name else None
@@ -159,5 +192,6 @@ class RefineSigns(RoadSignsAlgorithm):
             report_dir = os.path.dirname(os.path.abspath(report_path))
             links = [os.path.relpath(os.path.join(chips_dir, n), report_dir) if n else "" for n in names]
             with self.core_errors():
-                write_review_report(records, links, report_path, title=self.tr("Road signs for review"))
+                write_review_report(records, links, self.output_file(report_path),
+                                    title=self.tr("Road signs for review"))
         feedback.pushInfo(self.tr("{} review chips in {}").format(sum(bool(n) for n in names), chips_dir))

@@ -1,19 +1,25 @@
-"""Bench of a sign detector (default: the bundled models/roadsigns.onnx).
+"""Bench of sign detectors (default: the bundled models/roadsigns.onnx); ``--compare A B``
+measures several models in one run, on the same images, timed alternately.
 
-1. Precision and recall at IoU 0.5 per class on the panoramas of generated scenes whose
-   seeds were never used in training (default: ``default`` preset, seed 7), run exactly as
-   ``roadsigns:detectsigns`` runs it: ``Detector`` + ``ViewSet.default`` + ``detect_panorama``.
-   Truth: front faces of ``scene.json`` (``visible_box``; a detection also matches the
-   amodal ``box``). Counted for the goal: signs >= 20 px tall with occlusion <= 0.5;
-   smaller or more hidden signs are reported separately and a detection on them is no
-   false alarm. Back faces are not signs: a detection there is a false alarm. A second
-   figure leaves out counted signs seen edge-on (under 8 px wide): they count in the first.
-2. The same on GTSDB images 500-599 (held out from training), on 640 x 640 tiles at full
-   resolution (6 per frame) and, for comparison, on whole frames letterboxed to 640 px.
-3. Panoramas per second at 4096 x 2048 (decoding the JPEG not included; reported apart).
+1. Held-out generated panoramas (default: ``default`` preset seed 7 and ``tiny`` seed 3,
+   seeds never used in training), run exactly as ``roadsigns:detectsigns`` runs them:
+   ``Detector`` + ``ViewSet.default`` + ``detect_panorama`` with its ``MIN_SIZE``. Truth:
+   front faces of ``scene.json`` (``visible_box``; a detection also matches the amodal
+   ``box``). Counted: signs >= 20 px tall with occlusion <= 0.5; smaller or more hidden
+   signs are reported separately and a detection on them is no false alarm. A detection
+   on a back face is a false alarm. A second figure leaves out counted signs seen edge-on
+   (under 8 px wide).
+2. GTSDB images 500-599 (held out from training) on 640 x 640 tiles at full resolution
+   (6 per frame): per class, signs >= 20 px, the precision/recall curve and the best-F1
+   threshold (where the plugin's default ``CONFIDENCE`` should sit).
+3. Per size band (box height 14-20, 20-35, 35-70, > 70 px) on both: recall of the signs of
+   that height and precision of the detections of that height.
+4. Panoramas per second at 4096 x 2048 on ``--threads`` (2) threads, decoding apart; with
+   several models each panorama is run by every model in turn (alternating order), so
+   the machine's load falls alike on all of them.
 
-    .venv/bin/python bench/bench_detector.py [--model M] [--scene DIR ...] [--threads 2]
-        [--json bench/out/detector.json]
+    .venv/bin/python bench/bench_detector.py [--model M | --compare A.onnx B.onnx ...]
+        [--scene DIR ...] [--threads 2] [--json bench/out/detector.json]
 """
 from __future__ import annotations
 
@@ -39,6 +45,13 @@ MIN_HEIGHT_PX = 20.0
 EDGE_ON_MAX_WIDTH_PX = 8.0  # a counted sign seen this narrow is a sliver (edge-on): reported apart
 MAX_OCCLUSION = 0.5
 TILE_PX = 640
+#: Size bands (box height, px): [lo, hi).
+BANDS = ((14.0, 20.0), (20.0, 35.0), (35.0, 70.0), (70.0, float("inf")))
+CURVE_THRESHOLDS = tuple(round(t, 2) for t in np.arange(0.05, 0.96, 0.05))
+
+
+def band_name(lo, hi):
+    return f"{lo:g}-{hi:g}" if np.isfinite(hi) else f">{lo:g}"
 
 
 def seam_iou(width_px):
@@ -77,11 +90,124 @@ def scene_truth(meta, sign_class):
     return np.array(counted).reshape(-1, 8), np.array(classes, np.int64), small, hidden, back
 
 
-def bench_panoramas(detector, scene_dirs, confidence, max_images=None, min_box_px=0.0):
-    views = panorama_mod.ViewSet.default(size_px=detector.input_size)
-    matches, small_matches, hidden_matches, face_on_matches = [], [], [], []
-    back_hits = decode_s = detect_s = 0.0
-    n_images, warm = 0, False
+# --- size bands ------------------------------------------------------------------------------
+
+class BandCounter:
+    """Per size band: true signs and hits (recall), detections and true positives (precision)."""
+
+    def __init__(self, width: int = 4):
+        self.width = width  # numbers per truth row: 4, or 8 (visible + amodal box)
+        self.c = {band_name(*b): {"true": 0, "hits": 0, "detections": 0, "tp": 0} for b in BANDS}
+
+    def add(self, boxes, scores, ids, gt, gt_classes, threshold, ignore=None, iou_fn=iou_matrix):
+        """Truth rows ``gt`` and ``ignore``: the first 4 numbers give the height."""
+        gt = np.asarray(gt, float).reshape(-1, self.width)
+        ignore = np.zeros((0, self.width)) if ignore is None else np.asarray(ignore, float).reshape(-1, self.width)
+        gt_classes = np.asarray(gt_classes, np.int64)
+        heights = gt[:, 3] - gt[:, 1]
+        dets = np.asarray(boxes, float).reshape(-1, 4)
+        keep = np.asarray(scores) >= threshold
+        dets, sc, cl = dets[keep], np.asarray(scores)[keep], np.asarray(ids)[keep]
+        for lo, hi in BANDS:
+            c = self.c[band_name(lo, hi)]
+            inb = (heights >= lo) & (heights < hi)
+            other = np.concatenate([gt[~inb], ignore])
+            m = match_image(dets, sc, cl, gt[inb], gt_classes[inb], 0.5, ignore_boxes=other,
+                            iou_fn=iou_fn)
+            c["true"] += int(inb.sum())
+            c["hits"] += int(m["hit"].sum())
+            # precision of the detections of this height, matched against every sign
+            order = np.argsort(-sc, kind="stable")
+            dh = (dets[order, 3] - dets[order, 1]) if len(dets) else np.zeros(0)
+            mall = match_image(dets, sc, cl, gt, gt_classes, 0.5, ignore_boxes=ignore if len(ignore) else None,
+                               iou_fn=iou_fn)
+            sel = (dh >= lo) & (dh < hi) & ~mall["ignored"]
+            c["detections"] += int(sel.sum())
+            c["tp"] += int((sel & mall["tp"]).sum())
+
+    def result(self):
+        out = {}
+        for name, c in self.c.items():
+            out[name] = {"true": c["true"], "hits": c["hits"], "recall": c["hits"] / c["true"] if c["true"] else None,
+                         "detections": c["detections"],
+                         "precision": c["tp"] / c["detections"] if c["detections"] else None}
+        return out
+
+
+def curve(matches, thresholds=CURVE_THRESHOLDS):
+    """Precision/recall at each threshold and the best F1 among them."""
+    points, best = [], None
+    for t in thresholds:
+        s = summarise(matches, CLASSES, t)["all"]
+        p, r = s["precision"], s["recall"]
+        f1 = 2 * p * r / (p + r) if p == p and r == r and p + r > 0 else 0.0
+        points.append({"threshold": t, "precision": p, "recall": r, "f1": f1})
+        if best is None or f1 > best["f1"]:
+            best = points[-1]
+    return {"points": points, "best_f1": best}
+
+
+# --- generated panoramas ---------------------------------------------------------------------
+
+class PanoramaBench:
+    def __init__(self, detector, views, confidence, min_box_px):
+        self.d, self.views, self.confidence, self.min_box_px = detector, views, confidence, min_box_px
+        self.matches, self.small, self.hidden, self.face_on = [], [], [], []
+        self.back_hits, self.detect_s, self.n = 0, 0.0, 0
+        self.bands = BandCounter(width=8)
+
+    def run(self, pano, meta, sign_class):
+        t0 = time.perf_counter()
+        found = detector_mod.detect_panorama(self.d, pano, self.views, confidence=0.05, min_box_px=self.min_box_px)
+        self.detect_s += time.perf_counter() - t0
+        self.n += 1
+        iou = seam_iou(pano.shape[1])
+        counted, classes, small, hidden, back = scene_truth(meta, sign_class)
+        boxes, scores, ids = found.boxes(), found.score, found.class_id
+        uncounted = np.array([b for b, _ in small + hidden]).reshape(-1, 8)
+        self.matches.append(match_image(boxes, scores, ids, counted, classes, 0.5, ignore_boxes=uncounted,
+                                        iou_fn=iou))
+        edge_on = (counted[:, 2] - counted[:, 0]) < EDGE_ON_MAX_WIDTH_PX
+        self.face_on.append(match_image(boxes, scores, ids, counted[~edge_on], classes[~edge_on], 0.5, iou_fn=iou,
+                                        ignore_boxes=np.concatenate([uncounted, counted[edge_on]])))
+        if back and len(boxes):
+            self.back_hits += int(((iou(boxes, np.array(back)).max(1) >= 0.5) & (scores >= self.confidence)).sum())
+        for group, out in ((small, self.small), (hidden, self.hidden)):
+            if group:
+                out.append(match_image(boxes, scores, ids, np.array([b for b, _ in group]),
+                                       np.array([CLASSES.index(c) for _, c in group]), 0.5, iou_fn=iou))
+        # size bands over all front faces at most half hidden (small ones included)
+        small_b = np.array([b for b, _ in small]).reshape(-1, 8)
+        small_c = np.array([CLASSES.index(c) for _, c in small], np.int64)
+        hidden_b = np.array([b for b, _ in hidden]).reshape(-1, 8)
+        self.bands.add(boxes, scores, ids, np.concatenate([counted, small_b]), np.concatenate([classes, small_c]),
+                       self.confidence, ignore=hidden_b, iou_fn=iou)
+
+    def result(self):
+        c = self.confidence
+
+        def recall_only(group):  # every detection of the image takes part: only recall means something
+            s = summarise(group, CLASSES, c)["all"]
+            return {k: s[k] for k in ("true", "hits", "recall")}
+        return {"images": self.n, "per_class": summarise(self.matches, CLASSES, c),
+                "per_band": self.bands.result(),
+                "small_under_20px": recall_only(self.small),
+                "without_edge_on": summarise(self.face_on, CLASSES, c)["all"],
+                "occluded_over_half": recall_only(self.hidden),
+                "detections_on_back_faces": int(self.back_hits),
+                "seconds_per_panorama_detect": self.detect_s / max(self.n, 1),
+                "panoramas_per_second": self.n / max(self.detect_s, 1e-9),
+                "curve": curve(self.matches)}
+
+
+def bench_panoramas(detectors, scene_dirs, confidence, max_images=None, min_box_px=0.0):
+    """Every detector on every panorama, alternating which goes first."""
+    benches = []
+    for d in detectors:
+        views = panorama_mod.ViewSet.default(size_px=d.input_size)
+        benches.append(PanoramaBench(d, views, confidence, min_box_px))
+    decode_s, n = 0.0, 0
+    warm = False
     for scene_dir in scene_dirs:
         with open(os.path.join(scene_dir, "scene.json")) as f:
             scene = json.load(f)
@@ -89,41 +215,22 @@ def bench_panoramas(detector, scene_dirs, confidence, max_images=None, min_box_p
         for meta in scene["images"][:max_images]:
             t0 = time.perf_counter()
             pano = panorama_mod.read_panorama(os.path.join(scene_dir, "images", meta["image"]))
-            if not warm:  # build the cached remap tables and onnxruntime's buffers first
-                detector_mod.detect_panorama(detector, pano, views, confidence=0.05)
+            decode_s += time.perf_counter() - t0
+            if not warm:  # remap tables and onnxruntime's buffers first
+                for b in benches:
+                    detector_mod.detect_panorama(b.d, pano, b.views, confidence=0.05)
                 warm = True
-            t1 = time.perf_counter()
-            found = detector_mod.detect_panorama(detector, pano, views, confidence=0.05, min_box_px=min_box_px)
-            t2 = time.perf_counter()
-            decode_s, detect_s, n_images = decode_s + t1 - t0, detect_s + t2 - t1, n_images + 1
-            iou = seam_iou(pano.shape[1])
-            counted, classes, small, hidden, back = scene_truth(meta, sign_class)
-            boxes, scores, ids = found.boxes(), found.score, found.class_id
-            uncounted_boxes = np.array([b for b, _ in small + hidden]).reshape(-1, 8)
-            m = match_image(boxes, scores, ids, counted, classes, 0.5, ignore_boxes=uncounted_boxes, iou_fn=iou)
-            matches.append(m)
-            edge_on = (counted[:, 2] - counted[:, 0]) < EDGE_ON_MAX_WIDTH_PX
-            face_on_matches.append(match_image(
-                boxes, scores, ids, counted[~edge_on], classes[~edge_on], 0.5, iou_fn=iou,
-                ignore_boxes=np.concatenate([uncounted_boxes, counted[edge_on]])))
-            if back and len(boxes):
-                back_hits += int(((iou(boxes, np.array(back)).max(1) >= 0.5) & (scores >= confidence)).sum())
-            for group, out in ((small, small_matches), (hidden, hidden_matches)):
-                if group:
-                    out.append(match_image(boxes, scores, ids, np.array([b for b, _ in group]),
-                                           np.array([CLASSES.index(c) for _, c in group]), 0.5, iou_fn=iou))
-    def recall_only(group):  # every detection of the image takes part: only recall means something
-        s = summarise(group, CLASSES, confidence)["all"]
-        return {k: s[k] for k in ("true", "hits", "recall")}
-    return {"images": n_images, "per_class": summarise(matches, CLASSES, confidence),
-            "small_under_20px": recall_only(small_matches),
-            "without_edge_on": summarise(face_on_matches, CLASSES, confidence)["all"],
-            "occluded_over_half": recall_only(hidden_matches),
-            "detections_on_back_faces": int(back_hits),
-            "seconds_per_panorama_detect": detect_s / max(n_images, 1),
-            "seconds_per_panorama_decode_jpeg": decode_s / max(n_images, 1),
-            "threshold_sweep": {f"{t:.2f}": summarise(matches, CLASSES, t)["all"] for t in (0.2, 0.3, 0.4, 0.5, 0.6)}}
+            order = benches if n % 2 == 0 else benches[::-1]
+            for b in order:
+                b.run(pano, meta, sign_class)
+            n += 1
+    out = [b.result() for b in benches]
+    for r in out:
+        r["seconds_per_panorama_decode_jpeg"] = decode_s / max(n, 1)
+    return out
 
+
+# --- GTSDB ------------------------------------------------------------------------------------
 
 def tiles(width, height, size=TILE_PX):
     """Tile origins covering the image, and each tile's core (a partition of the image):
@@ -152,30 +259,46 @@ def detect_tiled(detector, image, confidence):
     return np.concatenate(boxes), np.concatenate(scores), np.concatenate(ids)
 
 
-def bench_gtsdb(detector, confidence, ids=GTSDB_HELDOUT_IDS):
+def bench_gtsdb(detectors, confidence, ids=GTSDB_HELDOUT_IDS, whole_frame=False):
+    """Each detector on GTSDB 500-599 tiles (and whole letterboxed frames if asked)."""
     import cv2
 
-    out = {}
     rows = read_gtsdb(ids)
-    for mode in ("tiles_640", "whole_frame_letterboxed"):
-        matches, matches_20 = [], []
-        t0 = time.perf_counter()
-        for path, gt, classes in rows:
-            image = cv2.imread(path)
-            if mode == "tiles_640":
-                boxes, scores, ids = detect_tiled(detector, image, 0.05)
-            else:
-                d = detector.detect(image, 0.05)
-                boxes, scores, ids = d.boxes_xyxy, d.scores, d.class_ids
-            matches.append(match_image(boxes, scores, ids, gt, classes, 0.5))
-            big = (gt[:, 3] - gt[:, 1]) >= MIN_HEIGHT_PX
-            matches_20.append(match_image(boxes, scores, ids, gt[big], classes[big], 0.5, ignore_boxes=gt[~big]))
-        out[mode] = {"images": len(rows), "per_class": summarise(matches, CLASSES, confidence),
-                     "signs_20px_and_up": summarise(matches_20, CLASSES, confidence)["all"],
-                     "seconds_per_image": (time.perf_counter() - t0) / len(rows),
-                     "threshold_sweep": {f"{t:.2f}": summarise(matches, CLASSES, t)["all"]
-                                         for t in (0.2, 0.3, 0.4, 0.5, 0.6)}}
+    modes = ("tiles_640", "whole_frame_letterboxed") if whole_frame else ("tiles_640",)
+    acc = [{m: {"all": [], "20": [], "bands": BandCounter(), "s": 0.0} for m in modes} for _ in detectors]
+    for k, (path, gt, classes) in enumerate(rows):
+        image = cv2.imread(path)
+        big = (gt[:, 3] - gt[:, 1]) >= MIN_HEIGHT_PX
+        order = list(enumerate(detectors)) if k % 2 == 0 else list(enumerate(detectors))[::-1]
+        for i, d in order:
+            for mode in modes:
+                t0 = time.perf_counter()
+                if mode == "tiles_640":
+                    boxes, scores, found_ids = detect_tiled(d, image, 0.05)
+                else:
+                    r = d.detect(image, 0.05)
+                    boxes, scores, found_ids = r.boxes_xyxy, r.scores, r.class_ids
+                a = acc[i][mode]
+                a["s"] += time.perf_counter() - t0
+                a["all"].append(match_image(boxes, scores, found_ids, gt, classes, 0.5))
+                a["20"].append(match_image(boxes, scores, found_ids, gt[big], classes[big], 0.5, ignore_boxes=gt[~big]))
+                a["bands"].add(boxes, scores, found_ids, gt, classes, confidence)
+    out = []
+    for a in acc:
+        res = {}
+        for mode, v in a.items():
+            res[mode] = {"images": len(rows), "per_class": summarise(v["all"], CLASSES, confidence),
+                         "signs_20px_and_up": summarise(v["20"], CLASSES, confidence)["all"],
+                         "per_band": v["bands"].result(), "seconds_per_image": v["s"] / len(rows),
+                         "curve": curve(v["all"]), "curve_20px_and_up": curve(v["20"])}
+        out.append(res)
     return out
+
+
+# --- printing ---------------------------------------------------------------------------------
+
+def _f(v):
+    return "   -  " if v is None or v != v else f"{v:6.3f}"
 
 
 def print_table(title, per_class):
@@ -185,55 +308,100 @@ def print_table(title, per_class):
         print(f"{name:<13}{s['true']:>6}{s['detections']:>6}{s['hits']:>6}{s['precision']:>11.3f}{s['recall']:>8.3f}")
 
 
+def print_bands(title, bands):
+    print(f"{title}: " + "; ".join(f"{k} px: {v['hits']}/{v['true']} R {_f(v['recall'])} "
+                                   f"P {_f(v['precision'])} ({v['detections']} det)" for k, v in bands.items()))
+
+
+def print_curve(title, c):
+    print(f"{title}: " + ", ".join(f"{p['threshold']:.2f}: {_f(p['precision'])}/{_f(p['recall'])}"
+                                   for p in c["points"]))
+    b = c["best_f1"]
+    print(f"  best F1 {b['f1']:.3f} at {b['threshold']:.2f} (P {b['precision']:.3f} R {b['recall']:.3f})")
+
+
+def print_model(name, r, confidence):
+    print(f"\n===== {name} ({r['model_mb']:.2f} MB) =====")
+    p = r["panoramas"]
+    print_table(f"Generated panoramas ({p['images']}, held-out seeds), signs >= {MIN_HEIGHT_PX:.0f} px, "
+                f"occlusion <= {MAX_OCCLUSION}, confidence {confidence}", p["per_class"])
+    print_bands("size bands", p["per_band"])
+    print(f"signs under {MIN_HEIGHT_PX:.0f} px: {p['small_under_20px']}\nsigns more than half hidden: "
+          f"{p['occluded_over_half']}\ndetections on back faces: {p['detections_on_back_faces']}\n"
+          f"without signs seen edge-on (< {EDGE_ON_MAX_WIDTH_PX:.0f} px wide): {p['without_edge_on']}")
+    print_curve("P/R curve (all classes)", p["curve"])
+    print(f"panoramas per second ({r['threads']} threads, decoded): {p['panoramas_per_second']:.2f} "
+          f"(+ {p['seconds_per_panorama_decode_jpeg']:.3f} s to decode each JPEG)")
+    for mode, g in (r.get("gtsdb_500_599") or {}).items():
+        print_table(f"GTSDB 500-599, {mode}, confidence {confidence}", g["per_class"])
+        print(f"signs >= 20 px: {g['signs_20px_and_up']}")
+        print_bands("size bands", g["per_band"])
+        print_curve("P/R curve (all signs)", g["curve"])
+        print_curve("P/R curve (signs >= 20 px)", g["curve_20px_and_up"])
+
+
+def headline(r):
+    """The figures of the issue's aims, one dict per model."""
+    p, g = r["panoramas"], (r.get("gtsdb_500_599") or {}).get("tiles_640")
+    out = {"generated_P": p["per_class"]["all"]["precision"], "generated_R": p["per_class"]["all"]["recall"],
+           "panoramas_per_s": p["panoramas_per_second"], "model_mb": r["model_mb"]}
+    if g:
+        out.update({"gtsdb_P": g["per_class"]["all"]["precision"], "gtsdb_R": g["per_class"]["all"]["recall"],
+                    "gtsdb_20_P": g["signs_20px_and_up"]["precision"], "gtsdb_20_R": g["signs_20px_and_up"]["recall"],
+                    "gtsdb_mandatory_R": g["per_class"]["mandatory"]["recall"],
+                    "gtsdb_best_f1_threshold": g["curve"]["best_f1"]["threshold"]})
+    return out
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--model", default=os.path.join(REPO_ROOT, "models", "roadsigns.onnx"))
-    ap.add_argument("--scene", action="append", help="held-out generated scene folder(s); "
-                    "default bench/out/scene-default-7, generated when missing")
+    ap.add_argument("--compare", nargs="+", metavar="MODEL", help="several models measured in the same run")
+    ap.add_argument("--scene", action="append", help="held-out generated scene folder(s); default "
+                    "bench/out/scene-default-7 and bench/out/scene-tiny-3, generated when missing")
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--confidence", type=float, default=0.4, help="the plugin's default CONFIDENCE")
     ap.add_argument("--min-size", type=float, default=detector_mod.DEFAULT_MIN_BOX_PX,
                     help="the plugin's MIN_SIZE: merged boxes with a shorter side under this (px) are dropped")
     ap.add_argument("--max-images", type=int, default=None, help="panoramas per scene (default all)")
     ap.add_argument("--skip-gtsdb", action="store_true")
+    ap.add_argument("--gtsdb-images", type=int, default=None, help="only the first N of GTSDB 500-599 (quick checks)")
+    ap.add_argument("--whole-frame", action="store_true", help="also GTSDB whole frames letterboxed to 640 px")
     ap.add_argument("--json", default=os.path.join(REPO_ROOT, "bench", "out", "detector.json"))
     a = ap.parse_args(argv)
 
-    scenes = a.scene or [os.path.join(REPO_ROOT, "bench", "out", "scene-default-7")]
+    scenes = a.scene or [os.path.join(REPO_ROOT, "bench", "out", "scene-default-7"),
+                         os.path.join(REPO_ROOT, "bench", "out", "scene-tiny-3")]
     for scene in scenes:
         if not os.path.isfile(os.path.join(scene, "scene.json")):
             from devtools.scenegen import generate_scene
             name = os.path.basename(os.path.normpath(scene)).split("-")
             generate_scene(name[1], int(name[2]), scene, lidar=False)
-    detector = detector_mod.Detector(a.model, threads=a.threads)
-    print(detector.info().describe())
-    result = {"model": os.path.relpath(a.model, REPO_ROOT), "model_mb": os.path.getsize(a.model) / 1e6,
-              "threads": a.threads, "confidence": a.confidence, "scenes": scenes}
-    result["min_size_px"] = a.min_size
-    result["panoramas"] = bench_panoramas(detector, scenes, a.confidence, a.max_images, a.min_size)
-    p = result["panoramas"]
-    print_table(f"Generated panoramas ({p['images']}, held-out seeds), signs >= {MIN_HEIGHT_PX:.0f} px, "
-                f"occlusion <= {MAX_OCCLUSION}, confidence {a.confidence}, boxes from {a.min_size:g} px",
-                p["per_class"])
-    print(f"signs under {MIN_HEIGHT_PX:.0f} px: {p['small_under_20px']}\nsigns more than half hidden: "
-          f"{p['occluded_over_half']}\n"
-          f"detections on back faces: {p['detections_on_back_faces']}\n"
-          f"without signs seen edge-on (< {EDGE_ON_MAX_WIDTH_PX:.0f} px wide): {p['without_edge_on']}")
-    print("threshold sweep (all classes): " + ", ".join(
-        f"{t}: P {v['precision']:.3f} R {v['recall']:.3f}" for t, v in p["threshold_sweep"].items()))
-    result["panoramas_per_second"] = 1.0 / p["seconds_per_panorama_detect"]
-    print(f"panoramas per second ({a.threads} threads, decoded): {result['panoramas_per_second']:.2f} "
-          f"(+ {p['seconds_per_panorama_decode_jpeg']:.3f} s to decode each JPEG)")
+    models = a.compare or [a.model]
+    detectors = [detector_mod.Detector(m, threads=a.threads) for m in models]
+    for d in detectors:
+        print(d.info().describe())
+    results = [{"model": os.path.relpath(m, REPO_ROOT), "model_mb": os.path.getsize(m) / 1e6, "threads": a.threads,
+                "confidence": a.confidence, "scenes": scenes, "min_size_px": a.min_size} for m in models]
+    for r, p in zip(results, bench_panoramas(detectors, scenes, a.confidence, a.max_images, a.min_size)):
+        r["panoramas"] = p
+        r["panoramas_per_second"] = p["panoramas_per_second"]
     if not a.skip_gtsdb:
-        result["gtsdb_500_599"] = bench_gtsdb(detector, a.confidence)
-        for mode, r in result["gtsdb_500_599"].items():
-            print_table(f"GTSDB 500-599, {mode}, confidence {a.confidence}", r["per_class"])
-            print(f"signs >= 20 px: {r['signs_20px_and_up']}")
-            print("threshold sweep (all classes): " + ", ".join(
-                f"{t}: P {v['precision']:.3f} R {v['recall']:.3f}" for t, v in r["threshold_sweep"].items()))
+        for r, g in zip(results, bench_gtsdb(detectors, a.confidence, whole_frame=a.whole_frame,
+                                          ids=GTSDB_HELDOUT_IDS[:a.gtsdb_images])):
+            r["gtsdb_500_599"] = g
+    for r in results:
+        print_model(r["model"], r, a.confidence)
+    print("\n===== summary (confidence %.2f) =====" % a.confidence)
+    heads = [headline(r) for r in results]
+    keys = list(heads[0])
+    print(f"{'':<26}" + "".join(f"{os.path.basename(r['model'])[:22]:>24}" for r in results))
+    for k in keys:
+        print(f"{k:<26}" + "".join(f"{_f(h.get(k)):>24}" for h in heads))
+    out = results[0] if len(results) == 1 else {"compare": results, "summary": heads}
     os.makedirs(os.path.dirname(a.json), exist_ok=True)
     with open(a.json, "w") as f:
-        json.dump(result, f, indent=1, default=float)
+        json.dump(out, f, indent=1, default=float)
     print(f"\nwrote {a.json}")
     return 0
 

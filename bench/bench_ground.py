@@ -1,26 +1,46 @@
 #!/usr/bin/env python3
-"""Benchmark LAZ -> crop -> ground -> LAZ (built-in engine, chunked I/O) against a plain
-laspy chunked read + write of the same file.
+"""Benchmark the ground filter's engines: the built-in engine, PDAL's ``pdal`` application
+and PDAL's Python bindings, with CSF and SMRF, on the whole cloud and on a crop corridor,
+in one run; plus a plain laspy chunked read + write of the same file as a yardstick.
 
-Each stage runs in its own subprocess so its peak memory (``ru_maxrss``) is its own.
-Prints points per second, the ratio of the ground filter's time to the plain copy's,
-and peak memory per stage.
+Every run is LAZ -> (crop) -> ground -> LAZ through ``run_ground_filter`` (what the
+algorithm calls) in a subprocess of its own, so that its peak memory is its own (the
+``pdal`` process's counted too). Prints wall seconds, points per second (points read),
+CPU seconds, peak memory, the points kept and classified ground, the agreement of each
+PDAL run with the built-in run of the same method and crop, and the time ratio PDAL /
+built-in. Parameters are the algorithm's defaults (threshold 0.2 m, 0.5 m cells), classes
+reset, as a user of ``roadsigns:groundfilter`` gets them.
 
-    .venv/bin/python bench/bench_ground.py --points 5000000 --method csf
-    .venv/bin/python bench/bench_ground.py --input big.laz --corridor-m 15
+PDAL: ``--pdal-executable`` (default ``../shared/tools/pdal-2.9.2/bin/pdal``, else
+ROADSIGNS_PDAL_EXECUTABLE, else PATH or QGIS's bin folder) and the ``pdal`` module of this
+Python (``make setup`` installs the bindings from ``../shared/tools/pdal-2.9.2``); an engine
+that is not there is left out, saying so.
+
+    .venv/bin/python bench/bench_ground.py --points 2000000
+    .venv/bin/python -m devtools.scenegen --preset default --seed 1 --no-panoramas --no-masks \\
+        --out bench/out/scene_default
+    .venv/bin/python bench/bench_ground.py --input bench/out/scene_default/cloud.laz \\
+        --trajectory bench/out/scene_default/trajectory.csv --corridor-m 20
 """
 from __future__ import annotations
 
 import argparse
 import json
 import os
+import re
 import resource
 import subprocess
 import sys
 import time
 
+if os.path.isdir("/usr/share/proj"):  # pyproj inside a venv looks under the venv otherwise
+    os.environ.setdefault("PROJ_DATA", "/usr/share/proj")
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
+SHARED_PDAL = os.path.normpath(os.path.join(REPO, "..", "shared", "tools", "pdal-2.9.2", "bin", "pdal"))
+ENGINES = ("builtin", "pdal-cli", "pdal-python")
+METHODS = ("csf", "smrf")
+CROPS = ("whole", "corridor")
 
 
 def _import_package():
@@ -30,9 +50,13 @@ def _import_package():
     import_roadsigns()
 
 
-def _peak_rss_mb() -> float:
-    kb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss  # KiB on Linux
-    return kb / 1024.0 if sys.platform != "darwin" else kb / 2**20
+def _usage() -> dict:
+    """Peak memory (this process and its waited-for children, e.g. ``pdal``) and CPU time."""
+    me = resource.getrusage(resource.RUSAGE_SELF)
+    kids = resource.getrusage(resource.RUSAGE_CHILDREN)
+    scale = 1024.0 if sys.platform != "darwin" else 2.0 ** 20  # KiB on Linux
+    return {"peak_rss_mb": max(me.ru_maxrss, kids.ru_maxrss) / scale,
+            "cpu_s": me.ru_utime + me.ru_stime + kids.ru_utime + kids.ru_stime}
 
 
 # ----------------------------------------------------------------------------- stages
@@ -67,8 +91,7 @@ def stage_generate(path: str, n_points: int, seed: int) -> dict:
             writer.write_points(rec)
             written += m
             k += 1
-    return {"points": written, "seconds": time.perf_counter() - t0,
-            "length_m": 60.0 * k, "peak_rss_mb": _peak_rss_mb()}
+    return {"points": written, "seconds": time.perf_counter() - t0, "length_m": 60.0 * k}
 
 
 def stage_baseline(src: str, dst: str, chunk_points: int) -> dict:
@@ -84,34 +107,46 @@ def stage_baseline(src: str, dst: str, chunk_points: int) -> dict:
             for chunk in reader.chunk_iterator(chunk_points):
                 writer.write_points(chunk)
                 n += len(chunk)
-    return {"points": n, "seconds": time.perf_counter() - t0, "peak_rss_mb": _peak_rss_mb()}
+    return {"points": n, "seconds": time.perf_counter() - t0, **_usage()}
 
 
-def stage_ground(src: str, dst: str, method: str, corridor_m: float,
-                 chunk_points: int, trajectory: str = "-") -> dict:
-    """Our run: LAZ -> corridor crop -> ground (built-in, tiled) -> LAZ."""
+def _corridor(src: str, corridor_m: float, trajectory: str):
+    """The crop corridor: ``corridor_m`` around the trajectory (every 10th position), or
+    around the centre line of the generated straight road."""
     import numpy as np
-    _import_package()
     from shapely.geometry import LineString
 
-    from roadsigns.core import ground, pointcloud
+    from roadsigns.core import pointcloud
 
-    header = pointcloud.read_header(src)
-    crop = None
-    if corridor_m > 0 and trajectory != "-":  # corridor around the vehicle's path
+    if trajectory:
         from roadsigns.core.tables import read_table
         path = read_table(trajectory, ("x", "y"), numeric=("x", "y"))
-        crop = [LineString(np.column_stack([path["x"], path["y"]])[::10]).buffer(corridor_m)]
-    elif corridor_m > 0:  # the generated straight road: corridor around its centre line
-        y_mid = 0.5 * (header.mins[1] + header.maxs[1])
-        crop = [LineString([(header.mins[0], y_mid),
-                            (header.maxs[0], y_mid)]).buffer(corridor_m)]
+        return [LineString(np.column_stack([path["x"], path["y"]])[::10]).buffer(corridor_m)]
+    header = pointcloud.read_header(src)
+    y_mid = 0.5 * (header.mins[1] + header.maxs[1])
+    return [LineString([(header.mins[0], y_mid), (header.maxs[0], y_mid)]).buffer(corridor_m)]
+
+
+def stage_ground(spec: dict) -> dict:
+    """One run: LAZ -> (corridor) -> ground -> LAZ with one engine and method."""
+    _import_package()
+    from roadsigns.core import ground
+
+    crop = _corridor(spec["src"], spec["corridor_m"], spec["trajectory"]) \
+        if spec["crop"] == "corridor" else None
+    params = ground.CsfParams(resolution=spec["cell"], threshold=spec["threshold"]) \
+        if spec["method"] == "csf" else ground.SmrfParams(cell=spec["cell"], threshold=spec["threshold"])
     t0 = time.perf_counter()
-    res = ground.run_ground_filter(src, dst, method=method, engine="builtin",
-                                   crop_polygons=crop, chunk_points=chunk_points)
-    return {"points": int(header.point_count), "points_out": res.n_output,
-            "ground": res.n_ground, "seconds": time.perf_counter() - t0,
-            "peak_rss_mb": _peak_rss_mb()}
+    res = ground.run_ground_filter(
+        spec["src"], spec["dst"], method=spec["method"],
+        engine="builtin" if spec["engine"] == "builtin" else "pdal", params=params,
+        crop_polygons=crop, reset_classes=True, chunk_points=spec["chunk_points"],
+        pdal_executable=spec["pdal_executable"] if spec["engine"] == "pdal-cli" else None)
+    seconds = time.perf_counter() - t0
+    if res.engine != spec["engine"]:
+        raise SystemExit(f"asked for {spec['engine']}, {res.engine} ran")
+    return {"points": res.n_input, "points_out": res.n_output, "ground": res.n_ground,
+            "seconds": seconds, **_usage()}
 
 
 # ----------------------------------------------------------------------------- driver
@@ -122,15 +157,66 @@ def _run_stage(args: list) -> dict:
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
+def _points(path: str):
+    """The stored X, Y, Z and the classification of a LAS/LAZ file, read in chunks."""
+    import laspy
+    import numpy as np
+
+    parts = []
+    with laspy.open(path, laz_backend=laspy.LazBackend.detect_available()) as reader:
+        for chunk in reader.chunk_iterator(1_000_000):
+            parts.append(np.column_stack([chunk.X, chunk.Y, chunk.Z, chunk.classification]))
+    return np.concatenate(parts) if parts else np.zeros((0, 4), np.int64)
+
+
+def _pdal_executable(given):
+    if given:
+        return given
+    if os.access(SHARED_PDAL, os.X_OK):
+        return SHARED_PDAL
+    if os.environ.get("ROADSIGNS_PDAL_EXECUTABLE"):
+        return os.environ["ROADSIGNS_PDAL_EXECUTABLE"]
+    _import_package()
+    from roadsigns.core.ground import find_pdal_executable
+    return find_pdal_executable()
+
+
+def _available_engines(wanted, executable):
+    engines = []
+    for engine in wanted:
+        if engine == "pdal-cli" and not executable:
+            print("pdal-cli left out: no pdal executable found")
+            continue
+        if engine == "pdal-python":
+            try:
+                import pdal
+                print(f"pdal-python: the bindings {pdal.__version__} on PDAL {pdal.info.version}")
+            except Exception as e:
+                print(f"pdal-python left out: the pdal module does not import ({e})")
+                continue
+        if engine == "pdal-cli":
+            version = subprocess.run([executable, "--version"], capture_output=True, text=True).stdout
+            found = re.search(r"pdal (\d[\w.]*)", version)
+            print(f"pdal-cli: {executable} (PDAL {found.group(1) if found else 'version unknown'})")
+        engines.append(engine)
+    return engines
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--points", type=int, default=5_000_000, help="size of the generated cloud")
     p.add_argument("--input", help="use this LAZ instead of generating one")
-    p.add_argument("--method", choices=["csf", "smrf"], default="csf")
+    p.add_argument("--methods", default=",".join(METHODS), help="csf,smrf")
+    p.add_argument("--engines", default=",".join(ENGINES), help="builtin,pdal-cli,pdal-python")
+    p.add_argument("--crops", default=",".join(CROPS), help="whole,corridor")
     p.add_argument("--corridor-m", type=float, default=12.0,
-                   help="half width of the crop corridor around the centre line (0 = no crop)")
-    p.add_argument("--trajectory", help="with --input: crop a corridor around this trajectory "
-                   "CSV (projected x, y in the cloud's CRS) instead of a straight centre line")
+                   help="half width of the crop corridor around the centre line or the trajectory")
+    p.add_argument("--trajectory", help="with --input: the corridor follows this trajectory CSV "
+                   "(projected x, y in the cloud's CRS) instead of a straight centre line")
+    p.add_argument("--threshold", type=float, default=0.2, help="ground threshold (m), the algorithm's default")
+    p.add_argument("--cell", type=float, default=0.5, help="cloth resolution / cell (m), the algorithm's default")
+    p.add_argument("--pdal-executable", help="the pdal application (default: ../shared/tools/pdal-2.9.2)")
+    p.add_argument("--no-baseline", action="store_true", help="skip the plain laspy copy")
     p.add_argument("--chunk-points", type=int, default=1_000_000)
     p.add_argument("--out-dir", default=os.path.join(HERE, "out"))
     p.add_argument("--seed", type=int, default=0)
@@ -145,7 +231,7 @@ def main(argv=None) -> int:
         elif name == "baseline":
             result = stage_baseline(rest[0], rest[1], int(rest[2]))
         else:
-            result = stage_ground(rest[0], rest[1], rest[2], float(rest[3]), int(rest[4]), rest[5])
+            result = stage_ground(json.loads(rest[0]))
         print(json.dumps(result))
         return 0
 
@@ -159,26 +245,59 @@ def main(argv=None) -> int:
             made = True
             print(f"generated {gen['points']:,} points ({gen['length_m']:.0f} m of road) "
                   f"in {gen['seconds']:.1f} s, {os.path.getsize(src) / 2**20:.0f} MiB LAZ")
-    base_out = os.path.join(args.out_dir, "baseline.laz")
-    ground_out = os.path.join(args.out_dir, f"ground_{args.method}.laz")
-    base = _run_stage(["baseline", src, base_out, str(args.chunk_points)])
-    grd = _run_stage(["ground", src, ground_out, args.method, str(args.corridor_m),
-                      str(args.chunk_points), args.trajectory or "-"])
-    n = base["points"]
-    print(f"input: {src} ({n:,} points)")
-    print(f"{'stage':<28}{'seconds':>9}{'points/s':>14}{'peak RSS MB':>13}")
-    print(f"{'laspy chunked read+write':<28}{base['seconds']:>9.1f}"
-          f"{n / base['seconds']:>14,.0f}{base['peak_rss_mb']:>13.0f}")
-    print(f"{'crop+ground ' + args.method + ' (built-in)':<28}{grd['seconds']:>9.1f}"
-          f"{n / grd['seconds']:>14,.0f}{grd['peak_rss_mb']:>13.0f}")
-    print(f"ratio ground/baseline time: {grd['seconds'] / base['seconds']:.2f}  "
-          f"(kept {grd['points_out']:,} points, {grd['ground']:,} ground)")
-    print(json.dumps({"points": n, "method": args.method, "baseline": base, "ground": grd,
-                      "ratio": grd["seconds"] / base["seconds"]}))
-    if not args.keep:
-        for path in (base_out, ground_out) + ((src,) if made else ()):
-            if os.path.exists(path):
-                os.unlink(path)
+    executable = _pdal_executable(args.pdal_executable)
+    engines = _available_engines([e for e in args.engines.split(",") if e], executable)
+    methods = [m for m in args.methods.split(",") if m]
+    crops = [c for c in args.crops.split(",") if c]
+    print(f"input: {src}; load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs")
+
+    base = None
+    if not args.no_baseline:
+        base_out = os.path.join(args.out_dir, "baseline.laz")
+        base = _run_stage(["baseline", src, base_out, str(args.chunk_points)])
+        if not args.keep:
+            os.unlink(base_out)
+        print(f"laspy chunked read + write: {base['seconds']:.1f} s, "
+              f"{base['points'] / base['seconds']:,.0f} points/s, {base['peak_rss_mb']:.0f} MB")
+
+    header = (f"{'method':<6} {'crop':<9} {'engine':<12} {'wall s':>7} {'points/s':>11} {'CPU s':>7} "
+              f"{'peak MB':>8} {'kept':>10} {'ground':>10} {'agreement':>10} {'PDAL/built-in':>14}")
+    print(header)
+    rows = []
+    for method in methods:
+        for crop in crops:
+            reference = None
+            for engine in engines:
+                dst = os.path.join(args.out_dir, f"ground_{method}_{crop}_{engine}.laz")
+                spec = {"src": src, "dst": dst, "method": method, "engine": engine, "crop": crop,
+                        "corridor_m": args.corridor_m, "trajectory": args.trajectory or "",
+                        "threshold": args.threshold, "cell": args.cell,
+                        "chunk_points": args.chunk_points, "pdal_executable": executable}
+                r = _run_stage(["ground", json.dumps(spec)])
+                r.update(method=method, crop=crop, engine=engine)
+                points = _points(dst)
+                if engine == "builtin":
+                    reference = (r, points)
+                elif reference is not None:
+                    ref, ref_points = reference
+                    same = points.shape == ref_points.shape and (points[:, :3] == ref_points[:, :3]).all()
+                    r["same_points_kept"] = bool(same)
+                    r["agreement"] = float(((points[:, 3] == 2) == (ref_points[:, 3] == 2)).mean()) \
+                        if same else None
+                    r["ratio"] = r["seconds"] / ref["seconds"]
+                if not args.keep:
+                    os.unlink(dst)
+                rows.append(r)
+                agreement = "" if engine == "builtin" else "other points" if r.get("agreement") is None \
+                    else f"{r['agreement']:.3%}"
+                ratio = "" if "ratio" not in r else f"{r['ratio']:.2f}"
+                print(f"{method:<6} {crop:<9} {engine:<12} {r['seconds']:>7.1f} "
+                      f"{r['points'] / r['seconds']:>11,.0f} {r['cpu_s']:>7.1f} {r['peak_rss_mb']:>8.0f} "
+                      f"{r['points_out']:>10,} {r['ground']:>10,} {agreement:>10} {ratio:>14}", flush=True)
+    print(json.dumps({"input": src, "threshold": args.threshold, "cell": args.cell,
+                      "corridor_m": args.corridor_m, "baseline": base, "runs": rows}))
+    if made and not args.keep:
+        os.unlink(src)
     return 0
 
 

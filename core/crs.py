@@ -7,6 +7,7 @@ y = northing or latitude, z = height.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Optional, Sequence, Tuple
 
 import numpy as np
 from pyproj import CRS, Proj, Transformer
@@ -125,3 +126,138 @@ def world_transform(source_crs, target_crs) -> WorldTransform:
         raise InputError("The target CRS {crs} is not projected: expected a projected CRS in "
                          "metres (e.g. a UTM zone)", crs=target.name)
     return WorldTransform(source, target, heights_transformed=has_vertical(target))
+
+
+# --- plausibility: positions against the CRS's area of use ------------------------------
+
+#: Margins around a CRS's area of use inside which positions are still plausible: a tenth
+#: of the area's size on each side plus this much (a drive just across a zone border).
+AREA_MARGIN_DEG = 0.5
+AREA_MARGIN_M = 10_000.0
+
+
+def _as_crs(crs, role: str = "CRS") -> CRS:
+    return crs if isinstance(crs, CRS) else parse_crs(crs, role)
+
+
+def area_of_use_lonlat(crs) -> Optional[Tuple[float, float, float, float]]:
+    """``(west, south, east, north)`` in degrees of the CRS's area of use, None if unknown."""
+    crs = _as_crs(crs)
+    area = crs.area_of_use or horizontal_crs(crs).area_of_use
+    if area is None:
+        return None
+    return float(area.west), float(area.south), float(area.east), float(area.north)
+
+
+def plausible_extent(crs) -> Optional[Tuple[float, float, float, float]]:
+    """``(xmin, ymin, xmax, ymax)`` in the CRS's own x, y (easting/northing or lon/lat) where
+    positions are plausible: its area of use with a margin. None when the CRS has no
+    area of use, or one that cannot be expressed as a box (across the antimeridian)."""
+    crs = _as_crs(crs)
+    bounds = area_of_use_lonlat(crs)
+    if bounds is None:
+        return None
+    west, south, east, north = bounds
+    h = horizontal_crs(crs)
+    if h.is_geographic:
+        if west > east:
+            return None
+        xmin, ymin, xmax, ymax, margin = west, south, east, north, AREA_MARGIN_DEG
+    elif h.is_projected:
+        try:
+            to_crs = Transformer.from_crs(h.geodetic_crs, h, always_xy=True)
+            xmin, ymin, xmax, ymax = to_crs.transform_bounds(west, south, east, north, densify_pts=21)
+        except Exception:  # PROJ cannot project the area (exotic projections): no check
+            return None
+        margin = AREA_MARGIN_M
+    else:
+        return None
+    if not (np.isfinite([xmin, ymin, xmax, ymax]).all() and xmin < xmax and ymin < ymax):
+        return None
+    dx, dy = 0.1 * (xmax - xmin) + margin, 0.1 * (ymax - ymin) + margin
+    if h.is_geographic:
+        return xmin - dx, max(ymin - dy, -90.0), xmax + dx, min(ymax + dy, 90.0)
+    return xmin - dx, ymin - dy, xmax + dx, ymax + dy
+
+
+def looks_like_lonlat(x, y) -> bool:
+    """All positions within longitude/latitude ranges (the usual mistake: lon/lat declared
+    in a projected CRS)."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    return bool(x.size and (np.abs(x) <= 360.0).all() and (np.abs(y) <= 90.0).all())
+
+
+def area_fields(crs: CRS) -> dict:
+    """Message fields naming ``crs`` and its area of use: crs, west, south, east, north."""
+    west, south, east, north = area_of_use_lonlat(crs) or (np.nan,) * 4
+    return dict(crs=crs.name, west=round(west, 2), south=round(south, 2), east=round(east, 2),
+                north=round(north, 2))
+
+
+def check_positions(crs, x, y, what: str, path: str, locations: Sequence[str]) -> None:
+    """:class:`InputError` naming the file and line of the first position (x, y in the
+    CRS's own order, ``always_xy``) that is implausible for ``crs``: not a longitude/latitude
+    for a geographic CRS, or outside the CRS's area of use (with a margin). ``what`` and
+    ``locations`` as in the readers ("Trajectory", ["line 2", ...])."""
+    crs = _as_crs(crs)
+    x, y = np.asarray(x, float).reshape(-1), np.asarray(y, float).reshape(-1)
+    if horizontal_crs(crs).is_geographic:
+        bad = np.flatnonzero(~((np.abs(y) <= 90.0) & (x >= -180.0) & (x <= 360.0)))
+        if bad.size:
+            k = int(bad[0])
+            raise InputError("{what} file {path}, {location}: x {x}, y {y} is not a longitude/latitude, "
+                             "but {crs} is a geographic CRS: are these projected coordinates? Give "
+                             "the CRS the positions are in", what=what, path=path,
+                             location=locations[k], x=round(float(x[k]), 3), y=round(float(y[k]), 3),
+                             crs=crs.name)
+    extent = plausible_extent(crs)
+    if extent is None:
+        return
+    xmin, ymin, xmax, ymax = extent
+    bad = np.flatnonzero(~((x >= xmin) & (x <= xmax) & (y >= ymin) & (y <= ymax)))
+    if not bad.size:
+        return
+    k = int(bad[0])
+    fields = dict(what=what, path=path, location=locations[k], x=round(float(x[k]), 3),
+                  y=round(float(y[k]), 3), **area_fields(crs))
+    if not horizontal_crs(crs).is_geographic and looks_like_lonlat(x, y):
+        raise InputError("{what} file {path}, {location}: x {x}, y {y} lies outside the area of use "
+                         "of {crs} (longitude {west} to {east}, latitude {south} to {north}) and "
+                         "looks like a longitude/latitude: give a geographic CRS (e.g. EPSG:4326) "
+                         "for these positions", **fields)
+    raise InputError("{what} file {path}, {location}: x {x}, y {y} lies outside the area of use of "
+                     "{crs} (longitude {west} to {east}, latitude {south} to {north}): is {crs} the "
+                     "CRS of these positions?", **fields)
+
+
+def check_extent(crs, bounds: Sequence[float], label: str) -> None:
+    """:class:`InputError` when the box ``bounds`` (xmin, ymin, xmax, ymax) of a cloud or a
+    layer (``label``: its file or name) does not lie within the area of use of ``crs``."""
+    crs = _as_crs(crs)
+    xmin, ymin, xmax, ymax = (float(v) for v in bounds[:4])
+    if not np.isfinite([xmin, ymin, xmax, ymax]).all():
+        return
+    extent = plausible_extent(crs)
+    if extent is None:
+        return
+    if xmin >= extent[0] and ymin >= extent[1] and xmax <= extent[2] and ymax <= extent[3]:
+        return
+    fields = dict(label=label, xmin=round(xmin, 3), xmax=round(xmax, 3), ymin=round(ymin, 3),
+                  ymax=round(ymax, 3), **area_fields(crs))
+    if not horizontal_crs(crs).is_geographic and looks_like_lonlat([xmin, xmax], [ymin, ymax]):
+        raise InputError("{label}: x {xmin} to {xmax}, y {ymin} to {ymax} lie outside the area of use "
+                         "of {crs} (longitude {west} to {east}, latitude {south} to {north}) and look "
+                         "like longitudes/latitudes: is {crs} the CRS of these coordinates?", **fields)
+    raise InputError("{label}: x {xmin} to {xmax}, y {ymin} to {ymax} lie outside the area of use of "
+                     "{crs} (longitude {west} to {east}, latitude {south} to {north}): is {crs} the "
+                     "CRS of these coordinates?", **fields)
+
+
+def check_metric(crs, label: str) -> None:
+    """:class:`InputError` unless ``crs`` is projected (metres), for the stages that measure
+    distances (``label``: the layer or file it belongs to)."""
+    crs = _as_crs(crs)
+    if not is_projected(crs):
+        raise InputError("{label} is in {crs}, a geographic CRS (degrees): this needs a projected CRS "
+                         "in metres, the CRS of the point cloud (e.g. a UTM zone)", label=label,
+                         crs=crs.name)

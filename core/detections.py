@@ -84,16 +84,26 @@ class Detections:
             raise InputError("The detections lack the field(s) {fields}; expected the output of "
                              "Detect signs", fields=", ".join(missing))
 
+        def number(r, name, dtype=float):
+            v = r[name]
+            if v is None or (isinstance(v, float) and math.isnan(v)):
+                raise InputError("Detection {det_id}: the field {field} is empty",
+                                 det_id=r.get("det_id"), field=name)
+            try:
+                value = float(v)
+                if not math.isfinite(value) or (dtype is not float and not (
+                        value == int(value) and abs(value) < 2 ** 62)):
+                    raise ValueError(value)
+            except (TypeError, ValueError, OverflowError):
+                raise InputError("Detection {det_id}, field {field}: expected a number, found '{value}'",
+                                 det_id=r.get("det_id"), field=name, value=str(v)[:60])
+            return int(value) if dtype is not float else value
+
         def col(name, dtype=float):
-            values = [r[name] for r in rows]
-            for r, v in zip(rows, values):
-                if v is None or (isinstance(v, float) and math.isnan(v)):
-                    raise InputError("Detection {det_id}: the field {field} is empty",
-                                     det_id=r.get("det_id"), field=name)
-            return np.asarray(values, dtype=dtype)
+            return np.asarray([number(r, name, dtype) for r in rows], dtype=dtype)
 
         def optional(name, fill):
-            return np.array([fill if r.get(name) is None else float(r[name]) for r in rows])
+            return np.array([fill if r.get(name) is None else number(r, name) for r in rows])
 
         det = cls(col("det_id", np.int64), col("station_id", np.int64),
                   [str(r["image"]) for r in rows], [str(r["class"]) for r in rows],

@@ -23,8 +23,6 @@ from __future__ import annotations
 
 import html
 import math
-import os
-import tempfile
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Sequence
 
@@ -35,6 +33,7 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 from .errors import InputError
+from .outputs import write_text_atomically
 from .tables import read_table
 
 #: Reference CSV columns (docs/formats.md order), all required; header names are case-insensitive.
@@ -125,6 +124,27 @@ def read_reference_csv(path: str) -> SignSet:
                    xyz=np.column_stack([columns["x"], columns["y"], columns["z"]]),
                    height=columns["height"], azimuth_deg=columns["azimuth"],
                    width_m=columns["width"], panel_height_m=columns["panel_height"])
+
+
+def check_overlap(signs: SignSet, reference: SignSet, match_radius_m: float, sign_label: str,
+                  reference_label: str, gap_m: float = 1000.0) -> None:
+    """:class:`InputError` when the two sets lie apart: their boxes separated by more than
+    ``gap_m`` (and the match radius). Then the scores would be 0, not because the signs are
+    wrong but because the two are not in the same CRS or area."""
+    a, b = signs.xyz[np.isfinite(signs.xyz).all(axis=1)], reference.xyz[np.isfinite(reference.xyz).all(axis=1)]
+    if not len(a) or not len(b):
+        return
+    gap = np.maximum(np.maximum(a[:, :2].min(axis=0) - b[:, :2].max(axis=0),
+                                b[:, :2].min(axis=0) - a[:, :2].max(axis=0)), 0.0)
+    if float(np.hypot(*gap)) <= gap_m + float(match_radius_m):
+        return
+    raise InputError("The signs ({signs}: x {sx0} to {sx1}, y {sy0} to {sy1}) and the reference "
+                     "{reference} (x {rx0} to {rx1}, y {ry0} to {ry1}) do not overlap: are both in the "
+                     "same CRS and the same area?", signs=sign_label, reference=reference_label,
+                     sx0=round(float(a[:, 0].min()), 1), sx1=round(float(a[:, 0].max()), 1),
+                     sy0=round(float(a[:, 1].min()), 1), sy1=round(float(a[:, 1].max()), 1),
+                     rx0=round(float(b[:, 0].min()), 1), rx1=round(float(b[:, 0].max()), 1),
+                     ry0=round(float(b[:, 1].min()), 1), ry1=round(float(b[:, 1].max()), 1))
 
 
 # --------------------------------------------------------------------------- matching
@@ -466,26 +486,9 @@ def write_html_report(result: EvaluationResult, path: str,
     """Write :func:`render_html_report` to ``path`` atomically (UTF-8).
 
     The document goes to a temporary file in the same folder which then replaces
-    ``path``, so a failure never leaves a partial report (nor the temporary file).
+    ``path`` with the user's normal permissions (0666 less the umask), so a failure never
+    leaves a partial report (nor the temporary file).
     """
     document = render_html_report(result, title=title, sign_label=sign_label,
                                   reference_label=reference_label)
-    folder = os.path.dirname(os.path.abspath(path))
-    os.makedirs(folder, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(dir=folder, prefix=".roadsigns-report-",
-                                         suffix=".tmp")
-    try:
-        with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
-            stream.write(document)
-        try:
-            mode = os.stat(path).st_mode & 0o777
-        except OSError:
-            mode = 0o644
-        os.chmod(temporary, mode)
-        os.replace(temporary, path)
-    except BaseException:
-        try:
-            os.remove(temporary)
-        except OSError:
-            pass
-        raise
+    write_text_atomically(path, document)

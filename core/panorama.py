@@ -17,19 +17,45 @@ import numpy as np
 from . import geometry
 from .errors import InputError
 
+#: The largest panorama read, in pixels: 32768 x 16384, a "32K" equirectangular panorama.
+#: Pillow refuses images over its ``MAX_IMAGE_PIXELS`` (about 179 Mpx, a guard against
+#: decompression bombs in web uploads), which 8K-16K rigs stitching at full resolution
+#: exceed (20000 x 10000 is 200 Mpx): the plugin raises Pillow's limit deliberately to this
+#: bound when it reads panoramas (never lowers it) and refuses larger images with a message.
+MAX_PANORAMA_PIXELS = 32768 * 16384
+MAX_PANORAMA_SIZE = "32768 x 16384"
+
+
+def allow_large_panoramas() -> None:
+    """Raise Pillow's decompression-bomb limit to :data:`MAX_PANORAMA_PIXELS` (process-wide)."""
+    from PIL import Image
+
+    if Image.MAX_IMAGE_PIXELS is not None and Image.MAX_IMAGE_PIXELS < MAX_PANORAMA_PIXELS:
+        Image.MAX_IMAGE_PIXELS = MAX_PANORAMA_PIXELS
+
 
 def read_image_size(path: str) -> Tuple[int, int]:
-    """``(width_px, height_px)`` from the image header; :class:`InputError` if unreadable."""
+    """``(width_px, height_px)`` from the image header; :class:`InputError` if unreadable
+    or larger than :data:`MAX_PANORAMA_PIXELS`."""
     from PIL import Image, UnidentifiedImageError
 
+    allow_large_panoramas()
     try:
         with Image.open(path) as image:
-            return int(image.size[0]), int(image.size[1])
+            width_px, height_px = int(image.size[0]), int(image.size[1])
     except FileNotFoundError:
         raise InputError("Panorama not found: {path}", path=path)
-    except (UnidentifiedImageError, OSError, ValueError) as e:
+    except Image.DecompressionBombError:
+        raise InputError("The panorama {path} has more pixels than the {limit} the plugin reads",
+                         path=path, limit=MAX_PANORAMA_SIZE)
+    except (UnidentifiedImageError, OSError, ValueError, SyntaxError, EOFError) as e:
         raise InputError("Cannot read the panorama {path}: expected a JPEG or PNG image ({error})",
                          path=path, error=str(e))
+    if width_px * height_px > MAX_PANORAMA_PIXELS:
+        raise InputError("The panorama {path} is {width} x {height} pixels, more than the {limit} the "
+                         "plugin reads", path=path, width=width_px, height=height_px,
+                         limit=MAX_PANORAMA_SIZE)
+    return width_px, height_px
 
 
 def check_equirectangular(path: str, width_px: int, height_px: int) -> None:

@@ -9,13 +9,13 @@ from __future__ import annotations
 
 import html
 import os
-import tempfile
 from typing import Dict, List, Optional, Sequence
 
 import numpy as np
 
 from . import geometry
 from .errors import SILENT, InputError, Progress
+from .outputs import write_text_atomically
 from .panorama import PerspectiveView, read_panorama
 from .schema import Field
 
@@ -102,9 +102,8 @@ def _format(name: str, value) -> str:
 
 def write_review_report(signs: Sequence[Dict], chip_paths: Sequence[str], path: str,
                         title: str = "Road signs for review") -> None:
-    """A self-contained HTML page (chips linked by relative path), written atomically."""
-    folder = os.path.dirname(os.path.abspath(path))
-    os.makedirs(folder, exist_ok=True)
+    """A self-contained HTML page (chips linked by relative path), written atomically with
+    the user's normal permissions."""
     rows = []
     for sign, chip in zip(signs, chip_paths):
         picture = ('<img src="{}" alt="sign {}" width="{}">'.format(
@@ -119,12 +118,4 @@ def write_review_report(signs: Sequence[Dict], chip_paths: Sequence[str], path: 
             " table{{font-size:.8em;border-collapse:collapse}} th{{text-align:left;padding-right:.6em}}"
             " td{{word-break:break-all}}</style></head><body><h1>{title}</h1><p>{count} signs</p>{rows}"
             "</body></html>").format(title=html.escape(title), count=len(signs), rows="".join(rows))
-    handle, temp = tempfile.mkstemp(prefix=".review-", suffix=".html", dir=folder)
-    try:
-        with os.fdopen(handle, "w", encoding="utf-8") as f:
-            f.write(page)
-        os.replace(temp, path)
-    except BaseException:
-        if os.path.exists(temp):
-            os.remove(temp)
-        raise
+    write_text_atomically(path, page)

@@ -23,7 +23,16 @@ import numpy as np
 from scipy.spatial.transform import Rotation, Slerp
 
 from . import geometry
-from .crs import WorldTransform, default_target_crs, world_transform
+from .crs import (
+    WorldTransform,
+    area_fields,
+    check_positions,
+    default_target_crs,
+    horizontal_crs,
+    parse_crs,
+    plausible_extent,
+    world_transform,
+)
 from .errors import SILENT, InputError, Message, Progress
 from .panorama import check_equirectangular, read_image_size
 from .schema import Schema, fields
@@ -122,16 +131,40 @@ class Stations:
                 if f.name != "time" and row.get(f.name) is None:
                     raise InputError("{layer}: station {station} has no value in the field {field}; "
                                      "expected the output of Import trajectory", layer=layer,
-                                     station=row.get("station_id", "?"), field=f.name)
+                                     station=_station_label(row), field=f.name)
+
+        def number(row, name, integer=False):
+            try:
+                value = float(row[name])
+                if not math.isfinite(value) or (integer and (value != int(value) or abs(value) >= 2 ** 53)):
+                    raise ValueError(value)
+                return value
+            except (TypeError, ValueError, OverflowError):
+                raise InputError("{layer}: station {station}, field {field}: expected a finite number, "
+                                 "found '{value}'; expected the output of Import trajectory", layer=layer,
+                                 station=_station_label(row), field=name, value=str(row[name])[:60])
 
         def col(names, dtype=float):
-            return np.array([[r[n] for n in names] for r in rows], dtype=dtype).reshape(len(rows), len(names))
+            return np.array([[number(r, n, dtype is not float) for n in names] for r in rows],
+                            dtype=dtype).reshape(len(rows), len(names))
 
-        time_s = np.array([np.nan if r["time"] is None else float(r["time"]) for r in rows])
+        time_s = np.array([np.nan if r["time"] is None else number(r, "time") for r in rows])
+        q = col(("qw", "qx", "qy", "qz"))
+        with np.errstate(over="ignore"):  # a huge value gives an infinite norm: refused below
+            norm = np.linalg.norm(q, axis=1)
+        bad = np.flatnonzero(np.abs(norm - 1.0) > 1e-3)
+        if bad.size:
+            raise InputError("{layer}: station {station}: the quaternion qw, qx, qy, qz has norm {norm:.4f}, "
+                             "not 1; expected the output of Import trajectory", layer=layer,
+                             station=_station_label(rows[int(bad[0])]), norm=float(norm[bad[0]]))
         return cls([str(r["image"]) for r in rows], [str(r["path"]) for r in rows], time_s,
-                   col(("x", "y", "z")), col(("qw", "qx", "qy", "qz")), col(("heading",))[:, 0],
+                   col(("x", "y", "z")), q, col(("heading",))[:, 0],
                    col(("width",), np.int64)[:, 0], col(("height",), np.int64)[:, 0],
                    col(("station_id",), np.int64)[:, 0])
+
+
+def _station_label(row: Dict) -> str:
+    return "?" if row.get("station_id") is None else str(row["station_id"])
 
 
 #: The stations layer (PointZ at the panorama centre), one row per :class:`Stations` row.
@@ -199,6 +232,12 @@ def read_sbet(path: str) -> Trajectory:
     if np.abs(lat).max() > np.pi / 2 or np.abs(lon).max() > 2 * np.pi:
         raise InputError("SBET file {path}: latitude/longitude out of range for radians: "
                          "not an SBET, or wrong byte order", path=path)
+    angles = np.abs(np.column_stack([roll, pitch, platform_heading, wander]))
+    bad = np.flatnonzero((angles > 4 * np.pi).any(axis=1) | (np.abs(alt) > 1e5))
+    if bad.size:
+        raise InputError("SBET file {path}, record {record}: roll, pitch, heading or wander out of range "
+                         "for radians, or the height beyond 100 km: not an SBET, or wrong byte order",
+                         path=path, record=int(bad[0]) + 1)
     heading_true_deg = np.mod(np.degrees(platform_heading - wander), 360.0)
     locations = ["record {}".format(i + 1) for i in range(len(t))]
     trajectory = Trajectory(t, np.degrees(lon), np.degrees(lat), alt, np.degrees(roll),
@@ -254,6 +293,8 @@ class BodyPoses:
     z1: np.ndarray
     weight1: np.ndarray  # position = (1 - w) * p0 + w * p1
     rotation_ned_from_body_true: Rotation
+    #: where each pose came from, for messages ("line 12"); empty when interpolated
+    locations: List[str] = field(default_factory=list)
 
 
 def interpolate_at(trajectory: Trajectory, names: List[str], times_s: np.ndarray,
@@ -319,7 +360,8 @@ def read_poses(path: str) -> BodyPoses:
         [table["heading"], table["pitch"], table["roll"]]), degrees=True)
     zeros = np.zeros(n)
     return BodyPoses(names, time_s, table["x"], table["y"], table["z"],
-                     table["x"], table["y"], table["z"], zeros, rotation)
+                     table["x"], table["y"], table["z"], zeros, rotation,
+                     ["line {}".format(line) for line in table["_line"]])
 
 
 # --- stations --------------------------------------------------------------------------------
@@ -389,6 +431,7 @@ def import_stations(images_dir: str, target_crs=None, trajectory_crs=None,
                              "not both")
         poses = read_poses(poses_path)
         source_crs = trajectory_crs
+        _check_source_positions(source_crs, poses.x0, poses.y0, "Poses", poses_path, poses.locations)
         progress.report(0.2)
     else:
         if not trajectory_path or not image_times_path:
@@ -401,6 +444,8 @@ def import_stations(images_dir: str, target_crs=None, trajectory_crs=None,
                                     "{count} records", count=len(trajectory)))
         else:
             source_crs = trajectory_crs
+            _check_source_positions(source_crs, trajectory.x, trajectory.y, "Trajectory",
+                                    trajectory_path, trajectory.locations)
             messages.append(Message("Trajectory: {count} samples over {span:.1f} s",
                                     count=len(trajectory),
                                     span=trajectory.time_s[-1] - trajectory.time_s[0]))
@@ -423,6 +468,7 @@ def import_stations(images_dir: str, target_crs=None, trajectory_crs=None,
                          count=len(poses.image), folder=images_dir)
     poses = _select(poses, keep)
     C_pano_world, R_world_from_pano, heading_deg = stations_from_body_poses(poses, transform, mount)
+    check_target_positions(poses.image, C_pano_world, transform.target)
     progress.report(1.0)
     stations = Stations(poses.image, paths, poses.time_s, C_pano_world,
                         geometry.quat_wxyz_from_matrix(R_world_from_pano), heading_deg,
@@ -433,4 +479,30 @@ def import_stations(images_dir: str, target_crs=None, trajectory_crs=None,
 def _select(poses: BodyPoses, keep: np.ndarray) -> BodyPoses:
     return BodyPoses([poses.image[k] for k in keep], poses.time_s[keep], poses.x0[keep],
                      poses.y0[keep], poses.z0[keep], poses.x1[keep], poses.y1[keep],
-                     poses.z1[keep], poses.weight1[keep], poses.rotation_ned_from_body_true[keep])
+                     poses.z1[keep], poses.weight1[keep], poses.rotation_ned_from_body_true[keep],
+                     [poses.locations[k] for k in keep] if poses.locations else [])
+
+
+def _check_source_positions(source_crs, x, y, what: str, path: str, locations: Sequence[str]) -> None:
+    """The positions of a trajectory or pose file must be plausible in the CRS declared for
+    them (lon/lat declared as a projected CRS lands a drive near the CRS's origin)."""
+    crs = parse_crs(source_crs, "trajectory CRS")
+    check_positions(crs, x, y, what, path, locations or ["line ?"] * len(np.atleast_1d(x)))
+
+
+def check_target_positions(image: Sequence[str], xyz_world: np.ndarray, target_crs) -> None:
+    """:class:`InputError` when panorama centres fall outside the target CRS's area of use
+    (the target CRS of another region, whose projection distorts them badly)."""
+    target = target_crs if not isinstance(target_crs, str) else parse_crs(target_crs, "target CRS")
+    extent = plausible_extent(target)
+    if extent is None or len(xyz_world) == 0:
+        return
+    x, y = xyz_world[:, 0], xyz_world[:, 1]
+    bad = np.flatnonzero(~((x >= extent[0]) & (x <= extent[2]) & (y >= extent[1]) & (y <= extent[3])))
+    if bad.size:
+        k = int(bad[0])
+        raise InputError("Panorama {image}: its position x {x}, y {y} in the target CRS lies outside the "
+                         "area of use of {crs} (longitude {west} to {east}, latitude {south} to "
+                         "{north}): choose the target CRS of the drive's region (e.g. its UTM zone)",
+                         image=image[k], x=round(float(x[k]), 3), y=round(float(y[k]), 3),
+                         **area_fields(horizontal_crs(target)))

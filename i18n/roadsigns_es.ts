@@ -9,17 +9,17 @@
         <translation>Inventario de señales viales</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="42" />
+        <location filename="../algorithms/evaluate.py" line="52" />
         <source>{layer}: no field 'class'; fields found: {found}</source>
         <translation>{layer}: no hay campo 'class'; campos encontrados: {found}</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="49" />
+        <location filename="../algorithms/layers.py" line="59" />
         <source>{layer}: missing field(s) {missing}; fields found: {found}</source>
         <translation>{layer}: falta(n) el/los campo(s) {missing}; campos encontrados: {found}</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="84" />
+        <location filename="../algorithms/layers.py" line="172" />
         <source>{layer} is in {layer_crs}, the point cloud {cloud} in {cloud_crs}: import the trajectory with the cloud's CRS as target CRS so that every stage works in one CRS</source>
         <translation>{layer} está en {layer_crs} y la nube de puntos {cloud} en {cloud_crs}: importe la trayectoria con el SRC de la nube como SRC de destino para que todas las etapas trabajen en un mismo SRC</translation>
     </message>
@@ -58,6 +58,46 @@
         <source>other</source>
         <translation>otras</translation>
     </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="65" />
+        <source>{layer}: cannot reproject feature {feature}: {error}</source>
+        <translation>{layer}: no se puede reproyectar la entidad {feature}: {error}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="79" />
+        <source>{layer}: sign '{sign_id}' has no valid x, y, z position (no point geometry, and no numbers in the fields x, y, z)</source>
+        <translation>{layer}: la señal '{sign_id}' no tiene una posición x, y, z válida (ni geometría de punto ni números en los campos x, y, z)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/layers.py" line="72" />
+        <source>{layer}, feature {feature}: the field {field} holds '{value}', not a number</source>
+        <translation>{layer}, entidad {feature}: el campo {field} contiene '{value}', no un número</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/layers.py" line="78" />
+        <source>{layer}: the layer has no feature, nothing to process</source>
+        <translation>{layer}: la capa no tiene entidades, no hay nada que procesar</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/layers.py" line="98" />
+        <source>Cannot write feature {} to the output layer: {}</source>
+        <translation>No se puede escribir la entidad {} en la capa de salida: {}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/layers.py" line="123" />
+        <source>{layer} is in {crs}, a geographic CRS (degrees): this needs a projected CRS in metres, the CRS of the point cloud (e.g. a UTM zone)</source>
+        <translation>{layer} está en {crs}, un SRC geográfico (grados): esto necesita un SRC proyectado en metros, el SRC de la nube de puntos (p. ej. una zona UTM)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/layers.py" line="157" />
+        <source>The point cloud {cloud} has no coordinate reference system: give it as Cloud CRS (an advanced parameter; a CRS is never guessed)</source>
+        <translation>La nube de puntos {cloud} no tiene sistema de referencia de coordenadas: indíquelo en SRC de la nube (un parámetro avanzado; el SRC nunca se adivina)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/layers.py" line="167" />
+        <source>The point cloud {cloud} has no coordinate reference system: give it one with Ground filter (parameter Cloud CRS); a CRS is never guessed</source>
+        <translation>La nube de puntos {cloud} no tiene sistema de referencia de coordenadas: asígnele uno con Filtro de suelo (parámetro SRC de la nube); el SRC nunca se adivina</translation>
+    </message>
 </context>
 <context>
     <name>DetectSigns</name>
@@ -77,7 +117,7 @@
         <translation>Corta el panorama equirrectangular de cada estación en vistas en perspectiva superpuestas (un anillo horizontal y un anillo hacia arriba para las señales elevadas), ejecuta el detector ONNX en cada vista, devuelve los recuadros a píxeles del panorama y fusiona la misma señal encontrada en dos vistas.&lt;br&gt;&lt;br&gt;El &lt;b&gt;modelo&lt;/b&gt; es el incluido si se deja vacío, o su propia exportación ONNX: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) o un modelo con NMS integrado ([1, N, 6]). Los nombres de clase provienen de los metadatos del modelo (&lt;i&gt;names&lt;/i&gt; de Ultralytics) o de un archivo de etiquetas (un nombre por línea).&lt;br&gt;&lt;br&gt;Salida: una línea por detección desde el centro del panorama a lo largo del rayo que pasa por el centro del recuadro, de &lt;i&gt;Longitud del rayo&lt;/i&gt; de largo, con el recuadro (u0, v0, u1, v1 en píxeles del panorama; a través de la costura de ±180°, u1 supera el ancho) y la pose de la estación. Un panorama que no se puede leer se omite con una advertencia y se contabiliza.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="113" />
+        <location filename="../algorithms/detectsigns.py" line="115" />
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
@@ -187,558 +227,689 @@
         <translation>Panoramas omitidos</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="107" />
+        <location filename="../algorithms/detectsigns.py" line="108" />
         <source>ONNX model not found: {}</source>
         <translation>No se encontró el modelo ONNX: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="120" />
+        <location filename="../algorithms/detectsigns.py" line="122" />
         <source>{} panoramas, {} views each</source>
         <translation>{} panoramas, {} vistas cada uno</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="125" />
+        <location filename="../algorithms/detectsigns.py" line="127" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>Se omitieron {} panorama(s) que no se pudieron leer.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="136" />
+        <location filename="../algorithms/detectsigns.py" line="140" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} detecciones en {} panoramas ({} omitidos).</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="132" />
+        <source>No sign was detected: the detections layer is empty.</source>
+        <translation>No se detectó ninguna señal: la capa de detecciones está vacía.</translation>
     </message>
 </context>
 <context>
     <name>Evaluate</name>
     <message>
-        <location filename="../algorithms/evaluate.py" line="79" />
+        <location filename="../algorithms/evaluate.py" line="97" />
         <source>Evaluate signs against reference</source>
         <translation>Evaluar señales frente a la referencia</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="82" />
+        <location filename="../algorithms/evaluate.py" line="100" />
         <source>Scores a sign layer against reference sign panels and writes an HTML report.</source>
         <translation>Puntúa una capa de señales frente a paneles de referencia y escribe un informe HTML.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="85" />
+        <location filename="../algorithms/evaluate.py" line="103" />
         <source>Matches each sign to at most one reference panel by optimal assignment (Hungarian method) on the 3D distance between panel centres, within the match radius and ignoring class, then reports precision (matches / signs), recall (matches / reference panels), F1, the class accuracy of the matches, and the median and 95th percentile position error, the median height error and the median azimuth error.&lt;br&gt;&lt;br&gt;The &lt;b&gt;reference&lt;/b&gt; is a CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt; in the sign layer's CRS, or a point layer with those fields (reprojected to the sign layer's CRS).&lt;br&gt;&lt;br&gt;The HTML report has the summary and one row per sign: matched (with its errors), missed or false.</source>
         <translation>Empareja cada señal con como máximo un panel de referencia mediante asignación óptima (método húngaro) según la distancia 3D entre los centros de los paneles, dentro del radio de emparejamiento y sin tener en cuenta la clase; después informa de la precisión (emparejamientos / señales), la exhaustividad (emparejamientos / paneles de referencia), F1, la exactitud de clase de los emparejamientos, la mediana y el percentil 95 del error de posición, la mediana del error de altura y la mediana del error de acimut.&lt;br&gt;&lt;br&gt;La &lt;b&gt;referencia&lt;/b&gt; es un CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt; en el SRC de la capa de señales, o una capa de puntos con esos campos (reproyectada al SRC de la capa de señales).&lt;br&gt;&lt;br&gt;El informe HTML contiene el resumen y una fila por señal: emparejada (con sus errores), no detectada o falsa.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="99" />
+        <location filename="../algorithms/evaluate.py" line="117" />
         <source>True positives (matched signs)</source>
         <translation>Verdaderos positivos (señales emparejadas)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="99" />
+        <location filename="../algorithms/evaluate.py" line="117" />
         <source>False positives (unmatched signs)</source>
         <translation>Falsos positivos (señales sin pareja)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="100" />
+        <location filename="../algorithms/evaluate.py" line="118" />
         <source>False negatives (missed reference panels)</source>
         <translation>Falsos negativos (paneles de referencia no detectados)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="100" />
+        <location filename="../algorithms/evaluate.py" line="118" />
         <source>Precision</source>
         <translation>Precisión</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="101" />
+        <location filename="../algorithms/evaluate.py" line="119" />
         <source>Recall</source>
         <translation>Exhaustividad (recall)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="101" />
+        <location filename="../algorithms/evaluate.py" line="119" />
         <source>F1 score</source>
         <translation>Puntuación F1</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="102" />
+        <location filename="../algorithms/evaluate.py" line="120" />
         <source>Class accuracy of matches</source>
         <translation>Exactitud de clase de los emparejamientos</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="103" />
+        <location filename="../algorithms/evaluate.py" line="121" />
         <source>Median 3D position error (m)</source>
         <translation>Mediana del error de posición 3D (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="104" />
+        <location filename="../algorithms/evaluate.py" line="122" />
         <source>95th percentile 3D error (m)</source>
         <translation>Percentil 95 del error 3D (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="105" />
+        <location filename="../algorithms/evaluate.py" line="123" />
         <source>Median height error (m)</source>
         <translation>Mediana del error de altura (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="106" />
+        <location filename="../algorithms/evaluate.py" line="124" />
         <source>Median azimuth error (°)</source>
         <translation>Mediana del error de acimut (°)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="107" />
+        <location filename="../algorithms/evaluate.py" line="125" />
         <source>Median horizontal position error (m)</source>
         <translation>Mediana del error de posición horizontal (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="108" />
+        <location filename="../algorithms/evaluate.py" line="126" />
         <source>Median vertical position error (m)</source>
         <translation>Mediana del error de posición vertical (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="157" />
+        <location filename="../algorithms/evaluate.py" line="183" />
         <source>Sign layer</source>
         <translation>Capa de señales</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="112" />
+        <location filename="../algorithms/evaluate.py" line="130" />
         <source>The sign layer to score (PointZ at the panel centres, e.g. the output of Refine signs), with the fields sign_id, class and optionally height, azimuth, best_image.</source>
         <translation>La capa de señales que se puntúa (PointZ en los centros de los paneles, p. ej. la salida de «Refinar y fusionar señales»), con los campos sign_id, class y opcionalmente height, azimuth, best_image.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="116" />
+        <location filename="../algorithms/evaluate.py" line="134" />
         <source>Reference signs (CSV or point layer)</source>
         <translation>Señales de referencia (CSV o capa de puntos)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="116" />
+        <location filename="../algorithms/evaluate.py" line="134" />
         <source>Ground truth: a CSV sign_id,class,x,y,z,height,width,panel_height,azimuth in the sign layer's CRS, or a point layer with those fields (reprojected if its CRS differs).</source>
         <translation>Verdad de terreno: un CSV sign_id,class,x,y,z,height,width,panel_height,azimuth en el SRC de la capa de señales, o una capa de puntos con esos campos (reproyectada si su SRC es distinto).</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="116" />
+        <location filename="../algorithms/evaluate.py" line="134" />
         <source>Reference signs (*.csv *.txt *.gpkg *.shp *.geojson);;All files (*.*)</source>
         <translation>Señales de referencia (*.csv *.txt *.gpkg *.shp *.geojson);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="121" />
+        <location filename="../algorithms/evaluate.py" line="139" />
         <source>Match radius (m)</source>
         <translation>Radio de emparejamiento (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="121" />
+        <location filename="../algorithms/evaluate.py" line="139" />
         <source>A sign and a reference panel farther apart than this (3D distance between panel centres, metres) are never matched.</source>
         <translation>Una señal y un panel de referencia separados más que esto (distancia 3D entre los centros de los paneles, en metros) nunca se emparejan.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="125" />
+        <location filename="../algorithms/evaluate.py" line="143" />
         <source>Evaluation report</source>
         <translation>Informe de evaluación</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="125" />
+        <location filename="../algorithms/evaluate.py" line="143" />
         <source>HTML files (*.html)</source>
         <translation>Archivos HTML (*.html)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="125" />
+        <location filename="../algorithms/evaluate.py" line="143" />
         <source>HTML report: the summary and one row per sign and reference panel.</source>
         <translation>Informe HTML: el resumen y una fila por señal y por panel de referencia.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="134" />
+        <location filename="../algorithms/evaluate.py" line="152" />
         <source>Reference file not found: {}</source>
         <translation>No se encontró el archivo de referencia: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="136" />
+        <location filename="../algorithms/evaluate.py" line="154" />
         <source>Reference CSV {}: coordinates taken in the sign layer's CRS ({})</source>
         <translation>CSV de referencia {}: coordenadas tomadas en el SRC de la capa de señales ({})</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="142" />
+        <location filename="../algorithms/evaluate.py" line="165" />
         <source>Cannot read the reference {}: expected a CSV or a point layer</source>
         <translation>No se puede leer la referencia {}: se esperaba un CSV o una capa de puntos</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="146" />
+        <location filename="../algorithms/evaluate.py" line="169" />
         <source>Reprojecting the reference from {} to {}</source>
         <translation>Reproyectando la referencia de {} a {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="160" />
+        <location filename="../algorithms/evaluate.py" line="186" />
         <source>The sign layer is empty: nothing to evaluate.</source>
         <translation>La capa de señales está vacía: no hay nada que evaluar.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="164" />
+        <location filename="../algorithms/evaluate.py" line="190" />
         <source>The reference {} has no sign: nothing to evaluate against.</source>
         <translation>La referencia {} no tiene ninguna señal: no hay nada con qué comparar.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="169" />
+        <location filename="../algorithms/evaluate.py" line="196" />
         <source>Road sign evaluation</source>
         <translation>Evaluación de señales viales</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="176" />
+        <location filename="../algorithms/evaluate.py" line="203" />
         <source>{} signs, {} reference panels: TP {}, FP {}, FN {}; precision {}, recall {}, median error {} m</source>
         <translation>{} señales, {} paneles de referencia: TP {}, FP {}, FN {}; precisión {}, exhaustividad {}, mediana del error {} m</translation>
     </message>
 </context>
 <context>
+    <name>FindSignsInCloud</name>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="24" />
+        <source>Find signs in the point cloud (no images)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="27" />
+        <source>Finds retro-reflective sign panels and their poles in the LiDAR cloud alone, and flags faded sheeting.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="31" />
+        <source>Finds sign panels from the point cloud alone, after the Utah I-15 mobile-LiDAR method (Ai and Tsai): the drive's track (the panorama stations) locates every point along the road; points above the ground (class 2) and beside or above the road are kept; their intensity is normalised for range and incidence angle; a threshold adapted to the cloud (stated in the log) picks the retro-reflective sheeting; planar clusters of sign size and shape at sign heights become panels, each with the pole or gantry that carries it. The cloud is read once and worked through in windows of drive, so memory does not grow with the drive.&lt;br&gt;&lt;br&gt;Outputs: the sign panels (PointZ at the panel centre: size, face normal and azimuth, height above the ground, intensity statistics, the retroreflectivity index and a &lt;b&gt;condition&lt;/b&gt; of good, check or poor), their outlines (PolygonZ), and the poles (sign poles, light poles, gantry posts: foot, height, diameter, lean and the signs each carries).&lt;br&gt;&lt;br&gt;&lt;b&gt;Condition&lt;/b&gt; is a screening flag, not a measurement: the retroreflectivity index is the median normalised intensity of the panel's face, compared with the drive's own healthy signs. It is not the coefficient of retroreflection of the MUTCD (observation angle 0.2°, entrance angle −4°): confirm flagged signs in the field. The cloud needs an intensity dimension and ground points (run Ground filter first).</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="50" />
+        <source>Ground-classified point cloud (LAS/LAZ)</source>
+        <translation>Nube de puntos con suelo clasificado (LAS/LAZ)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="50" />
+        <source>The cloud with ground as class 2 (the output of Ground filter) and an intensity dimension, in the stations' CRS.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="88" />
+        <source>Panorama stations</source>
+        <translation>Estaciones de panorama</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="54" />
+        <source>The output of Import trajectory: the drive's track (positions and times).</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="57" />
+        <source>Corridor half-width (m)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="57" />
+        <source>Signs are searched this far to each side of the track, in metres.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="61" />
+        <source>Sign panels found in the cloud</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="61" />
+        <source>PointZ layer, one point per panel centre, with its size, face normal and azimuth, heights, intensity statistics, retroreflectivity index, condition and support.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="65" />
+        <source>Panel outlines</source>
+        <translation>Contornos de los paneles</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="65" />
+        <source>PolygonZ layer of each panel's rectangle in its plane.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="68" />
+        <source>Poles</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="68" />
+        <source>PointZ layer, one point per pole foot: kind (sign_pole, light_pole, gantry, other), height, diameter, lean and the ids of the signs it carries.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="72" />
+        <source>Sign panels found</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="73" />
+        <source>Poles found</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="87" />
+        <source>The stations</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="119" />
+        <source>{} sign panels and {} poles found in the cloud.</source>
+        <translation type="unfinished" />
+    </message>
+</context>
+<context>
     <name>GroundFilter</name>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="53" />
+        <location filename="../algorithms/groundfilter.py" line="54" />
         <source>Ground filter and crop point cloud</source>
         <translation>Filtro de suelo y recorte de nube de puntos</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="56" />
+        <location filename="../algorithms/groundfilter.py" line="57" />
         <source>Crops a LAS/LAZ cloud and classifies ground (class 2) with CSF or SMRF, PDAL or built-in.</source>
         <translation>Recorta una nube LAS/LAZ y clasifica el suelo (clase 2) con CSF o SMRF, mediante PDAL o el motor integrado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="60" />
+        <location filename="../algorithms/groundfilter.py" line="61" />
         <source>Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless &lt;i&gt;Reset existing classes&lt;/i&gt; is checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are written unchanged.&lt;br&gt;&lt;br&gt;&lt;b&gt;Crop&lt;/b&gt;: polygons (grown by the crop buffer), or points and lines such as the panorama stations or detection rays, buffered into a corridor. The crop layer is reprojected to the cloud's CRS.&lt;br&gt;&lt;br&gt;&lt;b&gt;Engine&lt;/b&gt;: PDAL runs filters.csf / filters.smrf through its Python bindings or the &lt;i&gt;pdal&lt;/i&gt; executable (on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign inventory); the built-in engine runs the same filters in Python, tile by tile, so clouds larger than memory work. Auto uses PDAL when present and falls back to the built-in engine if PDAL fails, saying so in the log.</source>
         <translation>Lee la nube LAS/LAZ por bloques, conserva los puntos dentro del área de recorte y clasifica los puntos de suelo como clase 2 con el filtro de simulación de tela (CSF, Zhang et al. 2016) o el filtro morfológico simple (SMRF, Pingel et al. 2013), con los parámetros de PDAL (valores por defecto ajustados para nubes densas de cartografía móvil: umbral de 0,2 m, celdas de 0,5 m; los de PDAL son 0,5 m y 1 m). Las demás clases se conservan salvo que se marque &lt;i&gt;Restablecer las clases existentes&lt;/i&gt;. Todas las dimensiones, los bytes extra, los VLR, las escalas y desplazamientos y el SRC se escriben sin cambios.&lt;br&gt;&lt;br&gt;&lt;b&gt;Recorte&lt;/b&gt;: polígonos (ampliados con el búfer de recorte), o puntos y líneas como las estaciones de panorama o los rayos de detección, convertidos en un corredor mediante un búfer. La capa de recorte se reproyecta al SRC de la nube.&lt;br&gt;&lt;br&gt;&lt;b&gt;Motor&lt;/b&gt;: PDAL ejecuta filters.csf / filters.smrf mediante sus enlaces de Python o el ejecutable &lt;i&gt;pdal&lt;/i&gt; (en el PATH, en la carpeta bin de QGIS o configurado en Procesos ▸ Opciones ▸ Proveedores ▸ Inventario de señales viales); el motor integrado ejecuta los mismos filtros en Python, tesela a tesela, por lo que funciona con nubes más grandes que la memoria. Automático usa PDAL si está presente y recurre al motor integrado si PDAL falla, indicándolo en el registro.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="77" />
+        <location filename="../algorithms/groundfilter.py" line="78" />
         <source>Point cloud (LAS/LAZ)</source>
         <translation>Nube de puntos (LAS/LAZ)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="77" />
+        <location filename="../algorithms/groundfilter.py" line="78" />
         <source>The mobile-mapping cloud, LAS 1.2-1.4 or LAZ, any size (it is read in chunks).</source>
         <translation>La nube de cartografía móvil, LAS 1.2-1.4 o LAZ, de cualquier tamaño (se lee por bloques).</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="80" />
+        <location filename="../algorithms/groundfilter.py" line="81" />
         <source>Crop layer (optional)</source>
         <translation>Capa de recorte (opcional)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="80" />
+        <location filename="../algorithms/groundfilter.py" line="81" />
         <source>Keep only points inside these polygons, or within the crop buffer of these points or lines (e.g. the panorama stations). Empty keeps the whole cloud.</source>
         <translation>Conserva solo los puntos dentro de estos polígonos, o dentro del búfer de recorte de estos puntos o líneas (p. ej. las estaciones de panorama). Vacío conserva la nube entera.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="84" />
+        <location filename="../algorithms/groundfilter.py" line="85" />
         <source>Crop buffer (m)</source>
         <translation>Búfer de recorte (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="84" />
+        <location filename="../algorithms/groundfilter.py" line="85" />
         <source>Grow the crop geometries by this many metres; needed (&gt; 0) for a point or line layer.</source>
         <translation>Amplía las geometrías de recorte en estos metros; necesario (&gt; 0) para una capa de puntos o de líneas.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="88" />
+        <location filename="../algorithms/groundfilter.py" line="89" />
         <source>Ground method</source>
         <translation>Método de suelo</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="88" />
+        <location filename="../algorithms/groundfilter.py" line="89" />
         <source>CSF (cloth simulation)</source>
         <translation>CSF (simulación de tela)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="88" />
+        <location filename="../algorithms/groundfilter.py" line="89" />
         <source>SMRF (simple morphological filter)</source>
         <translation>SMRF (filtro morfológico simple)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="88" />
+        <location filename="../algorithms/groundfilter.py" line="89" />
         <source>CSF suits roads and gentle terrain; SMRF suits steeper or rougher terrain.</source>
         <translation>CSF es adecuado para calles y terreno suave; SMRF, para terreno más empinado o accidentado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="92" />
+        <location filename="../algorithms/groundfilter.py" line="93" />
         <source>Engine</source>
         <translation>Motor</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="92" />
+        <location filename="../algorithms/groundfilter.py" line="93" />
         <source>Auto (PDAL when available, else built-in)</source>
         <translation>Automático (PDAL si está disponible; si no, el integrado)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="92" />
+        <location filename="../algorithms/groundfilter.py" line="93" />
         <source>PDAL</source>
         <translation>PDAL</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="92" />
+        <location filename="../algorithms/groundfilter.py" line="93" />
         <source>Built-in</source>
         <translation>Integrado</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="92" />
+        <location filename="../algorithms/groundfilter.py" line="93" />
         <source>Auto: PDAL when QGIS has it (Python bindings or the pdal executable), else built-in.</source>
         <translation>Automático: PDAL cuando QGIS lo tiene (enlaces de Python o el ejecutable pdal); si no, el integrado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="97" />
+        <location filename="../algorithms/groundfilter.py" line="98" />
         <source>Ground distance threshold (m)</source>
         <translation>Umbral de distancia al suelo (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="97" />
+        <location filename="../algorithms/groundfilter.py" line="98" />
         <source>Points within this height of the ground surface are ground (PDAL's threshold option). PDAL's default is 0.5 m; 0.2 m suits dense mobile-mapping clouds, where it keeps the lowest parts of cars, walls and street furniture off the ground class.</source>
         <translation>Los puntos a menos de esta altura de la superficie del suelo son suelo (opción threshold de PDAL). El valor por defecto de PDAL es 0,5 m; 0,2 m es adecuado para nubes densas de cartografía móvil, en las que deja fuera de la clase suelo las partes más bajas de coches, muros y mobiliario urbano.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="103" />
+        <location filename="../algorithms/groundfilter.py" line="104" />
         <source>Cloth resolution / cell size (m)</source>
         <translation>Resolución de la tela / tamaño de celda (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="103" />
+        <location filename="../algorithms/groundfilter.py" line="104" />
         <source>CSF's cloth resolution or SMRF's cell size, in metres (PDAL's default: 1 m).</source>
         <translation>Resolución de la tela de CSF o tamaño de celda de SMRF, en metros (valor por defecto de PDAL: 1 m).</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="107" />
+        <location filename="../algorithms/groundfilter.py" line="108" />
         <source>Cloud CRS (when the file has none)</source>
         <translation>SRC de la nube (si el archivo no tiene)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="107" />
+        <location filename="../algorithms/groundfilter.py" line="108" />
         <source>The cloud's CRS if the file does not record one; a CRS in the file is replaced by it. The CRS is never guessed.</source>
         <translation>El SRC de la nube si el archivo no registra ninguno; un SRC presente en el archivo se sustituye por este. El SRC nunca se adivina.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="111" />
+        <location filename="../algorithms/groundfilter.py" line="112" />
         <source>Reset existing classes</source>
         <translation>Restablecer las clases existentes</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="111" />
+        <location filename="../algorithms/groundfilter.py" line="112" />
         <source>Set every non-ground point to class 1 (unclassified) instead of keeping its class.</source>
         <translation>Asigna la clase 1 (sin clasificar) a todos los puntos que no son suelo en lugar de conservar su clase.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="115" />
+        <location filename="../algorithms/groundfilter.py" line="116" />
         <source>Ground-classified cloud</source>
         <translation>Nube con suelo clasificado</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="115" />
+        <location filename="../algorithms/groundfilter.py" line="116" />
         <source>LAZ (*.laz);;LAS (*.las)</source>
         <translation>LAZ (*.laz);;LAS (*.las)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="115" />
+        <location filename="../algorithms/groundfilter.py" line="116" />
         <source>The cropped cloud with ground as class 2; LAZ or LAS by the file extension.</source>
         <translation>La nube recortada con el suelo como clase 2; LAZ o LAS según la extensión del archivo.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="118" />
+        <location filename="../algorithms/groundfilter.py" line="119" />
         <source>Engine that ran</source>
         <translation>Motor utilizado</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="119" />
+        <location filename="../algorithms/groundfilter.py" line="120" />
         <source>Points read</source>
         <translation>Puntos leídos</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="120" />
+        <location filename="../algorithms/groundfilter.py" line="121" />
         <source>Points written</source>
         <translation>Puntos escritos</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="121" />
+        <location filename="../algorithms/groundfilter.py" line="122" />
         <source>Ground points</source>
         <translation>Puntos de suelo</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="129" />
+        <location filename="../algorithms/groundfilter.py" line="132" />
         <source>The crop layer holds points or lines: give a crop buffer in metres (&gt; 0) to make a corridor around them</source>
         <translation>La capa de recorte contiene puntos o líneas: indique un búfer de recorte en metros (&gt; 0) para formar un corredor a su alrededor</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="134" />
+        <location filename="../algorithms/groundfilter.py" line="137" />
         <source>Reprojecting the crop layer from {} to {}</source>
         <translation>Reproyectando la capa de recorte de {} a {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="152" />
-        <source>PDAL failed: {}
-{}</source>
-        <translation>PDAL falló: {}
-{}</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/groundfilter.py" line="186" />
+        <location filename="../algorithms/groundfilter.py" line="225" />
         <source>Engine: {}; method: {}; {} points read, {} written, {} ground</source>
         <translation>Motor: {}; método: {}; {} puntos leídos, {} escritos, {} de suelo</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="143" />
+        <source>Cancelled: nothing was written.</source>
+        <translation>Cancelado: no se escribió nada.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="152" />
+        <source>The crop layer {} has no feature: nothing to crop by. Leave the crop layer empty to process the whole cloud</source>
+        <translation>La capa de recorte {} no tiene entidades: no hay nada con qué recortar. Deje vacía la capa de recorte para procesar toda la nube</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="156" />
+        <source>The crop layer {} has no geometry (its {} features are empty): nothing to crop by</source>
+        <translation>La capa de recorte {} no tiene geometría (sus {} entidades están vacías): no hay nada con qué recortar</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="169" />
+        <source>The crop area (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}) does not overlap the point cloud {} (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}): nothing would be kept</source>
+        <translation>El área de recorte (x {:.1f} a {:.1f}, y {:.1f} a {:.1f}) no se superpone con la nube de puntos {} (x {:.1f} a {:.1f}, y {:.1f} a {:.1f}): no se conservaría nada</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="182" />
+        <source>PDAL said: {}</source>
+        <translation>PDAL dijo: {}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="183" />
+        <source>PDAL failed: {}</source>
+        <translation>PDAL falló: {}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="195" />
+        <source>The output {} must not be the input file</source>
+        <translation>La salida {} no debe ser el archivo de entrada</translation>
     </message>
 </context>
 <context>
     <name>ImportTrajectory</name>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="38" />
+        <location filename="../algorithms/importtrajectory.py" line="31" />
         <source>Import trajectory and panoramas</source>
         <translation>Importar trayectoria y panoramas</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="41" />
+        <location filename="../algorithms/importtrajectory.py" line="34" />
         <source>Trajectory (CSV or SBET) and image times, or per-image poses, to panorama stations with full pose.</source>
         <translation>Trayectoria (CSV o SBET) y tiempos de imagen, o poses por imagen, a estaciones de panorama con pose completa.</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="45" />
+        <location filename="../algorithms/importtrajectory.py" line="38" />
         <source>Builds the panorama stations: the position and full orientation of every panorama at its exposure, in the target CRS.&lt;br&gt;&lt;br&gt;Give a &lt;b&gt;trajectory&lt;/b&gt; (CSV &lt;i&gt;time,x,y,z,roll,pitch,heading&lt;/i&gt; or an Applanix SBET .out) with an &lt;b&gt;image times&lt;/b&gt; CSV (&lt;i&gt;image,time&lt;/i&gt;), or a &lt;b&gt;per-image pose&lt;/b&gt; CSV (&lt;i&gt;image,x,y,z,roll,pitch,heading[,time]&lt;/i&gt;) instead. Angles are in degrees (radians in an SBET); heading is clockwise from &lt;b&gt;true&lt;/b&gt; north and is turned into a grid heading with the meridian convergence at each station. Positions are interpolated linearly and attitudes by SLERP at the image times.&lt;br&gt;&lt;br&gt;The &lt;b&gt;camera mount&lt;/b&gt; places the panorama on the vehicle: lever arm in metres in the body frame (x forward, y right, z down) and boresight angles in degrees.&lt;br&gt;&lt;br&gt;Output: one point per panorama at its centre, with the quaternion (qw, qx, qy, qz) that maps panorama rays to world East-North-Up, the forward azimuth and the image size read from its header.</source>
         <translation>Construye las estaciones de panorama: la posición y la orientación completa de cada panorama en su exposición, en el SRC de destino.&lt;br&gt;&lt;br&gt;Indique una &lt;b&gt;trayectoria&lt;/b&gt; (CSV &lt;i&gt;time,x,y,z,roll,pitch,heading&lt;/i&gt; o un SBET .out de Applanix) con un CSV de &lt;b&gt;tiempos de imagen&lt;/b&gt; (&lt;i&gt;image,time&lt;/i&gt;), o en su lugar un CSV de &lt;b&gt;poses por imagen&lt;/b&gt; (&lt;i&gt;image,x,y,z,roll,pitch,heading[,time]&lt;/i&gt;). Los ángulos están en grados (radianes en un SBET); el rumbo se mide en sentido horario desde el norte &lt;b&gt;verdadero&lt;/b&gt; y se convierte en rumbo de cuadrícula con la convergencia de meridianos en cada estación. Las posiciones se interpolan linealmente y las actitudes por SLERP en los tiempos de imagen.&lt;br&gt;&lt;br&gt;El &lt;b&gt;montaje de la cámara&lt;/b&gt; sitúa el panorama en el vehículo: brazo de palanca en metros en el sistema del vehículo (x adelante, y derecha, z abajo) y ángulos de boresight en grados.&lt;br&gt;&lt;br&gt;Salida: un punto por panorama en su centro, con el cuaternión (qw, qx, qy, qz) que transforma los rayos del panorama al sistema mundial Este-Norte-Arriba, el acimut de avance y el tamaño de la imagen leído de su cabecera.</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="61" />
+        <location filename="../algorithms/importtrajectory.py" line="54" />
         <source>Trajectory (CSV or SBET)</source>
         <translation>Trayectoria (CSV o SBET)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="61" />
+        <location filename="../algorithms/importtrajectory.py" line="54" />
         <source>Trajectory CSV with a header time,x,y,z,roll,pitch,heading (comma, semicolon, tab or space separated), or an Applanix SBET (.out, .sbet). Times increase strictly.</source>
         <translation>CSV de trayectoria con la cabecera time,x,y,z,roll,pitch,heading (separado por comas, punto y coma, tabuladores o espacios), o un SBET de Applanix (.out, .sbet). Los tiempos deben aumentar estrictamente.</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="61" />
+        <location filename="../algorithms/importtrajectory.py" line="54" />
         <source>Trajectory (*.csv *.txt *.out *.sbet);;All files (*.*)</source>
         <translation>Trayectoria (*.csv *.txt *.out *.sbet);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="66" />
+        <location filename="../algorithms/importtrajectory.py" line="59" />
         <source>Image times (CSV)</source>
         <translation>Tiempos de imagen (CSV)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="66" />
+        <location filename="../algorithms/importtrajectory.py" line="59" />
         <source>CSV image,time: each panorama's file name (relative to the panorama folder) and exposure time, in the trajectory's time base.</source>
         <translation>CSV image,time: el nombre de archivo de cada panorama (relativo a la carpeta de panoramas) y su tiempo de exposición, en la base de tiempo de la trayectoria.</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="71" />
+        <location filename="../algorithms/importtrajectory.py" line="64" />
         <source>CSV (*.csv *.txt);;All files (*.*)</source>
         <translation>CSV (*.csv *.txt);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="71" />
+        <location filename="../algorithms/importtrajectory.py" line="64" />
         <source>Per-image poses (CSV, instead of trajectory and image times)</source>
         <translation>Poses por imagen (CSV, en lugar de trayectoria y tiempos de imagen)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="71" />
+        <location filename="../algorithms/importtrajectory.py" line="64" />
         <source>CSV image,x,y,z,roll,pitch,heading and optionally time: the vehicle body pose at each exposure. Use instead of a trajectory with image times.</source>
         <translation>CSV image,x,y,z,roll,pitch,heading y opcionalmente time: la pose del vehículo en cada exposición. Úselo en lugar de una trayectoria con tiempos de imagen.</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="76" />
+        <location filename="../algorithms/importtrajectory.py" line="69" />
         <source>Panorama folder</source>
         <translation>Carpeta de panoramas</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="76" />
+        <location filename="../algorithms/importtrajectory.py" line="69" />
         <source>Folder of the equirectangular panoramas (JPEG or PNG, twice as wide as high).</source>
         <translation>Carpeta de los panoramas equirrectangulares (JPEG o PNG, el doble de anchos que de altos).</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="80" />
+        <location filename="../algorithms/importtrajectory.py" line="73" />
         <source>Trajectory CRS</source>
         <translation>SRC de la trayectoria</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="80" />
+        <location filename="../algorithms/importtrajectory.py" line="73" />
         <source>CRS of the trajectory or pose positions (x = longitude, y = latitude, z = ellipsoidal height for a geographic CRS). Ignored for an SBET, which is always WGS 84.</source>
         <translation>SRC de las posiciones de la trayectoria o de las poses (x = longitud, y = latitud, z = altura elipsoidal para un SRC geográfico). Se ignora para un SBET, que siempre está en WGS 84.</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="85" />
+        <location filename="../algorithms/importtrajectory.py" line="78" />
         <source>Target CRS (projected)</source>
         <translation>SRC de destino (proyectado)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="85" />
+        <location filename="../algorithms/importtrajectory.py" line="78" />
         <source>Projected CRS of the outputs (metres, East-North-Up). A compound CRS with a vertical datum turns ellipsoidal heights into that datum when its geoid grid is installed. Empty: the trajectory CRS if it is projected, else its UTM zone.</source>
         <translation>SRC proyectado de las salidas (metros, Este-Norte-Arriba). Un SRC compuesto con un datum vertical convierte las alturas elipsoidales a ese datum si su malla del geoide está instalada. Vacío: el SRC de la trayectoria si es proyectado; si no, su zona UTM.</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="91" />
+        <location filename="../algorithms/importtrajectory.py" line="84" />
         <source>Panorama centre relative to the trajectory's reference point, in metres along the body axes: x forward, y right, z down.</source>
         <translation>Centro del panorama respecto al punto de referencia de la trayectoria, en metros a lo largo de los ejes del vehículo: x adelante, y derecha, z abajo.</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="93" />
+        <location filename="../algorithms/importtrajectory.py" line="86" />
         <source>Lever arm x, forward (m)</source>
         <translation>Brazo de palanca x, adelante (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="94" />
+        <location filename="../algorithms/importtrajectory.py" line="87" />
         <source>Lever arm y, right (m)</source>
         <translation>Brazo de palanca y, derecha (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="95" />
+        <location filename="../algorithms/importtrajectory.py" line="88" />
         <source>Lever arm z, down (m)</source>
         <translation>Brazo de palanca z, abajo (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="96" />
+        <location filename="../algorithms/importtrajectory.py" line="89" />
         <source>Panorama frame relative to the body frame: R_body_from_pano = Rz(yaw) Ry(pitch) Rx(roll), degrees.</source>
         <translation>Sistema del panorama respecto al sistema del vehículo: R_body_from_pano = Rz(yaw) Ry(pitch) Rx(roll), en grados.</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="98" />
+        <location filename="../algorithms/importtrajectory.py" line="91" />
         <source>Boresight roll (°)</source>
         <translation>Boresight: alabeo (°)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="99" />
+        <location filename="../algorithms/importtrajectory.py" line="92" />
         <source>Boresight pitch (°)</source>
         <translation>Boresight: cabeceo (°)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="100" />
+        <location filename="../algorithms/importtrajectory.py" line="93" />
         <source>Boresight yaw (°)</source>
         <translation>Boresight: guiñada (°)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="101" />
+        <location filename="../algorithms/importtrajectory.py" line="94" />
         <source>Skip images outside the trajectory's time span</source>
         <translation>Omitir las imágenes fuera del intervalo de tiempo de la trayectoria</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="101" />
+        <location filename="../algorithms/importtrajectory.py" line="94" />
         <source>When checked, images whose time lies outside the trajectory are skipped and counted in the log; otherwise they are an error.</source>
         <translation>Si se marca, las imágenes cuyo tiempo queda fuera de la trayectoria se omiten y se cuentan en el registro; si no, son un error.</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="105" />
+        <location filename="../algorithms/importtrajectory.py" line="98" />
         <source>Warn about trajectory gaps longer than (s)</source>
         <translation>Avisar de huecos de la trayectoria mayores que (s)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="105" />
+        <location filename="../algorithms/importtrajectory.py" line="98" />
         <source>A warning names images that fall between two trajectory samples further apart than this, in seconds.</source>
         <translation>Una advertencia nombra las imágenes situadas entre dos muestras de la trayectoria separadas más que esto, en segundos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="109" />
+        <location filename="../algorithms/importtrajectory.py" line="102" />
         <source>Fail on a missing or unreadable panorama</source>
         <translation>Fallar ante un panorama que falta o no se puede leer</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="109" />
+        <location filename="../algorithms/importtrajectory.py" line="102" />
         <source>When checked, a missing or unreadable panorama is an error; otherwise it is skipped with a warning and counted.</source>
         <translation>Si se marca, un panorama que falta o no se puede leer es un error; si no, se omite con una advertencia y se contabiliza.</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="113" />
+        <location filename="../algorithms/importtrajectory.py" line="106" />
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="113" />
+        <location filename="../algorithms/importtrajectory.py" line="106" />
         <source>PointZ layer, one point per panorama at its centre, with the fields station_id, image, path, time, x, y, z, qw, qx, qy, qz, heading, width, height.</source>
         <translation>Capa PointZ, un punto por panorama en su centro, con los campos station_id, image, path, time, x, y, z, qw, qx, qy, qz, heading, width, height.</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="152" />
+        <location filename="../algorithms/importtrajectory.py" line="145" />
         <source>{} panorama stations written.</source>
         <translation>{} estaciones de panorama escritas.</translation>
     </message>
@@ -746,351 +917,414 @@
 <context>
     <name>ProjectDetections</name>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="19" />
+        <location filename="../algorithms/projectdetections.py" line="20" />
         <source>Project detections into the point cloud</source>
         <translation>Proyectar detecciones en la nube de puntos</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="22" />
+        <location filename="../algorithms/projectdetections.py" line="23" />
         <source>Finds each detected sign's surface in the LiDAR cloud: one candidate per detection.</source>
         <translation>Encuentra la superficie de cada señal detectada en la nube LiDAR: un candidato por detección.</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="25" />
+        <location filename="../algorithms/projectdetections.py" line="26" />
         <source>For each detection, the viewing frustum of its box (the rays through the box edges, widened by a small margin for calibration error) is searched from the panorama centre out to the maximum range. The non-ground points inside it are clustered and the first dense, near-vertical planar surface along the box-centre ray is taken (the sign, not the wall behind it; poles and convex mirrors are passed over). The cloud is read once into a tiled index restricted to the frusta, and each tile is tested against every detection that crosses it.&lt;br&gt;&lt;br&gt;Output: one point per detection at the candidate surface, with the detection's fields, the range, the point count, the plane normal (normal_e, normal_n, normal_u), a quality score in 0-1 and a status: &lt;i&gt;ok&lt;/i&gt;, &lt;i&gt;no_points&lt;/i&gt; (nothing in the frustum, e.g. out of the scanner's reach) or &lt;i&gt;no_surface&lt;/i&gt;; those two keep no geometry. The cloud must be ground-classified (run Ground filter first).</source>
         <translation>Para cada detección se recorre el frustum de visión de su recuadro (los rayos por los bordes del recuadro, ampliados con un pequeño margen por el error de calibración) desde el centro del panorama hasta el alcance máximo. Los puntos que no son suelo dentro de él se agrupan y se toma la primera superficie plana densa y casi vertical a lo largo del rayo por el centro del recuadro (la señal, no la pared de detrás; los postes y los espejos convexos se descartan). La nube se lee una sola vez en un índice por teselas restringido a los frustums, y cada tesela se prueba contra cada detección que la atraviesa.&lt;br&gt;&lt;br&gt;Salida: un punto por detección en la superficie candidata, con los campos de la detección, la distancia, el número de puntos, la normal del plano (normal_e, normal_n, normal_u), una puntuación de calidad en 0-1 y un estado: &lt;i&gt;ok&lt;/i&gt;, &lt;i&gt;no_points&lt;/i&gt; (nada en el frustum, p. ej. fuera del alcance del escáner) o &lt;i&gt;no_surface&lt;/i&gt;; estos dos no tienen geometría. La nube debe tener el suelo clasificado (ejecute antes «Filtro de suelo y recorte de nube de puntos»).</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="60" />
+        <location filename="../algorithms/projectdetections.py" line="68" />
         <source>Detections</source>
         <translation>Detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="40" />
+        <location filename="../algorithms/projectdetections.py" line="41" />
         <source>The output of Detect signs: one ray per detection with its box and station pose.</source>
         <translation>La salida de «Detectar señales en panoramas»: un rayo por detección con su recuadro y la pose de la estación.</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="43" />
+        <location filename="../algorithms/projectdetections.py" line="44" />
         <source>Ground-classified point cloud (LAS/LAZ)</source>
         <translation>Nube de puntos con suelo clasificado (LAS/LAZ)</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="43" />
+        <location filename="../algorithms/projectdetections.py" line="44" />
         <source>The cloud with ground as class 2 (the output of Ground filter), in the detections' CRS.</source>
         <translation>La nube con el suelo como clase 2 (la salida de «Filtro de suelo y recorte de nube de puntos»), en el SRC de las detecciones.</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="46" />
+        <location filename="../algorithms/projectdetections.py" line="47" />
         <source>Maximum range (m)</source>
         <translation>Alcance máximo (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="46" />
+        <location filename="../algorithms/projectdetections.py" line="47" />
         <source>Search each frustum up to this distance from the panorama centre, in metres.</source>
         <translation>Busca en cada frustum hasta esta distancia desde el centro del panorama, en metros.</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="49" />
+        <location filename="../algorithms/projectdetections.py" line="54" />
         <source>Sign candidates</source>
         <translation>Candidatos de señal</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="49" />
+        <location filename="../algorithms/projectdetections.py" line="54" />
         <source>PointZ layer, one candidate per detection (no geometry where no surface was found).</source>
         <translation>Capa PointZ, un candidato por detección (sin geometría donde no se encontró superficie).</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="62" />
+        <location filename="../algorithms/projectdetections.py" line="66" />
         <source>The detections</source>
         <translation>Las detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="75" />
+        <location filename="../algorithms/projectdetections.py" line="83" />
         <source>{} detections: {} with a surface in the cloud, {} without</source>
         <translation>{} detecciones: {} con superficie en la nube, {} sin ella</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/projectdetections.py" line="50" />
+        <source>Cloud CRS (when the file has none)</source>
+        <translation>SRC de la nube (si el archivo no tiene)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/projectdetections.py" line="50" />
+        <source>The cloud's CRS when the file records none (it must be the detections' CRS); it overrides a CRS in the file. The CRS is never guessed.</source>
+        <translation>El SRC de la nube cuando el archivo no registra ninguno (debe ser el SRC de las detecciones); sustituye al SRC del archivo. El SRC nunca se adivina.</translation>
     </message>
 </context>
 <context>
     <name>RefineSigns</name>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="26" />
+        <location filename="../algorithms/refinesigns.py" line="43" />
         <source>Refine and merge signs</source>
         <translation>Refinar y fusionar señales</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="29" />
+        <location filename="../algorithms/refinesigns.py" line="46" />
         <source>Merges the views of each sign and refines it in the cloud: the sign layer.</source>
         <translation>Fusiona las vistas de cada señal y la refina en la nube: la capa de señales.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="32" />
+        <location filename="../algorithms/refinesigns.py" line="49" />
         <source>Groups the candidates of different panoramas that are the same physical sign (same class, within the merge radius, plane normals agreeing; panels stacked on one pole stay apart), then refines each sign in the cloud: Euclidean clustering, an intensity filter whose threshold adapts to the cloud (Otsu), a near-vertical RANSAC plane and PCA dimensionality to keep the panel and drop the pole.&lt;br&gt;&lt;br&gt;Each sign gets its panel centre, width and panel height, the azimuth its face looks towards (clockwise from grid north), its height above the ground directly below (class-2 points near the sign; the log names any fallback), the bottom height, the number of views and points, the images it was seen in and the best of them (closest, most frontal), the mean intensity and planarity. A sign seen in two or more panoramas but with no cloud points is placed by triangulating its rays (position_source = image).&lt;br&gt;&lt;br&gt;Optional outputs: panel outlines (PolygonZ) and the sign points (LAS/LAZ).&lt;br&gt;&lt;br&gt;&lt;b&gt;Review&lt;/b&gt;: with the panorama folder, each sign gets an image chip from its best panorama (its box with a margin, undistorted), written into a folder beside the sign layer and linked by the &lt;i&gt;chip&lt;/i&gt; field (a relative path); the review report shows every sign's chip and attributes. The sign layer is styled with a symbol per class and its height as label (a .qml file beside it).</source>
         <translation>Agrupa los candidatos de distintos panoramas que son la misma señal física (misma clase, dentro del radio de fusión, normales de plano concordantes; los paneles apilados en un mismo poste se mantienen separados) y después refina cada señal en la nube: agrupamiento euclidiano, un filtro de intensidad cuyo umbral se adapta a la nube (Otsu), un plano RANSAC casi vertical y la dimensionalidad PCA para conservar el panel y descartar el poste.&lt;br&gt;&lt;br&gt;Cada señal obtiene el centro de su panel, el ancho y el alto del panel, el acimut hacia el que mira su cara (en sentido horario desde el norte de cuadrícula), su altura sobre el suelo justo debajo (puntos de clase 2 cerca de la señal; el registro indica cualquier alternativa usada), la altura inferior, el número de vistas y de puntos, las imágenes en las que se vio y la mejor de ellas (la más cercana y frontal), la intensidad media y la planaridad. Una señal vista en dos o más panoramas pero sin puntos en la nube se sitúa triangulando sus rayos (position_source = image).&lt;br&gt;&lt;br&gt;Salidas opcionales: contornos de los paneles (PolygonZ) y los puntos de las señales (LAS/LAZ).&lt;br&gt;&lt;br&gt;&lt;b&gt;Revisión&lt;/b&gt;: con la carpeta de panoramas, cada señal obtiene una miniatura de su mejor panorama (su recuadro con un margen, sin distorsión), escrita en una carpeta junto a la capa de señales y enlazada por el campo &lt;i&gt;chip&lt;/i&gt; (una ruta relativa); el informe de revisión muestra la miniatura y los atributos de cada señal. La capa de señales se simboliza con un símbolo por clase y su altura como etiqueta (un archivo .qml a su lado).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="92" />
+        <location filename="../algorithms/refinesigns.py" line="116" />
         <source>Sign candidates</source>
         <translation>Candidatos de señal</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="52" />
+        <location filename="../algorithms/refinesigns.py" line="69" />
         <source>The output of Project detections.</source>
         <translation>La salida de «Proyectar detecciones en la nube de puntos».</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="55" />
+        <location filename="../algorithms/refinesigns.py" line="72" />
         <source>Ground-classified point cloud (LAS/LAZ)</source>
         <translation>Nube de puntos con suelo clasificado (LAS/LAZ)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="55" />
+        <location filename="../algorithms/refinesigns.py" line="72" />
         <source>The same cloud as for Project detections (ground as class 2).</source>
         <translation>La misma nube que para «Proyectar detecciones en la nube de puntos» (suelo como clase 2).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="58" />
+        <location filename="../algorithms/refinesigns.py" line="75" />
         <source>Merge radius (m)</source>
         <translation>Radio de fusión (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="58" />
+        <location filename="../algorithms/refinesigns.py" line="75" />
         <source>Candidates of the same class closer than this (metres) with agreeing plane normals are taken as one sign.</source>
         <translation>Los candidatos de la misma clase más cercanos que esto (metros) y con normales de plano concordantes se toman como una sola señal.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="62" />
+        <location filename="../algorithms/refinesigns.py" line="79" />
         <source>Panorama folder (for review chips)</source>
         <translation>Carpeta de panoramas (para las miniaturas de revisión)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="62" />
+        <location filename="../algorithms/refinesigns.py" line="79" />
         <source>The folder of the panoramas (as for Import trajectory). When given, an image chip of each sign is cut from its best panorama for review.</source>
         <translation>La carpeta de los panoramas (como para «Importar trayectoria y panoramas»). Si se indica, se recorta una miniatura de cada señal de su mejor panorama para la revisión.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="66" />
+        <location filename="../algorithms/refinesigns.py" line="87" />
         <source>Signs</source>
         <translation>Señales</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="66" />
+        <location filename="../algorithms/refinesigns.py" line="87" />
         <source>PointZ sign layer at the panel centres (fields in docs/formats.md), and chip: the relative path of the sign's review picture.</source>
         <translation>Capa de señales PointZ en los centros de los paneles (campos en docs/formats.md), y chip: la ruta relativa de la imagen de revisión de la señal.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="70" />
+        <location filename="../algorithms/refinesigns.py" line="91" />
         <source>Panel outlines</source>
         <translation>Contornos de los paneles</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="70" />
+        <location filename="../algorithms/refinesigns.py" line="91" />
         <source>PolygonZ layer of each panel's rectangle in its plane (signs placed from the cloud).</source>
         <translation>Capa PolygonZ con el rectángulo de cada panel en su plano (señales situadas a partir de la nube).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="74" />
+        <location filename="../algorithms/refinesigns.py" line="95" />
         <source>Sign points</source>
         <translation>Puntos de las señales</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="74" />
+        <location filename="../algorithms/refinesigns.py" line="95" />
         <source>LAZ (*.laz);;LAS (*.las)</source>
         <translation>LAZ (*.laz);;LAS (*.las)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="74" />
+        <location filename="../algorithms/refinesigns.py" line="95" />
         <source>A LAS/LAZ file of the points of every sign panel, all dimensions kept.</source>
         <translation>Un archivo LAS/LAZ con los puntos de cada panel de señal, con todas las dimensiones.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="77" />
+        <location filename="../algorithms/refinesigns.py" line="98" />
         <source>Review report</source>
         <translation>Informe de revisión</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="77" />
+        <location filename="../algorithms/refinesigns.py" line="98" />
         <source>HTML files (*.html)</source>
         <translation>Archivos HTML (*.html)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="77" />
+        <location filename="../algorithms/refinesigns.py" line="98" />
         <source>An HTML page with every sign's chip and attributes, to confirm signs without opening panoramas (needs the panorama folder).</source>
         <translation>Una página HTML con la miniatura y los atributos de cada señal, para confirmar las señales sin abrir los panoramas (necesita la carpeta de panoramas).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="95" />
+        <location filename="../algorithms/refinesigns.py" line="114" />
         <source>The candidates</source>
         <translation>Los candidatos</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="111" />
+        <location filename="../algorithms/refinesigns.py" line="140" />
         <source>The review report needs the panorama folder: not written.</source>
         <translation>El informe de revisión necesita la carpeta de panoramas: no se escribió.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="136" />
+        <location filename="../algorithms/refinesigns.py" line="146" />
         <source>{} sign points written to {}</source>
         <translation>{} puntos de señales escritos en {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="141" />
+        <location filename="../algorithms/refinesigns.py" line="171" />
         <source>{} signs from {} candidates ({})</source>
         <translation>{} señales a partir de {} candidatos ({})</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="150" />
+        <location filename="../algorithms/refinesigns.py" line="181" />
         <source>Review chips need a sign layer written to a file: skipped.</source>
         <translation>Las miniaturas de revisión necesitan una capa de señales escrita en un archivo: se omiten.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="162" />
+        <location filename="../algorithms/refinesigns.py" line="194" />
         <source>Road signs for review</source>
         <translation>Señales viales para revisión</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="163" />
+        <location filename="../algorithms/refinesigns.py" line="196" />
         <source>{} review chips in {}</source>
         <translation>{} miniaturas de revisión en {}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="83" />
+        <source>Cloud CRS (when the file has none)</source>
+        <translation>SRC de la nube (si el archivo no tiene)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="83" />
+        <source>The cloud's CRS when the file records none (it must be the candidates' CRS); it overrides a CRS in the file. The CRS is never guessed.</source>
+        <translation>El SRC de la nube cuando el archivo no registra ninguno (debe ser el SRC de los candidatos); sustituye al SRC del archivo. El SRC nunca se adivina.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="119" />
+        <source>Panorama folder not found: {}</source>
+        <translation>No se encontró la carpeta de panoramas: {}</translation>
     </message>
 </context>
 <context>
     <name>RoadSigns</name>
     <message>
-        <location filename="../core/cloudsigns.py" line="227" />
+        <location filename="../core/cloudsigns.py" line="249" />
         <source>The stations do not overlap the cloud {path}: the track passes {gap:.1f} m from the cloud's extent ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}), more than the corridor of {corridor} m; are the cloud and the stations in the same CRS and of the same drive?</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Las estaciones no se solapan con la nube {path}: el trayecto pasa a {gap:.1f} m de la extensión de la nube ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}), más que el corredor de {corridor} m; ¿están la nube y las estaciones en el mismo SRC y son del mismo recorrido?</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="240" />
+        <location filename="../core/cloudsigns.py" line="262" />
         <source>{path} has no intensity dimension (point format {fmt}): signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene dimensión de intensidad (formato de punto {fmt}): sin imágenes no se pueden encontrar señales en ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="243" />
+        <location filename="../core/cloudsigns.py" line="265" />
         <source>{path} has no classification dimension: run roadsigns:groundfilter on it first</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene dimensión de clasificación: ejecute primero roadsigns:groundfilter sobre ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="537" />
+        <location filename="../core/cloudsigns.py" line="599" />
         <source>Found {signs} sign panels ({bright} retroreflective) and {poles} poles in {n} points ({cand} kept near the road, {windows} windows of {w} m); condition reference {ref:.3f} ({src})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se encontraron {signs} paneles de señal ({bright} retrorreflectantes) y {poles} postes en {n} puntos ({cand} conservados cerca de la vía, {windows} ventanas de {w} m); referencia de estado {ref:.3f} ({src})</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="485" />
+        <location filename="../core/cloudsigns.py" line="542" />
         <source>No point of {path} lies within {corridor} m of the stations' track ({n} points read)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} está a menos de {corridor} m del trayecto de las estaciones ({n} puntos leídos)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="488" />
+        <location filename="../core/cloudsigns.py" line="545" />
         <source>{path} has no ground points (class 2) along the track: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene puntos de suelo (clase 2) a lo largo del trayecto: ejecute primero roadsigns:groundfilter sobre ella (o clasifique el suelo con otra herramienta)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="492" />
+        <location filename="../core/cloudsigns.py" line="549" />
         <source>{path} has no intensity: all {n} points near the track have intensity 0; signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene intensidad: los {n} puntos cercanos al trayecto tienen intensidad 0; sin imágenes no se pueden encontrar señales en ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="503" />
-        <source>Intensity: range exponent {alpha:.2f} ({source}), bright threshold {thr:.3f} of full scale at 10 m (background level {bg:.3f}, Otsu on the bright tail {otsu:.3f}; {n} non-ground points near the road)</source>
+        <location filename="../core/cloudsigns.py" line="560" />
+        <source>Intensity: range exponent {alpha:.2f} ({source}), bright threshold {thr:.3f} of full scale at 10 m ({method}; background level {bg:.3f}, bright mode {mode:.3f}; {n} non-ground points near the road)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>Intensidad: exponente de distancia {alpha:.2f} ({source}), umbral de brillo {thr:.3f} del fondo de escala a 10 m (nivel de fondo {bg:.3f}, Otsu sobre la cola brillante {otsu:.3f}; {n} puntos que no son de suelo cerca de la vía)</translation>
+        <translation type="unfinished">Intensidad: exponente de distancia {alpha:.2f} ({source}), umbral de brillo {thr:.3f} del fondo de escala a 10 m (nivel de fondo {bg:.3f}, Otsu sobre la cola brillante {otsu:.3f}; {n} puntos que no son de suelo cerca de la vía)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="604" />
+        <location filename="../core/cloudsigns.py" line="668" />
         <source>{n} gantry posts</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} postes de pórtico</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="495" />
+        <location filename="../core/cloudsigns.py" line="552" />
         <source>The cloud's GPS times [{t0:.1f}, {t1:.1f}] do not meet the stations' times: ranges are taken from the nearest track position instead (is one of them in GPS week seconds and the other in adjusted standard GPS time?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Los tiempos GPS de la nube [{t0:.1f}, {t1:.1f}] no coinciden con los de las estaciones: las distancias se toman en su lugar desde la posición más cercana del trayecto (¿está uno en segundos de la semana GPS y el otro en tiempo GPS estándar ajustado?)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="511" />
+        <location filename="../core/cloudsigns.py" line="571" />
         <source>{share:.0%} of the points near the road have intensity 0: the bright threshold {thr:.3f} of full scale may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El {share:.0%} de los puntos cercanos a la vía tiene intensidad 0: el umbral de brillo {thr:.3f} del fondo de escala puede carecer de sentido</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="516" />
+        <location filename="../core/cloudsigns.py" line="576" />
         <source>{share:.0%} of the points near the road have saturated intensity: the bright threshold {thr:.3f} of full scale and the condition of the signs may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El {share:.0%} de los puntos cercanos a la vía tiene la intensidad saturada: el umbral de brillo {thr:.3f} del fondo de escala y el estado de las señales pueden carecer de sentido</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="18" />
+        <location filename="../core/crs.py" line="19" />
         <source>CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SRC</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="21" />
+        <location filename="../core/crs.py" line="228" />
+        <source>{what} file {path}, {location}: x {x}, y {y} lies outside the area of use of {crs} (longitude {west} to {east}, latitude {south} to {north}): is {crs} the CRS of these positions?</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Archivo de {what} {path}, {location}: x {x}, y {y} queda fuera del área de uso de {crs} (longitud {west} a {east}, latitud {south} a {north}): ¿es {crs} el SRC de estas posiciones?</translation>
+    </message>
+    <message>
+        <location filename="../core/crs.py" line="251" />
+        <source>{label}: x {xmin} to {xmax}, y {ymin} to {ymax} lie outside the area of use of {crs} (longitude {west} to {east}, latitude {south} to {north}): is {crs} the CRS of these coordinates?</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{label}: x {xmin} a {xmax}, y {ymin} a {ymax} quedan fuera del área de uso de {crs} (longitud {west} a {east}, latitud {south} a {north}): ¿es {crs} el SRC de estas coordenadas?</translation>
+    </message>
+    <message>
+        <location filename="../core/crs.py" line="22" />
         <source>No {role} given: expected an EPSG code, WKT or PROJ string</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se indicó ningún {role}: se esperaba un código EPSG, WKT o una cadena PROJ</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="112" />
-        <location filename="../core/crs.py" line="122" />
+        <location filename="../core/crs.py" line="113" />
+        <location filename="../core/crs.py" line="123" />
+        <location filename="../core/trajectory.py" line="488" />
         <source>trajectory CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SRC de la trayectoria</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="123" />
+        <location filename="../core/crs.py" line="124" />
+        <location filename="../core/trajectory.py" line="495" />
         <source>target CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SRC de destino</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="125" />
+        <location filename="../core/crs.py" line="126" />
         <source>The target CRS {crs} is not projected: expected a projected CRS in metres (e.g. a UTM zone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El SRC de destino {crs} no es proyectado: se esperaba un SRC proyectado en metros (p. ej. una zona UTM)</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="25" />
+        <location filename="../core/crs.py" line="224" />
+        <source>{what} file {path}, {location}: x {x}, y {y} lies outside the area of use of {crs} (longitude {west} to {east}, latitude {south} to {north}) and looks like a longitude/latitude: give a geographic CRS (e.g. EPSG:4326) for these positions</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Archivo de {what} {path}, {location}: x {x}, y {y} queda fuera del área de uso de {crs} (longitud {west} a {east}, latitud {south} a {north}) y parece una longitud/latitud: indique un SRC geográfico (p. ej. EPSG:4326) para estas posiciones</translation>
+    </message>
+    <message>
+        <location filename="../core/crs.py" line="248" />
+        <source>{label}: x {xmin} to {xmax}, y {ymin} to {ymax} lie outside the area of use of {crs} (longitude {west} to {east}, latitude {south} to {north}) and look like longitudes/latitudes: is {crs} the CRS of these coordinates?</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{label}: x {xmin} a {xmax}, y {ymin} a {ymax} quedan fuera del área de uso de {crs} (longitud {west} a {east}, latitud {south} a {north}) y parecen longitudes/latitudes: ¿es {crs} el SRC de estas coordenadas?</translation>
+    </message>
+    <message>
+        <location filename="../core/crs.py" line="261" />
+        <source>{label} is in {crs}, a geographic CRS (degrees): this needs a projected CRS in metres, the CRS of the point cloud (e.g. a UTM zone)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{label} está en {crs}, un SRC geográfico (grados): esto necesita un SRC proyectado en metros, el SRC de la nube de puntos (p. ej. una zona UTM)</translation>
+    </message>
+    <message>
+        <location filename="../core/crs.py" line="26" />
         <source>Unknown {role} '{crs}': {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se reconoce el {role} '{crs}': {error}</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="69" />
+        <location filename="../core/crs.py" line="70" />
         <source>Heights: pass through unchanged (the target CRS has no vertical datum)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Alturas: se mantienen sin cambios (el SRC de destino no tiene datum vertical)</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="95" />
+        <location filename="../core/crs.py" line="96" />
         <source>Transforming positions from {source} to {target} gave invalid values (outside the CRS's area, or a missing vertical grid)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La transformación de las posiciones de {source} a {target} dio valores no válidos (fuera del área del SRC, o falta una malla vertical)</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="72" />
+        <location filename="../core/crs.py" line="208" />
+        <source>{what} file {path}, {location}: x {x}, y {y} is not a longitude/latitude, but {crs} is a geographic CRS: are these projected coordinates? Give the CRS the positions are in</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Archivo de {what} {path}, {location}: x {x}, y {y} no es una longitud/latitud, pero {crs} es un SRC geográfico: ¿son coordenadas proyectadas? Indique el SRC en que están las posiciones</translation>
+    </message>
+    <message>
+        <location filename="../core/crs.py" line="73" />
         <source>Heights: the geoid grid for {crs} is not installed: heights stay as they are (ellipsoidal), only the horizontal position is transformed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Alturas: la rejilla del geoide para {crs} no está instalada: las alturas quedan como están (elipsoidales), solo se transforma la posición horizontal</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="76" />
+        <location filename="../core/crs.py" line="77" />
         <source>Heights: transformed to {crs}: {operation}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Alturas: transformadas a {crs}: {operation}</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="90" />
+        <location filename="../core/crs.py" line="91" />
         <source>Cannot transform positions from {source} to {target}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se pueden transformar las posiciones de {source} a {target}: {error}</translation>
@@ -1102,22 +1336,30 @@
         <translation>A las detecciones les faltan los campos {fields}; se esperaba la salida de «Detectar señales en panoramas»</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="116" />
+        <location filename="../core/detections.py" line="126" />
         <source>Detection {det_id}: the box ({u0}, {v0}, {u1}, {v1}) is not u0 &lt; u1, v0 &lt; v1 inside a {w} x {h} panorama</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}: el recuadro ({u0}, {v0}, {u1}, {v1}) no cumple u0 &lt; u1, v0 &lt; v1 dentro de un panorama de {w} x {h}</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="124" />
+        <location filename="../core/detections.py" line="134" />
         <source>Detection {det_id}: the station pose is invalid (quaternion norm {norm:.4f}, position {xyz})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}: la pose de la estación no es válida (norma del cuaternión {norm:.4f}, posición {xyz})</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="91" />
+        <location filename="../core/detections.py" line="90" />
+        <location filename="../core/projection.py" line="329" />
         <source>Detection {det_id}: the field {field} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}: el campo {field} está vacío</translation>
+    </message>
+    <message>
+        <location filename="../core/detections.py" line="98" />
+        <location filename="../core/projection.py" line="321" />
+        <source>Detection {det_id}, field {field}: expected a number, found '{value}'</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Detección {det_id}, campo {field}: se esperaba un número, se encontró '{value}'</translation>
     </message>
     <message>
         <location filename="../core/detector.py" line="129" />
@@ -1210,34 +1452,64 @@
         <translation>El trayecto tiene {n} posiciones pero {m} tiempos</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="110" />
+        <location filename="../core/evaluate.py" line="109" />
         <source>reference signs</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>señales de referencia</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="146" />
+        <location filename="../core/evaluate.py" line="141" />
+        <source>The signs ({signs}: x {sx0} to {sx1}, y {sy0} to {sy1}) and the reference {reference} (x {rx0} to {rx1}, y {ry0} to {ry1}) do not overlap: are both in the same CRS and the same area?</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Las señales ({signs}: x {sx0} a {sx1}, y {sy0} a {sy1}) y la referencia {reference} (x {rx0} a {rx1}, y {ry0} a {ry1}) no se superponen: ¿están ambas en el mismo SRC y en la misma zona?</translation>
+    </message>
+    <message>
+        <location filename="../core/evaluate.py" line="166" />
         <source>match radius {radius} m: expected a positive number of metres</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Radio de emparejamiento {radius} m: se esperaba un número positivo de metros</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="154" />
+        <location filename="../core/evaluate.py" line="174" />
         <source>{label}: sign '{sign_id}' has no valid x, y, z position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{label}: la señal '{sign_id}' no tiene una posición x, y, z válida</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="120" />
+        <location filename="../core/evaluate.py" line="119" />
         <source>reference signs file {path}, line {line}: sign_id '{sign_id}' already used on line {first}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo de señales de referencia {path}, línea {line}: el sign_id '{sign_id}' ya se usó en la línea {first}</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="116" />
+        <location filename="../core/evaluate.py" line="115" />
         <source>reference signs file {path}, line {line}, field '{field}': empty value</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo de señales de referencia {path}, línea {line}, campo '{field}': valor vacío</translation>
+    </message>
+    <message>
+        <location filename="../core/fusion.py" line="169" />
+        <source>Image sign</source>
+        <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../core/fusion.py" line="170" />
+        <source>Cloud panel</source>
+        <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../core/fusion.py" line="118" />
+        <source>{what} {index}: position is not finite</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../core/fusion.py" line="115" />
+        <source>{what} {index}: no position (x, y, z)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation type="unfinished" />
     </message>
     <message>
         <location filename="../core/ground/csf.py" line="103" />
@@ -1253,7 +1525,7 @@
     </message>
     <message>
         <location filename="../core/ground/engine.py" line="219" />
-        <location filename="../core/pointcloud.py" line="188" />
+        <location filename="../core/pointcloud.py" line="242" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la salida debe terminar en .las o .laz</translation>
@@ -1349,166 +1621,212 @@
         <translation>Los parámetros {params} no pertenecen al método {method}</translation>
     </message>
     <message>
-        <location filename="../core/ground/pdal.py" line="160" />
+        <location filename="../core/ground/pdal.py" line="169" />
         <source>PDAL executable {path} not found or not executable</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El ejecutable de PDAL {path} no existe o no es ejecutable</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="38" />
-        <source>The panorama {path} is {width} x {height} pixels: an equirectangular panorama must be twice as wide as it is high</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>El panorama {path} tiene {width} x {height} píxeles: un panorama equirrectangular debe ser el doble de ancho que de alto</translation>
-    </message>
-    <message>
-        <location filename="../core/panorama.py" line="70" />
-        <location filename="../core/panorama.py" line="29" />
-        <source>Panorama not found: {path}</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No se encontró el panorama: {path}</translation>
-    </message>
-    <message>
-        <location filename="../core/panorama.py" line="77" />
-        <source>Cannot read the panorama {path}: the file is not a JPEG or PNG image or is corrupt</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No se puede leer el panorama {path}: el archivo no es una imagen JPEG o PNG o está dañado</translation>
-    </message>
-    <message>
-        <location filename="../core/panorama.py" line="31" />
-        <source>Cannot read the panorama {path}: expected a JPEG or PNG image ({error})</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No se puede leer el panorama {path}: se esperaba una imagen JPEG o PNG ({error})</translation>
-    </message>
-    <message>
-        <location filename="../core/panorama.py" line="75" />
-        <source>Cannot read the panorama {path}: {error}</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No se puede leer el panorama {path}: {error}</translation>
-    </message>
-    <message>
-        <location filename="../core/pointcloud.py" line="264" />
-        <source>Cannot use {item!r} as a crop geometry: expected a shapely geometry, WKB or WKT</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No se puede usar {item!r} como geometría de recorte: se esperaba una geometría de shapely, WKB o WKT</translation>
-    </message>
-    <message>
-        <location filename="../core/pointcloud.py" line="60" />
-        <source>Cannot read {path}: expected a LAS or LAZ file ({detail})</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No se puede leer {path}: se esperaba un archivo LAS o LAZ ({detail})</translation>
-    </message>
-    <message>
-        <location filename="../core/pointcloud.py" line="354" />
-        <source>{path} has no coordinate reference system and none was given</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>{path} no tiene sistema de referencia de coordenadas y no se indicó ninguno</translation>
-    </message>
-    <message>
-        <location filename="../core/pointcloud.py" line="56" />
-        <source>Cannot read {path}: the file does not exist</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No se puede leer {path}: el archivo no existe</translation>
-    </message>
-    <message>
-        <location filename="../core/pointcloud.py" line="58" />
-        <source>Cannot read {path}: {detail}</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No se puede leer {path}: {detail}</translation>
-    </message>
-    <message>
-        <location filename="../core/pointcloud.py" line="74" />
-        <location filename="../core/pointcloud.py" line="130" />
-        <location filename="../core/pointcloud.py" line="123" />
+        <location filename="../core/ground/pdal.py" line="290" />
+        <location filename="../core/ground/pdal.py" line="292" />
+        <location filename="../core/ground/pdal.py" line="288" />
+        <location filename="../core/ground/pdal.py" line="273" />
+        <location filename="../core/ground/pdal.py" line="282" />
+        <location filename="../core/pointcloud.py" line="110" />
+        <location filename="../core/pointcloud.py" line="125" />
+        <location filename="../core/pointcloud.py" line="183" />
+        <location filename="../core/pointcloud.py" line="86" />
+        <location filename="../core/pointcloud.py" line="89" />
+        <location filename="../core/pointcloud.py" line="105" />
+        <location filename="../core/pointcloud.py" line="176" />
         <source>Cannot read {path}: the file is truncated or corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo está truncado o dañado ({detail})</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="192" />
+        <location filename="../core/ground/pdal.py" line="286" />
+        <location filename="../core/pointcloud.py" line="65" />
+        <location filename="../core/pointcloud.py" line="108" />
+        <source>Cannot read {path}: {detail}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer {path}: {detail}</translation>
+    </message>
+    <message>
+        <location filename="../core/outputs.py" line="69" />
+        <source>Cannot write {path}: the folder {folder} does not exist</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede escribir {path}: la carpeta {folder} no existe</translation>
+    </message>
+    <message>
+        <location filename="../core/outputs.py" line="81" />
+        <location filename="../core/outputs.py" line="93" />
+        <location filename="../core/outputs.py" line="148" />
+        <location filename="../core/outputs.py" line="196" />
+        <location filename="../core/pointcloud.py" line="253" />
+        <source>Cannot write {path}: {error}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede escribir {path}: {error}</translation>
+    </message>
+    <message>
+        <location filename="../core/outputs.py" line="189" />
+        <source>The output {path} was not written</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>La salida {path} no se escribió</translation>
+    </message>
+    <message>
+        <location filename="../core/panorama.py" line="55" />
+        <source>The panorama {path} is {width} x {height} pixels, more than the {limit} the plugin reads</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>El panorama {path} tiene {width} x {height} píxeles, más que los {limit} que lee el complemento</translation>
+    </message>
+    <message>
+        <location filename="../core/panorama.py" line="64" />
+        <source>The panorama {path} is {width} x {height} pixels: an equirectangular panorama must be twice as wide as it is high</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>El panorama {path} tiene {width} x {height} píxeles: un panorama equirrectangular debe ser el doble de ancho que de alto</translation>
+    </message>
+    <message>
+        <location filename="../core/panorama.py" line="96" />
+        <location filename="../core/panorama.py" line="47" />
+        <source>Panorama not found: {path}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se encontró el panorama: {path}</translation>
+    </message>
+    <message>
+        <location filename="../core/panorama.py" line="103" />
+        <source>Cannot read the panorama {path}: the file is not a JPEG or PNG image or is corrupt</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer el panorama {path}: el archivo no es una imagen JPEG o PNG o está dañado</translation>
+    </message>
+    <message>
+        <location filename="../core/panorama.py" line="49" />
+        <source>The panorama {path} has more pixels than the {limit} the plugin reads</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>El panorama {path} tiene más píxeles que los {limit} que lee el complemento</translation>
+    </message>
+    <message>
+        <location filename="../core/panorama.py" line="52" />
+        <source>Cannot read the panorama {path}: expected a JPEG or PNG image ({error})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer el panorama {path}: se esperaba una imagen JPEG o PNG ({error})</translation>
+    </message>
+    <message>
+        <location filename="../core/panorama.py" line="101" />
+        <source>Cannot read the panorama {path}: {error}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer el panorama {path}: {error}</translation>
+    </message>
+    <message>
+        <location filename="../core/pointcloud.py" line="323" />
+        <source>Cannot use {item!r} as a crop geometry: expected a shapely geometry, WKB or WKT</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede usar {item!r} como geometría de recorte: se esperaba una geometría de shapely, WKB o WKT</translation>
+    </message>
+    <message>
+        <location filename="../core/pointcloud.py" line="67" />
+        <source>Cannot read {path}: expected a LAS or LAZ file ({detail})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer {path}: se esperaba un archivo LAS o LAZ ({detail})</translation>
+    </message>
+    <message>
+        <location filename="../core/pointcloud.py" line="413" />
+        <source>{path} has no coordinate reference system and none was given</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{path} no tiene sistema de referencia de coordenadas y no se indicó ninguno</translation>
+    </message>
+    <message>
+        <location filename="../core/pointcloud.py" line="63" />
+        <source>Cannot read {path}: the file does not exist</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer {path}: el archivo no existe</translation>
+    </message>
+    <message>
+        <location filename="../core/pointcloud.py" line="246" />
         <source>Cannot write {path}: the folder does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la carpeta no existe</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="287" />
+        <location filename="../core/pointcloud.py" line="346" />
         <source>The crop layer has no geometry</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La capa de recorte no tiene geometría</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="298" />
+        <location filename="../core/pointcloud.py" line="357" />
         <source>A corridor needs a positive buffer, got {buffer_m} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un corredor necesita un búfer positivo; se recibió {buffer_m} m</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="308" />
+        <location filename="../core/pointcloud.py" line="367" />
         <source>A corridor needs stations or lines</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un corredor necesita estaciones o líneas</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="364" />
+        <location filename="../core/pointcloud.py" line="423" />
         <source>No point of {path} lies inside the crop area; {output} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} está dentro del área de recorte; {output} está vacío</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="444" />
+        <location filename="../core/pointcloud.py" line="503" />
         <source>{path} has no dimension {names} (point format {fmt})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene la dimensión {names} (formato de punto {fmt})</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="537" />
+        <location filename="../core/projection.py" line="521" />
         <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{ok} de {count} detecciones encontraron una superficie en la nube ({no_points} sin puntos, {no_surface} sin superficie plana)</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="334" />
+        <location filename="../core/projection.py" line="350" />
+        <location filename="../core/projection.py" line="580" />
         <source>{source} has no ground points (class 2) where the signs are: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{source} no tiene puntos de suelo (clase 2) donde están las señales: ejecute primero roadsigns:groundfilter sobre ella (o clasifique el suelo con otra herramienta)</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="471" />
+        <location filename="../core/projection.py" line="489" />
         <source>The maximum range must exceed {min} m, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El alcance máximo debe superar {min} m; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="310" />
+        <location filename="../core/projection.py" line="314" />
         <source>The candidates lack the field(s) {fields}; expected the output of Project detections</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>A los candidatos les faltan los campos {fields}; se esperaba la salida de «Proyectar detecciones en la nube de puntos»</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="323" />
+        <location filename="../core/projection.py" line="339" />
         <source>Unknown candidate status {status!r}; expected ok, no_points or no_surface</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Estado de candidato desconocido {status!r}; se esperaba ok, no_points o no_surface</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="327" />
+        <location filename="../core/projection.py" line="343" />
         <source>A candidate with status ok has no position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un candidato con estado ok no tiene posición</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="347" />
+        <location filename="../core/projection.py" line="363" />
         <source>The point index lacks {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Al índice de puntos le falta {names}</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="476" />
+        <location filename="../core/projection.py" line="494" />
         <source>No detections to project; the candidates are empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay detecciones que proyectar; los candidatos están vacíos</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="484" />
+        <location filename="../core/projection.py" line="517" />
         <source>{path} has no point inside the detections' frusta; no candidate found</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene puntos dentro de los troncos de visión de las detecciones; no se encontró ningún candidato</translation>
@@ -1616,235 +1934,283 @@
         <translation>Candidatos {ids} descartados: {reason}</translation>
     </message>
     <message>
-        <location filename="../core/tables.py" line="39" />
+        <location filename="../core/tables.py" line="50" />
         <source>table</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>tabla</translation>
     </message>
     <message>
-        <location filename="../core/tables.py" line="62" />
+        <location filename="../core/tables.py" line="77" />
         <source>{what} file {path} is empty: expected a header row with the columns {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El archivo de {what} {path} está vacío: se esperaba una fila de cabecera con las columnas {expected}</translation>
     </message>
     <message>
-        <location filename="../core/tables.py" line="70" />
+        <location filename="../core/tables.py" line="85" />
         <source>{what} file {path}: missing column(s) {missing}; found {found}; expected {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo de {what} {path}: faltan columnas {missing}; se encontraron {found}; se esperaban {expected}</translation>
     </message>
     <message>
-        <location filename="../core/tables.py" line="78" />
+        <location filename="../core/tables.py" line="93" />
         <source>{what} file {path} has a header but no data rows</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El archivo de {what} {path} tiene cabecera pero ninguna fila de datos</translation>
     </message>
     <message>
-        <location filename="../core/tables.py" line="54" />
+        <location filename="../core/tables.py" line="65" />
         <source>{what} file not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró el archivo de {what}: {path}</translation>
     </message>
     <message>
-        <location filename="../core/tables.py" line="56" />
+        <location filename="../core/tables.py" line="67" />
+        <source>Cannot read {what} file {path}: it is not UTF-8 text (byte {position}); save it as CSV in UTF-8</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer el archivo de {what} {path}: no es texto UTF-8 (byte {position}); guárdelo como CSV en UTF-8</translation>
+    </message>
+    <message>
+        <location filename="../core/tables.py" line="70" />
         <source>Cannot read {what} file {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer el archivo de {what} {path}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/tables.py" line="120" />
+        <location filename="../core/tables.py" line="126" />
+        <source>{what} file {path}, line {line}: {count} fields, but the header has {header_count}: decimal commas, or the delimiter inside a value? Write numbers with a decimal point (1.5, not 1,5)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Archivo de {what} {path}, línea {line}: {count} campos, pero la cabecera tiene {header_count}: ¿comas decimales, o el delimitador dentro de un valor? Escriba los números con punto decimal (1.5, no 1,5)</translation>
+    </message>
+    <message>
+        <location filename="../core/tables.py" line="153" />
         <source>{what} file {path}, line {line}, field '{field}': expected a finite number, found '{value}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo de {what} {path}, línea {line}, campo '{field}': se esperaba un número finito, se encontró '{value}'</translation>
     </message>
     <message>
-        <location filename="../core/tables.py" line="89" />
+        <location filename="../core/tables.py" line="41" />
+        <source>{what} file {path}, line {line}: cannot split the line into fields ({error})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Archivo de {what} {path}, línea {line}: no se puede dividir la línea en campos ({error})</translation>
+    </message>
+    <message>
+        <location filename="../core/tables.py" line="105" />
         <source>{what} file {path}, line {line}: field '{field}' is missing (the row has {count} fields, the header {header_count})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo de {what} {path}, línea {line}: falta el campo '{field}' (la fila tiene {count} campos, la cabecera {header_count})</translation>
     </message>
     <message>
-        <location filename="../core/tables.py" line="116" />
+        <location filename="../core/tables.py" line="149" />
         <source>{what} file {path}, line {line}, field '{field}': expected a number, found '{value}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo de {what} {path}, línea {line}, campo '{field}': se esperaba un número, se encontró '{value}'</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="160" />
+        <location filename="../core/tables.py" line="145" />
+        <source>{what} file {path}, line {line}, field '{field}': expected a number, found '{value}': a decimal comma? Write numbers with a decimal point (1.5, not 1,5)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Archivo de {what} {path}, línea {line}, campo '{field}': se esperaba un número, se encontró '{value}': ¿una coma decimal? Escriba los números con punto decimal (1.5, no 1,5)</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="192" />
         <source>is duplicated</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>está duplicado</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="160" />
+        <location filename="../core/trajectory.py" line="192" />
         <source>goes back in time</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>va hacia atrás</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="168" />
-        <location filename="../core/trajectory.py" line="172" />
+        <location filename="../core/trajectory.py" line="200" />
+        <location filename="../core/trajectory.py" line="204" />
         <source>Trajectory</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>trayectoria</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="206" />
+        <location filename="../core/trajectory.py" line="244" />
         <source>SBET</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SBET</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="223" />
-        <location filename="../core/trajectory.py" line="225" />
+        <location filename="../core/trajectory.py" line="261" />
+        <location filename="../core/trajectory.py" line="263" />
         <source>Image times</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>tiempos de imagen</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="312" />
-        <location filename="../core/trajectory.py" line="315" />
+        <location filename="../core/trajectory.py" line="352" />
+        <location filename="../core/trajectory.py" line="355" />
         <source>Poses</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>poses</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="161" />
+        <location filename="../core/trajectory.py" line="193" />
         <source>{what} file {path}, {location}: time {time} {kind} (previous {previous}); times must increase strictly</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo de {what} {path}, {location}: el tiempo {time} {kind} (anterior {previous}); los tiempos deben aumentar estrictamente</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="195" />
+        <location filename="../core/trajectory.py" line="227" />
         <source>SBET file {path}, record {record}: non-finite value (NaN or infinity)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo SBET {path}, registro {record}: valor no finito (NaN o infinito)</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="200" />
+        <location filename="../core/trajectory.py" line="232" />
         <source>SBET file {path}: latitude/longitude out of range for radians: not an SBET, or wrong byte order</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo SBET {path}: latitud/longitud fuera de rango para radianes: no es un SBET o el orden de bytes es incorrecto</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="217" />
+        <location filename="../core/trajectory.py" line="237" />
+        <source>SBET file {path}, record {record}: roll, pitch, heading or wander out of range for radians, or the height beyond 100 km: not an SBET, or wrong byte order</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Archivo SBET {path}, registro {record}: alabeo, cabeceo, rumbo o ángulo de deriva fuera de rango para radianes, o la altura más allá de 100 km: no es un SBET, o el orden de bytes es incorrecto</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="255" />
         <source>Trajectory file not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró el archivo de trayectoria: {path}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="270" />
+        <location filename="../core/trajectory.py" line="310" />
         <source>Trajectory file {path} has {count} sample(s): at least 2 are needed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El archivo de trayectoria {path} tiene {count} muestra(s): se necesitan al menos 2</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="290" />
+        <location filename="../core/trajectory.py" line="330" />
         <source>No image time falls inside the trajectory's span [{start}, {end}]</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún tiempo de imagen cae dentro del intervalo de la trayectoria [{start}, {end}]</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="385" />
+        <location filename="../core/trajectory.py" line="426" />
         <source>Panorama folder not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró la carpeta de panoramas: {path}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="422" />
+        <location filename="../core/trajectory.py" line="466" />
         <source>None of the {count} panoramas listed was found in {folder}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró en {folder} ninguno de los {count} panoramas de la lista</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="185" />
+        <location filename="../core/trajectory.py" line="503" />
+        <source>Panorama {image}: its position x {x}, y {y} in the target CRS lies outside the area of use of {crs} (longitude {west} to {east}, latitude {south} to {north}): choose the target CRS of the drive's region (e.g. its UTM zone)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Panorama {image}: su posición x {x}, y {y} en el SRC de destino queda fuera del área de uso de {crs} (longitud {west} a {east}, latitud {south} a {north}): elija el SRC de destino de la región del recorrido (p. ej. su zona UTM)</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="156" />
+        <source>{layer}: station {station}: the quaternion qw, qx, qy, qz has norm {norm:.4f}, not 1; expected the output of Import trajectory</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{layer}: estación {station}: el cuaternión qw, qx, qy, qz tiene norma {norm:.4f}, no 1; se esperaba la salida de Importar trayectoria</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="217" />
         <source>SBET file {path} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El archivo SBET {path} está vacío</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="187" />
+        <location filename="../core/trajectory.py" line="219" />
         <source>SBET file {path} is {size} bytes, not a multiple of {record} bytes (17 float64 per record): truncated or not an SBET</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El archivo SBET {path} tiene {size} bytes, que no es múltiplo de {record} bytes (17 float64 por registro): truncado o no es un SBET</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="192" />
+        <location filename="../core/trajectory.py" line="224" />
         <source>Cannot read SBET file {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer el archivo SBET {path}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="233" />
+        <location filename="../core/trajectory.py" line="271" />
         <source>{what} file {path}, line {line}, field 'image': empty image name</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo de {what} {path}, línea {line}, campo 'image': nombre de imagen vacío</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="236" />
+        <location filename="../core/trajectory.py" line="274" />
         <source>{what} file {path}, line {line}: image '{image}' already listed on line {first}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo de {what} {path}, línea {line}: la imagen '{image}' ya figura en la línea {first}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="277" />
+        <location filename="../core/trajectory.py" line="317" />
         <source>Image times file {path}, {location}: time {time} of image '{image}' is outside the trajectory's span [{start}, {end}] ({count} image(s) outside in all; set the option to skip them)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo de tiempos de imagen {path}, {location}: el tiempo {time} de la imagen '{image}' está fuera del intervalo de la trayectoria [{start}, {end}] ({count} imagen(es) fuera en total; active la opción para omitirlas)</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="283" />
+        <location filename="../core/trajectory.py" line="323" />
         <source>Skipped {count} image(s) whose time is outside the trajectory's span [{start}, {end}], the first: {image}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se omitieron {count} imagen(es) cuyo tiempo está fuera del intervalo de la trayectoria [{start}, {end}]; la primera: {image}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="300" />
+        <location filename="../core/trajectory.py" line="340" />
         <source>{count} image(s) fall in a trajectory gap longer than {max_gap} s; the longest gap is {gap:.3f} s around image '{image}' at time {time}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} imagen(es) caen en un hueco de la trayectoria de más de {max_gap} s; el hueco más largo es de {gap:.3f} s, en torno a la imagen '{image}' en el tiempo {time}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="365" />
+        <location filename="../core/trajectory.py" line="406" />
         <source>Skipped {count} panorama(s) that are missing or unreadable; the first: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se omitieron {count} panorámica(s) que faltan o no se pueden leer; la primera: {path}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="388" />
+        <location filename="../core/trajectory.py" line="429" />
         <source>Give either a per-image pose file, or a trajectory with image times, not both</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Indique un archivo de poses por imagen o una trayectoria con tiempos de imagen, no ambos</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="395" />
+        <location filename="../core/trajectory.py" line="437" />
         <source>A trajectory file and an image times file are needed (or a per-image pose file instead)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se necesitan un archivo de trayectoria y un archivo de tiempos de imagen (o, en su lugar, un archivo de poses por imagen)</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="415" />
+        <location filename="../core/trajectory.py" line="459" />
         <source>No target CRS given: using {crs}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se indicó SRC de destino: se usa {crs}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="400" />
+        <location filename="../core/trajectory.py" line="442" />
         <source>SBET trajectory: WGS 84 geographic with ellipsoidal heights, {count} records</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Trayectoria SBET: WGS 84 geográfico con alturas elipsoidales, {count} registros</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="404" />
+        <location filename="../core/trajectory.py" line="448" />
         <source>Trajectory: {count} samples over {span:.1f} s</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Trayectoria: {count} muestras en {span:.1f} s</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="123" />
+        <location filename="../core/trajectory.py" line="132" />
         <source>{layer}: station {station} has no value in the field {field}; expected the output of Import trajectory</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{layer}: la estación {station} no tiene valor en el campo {field}; se esperaba la salida de Importar trayectoria</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="143" />
+        <source>{layer}: station {station}, field {field}: expected a finite number, found '{value}'; expected the output of Import trajectory</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{layer}: estación {station}, campo {field}: se esperaba un número finito, se encontró '{value}'; se esperaba la salida de Importar trayectoria</translation>
     </message>
     <message>
         <location filename="../dependencies.py" line="72" />
@@ -1952,35 +2318,55 @@
 <context>
     <name>RoadSignsAlgorithm</name>
     <message>
-        <location filename="../algorithms/base.py" line="48" />
+        <location filename="../algorithms/base.py" line="106" />
         <source>Road sign inventory</source>
         <translation>Inventario de señales viales</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="109" />
+        <location filename="../algorithms/base.py" line="167" />
         <source>LAS/LAZ point clouds (*.las *.laz *.LAS *.LAZ);;All files (*.*)</source>
         <translation>Nubes de puntos LAS/LAZ (*.las *.laz *.LAS *.LAZ);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="180" />
+        <location filename="../algorithms/base.py" line="267" />
         <source>Cancelled: nothing was written.</source>
         <translation>Cancelado: no se escribió nada.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/base.py" line="273" />
+        <source>Out of memory: nothing was written. Crop the point cloud (Ground filter with a crop layer) or process the drive in parts.</source>
+        <translation>Memoria insuficiente: no se escribió nada. Recorte la nube de puntos (Filtro de suelo con una capa de recorte) o procese el recorrido por partes.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/base.py" line="276" />
+        <source>Cannot read or write {}: {}. Nothing was written.</source>
+        <translation>No se puede leer o escribir {}: {}. No se escribió nada.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/base.py" line="279" />
+        <source>Unexpected error ({}: {}); nothing was written. The details are in the QGIS message log (Road sign inventory); please report them.</source>
+        <translation>Error inesperado ({}: {}); no se escribió nada. Los detalles están en el registro de mensajes de QGIS (Road sign inventory); por favor, notifíquelos.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/base.py" line="284" />
+        <source>{} However, these partial outputs could not be removed: {}</source>
+        <translation>{} Sin embargo, estas salidas parciales no se pudieron eliminar: {}</translation>
     </message>
 </context>
 <context>
     <name>RoadSignsProvider</name>
     <message>
-        <location filename="../provider/provider.py" line="27" />
+        <location filename="../provider/provider.py" line="29" />
         <source>Road sign inventory</source>
         <translation>Inventario de señales viales</translation>
     </message>
     <message>
-        <location filename="../provider/provider.py" line="30" />
+        <location filename="../provider/provider.py" line="32" />
         <source>Road sign inventory from mobile mapping (panoramas, trajectory, LiDAR)</source>
         <translation>Inventario de señales viales a partir de cartografía móvil (panoramas, trayectoria, LiDAR)</translation>
     </message>
     <message>
-        <location filename="../provider/provider.py" line="43" />
+        <location filename="../provider/provider.py" line="45" />
         <source>PDAL executable for the ground filter (empty: search PATH and QGIS)</source>
         <translation>Ejecutable de PDAL para el filtro de suelo (vacío: buscar en el PATH y en QGIS)</translation>
     </message>
@@ -1988,12 +2374,12 @@
 <context>
     <name>ShippedModel</name>
     <message>
-        <location filename="../provider/provider.py" line="90" />
+        <location filename="../provider/provider.py" line="92" />
         <source>Sign inventory (whole chain)</source>
         <translation>Inventario de señales (cadena completa)</translation>
     </message>
     <message>
-        <location filename="../provider/provider.py" line="103" />
+        <location filename="../provider/provider.py" line="105" />
         <source>Road sign inventory</source>
         <translation>Inventario de señales viales</translation>
     </message>

@@ -9,17 +9,17 @@
         <translation>道路标志清查</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="42" />
+        <location filename="../algorithms/evaluate.py" line="52" />
         <source>{layer}: no field 'class'; fields found: {found}</source>
         <translation>{layer}：没有字段 'class'；找到的字段：{found}</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="49" />
+        <location filename="../algorithms/layers.py" line="59" />
         <source>{layer}: missing field(s) {missing}; fields found: {found}</source>
         <translation>{layer}：缺少字段 {missing}；找到的字段：{found}</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="84" />
+        <location filename="../algorithms/layers.py" line="172" />
         <source>{layer} is in {layer_crs}, the point cloud {cloud} in {cloud_crs}: import the trajectory with the cloud's CRS as target CRS so that every stage works in one CRS</source>
         <translation>{layer} 的坐标参考系为 {layer_crs}，点云 {cloud} 的为 {cloud_crs}：请以点云的坐标参考系作为目标坐标参考系导入轨迹，使每个步骤都在同一坐标参考系中工作</translation>
     </message>
@@ -58,6 +58,46 @@
         <source>other</source>
         <translation>其他</translation>
     </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="65" />
+        <source>{layer}: cannot reproject feature {feature}: {error}</source>
+        <translation>{layer}：无法重投影要素 {feature}：{error}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="79" />
+        <source>{layer}: sign '{sign_id}' has no valid x, y, z position (no point geometry, and no numbers in the fields x, y, z)</source>
+        <translation>{layer}：标志 '{sign_id}' 没有有效的 x、y、z 位置（既无点几何，字段 x、y、z 中也没有数字）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/layers.py" line="72" />
+        <source>{layer}, feature {feature}: the field {field} holds '{value}', not a number</source>
+        <translation>{layer}，要素 {feature}：字段 {field} 的值为 '{value}'，不是数字</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/layers.py" line="78" />
+        <source>{layer}: the layer has no feature, nothing to process</source>
+        <translation>{layer}：图层没有要素，无可处理的内容</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/layers.py" line="98" />
+        <source>Cannot write feature {} to the output layer: {}</source>
+        <translation>无法将要素 {} 写入输出图层：{}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/layers.py" line="123" />
+        <source>{layer} is in {crs}, a geographic CRS (degrees): this needs a projected CRS in metres, the CRS of the point cloud (e.g. a UTM zone)</source>
+        <translation>{layer} 的坐标参考系为 {crs}，这是地理坐标参考系（度）：此处需要以米为单位的投影坐标参考系，即点云的坐标参考系（例如 UTM 分带）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/layers.py" line="157" />
+        <source>The point cloud {cloud} has no coordinate reference system: give it as Cloud CRS (an advanced parameter; a CRS is never guessed)</source>
+        <translation>点云 {cloud} 没有坐标参考系：请在“点云坐标参考系”中指定（高级参数；坐标参考系从不猜测）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/layers.py" line="167" />
+        <source>The point cloud {cloud} has no coordinate reference system: give it one with Ground filter (parameter Cloud CRS); a CRS is never guessed</source>
+        <translation>点云 {cloud} 没有坐标参考系：请用地面滤波（参数“点云坐标参考系”）为其指定一个；坐标参考系从不猜测</translation>
+    </message>
 </context>
 <context>
     <name>DetectSigns</name>
@@ -77,7 +117,7 @@
         <translation>将每个站点的等距柱状全景图切分为相互重叠的透视视图（一圈水平视图，以及一圈用于悬挂式标志的上视视图），在每个视图上运行 ONNX 检测器，将检测框映射回全景图像素，并合并在两个视图中找到的同一标志。&lt;br&gt;&lt;br&gt;&lt;b&gt;模型&lt;/b&gt;留空时使用内置模型，也可以是您自己导出的 ONNX 模型：Ultralytics YOLOv8/11（[1, 4+nc, N]）、YOLOv5/7（[1, N, 5+nc]）或内置 NMS 的模型（[1, N, 6]）。类别名称来自模型元数据（Ultralytics &lt;i&gt;names&lt;/i&gt;）或标签文件（每行一个名称）。&lt;br&gt;&lt;br&gt;输出：每个检测一条线，从全景图中心沿穿过检测框中心的射线延伸，长度为&lt;i&gt;射线长度&lt;/i&gt;，附带检测框（u0、v0、u1、v1，单位为全景图像素；跨越 ±180° 接缝时 u1 大于图像宽度）和站点位姿。无法读取的全景图将被跳过，并给出警告和计数。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="113" />
+        <location filename="../algorithms/detectsigns.py" line="115" />
         <source>Panorama stations</source>
         <translation>全景站点</translation>
     </message>
@@ -187,558 +227,689 @@
         <translation>跳过的全景图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="107" />
+        <location filename="../algorithms/detectsigns.py" line="108" />
         <source>ONNX model not found: {}</source>
         <translation>未找到 ONNX 模型：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="120" />
+        <location filename="../algorithms/detectsigns.py" line="122" />
         <source>{} panoramas, {} views each</source>
         <translation>{} 张全景图，每张 {} 个视图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="125" />
+        <location filename="../algorithms/detectsigns.py" line="127" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>跳过了 {} 张无法读取的全景图。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="136" />
+        <location filename="../algorithms/detectsigns.py" line="140" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} 个检测，来自 {} 张全景图（跳过 {} 张）。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="132" />
+        <source>No sign was detected: the detections layer is empty.</source>
+        <translation>未检测到任何标志：检测图层为空。</translation>
     </message>
 </context>
 <context>
     <name>Evaluate</name>
     <message>
-        <location filename="../algorithms/evaluate.py" line="79" />
+        <location filename="../algorithms/evaluate.py" line="97" />
         <source>Evaluate signs against reference</source>
         <translation>对照参考数据评估标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="82" />
+        <location filename="../algorithms/evaluate.py" line="100" />
         <source>Scores a sign layer against reference sign panels and writes an HTML report.</source>
         <translation>将标志图层与参考标志牌进行对比评分，并生成 HTML 报告。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="85" />
+        <location filename="../algorithms/evaluate.py" line="103" />
         <source>Matches each sign to at most one reference panel by optimal assignment (Hungarian method) on the 3D distance between panel centres, within the match radius and ignoring class, then reports precision (matches / signs), recall (matches / reference panels), F1, the class accuracy of the matches, and the median and 95th percentile position error, the median height error and the median azimuth error.&lt;br&gt;&lt;br&gt;The &lt;b&gt;reference&lt;/b&gt; is a CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt; in the sign layer's CRS, or a point layer with those fields (reprojected to the sign layer's CRS).&lt;br&gt;&lt;br&gt;The HTML report has the summary and one row per sign: matched (with its errors), missed or false.</source>
         <translation>通过最优分配（匈牙利算法），依据标志牌中心之间的三维距离，在匹配半径内且不考虑类别，将每个标志与至多一个参考标志牌匹配；然后报告精确率（匹配数 / 标志数）、召回率（匹配数 / 参考标志牌数）、F1、匹配的类别准确率，以及位置误差的中位数和第 95 百分位数、高度误差中位数和方位角误差中位数。&lt;br&gt;&lt;br&gt;&lt;b&gt;参考数据&lt;/b&gt;为位于标志图层坐标参考系中的 CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt;，或具有这些字段的点图层（重投影到标志图层的坐标参考系）。&lt;br&gt;&lt;br&gt;HTML 报告包含汇总信息，并为每个标志列出一行：已匹配（附其误差）、漏检或误检。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="99" />
+        <location filename="../algorithms/evaluate.py" line="117" />
         <source>True positives (matched signs)</source>
         <translation>真正例（匹配的标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="99" />
+        <location filename="../algorithms/evaluate.py" line="117" />
         <source>False positives (unmatched signs)</source>
         <translation>假正例（未匹配的标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="100" />
+        <location filename="../algorithms/evaluate.py" line="118" />
         <source>False negatives (missed reference panels)</source>
         <translation>假反例（漏检的参考标志牌）</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="100" />
+        <location filename="../algorithms/evaluate.py" line="118" />
         <source>Precision</source>
         <translation>精确率</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="101" />
+        <location filename="../algorithms/evaluate.py" line="119" />
         <source>Recall</source>
         <translation>召回率</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="101" />
+        <location filename="../algorithms/evaluate.py" line="119" />
         <source>F1 score</source>
         <translation>F1 分数</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="102" />
+        <location filename="../algorithms/evaluate.py" line="120" />
         <source>Class accuracy of matches</source>
         <translation>匹配的类别准确率</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="103" />
+        <location filename="../algorithms/evaluate.py" line="121" />
         <source>Median 3D position error (m)</source>
         <translation>三维位置误差中位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="104" />
+        <location filename="../algorithms/evaluate.py" line="122" />
         <source>95th percentile 3D error (m)</source>
         <translation>三维误差第 95 百分位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="105" />
+        <location filename="../algorithms/evaluate.py" line="123" />
         <source>Median height error (m)</source>
         <translation>高度误差中位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="106" />
+        <location filename="../algorithms/evaluate.py" line="124" />
         <source>Median azimuth error (°)</source>
         <translation>方位角误差中位数 (°)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="107" />
+        <location filename="../algorithms/evaluate.py" line="125" />
         <source>Median horizontal position error (m)</source>
         <translation>水平位置误差中位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="108" />
+        <location filename="../algorithms/evaluate.py" line="126" />
         <source>Median vertical position error (m)</source>
         <translation>垂直位置误差中位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="157" />
+        <location filename="../algorithms/evaluate.py" line="183" />
         <source>Sign layer</source>
         <translation>标志图层</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="112" />
+        <location filename="../algorithms/evaluate.py" line="130" />
         <source>The sign layer to score (PointZ at the panel centres, e.g. the output of Refine signs), with the fields sign_id, class and optionally height, azimuth, best_image.</source>
         <translation>要评分的标志图层（位于标志牌中心的 PointZ，例如“精化与合并标志”的输出），包含字段 sign_id、class，以及可选的 height、azimuth、best_image。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="116" />
+        <location filename="../algorithms/evaluate.py" line="134" />
         <source>Reference signs (CSV or point layer)</source>
         <translation>参考标志（CSV 或点图层）</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="116" />
+        <location filename="../algorithms/evaluate.py" line="134" />
         <source>Ground truth: a CSV sign_id,class,x,y,z,height,width,panel_height,azimuth in the sign layer's CRS, or a point layer with those fields (reprojected if its CRS differs).</source>
         <translation>真值数据：位于标志图层坐标参考系中的 CSV sign_id,class,x,y,z,height,width,panel_height,azimuth，或具有这些字段的点图层（若其坐标参考系不同则进行重投影）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="116" />
+        <location filename="../algorithms/evaluate.py" line="134" />
         <source>Reference signs (*.csv *.txt *.gpkg *.shp *.geojson);;All files (*.*)</source>
         <translation>参考标志 (*.csv *.txt *.gpkg *.shp *.geojson);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="121" />
+        <location filename="../algorithms/evaluate.py" line="139" />
         <source>Match radius (m)</source>
         <translation>匹配半径 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="121" />
+        <location filename="../algorithms/evaluate.py" line="139" />
         <source>A sign and a reference panel farther apart than this (3D distance between panel centres, metres) are never matched.</source>
         <translation>距离超过此值（标志牌中心之间的三维距离，单位为米）的标志与参考标志牌永远不会被匹配。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="125" />
+        <location filename="../algorithms/evaluate.py" line="143" />
         <source>Evaluation report</source>
         <translation>评估报告</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="125" />
+        <location filename="../algorithms/evaluate.py" line="143" />
         <source>HTML files (*.html)</source>
         <translation>HTML 文件 (*.html)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="125" />
+        <location filename="../algorithms/evaluate.py" line="143" />
         <source>HTML report: the summary and one row per sign and reference panel.</source>
         <translation>HTML 报告：汇总信息，以及每个标志和参考标志牌各一行。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="134" />
+        <location filename="../algorithms/evaluate.py" line="152" />
         <source>Reference file not found: {}</source>
         <translation>未找到参考文件：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="136" />
+        <location filename="../algorithms/evaluate.py" line="154" />
         <source>Reference CSV {}: coordinates taken in the sign layer's CRS ({})</source>
         <translation>参考 CSV {}：坐标按标志图层的坐标参考系（{}）解释</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="142" />
+        <location filename="../algorithms/evaluate.py" line="165" />
         <source>Cannot read the reference {}: expected a CSV or a point layer</source>
         <translation>无法读取参考数据 {}：应为 CSV 或点图层</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="146" />
+        <location filename="../algorithms/evaluate.py" line="169" />
         <source>Reprojecting the reference from {} to {}</source>
         <translation>正在将参考数据从 {} 重投影到 {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="160" />
+        <location filename="../algorithms/evaluate.py" line="186" />
         <source>The sign layer is empty: nothing to evaluate.</source>
         <translation>标志图层为空：没有可评估的内容。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="164" />
+        <location filename="../algorithms/evaluate.py" line="190" />
         <source>The reference {} has no sign: nothing to evaluate against.</source>
         <translation>参考数据 {} 中没有标志：无法进行评估。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="169" />
+        <location filename="../algorithms/evaluate.py" line="196" />
         <source>Road sign evaluation</source>
         <translation>道路标志评估</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="176" />
+        <location filename="../algorithms/evaluate.py" line="203" />
         <source>{} signs, {} reference panels: TP {}, FP {}, FN {}; precision {}, recall {}, median error {} m</source>
         <translation>{} 个标志，{} 个参考标志牌：TP {}，FP {}，FN {}；精确率 {}，召回率 {}，误差中位数 {} m</translation>
     </message>
 </context>
 <context>
+    <name>FindSignsInCloud</name>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="24" />
+        <source>Find signs in the point cloud (no images)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="27" />
+        <source>Finds retro-reflective sign panels and their poles in the LiDAR cloud alone, and flags faded sheeting.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="31" />
+        <source>Finds sign panels from the point cloud alone, after the Utah I-15 mobile-LiDAR method (Ai and Tsai): the drive's track (the panorama stations) locates every point along the road; points above the ground (class 2) and beside or above the road are kept; their intensity is normalised for range and incidence angle; a threshold adapted to the cloud (stated in the log) picks the retro-reflective sheeting; planar clusters of sign size and shape at sign heights become panels, each with the pole or gantry that carries it. The cloud is read once and worked through in windows of drive, so memory does not grow with the drive.&lt;br&gt;&lt;br&gt;Outputs: the sign panels (PointZ at the panel centre: size, face normal and azimuth, height above the ground, intensity statistics, the retroreflectivity index and a &lt;b&gt;condition&lt;/b&gt; of good, check or poor), their outlines (PolygonZ), and the poles (sign poles, light poles, gantry posts: foot, height, diameter, lean and the signs each carries).&lt;br&gt;&lt;br&gt;&lt;b&gt;Condition&lt;/b&gt; is a screening flag, not a measurement: the retroreflectivity index is the median normalised intensity of the panel's face, compared with the drive's own healthy signs. It is not the coefficient of retroreflection of the MUTCD (observation angle 0.2°, entrance angle −4°): confirm flagged signs in the field. The cloud needs an intensity dimension and ground points (run Ground filter first).</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="50" />
+        <source>Ground-classified point cloud (LAS/LAZ)</source>
+        <translation>已地面分类的点云（LAS/LAZ）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="50" />
+        <source>The cloud with ground as class 2 (the output of Ground filter) and an intensity dimension, in the stations' CRS.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="88" />
+        <source>Panorama stations</source>
+        <translation>全景站点</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="54" />
+        <source>The output of Import trajectory: the drive's track (positions and times).</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="57" />
+        <source>Corridor half-width (m)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="57" />
+        <source>Signs are searched this far to each side of the track, in metres.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="61" />
+        <source>Sign panels found in the cloud</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="61" />
+        <source>PointZ layer, one point per panel centre, with its size, face normal and azimuth, heights, intensity statistics, retroreflectivity index, condition and support.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="65" />
+        <source>Panel outlines</source>
+        <translation>标志牌轮廓</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="65" />
+        <source>PolygonZ layer of each panel's rectangle in its plane.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="68" />
+        <source>Poles</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="68" />
+        <source>PointZ layer, one point per pole foot: kind (sign_pole, light_pole, gantry, other), height, diameter, lean and the ids of the signs it carries.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="72" />
+        <source>Sign panels found</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="73" />
+        <source>Poles found</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="87" />
+        <source>The stations</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/findsignsincloud.py" line="119" />
+        <source>{} sign panels and {} poles found in the cloud.</source>
+        <translation type="unfinished" />
+    </message>
+</context>
+<context>
     <name>GroundFilter</name>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="53" />
+        <location filename="../algorithms/groundfilter.py" line="54" />
         <source>Ground filter and crop point cloud</source>
         <translation>地面滤波与点云裁剪</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="56" />
+        <location filename="../algorithms/groundfilter.py" line="57" />
         <source>Crops a LAS/LAZ cloud and classifies ground (class 2) with CSF or SMRF, PDAL or built-in.</source>
         <translation>裁剪 LAS/LAZ 点云，并使用 CSF 或 SMRF（PDAL 或内置引擎）将地面分类为类别 2。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="60" />
+        <location filename="../algorithms/groundfilter.py" line="61" />
         <source>Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless &lt;i&gt;Reset existing classes&lt;/i&gt; is checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are written unchanged.&lt;br&gt;&lt;br&gt;&lt;b&gt;Crop&lt;/b&gt;: polygons (grown by the crop buffer), or points and lines such as the panorama stations or detection rays, buffered into a corridor. The crop layer is reprojected to the cloud's CRS.&lt;br&gt;&lt;br&gt;&lt;b&gt;Engine&lt;/b&gt;: PDAL runs filters.csf / filters.smrf through its Python bindings or the &lt;i&gt;pdal&lt;/i&gt; executable (on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign inventory); the built-in engine runs the same filters in Python, tile by tile, so clouds larger than memory work. Auto uses PDAL when present and falls back to the built-in engine if PDAL fails, saying so in the log.</source>
         <translation>分块读取 LAS/LAZ 点云，保留裁剪范围内的点，并使用布料模拟滤波（CSF，Zhang 等，2016）或简单形态学滤波（SMRF，Pingel 等，2013）将地面点分类为类别 2，参数与 PDAL 相同（默认值针对密集的移动测量点云调整：阈值 0.2 m，格网 0.5 m；PDAL 自身的默认值为 0.5 m 和 1 m）。除非勾选&lt;i&gt;重置现有类别&lt;/i&gt;，其他类别将被保留。所有维度、额外字节、VLR、缩放与偏移以及坐标参考系均原样写出。&lt;br&gt;&lt;br&gt;&lt;b&gt;裁剪&lt;/b&gt;：多边形（按裁剪缓冲距离外扩），或点和线（例如全景站点或检测射线），缓冲为走廊。裁剪图层会被重投影到点云的坐标参考系。&lt;br&gt;&lt;br&gt;&lt;b&gt;引擎&lt;/b&gt;：PDAL 通过其 Python 绑定或 &lt;i&gt;pdal&lt;/i&gt; 可执行文件（位于 PATH、QGIS 的 bin 文件夹中，或在 处理 ▸ 选项 ▸ 提供者 ▸ 道路标志清查 中设置）运行 filters.csf / filters.smrf；内置引擎在 Python 中逐块运行相同的滤波器，因此可以处理大于内存的点云。“自动”在有 PDAL 时使用 PDAL，若 PDAL 失败则回退到内置引擎，并在日志中说明。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="77" />
+        <location filename="../algorithms/groundfilter.py" line="78" />
         <source>Point cloud (LAS/LAZ)</source>
         <translation>点云（LAS/LAZ）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="77" />
+        <location filename="../algorithms/groundfilter.py" line="78" />
         <source>The mobile-mapping cloud, LAS 1.2-1.4 or LAZ, any size (it is read in chunks).</source>
         <translation>移动测量点云，LAS 1.2-1.4 或 LAZ，大小不限（分块读取）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="80" />
+        <location filename="../algorithms/groundfilter.py" line="81" />
         <source>Crop layer (optional)</source>
         <translation>裁剪图层（可选）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="80" />
+        <location filename="../algorithms/groundfilter.py" line="81" />
         <source>Keep only points inside these polygons, or within the crop buffer of these points or lines (e.g. the panorama stations). Empty keeps the whole cloud.</source>
         <translation>仅保留这些多边形内的点，或这些点或线（例如全景站点）的裁剪缓冲距离内的点。留空则保留整个点云。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="84" />
+        <location filename="../algorithms/groundfilter.py" line="85" />
         <source>Crop buffer (m)</source>
         <translation>裁剪缓冲距离 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="84" />
+        <location filename="../algorithms/groundfilter.py" line="85" />
         <source>Grow the crop geometries by this many metres; needed (&gt; 0) for a point or line layer.</source>
         <translation>将裁剪几何外扩的米数；点或线图层必须大于 0。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="88" />
+        <location filename="../algorithms/groundfilter.py" line="89" />
         <source>Ground method</source>
         <translation>地面分类方法</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="88" />
+        <location filename="../algorithms/groundfilter.py" line="89" />
         <source>CSF (cloth simulation)</source>
         <translation>CSF（布料模拟）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="88" />
+        <location filename="../algorithms/groundfilter.py" line="89" />
         <source>SMRF (simple morphological filter)</source>
         <translation>SMRF（简单形态学滤波）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="88" />
+        <location filename="../algorithms/groundfilter.py" line="89" />
         <source>CSF suits roads and gentle terrain; SMRF suits steeper or rougher terrain.</source>
         <translation>CSF 适用于道路和平缓地形；SMRF 适用于较陡或较崎岖的地形。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="92" />
+        <location filename="../algorithms/groundfilter.py" line="93" />
         <source>Engine</source>
         <translation>引擎</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="92" />
+        <location filename="../algorithms/groundfilter.py" line="93" />
         <source>Auto (PDAL when available, else built-in)</source>
         <translation>自动（有 PDAL 时使用 PDAL，否则使用内置引擎）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="92" />
+        <location filename="../algorithms/groundfilter.py" line="93" />
         <source>PDAL</source>
         <translation>PDAL</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="92" />
+        <location filename="../algorithms/groundfilter.py" line="93" />
         <source>Built-in</source>
         <translation>内置</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="92" />
+        <location filename="../algorithms/groundfilter.py" line="93" />
         <source>Auto: PDAL when QGIS has it (Python bindings or the pdal executable), else built-in.</source>
         <translation>自动：QGIS 带有 PDAL 时（Python 绑定或 pdal 可执行文件）使用 PDAL，否则使用内置引擎。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="97" />
+        <location filename="../algorithms/groundfilter.py" line="98" />
         <source>Ground distance threshold (m)</source>
         <translation>地面距离阈值 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="97" />
+        <location filename="../algorithms/groundfilter.py" line="98" />
         <source>Points within this height of the ground surface are ground (PDAL's threshold option). PDAL's default is 0.5 m; 0.2 m suits dense mobile-mapping clouds, where it keeps the lowest parts of cars, walls and street furniture off the ground class.</source>
         <translation>距地面表面在此高度以内的点被视为地面（PDAL 的 threshold 选项）。PDAL 的默认值为 0.5 m；0.2 m 适用于密集的移动测量点云，可避免汽车、墙体和街道设施的最低部分被归入地面类别。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="103" />
+        <location filename="../algorithms/groundfilter.py" line="104" />
         <source>Cloth resolution / cell size (m)</source>
         <translation>布料分辨率 / 格网大小 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="103" />
+        <location filename="../algorithms/groundfilter.py" line="104" />
         <source>CSF's cloth resolution or SMRF's cell size, in metres (PDAL's default: 1 m).</source>
         <translation>CSF 的布料分辨率或 SMRF 的格网大小，单位为米（PDAL 默认值：1 m）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="107" />
+        <location filename="../algorithms/groundfilter.py" line="108" />
         <source>Cloud CRS (when the file has none)</source>
         <translation>点云坐标参考系（文件中没有时）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="107" />
+        <location filename="../algorithms/groundfilter.py" line="108" />
         <source>The cloud's CRS if the file does not record one; a CRS in the file is replaced by it. The CRS is never guessed.</source>
         <translation>当文件未记录坐标参考系时使用的点云坐标参考系；文件中已有的坐标参考系将被其替换。从不猜测坐标参考系。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="111" />
+        <location filename="../algorithms/groundfilter.py" line="112" />
         <source>Reset existing classes</source>
         <translation>重置现有类别</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="111" />
+        <location filename="../algorithms/groundfilter.py" line="112" />
         <source>Set every non-ground point to class 1 (unclassified) instead of keeping its class.</source>
         <translation>将所有非地面点设为类别 1（未分类），而不保留其原有类别。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="115" />
+        <location filename="../algorithms/groundfilter.py" line="116" />
         <source>Ground-classified cloud</source>
         <translation>已地面分类的点云</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="115" />
+        <location filename="../algorithms/groundfilter.py" line="116" />
         <source>LAZ (*.laz);;LAS (*.las)</source>
         <translation>LAZ (*.laz);;LAS (*.las)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="115" />
+        <location filename="../algorithms/groundfilter.py" line="116" />
         <source>The cropped cloud with ground as class 2; LAZ or LAS by the file extension.</source>
         <translation>裁剪后的点云，地面为类别 2；按文件扩展名保存为 LAZ 或 LAS。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="118" />
+        <location filename="../algorithms/groundfilter.py" line="119" />
         <source>Engine that ran</source>
         <translation>实际运行的引擎</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="119" />
+        <location filename="../algorithms/groundfilter.py" line="120" />
         <source>Points read</source>
         <translation>读取的点数</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="120" />
+        <location filename="../algorithms/groundfilter.py" line="121" />
         <source>Points written</source>
         <translation>写入的点数</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="121" />
+        <location filename="../algorithms/groundfilter.py" line="122" />
         <source>Ground points</source>
         <translation>地面点数</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="129" />
+        <location filename="../algorithms/groundfilter.py" line="132" />
         <source>The crop layer holds points or lines: give a crop buffer in metres (&gt; 0) to make a corridor around them</source>
         <translation>裁剪图层包含点或线：请给出以米为单位的裁剪缓冲距离（&gt; 0），以便在其周围形成走廊</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="134" />
+        <location filename="../algorithms/groundfilter.py" line="137" />
         <source>Reprojecting the crop layer from {} to {}</source>
         <translation>正在将裁剪图层从 {} 重投影到 {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="152" />
-        <source>PDAL failed: {}
-{}</source>
-        <translation>PDAL 运行失败：{}
-{}</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/groundfilter.py" line="186" />
+        <location filename="../algorithms/groundfilter.py" line="225" />
         <source>Engine: {}; method: {}; {} points read, {} written, {} ground</source>
         <translation>引擎：{}；方法：{}；读取 {} 个点，写入 {} 个，地面点 {} 个</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="143" />
+        <source>Cancelled: nothing was written.</source>
+        <translation>已取消：未写入任何内容。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="152" />
+        <source>The crop layer {} has no feature: nothing to crop by. Leave the crop layer empty to process the whole cloud</source>
+        <translation>裁剪图层 {} 没有要素：无可用于裁剪的内容。若要处理整个点云，请将裁剪图层留空</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="156" />
+        <source>The crop layer {} has no geometry (its {} features are empty): nothing to crop by</source>
+        <translation>裁剪图层 {} 没有几何（其 {} 个要素均为空）：无可用于裁剪的内容</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="169" />
+        <source>The crop area (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}) does not overlap the point cloud {} (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}): nothing would be kept</source>
+        <translation>裁剪区域（x {:.1f} 至 {:.1f}，y {:.1f} 至 {:.1f}）与点云 {}（x {:.1f} 至 {:.1f}，y {:.1f} 至 {:.1f}）不重叠：不会保留任何点</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="182" />
+        <source>PDAL said: {}</source>
+        <translation>PDAL 输出：{}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="183" />
+        <source>PDAL failed: {}</source>
+        <translation>PDAL 失败：{}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="195" />
+        <source>The output {} must not be the input file</source>
+        <translation>输出 {} 不能是输入文件</translation>
     </message>
 </context>
 <context>
     <name>ImportTrajectory</name>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="38" />
+        <location filename="../algorithms/importtrajectory.py" line="31" />
         <source>Import trajectory and panoramas</source>
         <translation>导入轨迹和全景图</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="41" />
+        <location filename="../algorithms/importtrajectory.py" line="34" />
         <source>Trajectory (CSV or SBET) and image times, or per-image poses, to panorama stations with full pose.</source>
         <translation>由轨迹（CSV 或 SBET）和图像时间，或逐图像位姿，生成带完整位姿的全景站点。</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="45" />
+        <location filename="../algorithms/importtrajectory.py" line="38" />
         <source>Builds the panorama stations: the position and full orientation of every panorama at its exposure, in the target CRS.&lt;br&gt;&lt;br&gt;Give a &lt;b&gt;trajectory&lt;/b&gt; (CSV &lt;i&gt;time,x,y,z,roll,pitch,heading&lt;/i&gt; or an Applanix SBET .out) with an &lt;b&gt;image times&lt;/b&gt; CSV (&lt;i&gt;image,time&lt;/i&gt;), or a &lt;b&gt;per-image pose&lt;/b&gt; CSV (&lt;i&gt;image,x,y,z,roll,pitch,heading[,time]&lt;/i&gt;) instead. Angles are in degrees (radians in an SBET); heading is clockwise from &lt;b&gt;true&lt;/b&gt; north and is turned into a grid heading with the meridian convergence at each station. Positions are interpolated linearly and attitudes by SLERP at the image times.&lt;br&gt;&lt;br&gt;The &lt;b&gt;camera mount&lt;/b&gt; places the panorama on the vehicle: lever arm in metres in the body frame (x forward, y right, z down) and boresight angles in degrees.&lt;br&gt;&lt;br&gt;Output: one point per panorama at its centre, with the quaternion (qw, qx, qy, qz) that maps panorama rays to world East-North-Up, the forward azimuth and the image size read from its header.</source>
         <translation>生成全景站点：每张全景图在曝光时刻的位置和完整姿态，位于目标坐标参考系中。&lt;br&gt;&lt;br&gt;提供&lt;b&gt;轨迹&lt;/b&gt;（CSV &lt;i&gt;time,x,y,z,roll,pitch,heading&lt;/i&gt; 或 Applanix SBET .out）和&lt;b&gt;图像时间&lt;/b&gt; CSV（&lt;i&gt;image,time&lt;/i&gt;），或者改为提供&lt;b&gt;逐图像位姿&lt;/b&gt; CSV（&lt;i&gt;image,x,y,z,roll,pitch,heading[,time]&lt;/i&gt;）。角度单位为度（SBET 中为弧度）；航向角从&lt;b&gt;真&lt;/b&gt;北起顺时针计算，并在每个站点利用子午线收敛角转换为坐标网格航向。在图像时间处，位置采用线性插值，姿态采用 SLERP 插值。&lt;br&gt;&lt;br&gt;&lt;b&gt;相机安装&lt;/b&gt;参数确定全景相机在车辆上的位置：载体坐标系（x 向前，y 向右，z 向下）中以米为单位的杆臂，以及以度为单位的安置角（boresight）。&lt;br&gt;&lt;br&gt;输出：每张全景图在其中心处一个点，附带将全景射线映射到世界东-北-天坐标的四元数（qw, qx, qy, qz）、前进方向方位角以及从文件头读取的图像尺寸。</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="61" />
+        <location filename="../algorithms/importtrajectory.py" line="54" />
         <source>Trajectory (CSV or SBET)</source>
         <translation>轨迹（CSV 或 SBET）</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="61" />
+        <location filename="../algorithms/importtrajectory.py" line="54" />
         <source>Trajectory CSV with a header time,x,y,z,roll,pitch,heading (comma, semicolon, tab or space separated), or an Applanix SBET (.out, .sbet). Times increase strictly.</source>
         <translation>带表头 time,x,y,z,roll,pitch,heading 的轨迹 CSV（以逗号、分号、制表符或空格分隔），或 Applanix SBET（.out、.sbet）。时间必须严格递增。</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="61" />
+        <location filename="../algorithms/importtrajectory.py" line="54" />
         <source>Trajectory (*.csv *.txt *.out *.sbet);;All files (*.*)</source>
         <translation>轨迹 (*.csv *.txt *.out *.sbet);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="66" />
+        <location filename="../algorithms/importtrajectory.py" line="59" />
         <source>Image times (CSV)</source>
         <translation>图像时间（CSV）</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="66" />
+        <location filename="../algorithms/importtrajectory.py" line="59" />
         <source>CSV image,time: each panorama's file name (relative to the panorama folder) and exposure time, in the trajectory's time base.</source>
         <translation>CSV image,time：每张全景图的文件名（相对于全景图文件夹）及曝光时间，与轨迹使用相同的时间基准。</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="71" />
+        <location filename="../algorithms/importtrajectory.py" line="64" />
         <source>CSV (*.csv *.txt);;All files (*.*)</source>
         <translation>CSV (*.csv *.txt);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="71" />
+        <location filename="../algorithms/importtrajectory.py" line="64" />
         <source>Per-image poses (CSV, instead of trajectory and image times)</source>
         <translation>逐图像位姿（CSV，替代轨迹和图像时间）</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="71" />
+        <location filename="../algorithms/importtrajectory.py" line="64" />
         <source>CSV image,x,y,z,roll,pitch,heading and optionally time: the vehicle body pose at each exposure. Use instead of a trajectory with image times.</source>
         <translation>CSV image,x,y,z,roll,pitch,heading，可选 time：每次曝光时车辆载体的位姿。用于替代带图像时间的轨迹。</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="76" />
+        <location filename="../algorithms/importtrajectory.py" line="69" />
         <source>Panorama folder</source>
         <translation>全景图文件夹</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="76" />
+        <location filename="../algorithms/importtrajectory.py" line="69" />
         <source>Folder of the equirectangular panoramas (JPEG or PNG, twice as wide as high).</source>
         <translation>等距柱状全景图所在的文件夹（JPEG 或 PNG，宽为高的两倍）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="80" />
+        <location filename="../algorithms/importtrajectory.py" line="73" />
         <source>Trajectory CRS</source>
         <translation>轨迹坐标参考系</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="80" />
+        <location filename="../algorithms/importtrajectory.py" line="73" />
         <source>CRS of the trajectory or pose positions (x = longitude, y = latitude, z = ellipsoidal height for a geographic CRS). Ignored for an SBET, which is always WGS 84.</source>
         <translation>轨迹或位姿位置的坐标参考系（地理坐标参考系时 x = 经度，y = 纬度，z = 椭球高）。对 SBET 忽略此项，SBET 始终为 WGS 84。</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="85" />
+        <location filename="../algorithms/importtrajectory.py" line="78" />
         <source>Target CRS (projected)</source>
         <translation>目标坐标参考系（投影）</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="85" />
+        <location filename="../algorithms/importtrajectory.py" line="78" />
         <source>Projected CRS of the outputs (metres, East-North-Up). A compound CRS with a vertical datum turns ellipsoidal heights into that datum when its geoid grid is installed. Empty: the trajectory CRS if it is projected, else its UTM zone.</source>
         <translation>输出的投影坐标参考系（米，东-北-天）。若已安装相应的大地水准面格网，带有高程基准的复合坐标参考系会将椭球高转换到该基准。留空：若轨迹坐标参考系为投影坐标系则使用它，否则使用其所在的 UTM 分带。</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="91" />
+        <location filename="../algorithms/importtrajectory.py" line="84" />
         <source>Panorama centre relative to the trajectory's reference point, in metres along the body axes: x forward, y right, z down.</source>
         <translation>全景相机中心相对于轨迹参考点的位置，沿载体坐标轴以米为单位：x 向前，y 向右，z 向下。</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="93" />
+        <location filename="../algorithms/importtrajectory.py" line="86" />
         <source>Lever arm x, forward (m)</source>
         <translation>杆臂 x，向前 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="94" />
+        <location filename="../algorithms/importtrajectory.py" line="87" />
         <source>Lever arm y, right (m)</source>
         <translation>杆臂 y，向右 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="95" />
+        <location filename="../algorithms/importtrajectory.py" line="88" />
         <source>Lever arm z, down (m)</source>
         <translation>杆臂 z，向下 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="96" />
+        <location filename="../algorithms/importtrajectory.py" line="89" />
         <source>Panorama frame relative to the body frame: R_body_from_pano = Rz(yaw) Ry(pitch) Rx(roll), degrees.</source>
         <translation>全景坐标系相对于载体坐标系：R_body_from_pano = Rz(yaw) Ry(pitch) Rx(roll)，单位为度。</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="98" />
+        <location filename="../algorithms/importtrajectory.py" line="91" />
         <source>Boresight roll (°)</source>
         <translation>安置角：横滚 (°)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="99" />
+        <location filename="../algorithms/importtrajectory.py" line="92" />
         <source>Boresight pitch (°)</source>
         <translation>安置角：俯仰 (°)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="100" />
+        <location filename="../algorithms/importtrajectory.py" line="93" />
         <source>Boresight yaw (°)</source>
         <translation>安置角：偏航 (°)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="101" />
+        <location filename="../algorithms/importtrajectory.py" line="94" />
         <source>Skip images outside the trajectory's time span</source>
         <translation>跳过轨迹时间范围之外的图像</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="101" />
+        <location filename="../algorithms/importtrajectory.py" line="94" />
         <source>When checked, images whose time lies outside the trajectory are skipped and counted in the log; otherwise they are an error.</source>
         <translation>勾选时，时间位于轨迹范围之外的图像将被跳过并在日志中计数；否则视为错误。</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="105" />
+        <location filename="../algorithms/importtrajectory.py" line="98" />
         <source>Warn about trajectory gaps longer than (s)</source>
         <translation>轨迹间隙超过此值时发出警告 (s)</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="105" />
+        <location filename="../algorithms/importtrajectory.py" line="98" />
         <source>A warning names images that fall between two trajectory samples further apart than this, in seconds.</source>
         <translation>若图像落在间隔大于此值（秒）的两个轨迹采样点之间，将发出警告并列出这些图像。</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="109" />
+        <location filename="../algorithms/importtrajectory.py" line="102" />
         <source>Fail on a missing or unreadable panorama</source>
         <translation>全景图缺失或无法读取时报错</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="109" />
+        <location filename="../algorithms/importtrajectory.py" line="102" />
         <source>When checked, a missing or unreadable panorama is an error; otherwise it is skipped with a warning and counted.</source>
         <translation>勾选时，缺失或无法读取的全景图视为错误；否则将其跳过，给出警告并计数。</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="113" />
+        <location filename="../algorithms/importtrajectory.py" line="106" />
         <source>Panorama stations</source>
         <translation>全景站点</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="113" />
+        <location filename="../algorithms/importtrajectory.py" line="106" />
         <source>PointZ layer, one point per panorama at its centre, with the fields station_id, image, path, time, x, y, z, qw, qx, qy, qz, heading, width, height.</source>
         <translation>PointZ 图层，每张全景图在其中心一个点，包含字段 station_id、image、path、time、x、y、z、qw、qx、qy、qz、heading、width、height。</translation>
     </message>
     <message>
-        <location filename="../algorithms/importtrajectory.py" line="152" />
+        <location filename="../algorithms/importtrajectory.py" line="145" />
         <source>{} panorama stations written.</source>
         <translation>已写入 {} 个全景站点。</translation>
     </message>
@@ -746,351 +917,414 @@
 <context>
     <name>ProjectDetections</name>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="19" />
+        <location filename="../algorithms/projectdetections.py" line="20" />
         <source>Project detections into the point cloud</source>
         <translation>将检测投影到点云</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="22" />
+        <location filename="../algorithms/projectdetections.py" line="23" />
         <source>Finds each detected sign's surface in the LiDAR cloud: one candidate per detection.</source>
         <translation>在激光雷达点云中找到每个检测到的标志的表面：每个检测一个候选。</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="25" />
+        <location filename="../algorithms/projectdetections.py" line="26" />
         <source>For each detection, the viewing frustum of its box (the rays through the box edges, widened by a small margin for calibration error) is searched from the panorama centre out to the maximum range. The non-ground points inside it are clustered and the first dense, near-vertical planar surface along the box-centre ray is taken (the sign, not the wall behind it; poles and convex mirrors are passed over). The cloud is read once into a tiled index restricted to the frusta, and each tile is tested against every detection that crosses it.&lt;br&gt;&lt;br&gt;Output: one point per detection at the candidate surface, with the detection's fields, the range, the point count, the plane normal (normal_e, normal_n, normal_u), a quality score in 0-1 and a status: &lt;i&gt;ok&lt;/i&gt;, &lt;i&gt;no_points&lt;/i&gt; (nothing in the frustum, e.g. out of the scanner's reach) or &lt;i&gt;no_surface&lt;/i&gt;; those two keep no geometry. The cloud must be ground-classified (run Ground filter first).</source>
         <translation>对每个检测，从全景图中心出发直到最大距离，搜索其检测框的视锥（穿过检测框边缘的射线，并为标定误差略微放宽）。对视锥内的非地面点进行聚类，取沿检测框中心射线的第一个密集、近似竖直的平面表面（即标志本身，而非其后的墙体；杆和凸面镜会被跳过）。点云只读取一次，建立仅限于这些视锥的分块索引，每个分块只与穿过它的检测进行测试。&lt;br&gt;&lt;br&gt;输出：每个检测在候选表面处一个点，包含检测的字段、距离、点数、平面法向量（normal_e、normal_n、normal_u）、0-1 的质量分数以及状态：&lt;i&gt;ok&lt;/i&gt;、&lt;i&gt;no_points&lt;/i&gt;（视锥内没有点，例如超出扫描仪的测程）或 &lt;i&gt;no_surface&lt;/i&gt;；后两者没有几何。点云必须已完成地面分类（请先运行“地面滤波与点云裁剪”）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="60" />
+        <location filename="../algorithms/projectdetections.py" line="68" />
         <source>Detections</source>
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="40" />
+        <location filename="../algorithms/projectdetections.py" line="41" />
         <source>The output of Detect signs: one ray per detection with its box and station pose.</source>
         <translation>“在全景图中检测标志”的输出：每个检测一条射线，附带其检测框和站点位姿。</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="43" />
+        <location filename="../algorithms/projectdetections.py" line="44" />
         <source>Ground-classified point cloud (LAS/LAZ)</source>
         <translation>已地面分类的点云（LAS/LAZ）</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="43" />
+        <location filename="../algorithms/projectdetections.py" line="44" />
         <source>The cloud with ground as class 2 (the output of Ground filter), in the detections' CRS.</source>
         <translation>地面为类别 2 的点云（“地面滤波与点云裁剪”的输出），与检测结果位于同一坐标参考系。</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="46" />
+        <location filename="../algorithms/projectdetections.py" line="47" />
         <source>Maximum range (m)</source>
         <translation>最大距离 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="46" />
+        <location filename="../algorithms/projectdetections.py" line="47" />
         <source>Search each frustum up to this distance from the panorama centre, in metres.</source>
         <translation>在距全景图中心此距离（米）以内搜索每个视锥。</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="49" />
+        <location filename="../algorithms/projectdetections.py" line="54" />
         <source>Sign candidates</source>
         <translation>标志候选</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="49" />
+        <location filename="../algorithms/projectdetections.py" line="54" />
         <source>PointZ layer, one candidate per detection (no geometry where no surface was found).</source>
         <translation>PointZ 图层，每个检测一个候选（未找到表面时无几何）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="62" />
+        <location filename="../algorithms/projectdetections.py" line="66" />
         <source>The detections</source>
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="75" />
+        <location filename="../algorithms/projectdetections.py" line="83" />
         <source>{} detections: {} with a surface in the cloud, {} without</source>
         <translation>{} 个检测：{} 个在点云中找到表面，{} 个未找到</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/projectdetections.py" line="50" />
+        <source>Cloud CRS (when the file has none)</source>
+        <translation>点云坐标参考系（文件中没有时）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/projectdetections.py" line="50" />
+        <source>The cloud's CRS when the file records none (it must be the detections' CRS); it overrides a CRS in the file. The CRS is never guessed.</source>
+        <translation>文件中没有记录坐标参考系时点云的坐标参考系（必须与检测的坐标参考系相同）；它会覆盖文件中的坐标参考系。坐标参考系从不猜测。</translation>
     </message>
 </context>
 <context>
     <name>RefineSigns</name>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="26" />
+        <location filename="../algorithms/refinesigns.py" line="43" />
         <source>Refine and merge signs</source>
         <translation>精化与合并标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="29" />
+        <location filename="../algorithms/refinesigns.py" line="46" />
         <source>Merges the views of each sign and refines it in the cloud: the sign layer.</source>
         <translation>合并每个标志的多个视图，并在点云中对其精化：生成标志图层。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="32" />
+        <location filename="../algorithms/refinesigns.py" line="49" />
         <source>Groups the candidates of different panoramas that are the same physical sign (same class, within the merge radius, plane normals agreeing; panels stacked on one pole stay apart), then refines each sign in the cloud: Euclidean clustering, an intensity filter whose threshold adapts to the cloud (Otsu), a near-vertical RANSAC plane and PCA dimensionality to keep the panel and drop the pole.&lt;br&gt;&lt;br&gt;Each sign gets its panel centre, width and panel height, the azimuth its face looks towards (clockwise from grid north), its height above the ground directly below (class-2 points near the sign; the log names any fallback), the bottom height, the number of views and points, the images it was seen in and the best of them (closest, most frontal), the mean intensity and planarity. A sign seen in two or more panoramas but with no cloud points is placed by triangulating its rays (position_source = image).&lt;br&gt;&lt;br&gt;Optional outputs: panel outlines (PolygonZ) and the sign points (LAS/LAZ).&lt;br&gt;&lt;br&gt;&lt;b&gt;Review&lt;/b&gt;: with the panorama folder, each sign gets an image chip from its best panorama (its box with a margin, undistorted), written into a folder beside the sign layer and linked by the &lt;i&gt;chip&lt;/i&gt; field (a relative path); the review report shows every sign's chip and attributes. The sign layer is styled with a symbol per class and its height as label (a .qml file beside it).</source>
         <translation>将来自不同全景图、属于同一实体标志的候选分为一组（类别相同、位于合并半径内、平面法向量一致；同一根杆上叠放的标志牌保持分开），然后在点云中精化每个标志：欧氏聚类、阈值随点云自适应的强度滤波（Otsu）、近似竖直的 RANSAC 平面以及 PCA 维度特征，以保留标志牌并去除杆体。&lt;br&gt;&lt;br&gt;每个标志将得到：标志牌中心、宽度和标志牌高度，牌面朝向的方位角（从坐标北起顺时针），其相对于正下方地面的高度（标志附近的类别 2 点；若使用了替代方法，日志会说明），底部高度，视图数和点数，看到它的图像及其中最佳的一张（最近、最正对），平均强度和平面度。在两张或更多全景图中看到但没有点云点的标志，通过其射线的三角测量定位（position_source = image）。&lt;br&gt;&lt;br&gt;可选输出：标志牌轮廓（PolygonZ）和标志点（LAS/LAZ）。&lt;br&gt;&lt;br&gt;&lt;b&gt;审核&lt;/b&gt;：提供全景图文件夹时，每个标志会从其最佳全景图中截取一张图像切片（其检测框加边距，已去畸变），写入标志图层旁的文件夹，并通过 &lt;i&gt;chip&lt;/i&gt; 字段（相对路径）关联；审核报告显示每个标志的切片和属性。标志图层按类别使用不同符号，并以高度作为标注（其旁的 .qml 文件）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="92" />
+        <location filename="../algorithms/refinesigns.py" line="116" />
         <source>Sign candidates</source>
         <translation>标志候选</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="52" />
+        <location filename="../algorithms/refinesigns.py" line="69" />
         <source>The output of Project detections.</source>
         <translation>“将检测投影到点云”的输出。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="55" />
+        <location filename="../algorithms/refinesigns.py" line="72" />
         <source>Ground-classified point cloud (LAS/LAZ)</source>
         <translation>已地面分类的点云（LAS/LAZ）</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="55" />
+        <location filename="../algorithms/refinesigns.py" line="72" />
         <source>The same cloud as for Project detections (ground as class 2).</source>
         <translation>与“将检测投影到点云”相同的点云（地面为类别 2）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="58" />
+        <location filename="../algorithms/refinesigns.py" line="75" />
         <source>Merge radius (m)</source>
         <translation>合并半径 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="58" />
+        <location filename="../algorithms/refinesigns.py" line="75" />
         <source>Candidates of the same class closer than this (metres) with agreeing plane normals are taken as one sign.</source>
         <translation>类别相同、距离小于此值（米）且平面法向量一致的候选被视为同一个标志。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="62" />
+        <location filename="../algorithms/refinesigns.py" line="79" />
         <source>Panorama folder (for review chips)</source>
         <translation>全景图文件夹（用于审核切片）</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="62" />
+        <location filename="../algorithms/refinesigns.py" line="79" />
         <source>The folder of the panoramas (as for Import trajectory). When given, an image chip of each sign is cut from its best panorama for review.</source>
         <translation>全景图所在的文件夹（与“导入轨迹和全景图”相同）。提供时，将从每个标志的最佳全景图中截取一张图像切片用于审核。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="66" />
+        <location filename="../algorithms/refinesigns.py" line="87" />
         <source>Signs</source>
         <translation>标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="66" />
+        <location filename="../algorithms/refinesigns.py" line="87" />
         <source>PointZ sign layer at the panel centres (fields in docs/formats.md), and chip: the relative path of the sign's review picture.</source>
         <translation>位于标志牌中心的 PointZ 标志图层（字段见 docs/formats.md），以及 chip：标志审核图片的相对路径。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="70" />
+        <location filename="../algorithms/refinesigns.py" line="91" />
         <source>Panel outlines</source>
         <translation>标志牌轮廓</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="70" />
+        <location filename="../algorithms/refinesigns.py" line="91" />
         <source>PolygonZ layer of each panel's rectangle in its plane (signs placed from the cloud).</source>
         <translation>每个标志牌在其所在平面内的矩形的 PolygonZ 图层（由点云定位的标志）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="74" />
+        <location filename="../algorithms/refinesigns.py" line="95" />
         <source>Sign points</source>
         <translation>标志点</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="74" />
+        <location filename="../algorithms/refinesigns.py" line="95" />
         <source>LAZ (*.laz);;LAS (*.las)</source>
         <translation>LAZ (*.laz);;LAS (*.las)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="74" />
+        <location filename="../algorithms/refinesigns.py" line="95" />
         <source>A LAS/LAZ file of the points of every sign panel, all dimensions kept.</source>
         <translation>包含每个标志牌所有点的 LAS/LAZ 文件，保留全部维度。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="77" />
+        <location filename="../algorithms/refinesigns.py" line="98" />
         <source>Review report</source>
         <translation>审核报告</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="77" />
+        <location filename="../algorithms/refinesigns.py" line="98" />
         <source>HTML files (*.html)</source>
         <translation>HTML 文件 (*.html)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="77" />
+        <location filename="../algorithms/refinesigns.py" line="98" />
         <source>An HTML page with every sign's chip and attributes, to confirm signs without opening panoramas (needs the panorama folder).</source>
         <translation>一个 HTML 页面，列出每个标志的切片和属性，无需打开全景图即可确认标志（需要全景图文件夹）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="95" />
+        <location filename="../algorithms/refinesigns.py" line="114" />
         <source>The candidates</source>
         <translation>候选</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="111" />
+        <location filename="../algorithms/refinesigns.py" line="140" />
         <source>The review report needs the panorama folder: not written.</source>
         <translation>审核报告需要全景图文件夹：未写入。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="136" />
+        <location filename="../algorithms/refinesigns.py" line="146" />
         <source>{} sign points written to {}</source>
         <translation>已将 {} 个标志点写入 {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="141" />
+        <location filename="../algorithms/refinesigns.py" line="171" />
         <source>{} signs from {} candidates ({})</source>
         <translation>{} 个标志，来自 {} 个候选（{}）</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="150" />
+        <location filename="../algorithms/refinesigns.py" line="181" />
         <source>Review chips need a sign layer written to a file: skipped.</source>
         <translation>审核切片需要写入文件的标志图层：已跳过。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="162" />
+        <location filename="../algorithms/refinesigns.py" line="194" />
         <source>Road signs for review</source>
         <translation>待审核的道路标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="163" />
+        <location filename="../algorithms/refinesigns.py" line="196" />
         <source>{} review chips in {}</source>
         <translation>{} 张审核切片，位于 {}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="83" />
+        <source>Cloud CRS (when the file has none)</source>
+        <translation>点云坐标参考系（文件中没有时）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="83" />
+        <source>The cloud's CRS when the file records none (it must be the candidates' CRS); it overrides a CRS in the file. The CRS is never guessed.</source>
+        <translation>文件中没有记录坐标参考系时点云的坐标参考系（必须与候选的坐标参考系相同）；它会覆盖文件中的坐标参考系。坐标参考系从不猜测。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="119" />
+        <source>Panorama folder not found: {}</source>
+        <translation>未找到全景图文件夹：{}</translation>
     </message>
 </context>
 <context>
     <name>RoadSigns</name>
     <message>
-        <location filename="../core/cloudsigns.py" line="227" />
+        <location filename="../core/cloudsigns.py" line="249" />
         <source>The stations do not overlap the cloud {path}: the track passes {gap:.1f} m from the cloud's extent ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}), more than the corridor of {corridor} m; are the cloud and the stations in the same CRS and of the same drive?</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>全景站点与点云 {path} 不重叠：轨迹线距点云范围 ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}) {gap:.1f} m，超出 {corridor} m 的走廊；点云和全景站点是否在同一坐标参考系中、是否来自同一次行驶采集？</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="240" />
+        <location filename="../core/cloudsigns.py" line="262" />
         <source>{path} has no intensity dimension (point format {fmt}): signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有强度维度（点格式 {fmt}）：没有图像时无法在其中找到标志</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="243" />
+        <location filename="../core/cloudsigns.py" line="265" />
         <source>{path} has no classification dimension: run roadsigns:groundfilter on it first</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有分类维度：请先对其运行 roadsigns:groundfilter</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="537" />
+        <location filename="../core/cloudsigns.py" line="599" />
         <source>Found {signs} sign panels ({bright} retroreflective) and {poles} poles in {n} points ({cand} kept near the road, {windows} windows of {w} m); condition reference {ref:.3f} ({src})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>在 {n} 个点中找到 {signs} 个标志牌（其中 {bright} 个具有逆反射性）和 {poles} 根杆（道路附近保留 {cand} 个点，{windows} 个 {w} m 的窗口）；状态参考值 {ref:.3f}（{src}）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="485" />
+        <location filename="../core/cloudsigns.py" line="542" />
         <source>No point of {path} lies within {corridor} m of the stations' track ({n} points read)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中没有点位于全景站点轨迹线 {corridor} m 范围内（已读取 {n} 个点）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="488" />
+        <location filename="../core/cloudsigns.py" line="545" />
         <source>{path} has no ground points (class 2) along the track: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 沿轨迹线没有地面点（类别 2）：请先对其运行 roadsigns:groundfilter（或用其他工具对地面进行分类）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="492" />
+        <location filename="../core/cloudsigns.py" line="549" />
         <source>{path} has no intensity: all {n} points near the track have intensity 0; signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有强度：轨迹线附近的全部 {n} 个点强度均为 0；没有图像时无法在其中找到标志</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="503" />
-        <source>Intensity: range exponent {alpha:.2f} ({source}), bright threshold {thr:.3f} of full scale at 10 m (background level {bg:.3f}, Otsu on the bright tail {otsu:.3f}; {n} non-ground points near the road)</source>
+        <location filename="../core/cloudsigns.py" line="560" />
+        <source>Intensity: range exponent {alpha:.2f} ({source}), bright threshold {thr:.3f} of full scale at 10 m ({method}; background level {bg:.3f}, bright mode {mode:.3f}; {n} non-ground points near the road)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>强度：距离指数 {alpha:.2f}（{source}），亮度阈值为 10 m 处满量程的 {thr:.3f}（背景水平 {bg:.3f}，亮尾部的 Otsu 阈值 {otsu:.3f}；道路附近 {n} 个非地面点）</translation>
+        <translation type="unfinished">强度：距离指数 {alpha:.2f}（{source}），亮度阈值为 10 m 处满量程的 {thr:.3f}（背景水平 {bg:.3f}，亮尾部的 Otsu 阈值 {otsu:.3f}；道路附近 {n} 个非地面点）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="604" />
+        <location filename="../core/cloudsigns.py" line="668" />
         <source>{n} gantry posts</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} 根门架立柱</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="495" />
+        <location filename="../core/cloudsigns.py" line="552" />
         <source>The cloud's GPS times [{t0:.1f}, {t1:.1f}] do not meet the stations' times: ranges are taken from the nearest track position instead (is one of them in GPS week seconds and the other in adjusted standard GPS time?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点云的 GPS 时间 [{t0:.1f}, {t1:.1f}] 与全景站点的时间不重合：改为从最近的轨迹线位置计算距离（是否一个使用 GPS 周秒、另一个使用调整后的标准 GPS 时间？）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="511" />
+        <location filename="../core/cloudsigns.py" line="571" />
         <source>{share:.0%} of the points near the road have intensity 0: the bright threshold {thr:.3f} of full scale may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>道路附近 {share:.0%} 的点强度为 0：满量程的亮度阈值 {thr:.3f} 可能没有意义</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="516" />
+        <location filename="../core/cloudsigns.py" line="576" />
         <source>{share:.0%} of the points near the road have saturated intensity: the bright threshold {thr:.3f} of full scale and the condition of the signs may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>道路附近 {share:.0%} 的点强度饱和：满量程的亮度阈值 {thr:.3f} 以及标志的状态可能没有意义</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="18" />
+        <location filename="../core/crs.py" line="19" />
         <source>CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="21" />
+        <location filename="../core/crs.py" line="228" />
+        <source>{what} file {path}, {location}: x {x}, y {y} lies outside the area of use of {crs} (longitude {west} to {east}, latitude {south} to {north}): is {crs} the CRS of these positions?</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{what}文件 {path}，{location}：x {x}，y {y} 位于 {crs} 的适用范围（经度 {west} 至 {east}，纬度 {south} 至 {north}）之外：{crs} 是这些位置的坐标参考系吗？</translation>
+    </message>
+    <message>
+        <location filename="../core/crs.py" line="251" />
+        <source>{label}: x {xmin} to {xmax}, y {ymin} to {ymax} lie outside the area of use of {crs} (longitude {west} to {east}, latitude {south} to {north}): is {crs} the CRS of these coordinates?</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{label}：x {xmin} 至 {xmax}，y {ymin} 至 {ymax} 位于 {crs} 的适用范围（经度 {west} 至 {east}，纬度 {south} 至 {north}）之外：{crs} 是这些坐标的坐标参考系吗？</translation>
+    </message>
+    <message>
+        <location filename="../core/crs.py" line="22" />
         <source>No {role} given: expected an EPSG code, WKT or PROJ string</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未给出{role}：应为 EPSG 代码、WKT 或 PROJ 字符串</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="112" />
-        <location filename="../core/crs.py" line="122" />
+        <location filename="../core/crs.py" line="113" />
+        <location filename="../core/crs.py" line="123" />
+        <location filename="../core/trajectory.py" line="488" />
         <source>trajectory CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>轨迹坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="123" />
+        <location filename="../core/crs.py" line="124" />
+        <location filename="../core/trajectory.py" line="495" />
         <source>target CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>目标坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="125" />
+        <location filename="../core/crs.py" line="126" />
         <source>The target CRS {crs} is not projected: expected a projected CRS in metres (e.g. a UTM zone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>目标坐标参考系 {crs} 不是投影坐标系：应为以米为单位的投影坐标参考系（例如 UTM 分带）</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="25" />
+        <location filename="../core/crs.py" line="224" />
+        <source>{what} file {path}, {location}: x {x}, y {y} lies outside the area of use of {crs} (longitude {west} to {east}, latitude {south} to {north}) and looks like a longitude/latitude: give a geographic CRS (e.g. EPSG:4326) for these positions</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{what}文件 {path}，{location}：x {x}，y {y} 位于 {crs} 的适用范围（经度 {west} 至 {east}，纬度 {south} 至 {north}）之外，且看起来像经纬度：请为这些位置指定地理坐标参考系（例如 EPSG:4326）</translation>
+    </message>
+    <message>
+        <location filename="../core/crs.py" line="248" />
+        <source>{label}: x {xmin} to {xmax}, y {ymin} to {ymax} lie outside the area of use of {crs} (longitude {west} to {east}, latitude {south} to {north}) and look like longitudes/latitudes: is {crs} the CRS of these coordinates?</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{label}：x {xmin} 至 {xmax}，y {ymin} 至 {ymax} 位于 {crs} 的适用范围（经度 {west} 至 {east}，纬度 {south} 至 {north}）之外，且看起来像经纬度：{crs} 是这些坐标的坐标参考系吗？</translation>
+    </message>
+    <message>
+        <location filename="../core/crs.py" line="261" />
+        <source>{label} is in {crs}, a geographic CRS (degrees): this needs a projected CRS in metres, the CRS of the point cloud (e.g. a UTM zone)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{label} 的坐标参考系为 {crs}，这是地理坐标参考系（度）：此处需要以米为单位的投影坐标参考系，即点云的坐标参考系（例如 UTM 分带）</translation>
+    </message>
+    <message>
+        <location filename="../core/crs.py" line="26" />
         <source>Unknown {role} '{crs}': {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法识别的{role} '{crs}'：{error}</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="69" />
+        <location filename="../core/crs.py" line="70" />
         <source>Heights: pass through unchanged (the target CRS has no vertical datum)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>高程：保持不变（目标坐标参考系没有垂直基准）</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="95" />
+        <location filename="../core/crs.py" line="96" />
         <source>Transforming positions from {source} to {target} gave invalid values (outside the CRS's area, or a missing vertical grid)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>将位置从 {source} 转换到 {target} 得到无效值（超出坐标参考系的适用范围，或缺少高程格网）</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="72" />
+        <location filename="../core/crs.py" line="208" />
+        <source>{what} file {path}, {location}: x {x}, y {y} is not a longitude/latitude, but {crs} is a geographic CRS: are these projected coordinates? Give the CRS the positions are in</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{what}文件 {path}，{location}：x {x}，y {y} 不是经纬度，但 {crs} 是地理坐标参考系：这些是投影坐标吗？请指定这些位置所在的坐标参考系</translation>
+    </message>
+    <message>
+        <location filename="../core/crs.py" line="73" />
         <source>Heights: the geoid grid for {crs} is not installed: heights stay as they are (ellipsoidal), only the horizontal position is transformed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>高程：未安装 {crs} 的大地水准面格网：高程保持原样（椭球高），只转换平面位置</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="76" />
+        <location filename="../core/crs.py" line="77" />
         <source>Heights: transformed to {crs}: {operation}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>高程：已转换到 {crs}：{operation}</translation>
     </message>
     <message>
-        <location filename="../core/crs.py" line="90" />
+        <location filename="../core/crs.py" line="91" />
         <source>Cannot transform positions from {source} to {target}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法将位置从 {source} 转换到 {target}：{error}</translation>
@@ -1102,22 +1336,30 @@
         <translation>检测结果缺少字段 {fields}；应为“在全景图中检测标志”的输出</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="116" />
+        <location filename="../core/detections.py" line="126" />
         <source>Detection {det_id}: the box ({u0}, {v0}, {u1}, {v1}) is not u0 &lt; u1, v0 &lt; v1 inside a {w} x {h} panorama</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}：检测框 ({u0}, {v0}, {u1}, {v1}) 不满足在 {w} x {h} 全景图内 u0 &lt; u1、v0 &lt; v1</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="124" />
+        <location filename="../core/detections.py" line="134" />
         <source>Detection {det_id}: the station pose is invalid (quaternion norm {norm:.4f}, position {xyz})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}：站点位姿无效（四元数范数 {norm:.4f}，位置 {xyz}）</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="91" />
+        <location filename="../core/detections.py" line="90" />
+        <location filename="../core/projection.py" line="329" />
         <source>Detection {det_id}: the field {field} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}：字段 {field} 为空</translation>
+    </message>
+    <message>
+        <location filename="../core/detections.py" line="98" />
+        <location filename="../core/projection.py" line="321" />
+        <source>Detection {det_id}, field {field}: expected a number, found '{value}'</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>检测 {det_id}，字段 {field}：应为数字，实际为 '{value}'</translation>
     </message>
     <message>
         <location filename="../core/detector.py" line="129" />
@@ -1210,34 +1452,64 @@
         <translation>轨迹线有 {n} 个位置，但有 {m} 个时间</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="110" />
+        <location filename="../core/evaluate.py" line="109" />
         <source>reference signs</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>参考标志</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="146" />
+        <location filename="../core/evaluate.py" line="141" />
+        <source>The signs ({signs}: x {sx0} to {sx1}, y {sy0} to {sy1}) and the reference {reference} (x {rx0} to {rx1}, y {ry0} to {ry1}) do not overlap: are both in the same CRS and the same area?</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>标志（{signs}：x {sx0} 至 {sx1}，y {sy0} 至 {sy1}）与参考 {reference}（x {rx0} 至 {rx1}，y {ry0} 至 {ry1}）不重叠：两者是否位于同一坐标参考系和同一区域？</translation>
+    </message>
+    <message>
+        <location filename="../core/evaluate.py" line="166" />
         <source>match radius {radius} m: expected a positive number of metres</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>匹配半径 {radius} m：应为以米为单位的正数</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="154" />
+        <location filename="../core/evaluate.py" line="174" />
         <source>{label}: sign '{sign_id}' has no valid x, y, z position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{label}：标志 '{sign_id}' 没有有效的 x、y、z 位置</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="120" />
+        <location filename="../core/evaluate.py" line="119" />
         <source>reference signs file {path}, line {line}: sign_id '{sign_id}' already used on line {first}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>参考标志文件 {path}，第 {line} 行：sign_id '{sign_id}' 已在第 {first} 行使用</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="116" />
+        <location filename="../core/evaluate.py" line="115" />
         <source>reference signs file {path}, line {line}, field '{field}': empty value</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>参考标志文件 {path}，第 {line} 行，字段 '{field}'：值为空</translation>
+    </message>
+    <message>
+        <location filename="../core/fusion.py" line="169" />
+        <source>Image sign</source>
+        <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../core/fusion.py" line="170" />
+        <source>Cloud panel</source>
+        <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../core/fusion.py" line="118" />
+        <source>{what} {index}: position is not finite</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../core/fusion.py" line="115" />
+        <source>{what} {index}: no position (x, y, z)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation type="unfinished" />
     </message>
     <message>
         <location filename="../core/ground/csf.py" line="103" />
@@ -1253,7 +1525,7 @@
     </message>
     <message>
         <location filename="../core/ground/engine.py" line="219" />
-        <location filename="../core/pointcloud.py" line="188" />
+        <location filename="../core/pointcloud.py" line="242" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：输出文件必须以 .las 或 .laz 结尾</translation>
@@ -1349,166 +1621,212 @@
         <translation>参数 {params} 不属于方法 {method}</translation>
     </message>
     <message>
-        <location filename="../core/ground/pdal.py" line="160" />
+        <location filename="../core/ground/pdal.py" line="169" />
         <source>PDAL executable {path} not found or not executable</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>PDAL 可执行文件 {path} 不存在或不可执行</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="38" />
-        <source>The panorama {path} is {width} x {height} pixels: an equirectangular panorama must be twice as wide as it is high</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>全景图 {path} 为 {width} x {height} 像素：等距柱状全景图的宽度必须是高度的两倍</translation>
-    </message>
-    <message>
-        <location filename="../core/panorama.py" line="70" />
-        <location filename="../core/panorama.py" line="29" />
-        <source>Panorama not found: {path}</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>未找到全景图：{path}</translation>
-    </message>
-    <message>
-        <location filename="../core/panorama.py" line="77" />
-        <source>Cannot read the panorama {path}: the file is not a JPEG or PNG image or is corrupt</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>无法读取全景图 {path}：该文件不是 JPEG 或 PNG 图像，或已损坏</translation>
-    </message>
-    <message>
-        <location filename="../core/panorama.py" line="31" />
-        <source>Cannot read the panorama {path}: expected a JPEG or PNG image ({error})</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>无法读取全景图 {path}：应为 JPEG 或 PNG 图像（{error}）</translation>
-    </message>
-    <message>
-        <location filename="../core/panorama.py" line="75" />
-        <source>Cannot read the panorama {path}: {error}</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>无法读取全景图 {path}：{error}</translation>
-    </message>
-    <message>
-        <location filename="../core/pointcloud.py" line="264" />
-        <source>Cannot use {item!r} as a crop geometry: expected a shapely geometry, WKB or WKT</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>无法将 {item!r} 用作裁剪几何：应为 shapely 几何、WKB 或 WKT</translation>
-    </message>
-    <message>
-        <location filename="../core/pointcloud.py" line="60" />
-        <source>Cannot read {path}: expected a LAS or LAZ file ({detail})</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>无法读取 {path}：应为 LAS 或 LAZ 文件（{detail}）</translation>
-    </message>
-    <message>
-        <location filename="../core/pointcloud.py" line="354" />
-        <source>{path} has no coordinate reference system and none was given</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>{path} 没有坐标参考系，也未提供坐标参考系</translation>
-    </message>
-    <message>
-        <location filename="../core/pointcloud.py" line="56" />
-        <source>Cannot read {path}: the file does not exist</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>无法读取 {path}：文件不存在</translation>
-    </message>
-    <message>
-        <location filename="../core/pointcloud.py" line="58" />
-        <source>Cannot read {path}: {detail}</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>无法读取 {path}：{detail}</translation>
-    </message>
-    <message>
-        <location filename="../core/pointcloud.py" line="74" />
-        <location filename="../core/pointcloud.py" line="130" />
-        <location filename="../core/pointcloud.py" line="123" />
+        <location filename="../core/ground/pdal.py" line="290" />
+        <location filename="../core/ground/pdal.py" line="292" />
+        <location filename="../core/ground/pdal.py" line="288" />
+        <location filename="../core/ground/pdal.py" line="273" />
+        <location filename="../core/ground/pdal.py" line="282" />
+        <location filename="../core/pointcloud.py" line="110" />
+        <location filename="../core/pointcloud.py" line="125" />
+        <location filename="../core/pointcloud.py" line="183" />
+        <location filename="../core/pointcloud.py" line="86" />
+        <location filename="../core/pointcloud.py" line="89" />
+        <location filename="../core/pointcloud.py" line="105" />
+        <location filename="../core/pointcloud.py" line="176" />
         <source>Cannot read {path}: the file is truncated or corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件被截断或已损坏（{detail}）</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="192" />
+        <location filename="../core/ground/pdal.py" line="286" />
+        <location filename="../core/pointcloud.py" line="65" />
+        <location filename="../core/pointcloud.py" line="108" />
+        <source>Cannot read {path}: {detail}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取 {path}：{detail}</translation>
+    </message>
+    <message>
+        <location filename="../core/outputs.py" line="69" />
+        <source>Cannot write {path}: the folder {folder} does not exist</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法写入 {path}：文件夹 {folder} 不存在</translation>
+    </message>
+    <message>
+        <location filename="../core/outputs.py" line="81" />
+        <location filename="../core/outputs.py" line="93" />
+        <location filename="../core/outputs.py" line="148" />
+        <location filename="../core/outputs.py" line="196" />
+        <location filename="../core/pointcloud.py" line="253" />
+        <source>Cannot write {path}: {error}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法写入 {path}：{error}</translation>
+    </message>
+    <message>
+        <location filename="../core/outputs.py" line="189" />
+        <source>The output {path} was not written</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>输出 {path} 未被写入</translation>
+    </message>
+    <message>
+        <location filename="../core/panorama.py" line="55" />
+        <source>The panorama {path} is {width} x {height} pixels, more than the {limit} the plugin reads</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>全景图 {path} 为 {width} x {height} 像素，超过插件可读取的 {limit}</translation>
+    </message>
+    <message>
+        <location filename="../core/panorama.py" line="64" />
+        <source>The panorama {path} is {width} x {height} pixels: an equirectangular panorama must be twice as wide as it is high</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>全景图 {path} 为 {width} x {height} 像素：等距柱状全景图的宽度必须是高度的两倍</translation>
+    </message>
+    <message>
+        <location filename="../core/panorama.py" line="96" />
+        <location filename="../core/panorama.py" line="47" />
+        <source>Panorama not found: {path}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>未找到全景图：{path}</translation>
+    </message>
+    <message>
+        <location filename="../core/panorama.py" line="103" />
+        <source>Cannot read the panorama {path}: the file is not a JPEG or PNG image or is corrupt</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取全景图 {path}：该文件不是 JPEG 或 PNG 图像，或已损坏</translation>
+    </message>
+    <message>
+        <location filename="../core/panorama.py" line="49" />
+        <source>The panorama {path} has more pixels than the {limit} the plugin reads</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>全景图 {path} 的像素数超过插件可读取的 {limit}</translation>
+    </message>
+    <message>
+        <location filename="../core/panorama.py" line="52" />
+        <source>Cannot read the panorama {path}: expected a JPEG or PNG image ({error})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取全景图 {path}：应为 JPEG 或 PNG 图像（{error}）</translation>
+    </message>
+    <message>
+        <location filename="../core/panorama.py" line="101" />
+        <source>Cannot read the panorama {path}: {error}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取全景图 {path}：{error}</translation>
+    </message>
+    <message>
+        <location filename="../core/pointcloud.py" line="323" />
+        <source>Cannot use {item!r} as a crop geometry: expected a shapely geometry, WKB or WKT</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法将 {item!r} 用作裁剪几何：应为 shapely 几何、WKB 或 WKT</translation>
+    </message>
+    <message>
+        <location filename="../core/pointcloud.py" line="67" />
+        <source>Cannot read {path}: expected a LAS or LAZ file ({detail})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取 {path}：应为 LAS 或 LAZ 文件（{detail}）</translation>
+    </message>
+    <message>
+        <location filename="../core/pointcloud.py" line="413" />
+        <source>{path} has no coordinate reference system and none was given</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{path} 没有坐标参考系，也未提供坐标参考系</translation>
+    </message>
+    <message>
+        <location filename="../core/pointcloud.py" line="63" />
+        <source>Cannot read {path}: the file does not exist</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取 {path}：文件不存在</translation>
+    </message>
+    <message>
+        <location filename="../core/pointcloud.py" line="246" />
         <source>Cannot write {path}: the folder does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：文件夹不存在</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="287" />
+        <location filename="../core/pointcloud.py" line="346" />
         <source>The crop layer has no geometry</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>裁剪图层没有几何</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="298" />
+        <location filename="../core/pointcloud.py" line="357" />
         <source>A corridor needs a positive buffer, got {buffer_m} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>走廊需要正的缓冲距离，实际为 {buffer_m} m</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="308" />
+        <location filename="../core/pointcloud.py" line="367" />
         <source>A corridor needs stations or lines</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>走廊需要站点或线</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="364" />
+        <location filename="../core/pointcloud.py" line="423" />
         <source>No point of {path} lies inside the crop area; {output} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中没有点位于裁剪区域内；{output} 为空</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="444" />
+        <location filename="../core/pointcloud.py" line="503" />
         <source>{path} has no dimension {names} (point format {fmt})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有维度 {names}（点格式 {fmt}）</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="537" />
+        <location filename="../core/projection.py" line="521" />
         <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 个检测结果中有 {ok} 个在点云中找到了表面（{no_points} 个没有点，{no_surface} 个没有平面）</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="334" />
+        <location filename="../core/projection.py" line="350" />
+        <location filename="../core/projection.py" line="580" />
         <source>{source} has no ground points (class 2) where the signs are: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{source} 在标志所在区域没有地面点（类别 2）：请先对其运行 roadsigns:groundfilter（或用其他工具进行地面分类）</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="471" />
+        <location filename="../core/projection.py" line="489" />
         <source>The maximum range must exceed {min} m, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>最大距离必须大于 {min} m，实际为 {value} m</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="310" />
+        <location filename="../core/projection.py" line="314" />
         <source>The candidates lack the field(s) {fields}; expected the output of Project detections</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>候选缺少字段 {fields}；应为“将检测投影到点云”的输出</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="323" />
+        <location filename="../core/projection.py" line="339" />
         <source>Unknown candidate status {status!r}; expected ok, no_points or no_surface</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未知的候选状态 {status!r}；应为 ok、no_points 或 no_surface</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="327" />
+        <location filename="../core/projection.py" line="343" />
         <source>A candidate with status ok has no position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>状态为 ok 的候选没有位置</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="347" />
+        <location filename="../core/projection.py" line="363" />
         <source>The point index lacks {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点索引缺少 {names}</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="476" />
+        <location filename="../core/projection.py" line="494" />
         <source>No detections to project; the candidates are empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有要投影的检测结果；候选为空</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="484" />
+        <location filename="../core/projection.py" line="517" />
         <source>{path} has no point inside the detections' frusta; no candidate found</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 在检测结果的视锥内没有点；未找到候选</translation>
@@ -1616,235 +1934,283 @@
         <translation>已丢弃候选 {ids}：{reason}</translation>
     </message>
     <message>
-        <location filename="../core/tables.py" line="39" />
+        <location filename="../core/tables.py" line="50" />
         <source>table</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>表格</translation>
     </message>
     <message>
-        <location filename="../core/tables.py" line="62" />
+        <location filename="../core/tables.py" line="77" />
         <source>{what} file {path} is empty: expected a header row with the columns {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what}文件 {path} 为空：应有包含列 {expected} 的表头行</translation>
     </message>
     <message>
-        <location filename="../core/tables.py" line="70" />
+        <location filename="../core/tables.py" line="85" />
         <source>{what} file {path}: missing column(s) {missing}; found {found}; expected {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what}文件 {path}：缺少列 {missing}；找到的列：{found}；应有的列：{expected}</translation>
     </message>
     <message>
-        <location filename="../core/tables.py" line="78" />
+        <location filename="../core/tables.py" line="93" />
         <source>{what} file {path} has a header but no data rows</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what}文件 {path} 有表头但没有数据行</translation>
     </message>
     <message>
-        <location filename="../core/tables.py" line="54" />
+        <location filename="../core/tables.py" line="65" />
         <source>{what} file not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到{what}文件：{path}</translation>
     </message>
     <message>
-        <location filename="../core/tables.py" line="56" />
+        <location filename="../core/tables.py" line="67" />
+        <source>Cannot read {what} file {path}: it is not UTF-8 text (byte {position}); save it as CSV in UTF-8</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取{what}文件 {path}：不是 UTF-8 文本（第 {position} 字节）；请另存为 UTF-8 编码的 CSV</translation>
+    </message>
+    <message>
+        <location filename="../core/tables.py" line="70" />
         <source>Cannot read {what} file {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取{what}文件 {path}：{error}</translation>
     </message>
     <message>
-        <location filename="../core/tables.py" line="120" />
+        <location filename="../core/tables.py" line="126" />
+        <source>{what} file {path}, line {line}: {count} fields, but the header has {header_count}: decimal commas, or the delimiter inside a value? Write numbers with a decimal point (1.5, not 1,5)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{what}文件 {path}，第 {line} 行：有 {count} 个字段，但表头有 {header_count} 个：是否使用了小数逗号，或值中含有分隔符？请用小数点书写数字（应写 1.5，而非 1,5）</translation>
+    </message>
+    <message>
+        <location filename="../core/tables.py" line="153" />
         <source>{what} file {path}, line {line}, field '{field}': expected a finite number, found '{value}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what}文件 {path}，第 {line} 行，字段 '{field}'：应为有限数值，实际为 '{value}'</translation>
     </message>
     <message>
-        <location filename="../core/tables.py" line="89" />
+        <location filename="../core/tables.py" line="41" />
+        <source>{what} file {path}, line {line}: cannot split the line into fields ({error})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{what}文件 {path}，第 {line} 行：无法将该行拆分为字段（{error}）</translation>
+    </message>
+    <message>
+        <location filename="../core/tables.py" line="105" />
         <source>{what} file {path}, line {line}: field '{field}' is missing (the row has {count} fields, the header {header_count})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what}文件 {path}，第 {line} 行：缺少字段 '{field}'（该行有 {count} 个字段，表头有 {header_count} 个）</translation>
     </message>
     <message>
-        <location filename="../core/tables.py" line="116" />
+        <location filename="../core/tables.py" line="149" />
         <source>{what} file {path}, line {line}, field '{field}': expected a number, found '{value}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what}文件 {path}，第 {line} 行，字段 '{field}'：应为数字，实际为 '{value}'</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="160" />
+        <location filename="../core/tables.py" line="145" />
+        <source>{what} file {path}, line {line}, field '{field}': expected a number, found '{value}': a decimal comma? Write numbers with a decimal point (1.5, not 1,5)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{what}文件 {path}，第 {line} 行，字段 '{field}'：应为数字，实际为 '{value}'：是否使用了小数逗号？请用小数点书写数字（应写 1.5，而非 1,5）</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="192" />
         <source>is duplicated</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>重复</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="160" />
+        <location filename="../core/trajectory.py" line="192" />
         <source>goes back in time</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>出现倒退</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="168" />
-        <location filename="../core/trajectory.py" line="172" />
+        <location filename="../core/trajectory.py" line="200" />
+        <location filename="../core/trajectory.py" line="204" />
         <source>Trajectory</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>轨迹</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="206" />
+        <location filename="../core/trajectory.py" line="244" />
         <source>SBET</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SBET</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="223" />
-        <location filename="../core/trajectory.py" line="225" />
+        <location filename="../core/trajectory.py" line="261" />
+        <location filename="../core/trajectory.py" line="263" />
         <source>Image times</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>图像时间</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="312" />
-        <location filename="../core/trajectory.py" line="315" />
+        <location filename="../core/trajectory.py" line="352" />
+        <location filename="../core/trajectory.py" line="355" />
         <source>Poses</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>位姿</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="161" />
+        <location filename="../core/trajectory.py" line="193" />
         <source>{what} file {path}, {location}: time {time} {kind} (previous {previous}); times must increase strictly</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what}文件 {path}，{location}：时间 {time} {kind}（前一个为 {previous}）；时间必须严格递增</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="195" />
+        <location filename="../core/trajectory.py" line="227" />
         <source>SBET file {path}, record {record}: non-finite value (NaN or infinity)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>SBET 文件 {path}，第 {record} 条记录：存在非有限值（NaN 或无穷大）</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="200" />
+        <location filename="../core/trajectory.py" line="232" />
         <source>SBET file {path}: latitude/longitude out of range for radians: not an SBET, or wrong byte order</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>SBET 文件 {path}：纬度/经度超出弧度的取值范围：不是 SBET 文件，或字节序错误</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="217" />
+        <location filename="../core/trajectory.py" line="237" />
+        <source>SBET file {path}, record {record}: roll, pitch, heading or wander out of range for radians, or the height beyond 100 km: not an SBET, or wrong byte order</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>SBET 文件 {path}，第 {record} 条记录：横滚角、俯仰角、航向角或游移角超出弧度范围，或高度超过 100 km：不是 SBET 文件，或字节序错误</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="255" />
         <source>Trajectory file not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到轨迹文件：{path}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="270" />
+        <location filename="../core/trajectory.py" line="310" />
         <source>Trajectory file {path} has {count} sample(s): at least 2 are needed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>轨迹文件 {path} 有 {count} 个采样点：至少需要 2 个</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="290" />
+        <location filename="../core/trajectory.py" line="330" />
         <source>No image time falls inside the trajectory's span [{start}, {end}]</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有任何图像时间落在轨迹的时间范围 [{start}, {end}] 内</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="385" />
+        <location filename="../core/trajectory.py" line="426" />
         <source>Panorama folder not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到全景图文件夹：{path}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="422" />
+        <location filename="../core/trajectory.py" line="466" />
         <source>None of the {count} panoramas listed was found in {folder}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>在 {folder} 中未找到所列 {count} 张全景图中的任何一张</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="185" />
+        <location filename="../core/trajectory.py" line="503" />
+        <source>Panorama {image}: its position x {x}, y {y} in the target CRS lies outside the area of use of {crs} (longitude {west} to {east}, latitude {south} to {north}): choose the target CRS of the drive's region (e.g. its UTM zone)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>全景图 {image}：其在目标坐标参考系中的位置 x {x}，y {y} 位于 {crs} 的适用范围（经度 {west} 至 {east}，纬度 {south} 至 {north}）之外：请选择行驶采集所在区域的目标坐标参考系（例如其 UTM 分带）</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="156" />
+        <source>{layer}: station {station}: the quaternion qw, qx, qy, qz has norm {norm:.4f}, not 1; expected the output of Import trajectory</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{layer}：全景站点 {station}：四元数 qw、qx、qy、qz 的模为 {norm:.4f}，不是 1；应为“导入轨迹”的输出</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="217" />
         <source>SBET file {path} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>SBET 文件 {path} 为空</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="187" />
+        <location filename="../core/trajectory.py" line="219" />
         <source>SBET file {path} is {size} bytes, not a multiple of {record} bytes (17 float64 per record): truncated or not an SBET</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>SBET 文件 {path} 大小为 {size} 字节，不是 {record} 字节（每条记录 17 个 float64）的整数倍：文件被截断或不是 SBET</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="192" />
+        <location filename="../core/trajectory.py" line="224" />
         <source>Cannot read SBET file {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 SBET 文件 {path}：{error}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="233" />
+        <location filename="../core/trajectory.py" line="271" />
         <source>{what} file {path}, line {line}, field 'image': empty image name</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what}文件 {path}，第 {line} 行，字段 'image'：图像名称为空</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="236" />
+        <location filename="../core/trajectory.py" line="274" />
         <source>{what} file {path}, line {line}: image '{image}' already listed on line {first}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what}文件 {path}，第 {line} 行：图像 '{image}' 已在第 {first} 行列出</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="277" />
+        <location filename="../core/trajectory.py" line="317" />
         <source>Image times file {path}, {location}: time {time} of image '{image}' is outside the trajectory's span [{start}, {end}] ({count} image(s) outside in all; set the option to skip them)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>图像时间文件 {path}，{location}：图像 '{image}' 的时间 {time} 超出轨迹的时间范围 [{start}, {end}]（共有 {count} 张图像超出；可设置选项跳过它们）</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="283" />
+        <location filename="../core/trajectory.py" line="323" />
         <source>Skipped {count} image(s) whose time is outside the trajectory's span [{start}, {end}], the first: {image}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已跳过 {count} 张时间超出轨迹范围 [{start}, {end}] 的图像，第一张：{image}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="300" />
+        <location filename="../core/trajectory.py" line="340" />
         <source>{count} image(s) fall in a trajectory gap longer than {max_gap} s; the longest gap is {gap:.3f} s around image '{image}' at time {time}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 张图像落在长于 {max_gap} 秒的轨迹间隙中；最长的间隙为 {gap:.3f} 秒，位于图像 '{image}'（时间 {time}）附近</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="365" />
+        <location filename="../core/trajectory.py" line="406" />
         <source>Skipped {count} panorama(s) that are missing or unreadable; the first: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已跳过 {count} 张缺失或无法读取的全景图；第一张：{path}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="388" />
+        <location filename="../core/trajectory.py" line="429" />
         <source>Give either a per-image pose file, or a trajectory with image times, not both</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>请提供逐图像位姿文件，或带图像时间的轨迹，但不能同时提供两者</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="395" />
+        <location filename="../core/trajectory.py" line="437" />
         <source>A trajectory file and an image times file are needed (or a per-image pose file instead)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>需要轨迹文件和图像时间文件（或改为提供逐图像位姿文件）</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="415" />
+        <location filename="../core/trajectory.py" line="459" />
         <source>No target CRS given: using {crs}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未指定目标坐标参考系：使用 {crs}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="400" />
+        <location filename="../core/trajectory.py" line="442" />
         <source>SBET trajectory: WGS 84 geographic with ellipsoidal heights, {count} records</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>SBET 轨迹：WGS 84 地理坐标，椭球高，{count} 条记录</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="404" />
+        <location filename="../core/trajectory.py" line="448" />
         <source>Trajectory: {count} samples over {span:.1f} s</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>轨迹：{count} 个采样，历时 {span:.1f} 秒</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="123" />
+        <location filename="../core/trajectory.py" line="132" />
         <source>{layer}: station {station} has no value in the field {field}; expected the output of Import trajectory</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{layer}：全景站点 {station} 的字段 {field} 没有值；应为“导入轨迹”的输出</translation>
+    </message>
+    <message>
+        <location filename="../core/trajectory.py" line="143" />
+        <source>{layer}: station {station}, field {field}: expected a finite number, found '{value}'; expected the output of Import trajectory</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{layer}：全景站点 {station}，字段 {field}：应为有限数字，实际为 '{value}'；应为“导入轨迹”的输出</translation>
     </message>
     <message>
         <location filename="../dependencies.py" line="72" />
@@ -1952,35 +2318,55 @@
 <context>
     <name>RoadSignsAlgorithm</name>
     <message>
-        <location filename="../algorithms/base.py" line="48" />
+        <location filename="../algorithms/base.py" line="106" />
         <source>Road sign inventory</source>
         <translation>道路标志清查</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="109" />
+        <location filename="../algorithms/base.py" line="167" />
         <source>LAS/LAZ point clouds (*.las *.laz *.LAS *.LAZ);;All files (*.*)</source>
         <translation>LAS/LAZ 点云 (*.las *.laz *.LAS *.LAZ);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="180" />
+        <location filename="../algorithms/base.py" line="267" />
         <source>Cancelled: nothing was written.</source>
         <translation>已取消：未写入任何内容。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/base.py" line="273" />
+        <source>Out of memory: nothing was written. Crop the point cloud (Ground filter with a crop layer) or process the drive in parts.</source>
+        <translation>内存不足：未写入任何内容。请裁剪点云（使用带裁剪图层的地面滤波），或分段处理行驶采集数据。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/base.py" line="276" />
+        <source>Cannot read or write {}: {}. Nothing was written.</source>
+        <translation>无法读取或写入 {}：{}。未写入任何内容。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/base.py" line="279" />
+        <source>Unexpected error ({}: {}); nothing was written. The details are in the QGIS message log (Road sign inventory); please report them.</source>
+        <translation>意外错误（{}：{}）；未写入任何内容。详细信息见 QGIS 消息日志（Road sign inventory）；请报告。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/base.py" line="284" />
+        <source>{} However, these partial outputs could not be removed: {}</source>
+        <translation>{} 但是，以下部分输出无法删除：{}</translation>
     </message>
 </context>
 <context>
     <name>RoadSignsProvider</name>
     <message>
-        <location filename="../provider/provider.py" line="27" />
+        <location filename="../provider/provider.py" line="29" />
         <source>Road sign inventory</source>
         <translation>道路标志清查</translation>
     </message>
     <message>
-        <location filename="../provider/provider.py" line="30" />
+        <location filename="../provider/provider.py" line="32" />
         <source>Road sign inventory from mobile mapping (panoramas, trajectory, LiDAR)</source>
         <translation>基于移动测量的道路标志清查（全景图、轨迹、激光雷达）</translation>
     </message>
     <message>
-        <location filename="../provider/provider.py" line="43" />
+        <location filename="../provider/provider.py" line="45" />
         <source>PDAL executable for the ground filter (empty: search PATH and QGIS)</source>
         <translation>地面滤波使用的 PDAL 可执行文件（留空：在 PATH 和 QGIS 中查找）</translation>
     </message>
@@ -1988,12 +2374,12 @@
 <context>
     <name>ShippedModel</name>
     <message>
-        <location filename="../provider/provider.py" line="90" />
+        <location filename="../provider/provider.py" line="92" />
         <source>Sign inventory (whole chain)</source>
         <translation>标志清查（完整流程）</translation>
     </message>
     <message>
-        <location filename="../provider/provider.py" line="103" />
+        <location filename="../provider/provider.py" line="105" />
         <source>Road sign inventory</source>
         <translation>道路标志清查</translation>
     </message>

@@ -8,6 +8,8 @@ from qgis.PyQt.QtGui import QIcon
 
 from ..algorithms.detectsigns import DetectSigns
 from ..algorithms.evaluate import Evaluate
+from ..algorithms.exporthandover import ExportHandover
+from ..algorithms.findsignsincloud import FindSignsInCloud
 from ..algorithms.groundfilter import PDAL_SETTING, GroundFilter
 from ..algorithms.i18n import Translatable, tr_core
 from ..algorithms.importtrajectory import ImportTrajectory
@@ -16,7 +18,8 @@ from ..algorithms.projectdetections import ProjectDetections
 from ..algorithms.refinesigns import RefineSigns
 
 #: The algorithms, in the order of the chain.
-ALGORITHMS = (ImportTrajectory, DetectSigns, GroundFilter, ProjectDetections, RefineSigns, Evaluate)
+ALGORITHMS = (ImportTrajectory, DetectSigns, GroundFilter, ProjectDetections, RefineSigns, FindSignsInCloud,
+              Evaluate, ExportHandover)
 
 
 class RoadSignsProvider(Translatable, QgsProcessingProvider):

@@ -65,3 +65,19 @@ if [ "$sys_geos" != "$venv_geos" ]; then
     --force-reinstall --no-deps -c "$VENV/constraints.txt" "shapely>=2.0"
 fi
 log "python deps ok: $("$VENV/bin/python" -c 'import numpy, scipy, pyproj, shapely; print("numpy", numpy.__version__, "scipy", scipy.__version__, "pyproj", pyproj.__version__, "shapely", shapely.__version__, "GEOS", shapely.geos_version_string)')"
+
+# --- 3. PDAL's Python bindings for the tests (only where ../shared/tools/pdal-2.9.2 exists) ---
+# The real PDAL 2.9.2 build beside the checkout (its README): the tests run the plugin's PDAL
+# engine with its `pdal` application and with these bindings. Test-only: the plugin never
+# ships them; --no-deps keeps the venv's numpy (pinned to Debian's).
+pdal_dir="$(cd "$here/.." && pwd)/shared/tools/pdal-2.9.2"
+if [ -d "$pdal_dir" ]; then
+  pdal_whl="$(ls "$pdal_dir"/python/pdal-*.whl 2>/dev/null | head -n1)"
+  pdal_want="$(basename "$pdal_whl" | cut -d- -f2)"
+  pdal_have="$("$VENV/bin/python" -c 'import importlib.metadata as m; print(m.version("pdal"))' 2>/dev/null || true)"
+  if [ -n "$pdal_whl" ] && [ "$pdal_have" != "$pdal_want" ]; then
+    log "installing PDAL's Python bindings $pdal_want (tests only) from $pdal_whl"
+    "$VENV/bin/python" -m pip install -q --disable-pip-version-check --no-deps --force-reinstall "$pdal_whl"
+  fi
+  log "PDAL for the tests: $("$pdal_dir/bin/pdal" --version 2>/dev/null | grep -m1 -o 'pdal [0-9.]*' || echo 'pdal: does not run'), bindings $("$VENV/bin/python" -c 'import pdal; print(pdal.__version__, "on PDAL", pdal.info.version)' 2>/dev/null || echo 'do not import')"
+fi

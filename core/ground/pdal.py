@@ -5,21 +5,28 @@ Conventions:
 
 * Pipelines use PDAL's documented stage and option names only (``readers.las ->
   filters.crop -> filters.csf|filters.smrf -> writers.las``); :func:`build_pdal_pipeline`
-  returns the JSON text that is run and reported.
+  returns the JSON text that is run and reported. Every stage and option is in PDAL 2.2
+  and later (the newest one: ``filters.assign``'s ``value`` expressions, PDAL 2.2); QGIS's
+  installers ship PDAL 2.6-2.8, the tests run PDAL 2.9 (README, "PDAL").
 * A pipeline runs with the ``pdal`` Python module when no executable is given, else with
   the executable through ``pdal pipeline --stdin``. PDAL's failures raise
-  :class:`PdalError` carrying PDAL's own stderr; cancelling kills the process.
+  :class:`PdalError` naming the input and output files, with PDAL's own stderr.
+  Cancelling kills the ``pdal`` process; the Python bindings cannot be interrupted, so
+  there cancelling takes effect when the pipeline returns. Either way nothing is written.
 * PDAL writes to a temporary file in the destination folder, moved into place only on
-  success (no partial output).
+  success (no partial output, :mod:`..outputs`); PDAL's messages name the destination,
+  not that file. Inputs cut short are refused before PDAL sees them (:func:`check_complete`).
+* LAS arrays of extra bytes (``3f8``: LAS 1.4 deprecated them) come back from PDAL as one
+  extra dimension per element (``normal0``, ``normal1``, ...) with the same values.
 """
 from __future__ import annotations
 
 import json
 import os
 import shutil
+import struct
 import subprocess
 import sys
-import tempfile
 import types
 from dataclasses import asdict
 from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Set, Tuple
@@ -27,11 +34,14 @@ from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Set, Tuple
 import numpy as np
 
 from ..errors import SILENT, InputError, Progress
+from ..outputs import move_into_place, remove, temp_path_beside
 from ..pointcloud import GROUND_CLASS, UNCLASSIFIED_CLASS, CloudWriter, CropRegion, iter_chunks, output_header
 from .params import Params, method_name, method_params
 
 #: Temporary PDAL dimension holding the classes from before the filter.
 _KEEP_CLASS_DIM = "RoadsignsClassBefore"
+#: the message of a file cut short (as core/pointcloud.py words it)
+_CORRUPT = "Cannot read {path}: the file is truncated or corrupt ({detail})"
 
 
 class PdalError(RuntimeError):
@@ -105,12 +115,16 @@ def build_pdal_pipeline(input_path: str, output_path: str, method: str = "csf",
     if extra_dims:
         writer["extra_dims"] = ",".join(extra_dims)
     if output_path.lower().endswith(".laz"):
-        writer["compression"] = "laszip"
+        writer["compression"] = "true"  # LAZ in every PDAL 2.x ("laszip"/"lazperf": legacy)
     if crs_wkt:
         writer["a_srs"] = crs_wkt
     stages.append(writer)
     return json.dumps({"pipeline": stages}, indent=2)
 
+
+# --------------------------------------------------------------------------------------
+# Finding and running PDAL
+# --------------------------------------------------------------------------------------
 
 def pdal_python_module() -> Optional[types.ModuleType]:
     """The ``pdal`` Python bindings when they import, else ``None``."""
@@ -130,11 +144,6 @@ def _qgis_bin_dirs() -> List[str]:
     dirs += [exe_dir, os.path.join(sys.prefix, "bin"),
              os.path.normpath(os.path.join(sys.prefix, "..", "..", "bin")),  # OSGeo4W
              os.path.normpath(os.path.join(exe_dir, "..", "bin"))]
-
-# --------------------------------------------------------------------------------------
-# Finding and running PDAL
-# --------------------------------------------------------------------------------------
-
     if ".app/Contents" in exe_dir:  # QGIS.app on macOS
         contents = exe_dir[:exe_dir.index(".app/Contents") + len(".app/Contents")]
         dirs += [os.path.join(contents, "MacOS", "bin"), os.path.join(contents, "MacOS")]
@@ -231,34 +240,124 @@ def _count_classes(path: str, chunk_points: int) -> Tuple[int, int]:
     return n, ground
 
 
+def _laszip_vlr(f: Any) -> Optional[bytes]:
+    """The LASzip VLR's data, read from the file's own VLRs (laspy hides that one)."""
+    f.seek(94)
+    header_size, _, n_vlrs = struct.unpack("<HII", f.read(10))
+    f.seek(header_size)
+    for _ in range(n_vlrs):
+        head = f.read(54)
+        if len(head) < 54:
+            return None
+        record_id, length = struct.unpack_from("<HH", head, 18)
+        data = f.read(length)
+        if head[2:18].rstrip(b"\0") == b"laszip encoded" and record_id == 22204:
+            return data
+    return None
+
+
+def check_complete(path: str, header: Any) -> None:
+    """:class:`InputError` when ``path`` lacks its end: a LAS shorter than its points, a LAZ
+    whose chunk table is not whole or does not end where its chunks do.
+
+    PDAL is never given such a file: PDAL 2.9.2 fails cleanly on some LAZ files cut short,
+    but on others ``pdal`` waits forever with no CPU (points of more than 30 bytes, a chunk
+    table cut in the middle) or crashes (SIGSEGV), which through the Python bindings
+    would hang or crash QGIS."""
+    try:
+        size = os.path.getsize(path)
+        start = int(header.offset_to_point_data)
+        if not header.are_points_compressed:
+            end = start + int(header.point_count) * int(header.point_format.size)
+            if size < end:
+                raise InputError(_CORRUPT, path=path, detail=f"{size} bytes, the points need {end}")
+            return
+        with open(path, "rb") as f:
+            f.seek(start)
+            table = struct.unpack("<q", f.read(8).ljust(8, b"\0"))[0]
+            if table == -1:  # LASzip's streaming writers put the offset at the very end
+                f.seek(max(size - 8, 0))
+                table = struct.unpack("<q", f.read(8).ljust(8, b"\0"))[0]
+            if not start + 8 <= table <= size - 8:
+                raise InputError(_CORRUPT, path=path, detail=f"its LAZ chunk table would be at byte "
+                                 f"{table} of {size}: the end of the file is missing")
+            chunks = _read_chunk_table(f, start)
+    except OSError as e:
+        raise InputError("Cannot read {path}: {detail}", path=path, detail=str(e))
+    except struct.error:
+        raise InputError(_CORRUPT, path=path, detail="the header is cut short")
+    if isinstance(chunks, str):
+        raise InputError(_CORRUPT, path=path, detail=f"its LAZ chunk table cannot be read ({chunks})")
+    if chunks is not None and start + 8 + sum(n_bytes for _, n_bytes in chunks) != table:
+        raise InputError(_CORRUPT, path=path, detail="its LAZ chunks do not end where their table begins")
+
+
+def _read_chunk_table(f: Any, start: int) -> Any:
+    """The LAZ chunk table ``[(points, bytes), ...]`` (lazrs), its error as a string, or
+    ``None`` when it cannot be looked at (no lazrs, no LASzip VLR)."""
+    try:
+        import lazrs
+    except ImportError:
+        return None
+    vlr = _laszip_vlr(f)
+    if vlr is None:
+        return None
+    f.seek(start)
+    try:
+        return lazrs.read_chunk_table(f, lazrs.LazVlr(vlr))
+    except (KeyboardInterrupt, SystemExit, GeneratorExit):
+        raise
+    except BaseException as e:  # LazrsError, or a Rust panic (PanicException)
+        return f"{type(e).__name__}: {e}"
+
+
+def _pdal_failure(error: PdalError, input_path: str, output_path: str, temp_path: str,
+                  executable: Optional[str]) -> PdalError:
+    """``error`` told from the user's side: which files, which PDAL, and PDAL's own words
+    with the temporary file called by the destination's name."""
+    detail = (error.stderr or str(error)).replace(temp_path, output_path).strip()
+    runner = f"pdal ({executable})" if executable else "PDAL's Python bindings"
+    return PdalError(f"{runner} could not classify {input_path} into {output_path}: "
+                     f"{detail or '(no message)'}", stderr=detail)
+
+
 def run_pdal_engine(input_path: str, output_path: str, method: str, params: Params,
                     region: Optional[CropRegion], header: Any, crs_wkt: Optional[str],
                     reset_classes: bool, executable: Optional[str], chunk_points: int,
                     progress: Progress) -> Tuple[int, int, str, str]:
     """Crop and classify ``input_path`` into ``output_path`` with PDAL (``executable``, or
     the Python module when ``None``). Returns ``(points written, ground points, pipeline
-    JSON, engine used: "pdal-cli" or "pdal-python")``."""
-    folder = os.path.dirname(os.path.abspath(output_path))
-    suffix = os.path.splitext(output_path)[1].lower()
-    fd, temp_path = tempfile.mkstemp(prefix=".roadsigns-pdal-", suffix=suffix, dir=folder)
-    os.close(fd)
+    JSON, engine used: "pdal-cli" or "pdal-python")``; the JSON names ``output_path``.
+
+    Raises :class:`PdalError` naming both files when PDAL fails, :class:`InputError` when
+    the input is cut short (:func:`check_complete`) or the output cannot be written, and
+    :class:`~..errors.Cancelled` when cancelled; neither the output nor a temporary file
+    is left then."""
+    input_path = os.path.abspath(os.fspath(input_path))
+    output_path = os.path.abspath(os.fspath(output_path))
+    extra_dims = pdal_extra_dims(header)
+
+    def pipeline_to(path: str) -> str:
+        return build_pdal_pipeline(input_path, path, method, params,
+                                   crop_wkt=region.wkt if region is not None else None,
+                                   crs_wkt=crs_wkt, reset_classes=reset_classes,
+                                   extra_dims=extra_dims)
+
+    temp_path = temp_path_beside(output_path)  # InputError naming output_path if unwritable
     try:
-        pipeline = build_pdal_pipeline(
-            input_path, temp_path, method, params,
-            crop_wkt=region.wkt if region is not None else None, crs_wkt=crs_wkt,
-            reset_classes=reset_classes, extra_dims=pdal_extra_dims(header))
+        pipeline = pipeline_to(temp_path)
         progress.report(0.0)
-        run_pdal_pipeline(pipeline, executable, progress)
+        try:
+            run_pdal_pipeline(pipeline, executable, progress)
+        except PdalError as e:
+            raise _pdal_failure(e, input_path, output_path, temp_path, executable) from e
+        progress.check()  # the Python bindings cannot be interrupted: cancelled meanwhile?
         if os.path.getsize(temp_path) == 0:  # PDAL wrote nothing (no point left)
             with CloudWriter(temp_path, output_header(header, crs_wkt)):
                 pass
         n_out, n_ground = _count_classes(temp_path, chunk_points)
-        os.replace(temp_path, output_path)
+        progress.report(1.0)  # the last chance to cancel: nothing may appear after it
+        move_into_place(temp_path, output_path)  # with the umask's permissions, not 0600
     finally:
-        if os.path.exists(temp_path):
-            os.unlink(temp_path)
-    progress.report(1.0)
-    return n_out, n_ground, pipeline, "pdal-cli" if executable else "pdal-python"
-
-
-# --------------------------------------------------------------------------------------
+        remove(temp_path)
+    return n_out, n_ground, pipeline_to(output_path), "pdal-cli" if executable else "pdal-python"

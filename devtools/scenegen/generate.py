@@ -3,7 +3,7 @@
 Files (``shared/CONTRACT.md``): ``trajectory.csv`` (100 Hz body poses, true heading, in the
 trajectory CRS), ``trajectory.out`` (SBET), ``image_times.csv``, ``poses.csv``,
 ``images/*.jpg``, ``masks/*.png`` (sign ids, uint16, optional), ``cloud.laz`` (EPSG:32633),
-``reference_signs.csv`` (EPSG:32633) and ``scene.json``.
+``reference_signs.csv`` and ``reference_poles.csv`` (EPSG:32633) and ``scene.json``.
 """
 from __future__ import annotations
 
@@ -176,11 +176,22 @@ def generate_scene(preset="tiny", seed=1, out_dir="scene", crs="projected", pano
         c = s.panel.centre + frames.origin
         az = float(g.azimuth_deg_of_enu(s.panel.normal))
         ref_rows.append([s.sign_id, s.cls, "%.4f" % c[0], "%.4f" % c[1], "%.4f" % c[2], "%.4f" % s.height_above_ground,
-                         "%.3f" % s.panel.width, "%.3f" % s.panel.height, "%.3f" % az])
+                         "%.3f" % s.panel.width, "%.3f" % s.panel.height, "%.3f" % az, int(s.faded)])
     with open(paths["reference"], "w", newline="") as fh:
         w = csv.writer(fh, lineterminator="\n")
-        w.writerow(["sign_id", "class", "x", "y", "z", "height", "width", "panel_height", "azimuth"])
+        # ``faded`` (1: the face lost its retroreflective sheeting) is last: older readers ignore it
+        w.writerow(["sign_id", "class", "x", "y", "z", "height", "width", "panel_height", "azimuth", "faded"])
         w.writerows(ref_rows)
+
+    # --- reference poles ---------------------------------------------------------------------
+    paths["reference_poles"] = os.path.join(out_dir, "reference_poles.csv")
+    with open(paths["reference_poles"], "w", newline="") as fh:
+        w = csv.writer(fh, lineterminator="\n")
+        w.writerow(["pole_id", "kind", "x", "y", "z_foot", "height", "diameter", "structure_id", "sign_ids"])
+        for pole in scene.poles:
+            f = pole.foot + frames.origin
+            w.writerow([pole.pole_id, pole.kind, "%.4f" % f[0], "%.4f" % f[1], "%.4f" % f[2], "%.4f" % pole.height,
+                        "%.3f" % pole.diameter, pole.structure_id, " ".join(str(i) for i in pole.sign_ids)])
 
     def body_pose(tau):
         x, y, z, roll, pitch, hdg = motion.state(tau)
@@ -258,6 +269,9 @@ def generate_scene(preset="tiny", seed=1, out_dir="scene", crs="projected", pano
                    "height_above_ground": round(s.height_above_ground, 4),
                    "corners_tl_tr_br_bl": [world(c) for c in s.panel.corner_points()]} for s in scene.signs],
         "distractors": [{"kind": d["kind"], "xyz": world(d["xyz"])} for d in scene.distractors],
+        "poles": [{"pole_id": q.pole_id, "kind": q.kind, "foot": world(q.foot), "height": round(q.height, 4),
+                   "diameter": q.diameter, "structure_id": q.structure_id, "sign_ids": list(q.sign_ids)}
+                  for q in scene.poles],
         "images": images_meta,
         "lidar": lidar_stats,
         "timings_s": timings,

@@ -59,12 +59,35 @@ class SignInfo:
     near_tree: bool
 
 
+#: kinds of :class:`PoleInfo` (``reference_poles.csv``)
+POLE_KINDS = ("sign_pole", "light_pole", "gantry", "other")
+
+
+@dataclass
+class PoleInfo:
+    """One vertical support (local ENU): its axis foot on the ground and what it carries.
+
+    ``kind``: ``sign_pole`` (carries signs only), ``light_pole`` (lamp post, maybe with a
+    sign), ``gantry`` (one post of an overhead gantry; both posts list the gantry's signs),
+    ``other`` (traffic-mirror pole, billboard leg). Tree trunks are not poles.
+    """
+
+    pole_id: int
+    kind: str
+    foot: np.ndarray          # axis at ground level (local ENU)
+    height: float             # top of the pole above ``foot``
+    diameter: float
+    sign_ids: list = field(default_factory=list)
+    structure_id: int = 0     # posts of one gantry (or legs of one billboard) share it
+
+
 @dataclass
 class Scene:
     road: Road
     prims: list = field(default_factory=list)
     signs: list = field(default_factory=list)
     distractors: list = field(default_factory=list)   # dicts: kind, local xyz
+    poles: list = field(default_factory=list)         # PoleInfo
 
 
 class _Occupancy:
@@ -111,6 +134,14 @@ class _Builder:
             self.class_cycle = list(self.rng.permutation(CLASSES))
         return self.class_cycle.pop()
 
+    def add_pole(self, kind, base_xy, radius, top_z, sign_ids=(), structure_id=0):
+        """Record a pole's truth (no random draw: the layout stays the same for a seed)."""
+        foot = np.array([base_xy[0], base_xy[1], float(self.road.ground_z(base_xy[0], base_xy[1]))])
+        pole = PoleInfo(len(self.scene.poles) + 1, kind, foot, float(top_z) - foot[2], 2.0 * float(radius),
+                        list(sign_ids), structure_id or len(self.scene.poles) + 1)
+        self.scene.poles.append(pole)
+        return pole
+
     def textures(self, key, make):
         if key not in self.texture_cache:
             self.texture_cache[key] = tx.pyramid(make())
@@ -150,12 +181,14 @@ class _Builder:
         top = bottom + sum(h for _, h in sizes) + 0.08 * (len(classes) - 1)
         z = base[2] + top
         pole_xy = base[:2] - 0.06 * normal[:2]
+        carried = []
         for cls, (w, h) in zip(classes, sizes):
             centre = np.array([base[0], base[1], z - h / 2])
-            self.add_sign(cls, centre, normal, mount, facing, faded=faded, near_tree=near_tree)
+            carried.append(self.add_sign(cls, centre, normal, mount, facing, faded=faded, near_tree=near_tree).sign_id)
             z -= h + 0.08
         self.scene.prims.append(Cylinder(pole_xy, 0.035, base[2] - 0.3, base[2] + top + 0.05, METAL,
                                          REFLECTANCE["pole"], CLASS_CODES["sign_support"]))
+        self.add_pole("sign_pole", pole_xy, 0.035, base[2] + top + 0.05, carried)
         self.occ.take(side, s, 1.0)
 
     def tree(self, s, side, t=None, crown_r=None, crown_z=None):
@@ -173,11 +206,13 @@ class _Builder:
     def gantry(self, s):
         T, N = self.frame(s)
         posts = []
+        structure = len(self.scene.poles) + 1
         for side in (1, -1):
             b = self.at(s, side * 6.6)
             posts.append(b)
             self.scene.prims.append(Cylinder(b[:2], 0.15, b[2] - 0.3, b[2] + 6.6, METAL, REFLECTANCE["pole"],
                                              CLASS_CODES["sign_support"]))
+            self.add_pole("gantry", b[:2], 0.15, b[2] + 6.6, structure_id=structure)
             self.occ.take(side, s, 1.5)
         mid = self.at(s, 0.0)
         z_beam = max(p[2] for p in posts) + 6.3
@@ -199,6 +234,8 @@ class _Builder:
             self.scene.signs.append(SignInfo(sign_id, "information", "gantry", panel, float(centre[2]) - ground,
                                              "gantry", "oncoming", False, False))
             self.scene.prims.append(panel)
+            for pole in self.scene.poles[-2:]:
+                pole.sign_ids.append(sign_id)
 
     def lamp_post(self, s, side, with_sign=False):
         t = side * 6.9
@@ -206,6 +243,7 @@ class _Builder:
         T, N = self.frame(s)
         self.scene.prims.append(Cylinder(base[:2], 0.08, base[2] - 0.3, base[2] + 8.0, (0.45, 0.47, 0.5),
                                          REFLECTANCE["pole"], CLASS_CODES["pole"]))
+        lamp = self.add_pole("light_pole", base[:2], 0.08, base[2] + 8.0)
         arm_c = base + [0, 0, 7.9] - side * N * 0.9
         axes = np.array([T, -N, [0, 0, 1.0]])
         self.scene.prims.append(Box(arm_c, axes, [0.05, 0.9, 0.05], (0.45, 0.47, 0.5), REFLECTANCE["pole"], CLASS_CODES["pole"]))
@@ -217,7 +255,7 @@ class _Builder:
             cls = self.next_class()
             h = tx.PANEL_SIZE[cls][1]
             centre = base + [0, 0, self.rng.uniform(2.3, 2.7) + h / 2] + normal * 0.13
-            self.add_sign(cls, centre, normal, "lamp_post", facing)
+            lamp.sign_ids.append(self.add_sign(cls, centre, normal, "lamp_post", facing).sign_id)
         self.occ.take(side, s, 1.0)
 
     def billboard(self, s, side):
@@ -230,10 +268,12 @@ class _Builder:
                                       (0.4, 0.4, 0.42), REFLECTANCE["billboard"], REFLECTANCE["billboard"],
                                       CLASS_CODES["billboard"]))
         right = np.cross(-normal, [0, 0, 1.0])
+        structure = len(self.scene.poles) + 1
         for k in (-1, 1):
             leg = base[:2] + k * 1.2 * right[:2] - 0.05 * normal[:2]
             self.scene.prims.append(Cylinder(leg, 0.06, base[2] - 0.3, base[2] + 3.5, METAL, REFLECTANCE["pole"],
                                              CLASS_CODES["pole"]))
+            self.add_pole("other", leg, 0.06, base[2] + 3.5, structure_id=structure)
         self.scene.distractors.append({"kind": "billboard", "xyz": centre})
         self.occ.take(side, s, 2.5)
 
@@ -247,6 +287,7 @@ class _Builder:
                                       CLASS_CODES["traffic_mirror"]))
         self.scene.prims.append(Cylinder(base[:2] - 0.08 * normal[:2], 0.04, base[2] - 0.3, base[2] + 3.0,
                                          (0.8, 0.8, 0.8), REFLECTANCE["pole"], CLASS_CODES["pole"]))
+        self.add_pole("other", base[:2] - 0.08 * normal[:2], 0.04, base[2] + 3.0)
         self.scene.distractors.append({"kind": "traffic_mirror", "xyz": centre})
         self.occ.take(side, s, 1.0)
 

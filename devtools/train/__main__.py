@@ -1,8 +1,10 @@
 """CLI: ``python -m devtools.train --minutes 40 --out models/roadsigns.onnx``.
 
 Generates the training scenes when missing (devtools.scenegen, seeds 100 and up, no LiDAR),
-trains on 2 CPU threads for the given wall time, validates every few minutes and exports
-the best checkpoint to ONNX. See models/README.md.
+trains for the given training time (CUDA with mixed precision where present, else the
+CPU), validates every few minutes (best by AP50 on GTSDB 500-599), checkpoints every few
+minutes and on SIGTERM, and exports the best checkpoint to ONNX. A run cut off goes on with
+the same command plus ``--resume WORK/last.pt``. See models/README.md.
 """
 from __future__ import annotations
 
@@ -15,21 +17,35 @@ from .. import REPO_ROOT
 
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="python -m devtools.train", description=__doc__)
-    ap.add_argument("--minutes", type=float, default=40.0, help="training wall time (after set-up)")
+    ap.add_argument("--minutes", type=float, default=40.0,
+                    help="training time in all (a resumed run counts the time already trained)")
+    ap.add_argument("--until", default=None, help="stop at this UTC time (HH:MM or ISO) if earlier")
     ap.add_argument("--out", default=os.path.join(REPO_ROOT, "models", "roadsigns.onnx"))
     ap.add_argument("--work", default=os.path.join(REPO_ROOT, "bench", "out", "train"),
                     help="checkpoints, cut views, history.json")
     ap.add_argument("--scenes", default=None, help="folder of the generated training scenes (default WORK/scenes)")
     ap.add_argument("--no-generate", action="store_true",
                     help="use only the training scenes already there (others join when they appear)")
-    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--device", default="auto", help="auto (CUDA when present), cpu, cuda, cuda:1, ...")
+    ap.add_argument("--no-amp", action="store_true", help="no mixed precision on CUDA")
+    ap.add_argument("--threads", type=int, default=2, help="CPU threads (torch.set_num_threads)")
     ap.add_argument("--batch", type=int, default=16)
     ap.add_argument("--crop", type=int, default=320)
     ap.add_argument("--lr", type=float, default=3e-3)
+    ap.add_argument("--warmup", type=int, default=300, help="warm-up steps (not on --resume)")
     ap.add_argument("--validate-every", type=float, default=5.0, help="minutes")
+    ap.add_argument("--checkpoint-every", type=float, default=10.0, help="minutes between WORK/last.pt saves")
     ap.add_argument("--val-images", type=int, default=60, help="images per validation set and round")
     ap.add_argument("--seed", type=int, default=0)
-    ap.add_argument("--resume", default=None, help="a checkpoint (.pt) to start from")
+    ap.add_argument("--ema-decay", type=float, default=0.998, help="EMA of the weights (lower follows faster)")
+    ap.add_argument("--source-weights", default=None, metavar="NAME=W,...",
+                    help="override the data mix's shares, e.g. views=0.5,gtsdb=0.2 (names: gtsdb, gtsrb_paste, "
+                         "drawn_paste, views)")
+    ap.add_argument("--resume", default=None, help="a checkpoint (WORK/last.pt) to go on from, with its "
+                    "optimiser, EMA, step, training time and random states")
+    ap.add_argument("--init", default=None, help="start weights only: a checkpoint (.pt) or an exported "
+                    "model (.onnx, e.g. models/roadsigns.onnx: its folded batch norms are recovered)")
+    ap.add_argument("--no-export", action="store_true", help="do not export at the end")
     ap.add_argument("--export-only", metavar="CKPT", help="only export this checkpoint (.pt) to --out")
     a = ap.parse_args(argv)
     from .train import export_checkpoint, train
@@ -38,7 +54,11 @@ def main(argv=None):
         return 0
     train(a.out, a.minutes, a.work, a.scenes or os.path.join(a.work, "scenes"), generate_scenes=not a.no_generate,
           crop_px=a.crop, batch_size=a.batch, lr=a.lr, threads=a.threads, validate_every_min=a.validate_every,
-          seed=a.seed, resume=a.resume, val_images=a.val_images)
+          seed=a.seed, resume=a.resume, val_images=a.val_images, init=a.init, device=a.device,
+          checkpoint_every_min=a.checkpoint_every, until=a.until, warmup_steps=a.warmup, amp=not a.no_amp,
+          export=not a.no_export, ema_decay=a.ema_decay,
+          source_weights={k: float(v) for k, v in (x.split("=") for x in a.source_weights.split(","))}
+          if a.source_weights else None)
     return 0
 
 

@@ -340,9 +340,12 @@ def warp_patch(patch: np.ndarray, height_px: float, rng) -> np.ndarray:
                           borderMode=cv2.BORDER_CONSTANT, borderValue=(0, 0, 0, 0))
 
 
-def paste(sample: Sample, patch: np.ndarray, height_px: float, class_id, rng, tries: int = 8) -> bool:
-    """Alpha-blend a warped BGRA patch at a free spot; labelled unless ``class_id`` is None."""
+def paste(sample: Sample, patch: np.ndarray, height_px: float, class_id, rng, tries: int = 8, post=None) -> bool:
+    """Alpha-blend a warped BGRA patch at a free spot; labelled unless ``class_id`` is None.
+    ``post``: a function applied to the warped BGRA patch (blur, JPEG) before blending."""
     p = warp_patch(patch, height_px, rng)
+    if post is not None:
+        p = post(p)
     alpha = p[..., 3].astype(np.float32) / 255.0
     ys, xs = np.nonzero(alpha > 0.5)
     if len(xs) == 0:
@@ -393,3 +396,285 @@ def resample_blur(image: np.ndarray, rng) -> np.ndarray:
     h, w = image.shape[:2]
     small = cv2.resize(image, (max(1, int(w * f)), max(1, int(h * f))), interpolation=cv2.INTER_AREA)
     return cv2.resize(small, (w, h), interpolation=cv2.INTER_LINEAR)
+
+
+# --- GTSRB training tracks (gtsrb-train): split by track -----------------------------------
+
+#: Every this-many-th track of each class (ordered by track number, offset 3) is held out
+#: for validation: its ten frames are never pasted in training.
+GTSRB_VAL_EVERY = 7
+
+
+def gtsrb_track_split(rows, every: int = GTSRB_VAL_EVERY):
+    """Track keys ``(ClassId, Track)`` held out for validation: every ``every``-th track of
+    each class (at least one per class with two or more tracks). Deterministic."""
+    tracks = defaultdict(set)
+    for row in rows:
+        tracks[int(row["ClassId"])].add(row["Track"])
+    held = set()
+    for c, ts in tracks.items():
+        ts = sorted(ts)
+        if len(ts) < 2:
+            continue
+        picked = ts[3 % len(ts)::every] or ts[-1:]
+        held.update((c, t) for t in picked)
+    return held
+
+
+def read_gtsrb_train(part: str = "train", data_dir: str = DATA_DIR, every: int = GTSRB_VAL_EVERY):
+    """Crops of ``gtsrb-train`` as BGRA patches (alpha = the ROI cut to the class's shape),
+    their classes, track keys and native ROI heights. ``part``: ``train`` (tracks not held
+    out) or ``val`` (the held-out tracks). Frames of one track never cross the split."""
+    if part not in ("train", "val"):
+        raise ValueError(part)
+    root = os.path.join(data_dir, "gtsrb-train")
+    with open(os.path.join(root, "GT-train.csv")) as f:
+        rows = list(csv.DictReader(f, delimiter=";"))
+    held = gtsrb_track_split(rows, every)
+    patches, classes, tracks, heights = [], [], [], []
+    for row in rows:
+        key = (int(row["ClassId"]), row["Track"])
+        if (key in held) != (part == "val"):
+            continue
+        image = cv2.imread(os.path.join(root, "train", row["File"]))
+        if image is None:
+            continue
+        x0, y0, x1, y1 = (int(row[k]) for k in ("Roi.X1", "Roi.Y1", "Roi.X2", "Roi.Y2"))
+        roi = image[y0:y1 + 1, x0:x1 + 1]
+        if min(roi.shape[:2]) < 10:
+            continue
+        mask = shape_mask(gtsrb_shape(key[0]), roi.shape[1], roi.shape[0])
+        patches.append(np.dstack([roi, mask]))
+        classes.append(CLASS_INDEX[gtsrb_class(key[0])])
+        tracks.append(key)
+        heights.append(roi.shape[0])
+    return patches, np.array(classes, np.int64), tracks, np.array(heights, np.float32)
+
+
+def class_sampling_weights(classes, boost=None):
+    """Per-item sampling probabilities: classes balanced by the square root of their counts,
+    then multiplied by ``boost`` ({class index: factor})."""
+    classes = np.asarray(classes)
+    counts = np.bincount(classes, minlength=len(CLASSES)).astype(float)
+    w = 1.0 / np.sqrt(np.maximum(counts[classes], 1.0))
+    for c, f in (boost or {}).items():
+        w[classes == c] *= f
+    return w / w.sum()
+
+
+# --- distant-sign degradation ---------------------------------------------------------------
+
+def motion_kernel(length: float, angle_deg: float) -> np.ndarray:
+    n = max(3, int(np.ceil(length)) | 1)
+    k = np.zeros((n, n), np.float32)
+    c = n // 2
+    dx, dy = np.cos(np.radians(angle_deg)), np.sin(np.radians(angle_deg))
+    cv2.line(k, (int(round(c - dx * length / 2)), int(round(c - dy * length / 2))),
+             (int(round(c + dx * length / 2)), int(round(c + dy * length / 2))), 1.0, 1, cv2.LINE_AA)
+    return k / max(k.sum(), 1e-6)
+
+
+def disk_kernel(radius: float) -> np.ndarray:
+    n = max(3, int(np.ceil(2 * radius + 1)) | 1)
+    k = np.zeros((n, n), np.float32)
+    cv2.circle(k, (n // 2, n // 2), max(1, int(round(radius))), 1.0, -1, cv2.LINE_AA)
+    return k / k.sum()
+
+
+def degrade(patch: np.ndarray, rng) -> np.ndarray:
+    """A small BGRA patch as a distant camera sees it: motion or defocus blur, a lower
+    sampling rate, and JPEG blocking (applied to colour and alpha alike)."""
+    p = patch
+    h, w = p.shape[:2]
+    r = rng.random()
+    if r < 0.35:
+        p = cv2.filter2D(p, -1, motion_kernel(rng.uniform(1.5, 4.0), rng.uniform(0, 180)))
+    elif r < 0.6:
+        p = cv2.filter2D(p, -1, disk_kernel(rng.uniform(0.6, 1.6)))
+    if rng.random() < 0.35 and min(h, w) > 12:
+        f = rng.uniform(0.5, 0.85)
+        small = cv2.resize(p, (max(4, int(w * f)), max(4, int(h * f))), interpolation=cv2.INTER_AREA)
+        p = cv2.resize(small, (w, h), interpolation=cv2.INTER_LINEAR)
+    if rng.random() < 0.5:
+        q = int(rng.integers(30, 90))
+        ok, enc = cv2.imencode(".jpg", np.ascontiguousarray(p[..., :3]), [cv2.IMWRITE_JPEG_QUALITY, q])
+        if ok:
+            p = np.dstack([cv2.imdecode(enc, cv2.IMREAD_COLOR), p[..., 3]])
+    return p
+
+
+def jpeg(image: np.ndarray, rng) -> np.ndarray:
+    """Re-encode a whole training crop at a random JPEG quality (30-90)."""
+    ok, enc = cv2.imencode(".jpg", image, [cv2.IMWRITE_JPEG_QUALITY, int(rng.integers(30, 90))])
+    return cv2.imdecode(enc, cv2.IMREAD_COLOR) if ok else image
+
+
+# --- procedural hard negatives (nothing downloaded) -----------------------------------------
+
+_RED, _BLUE, _WHITE, _YELLOW = (30, 30, 200), (160, 70, 10), (245, 245, 245), (0, 200, 245)
+_FONTS = (cv2.FONT_HERSHEY_SIMPLEX, cv2.FONT_HERSHEY_DUPLEX, cv2.FONT_HERSHEY_TRIPLEX,
+          cv2.FONT_HERSHEY_COMPLEX, cv2.FONT_HERSHEY_PLAIN)
+_WORDS = ("CAFE", "BANK", "APOTHEKE", "SALE", "PIZZA", "HOTEL", "KEBAB", "BAR", "DM", "REWE", "OBI", "SHELL",
+          "BAECKER", "TAXI", "OPEN", "BIO", "KIOSK", "LIDL", "ARAL", "MODE", "24h", "DB", "U", "H")
+
+
+def _bgra(h, w, colour=(0, 0, 0), alpha=0):
+    out = np.zeros((h, w, 4), np.uint8)
+    out[...] = (*colour, alpha)
+    return out
+
+
+def _rand_colour(rng, lo=20, hi=250):
+    return tuple(int(c) for c in rng.integers(lo, hi, 3))
+
+
+def _put_text(img, text, rng, colour, box_w, centre):
+    font = _FONTS[int(rng.integers(len(_FONTS)))]
+    thick = int(rng.integers(1, 4)) * max(1, int(box_w // 80))
+    (tw, th), _ = cv2.getTextSize(text, font, 1.0, thick)
+    scale = box_w / max(tw, 1)
+    (tw, th), _ = cv2.getTextSize(text, font, scale, thick)
+    org = (int(centre[0] - tw / 2), int(centre[1] + th / 2))
+    cv2.putText(img, text, org, font, scale, (*colour, 255), thick, cv2.LINE_AA)
+
+
+def _traffic_light(rng):
+    s = 24
+    h, w = 3 * s + 8, s + 8
+    img = _bgra(h, w, (int(rng.integers(15, 60)),) * 3, 255)
+    lit = int(rng.integers(3))
+    for k, col in enumerate(((40, 40, 230), (30, 170, 240), (80, 220, 60))):
+        c = (w // 2, 4 + s // 2 + k * s)
+        bright = col if k == lit else tuple(int(v * 0.25) for v in col)
+        cv2.circle(img, c, s // 2 - 2, (*bright, 255), -1, cv2.LINE_AA)
+    if rng.random() < 0.5:  # backplate with a white rim
+        plate = _bgra(h + 12, w + 16, _WHITE, 255)
+        plate[3:-3, 3:-3] = (20, 20, 20, 255)
+        plate[6:6 + h, 8:8 + w] = img
+        img = plate
+    return img
+
+
+def _tail_lights(rng):
+    w, h = int(rng.integers(90, 140)), int(rng.integers(30, 50))
+    img = _bgra(h, w, _rand_colour(rng), 255)
+    lw = int(w * rng.uniform(0.15, 0.25))
+    for x0 in (4, w - 4 - lw):
+        lamp = (int(rng.integers(20, 70)), int(rng.integers(20, 60)), int(rng.integers(170, 255)))
+        if rng.random() < 0.5:
+            cv2.circle(img, (x0 + lw // 2, h // 2), lw // 2, (*lamp, 255), -1, cv2.LINE_AA)
+        else:
+            cv2.rectangle(img, (x0, h // 4), (x0 + lw, 3 * h // 4), (*lamp, 255), -1)
+    cv2.rectangle(img, (w // 2 - 18, h - 14), (w // 2 + 18, h - 3), (*_WHITE, 255), -1)  # number plate
+    return img
+
+
+def _shop_sign(rng):
+    colour = [_RED, _BLUE, _YELLOW, _rand_colour(rng)][int(rng.integers(4))]
+    text_colour = _WHITE if colour != _YELLOW else (20, 20, 20)
+    word = _WORDS[int(rng.integers(len(_WORDS)))]
+    if rng.random() < 0.4:  # round shop sign or logo disc
+        d = 96
+        img = _bgra(d, d)
+        cv2.circle(img, (d // 2, d // 2), d // 2 - 1, (*colour, 255), -1, cv2.LINE_AA)
+        _put_text(img, word[:3], rng, text_colour, d * 0.6, (d / 2, d / 2))
+        return img
+    w, h = int(rng.integers(120, 260)), int(rng.integers(40, 90))
+    img = _bgra(h, w, colour, 255)
+    if rng.random() < 0.5:
+        cv2.rectangle(img, (3, 3), (w - 4, h - 4), (*_WHITE, 255), 2)
+    _put_text(img, word, rng, text_colour, w * 0.8, (w / 2, h / 2))
+    return img
+
+
+def _red_ring_logo(rng):
+    """Red rings that are not signs: roundels with a bar, rings around letters, targets."""
+    d = 96
+    bg = _WHITE if rng.random() < 0.5 else _rand_colour(rng)
+    img = _bgra(d + 16, d + 16, bg, 255 if rng.random() < 0.6 else 0)
+    c, r = ((d + 16) // 2,) * 2, d // 2
+    cv2.circle(img, c, r, (*_RED, 255), -1, cv2.LINE_AA)
+    inner = _WHITE if rng.random() < 0.7 else _rand_colour(rng)
+    cv2.circle(img, c, int(r * rng.uniform(0.55, 0.8)), (*inner, 255), -1, cv2.LINE_AA)
+    kind = int(rng.integers(3))
+    if kind == 0:  # roundel with a bar across
+        bh = int(r * 0.35)
+        cv2.rectangle(img, (c[0] - r - 6, c[1] - bh // 2), (c[0] + r + 6, c[1] + bh // 2), (*_BLUE, 255), -1)
+        _put_text(img, _WORDS[int(rng.integers(len(_WORDS)))], rng, _WHITE, 1.6 * r, c)
+    elif kind == 1:  # target-like concentric rings
+        cv2.circle(img, c, int(r * 0.3), (*_RED, 255), -1, cv2.LINE_AA)
+    else:  # a ring around a brand's letters
+        _put_text(img, _WORDS[int(rng.integers(len(_WORDS)))][:2], rng, _rand_colour(rng, 0, 120), r, c)
+    return img
+
+
+def _convex_mirror(rng, background=None):
+    d = 96
+    img = _bgra(d + 8, d + 8)
+    c, r = ((d + 8) // 2,) * 2, d // 2
+    rim = [_RED, (0, 120, 240), (30, 30, 30)][int(rng.integers(3))]
+    cv2.circle(img, c, r + 3, (*rim, 255), -1, cv2.LINE_AA)
+    if rng.random() < 0.6:  # white stripes on the rim
+        for k in range(int(rng.integers(4, 10))):
+            a0 = k * 360.0 / 8
+            cv2.ellipse(img, c, (r + 3, r + 3), 0, a0, a0 + 18, (*_WHITE, 255), -1, cv2.LINE_AA)
+    glass_r = int(r * rng.uniform(0.75, 0.88))
+    if background is not None and min(background.shape[:2]) > 2 * glass_r:
+        bh, bw = background.shape[:2]
+        y, x = int(rng.integers(0, bh - 2 * glass_r)), int(rng.integers(0, bw - 2 * glass_r))
+        scene = background[y:y + 2 * glass_r, x:x + 2 * glass_r]
+        # a fish-eye look: shrink towards the rim
+        yy, xx = np.mgrid[0:2 * glass_r, 0:2 * glass_r].astype(np.float32) - glass_r
+        rr = np.hypot(xx, yy) / glass_r
+        f = (0.4 + 0.6 * rr).clip(0.05, 1.0)
+        glass = cv2.remap(scene, xx * f + glass_r, yy * f + glass_r, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REFLECT)
+        glass = cv2.addWeighted(glass, 0.8, np.full_like(glass, 200), 0.2, 0)
+    else:
+        glass = np.full((2 * glass_r, 2 * glass_r, 3), rng.integers(120, 220, 3), np.uint8)
+    disc = np.zeros((2 * glass_r, 2 * glass_r), np.uint8)
+    cv2.circle(disc, (glass_r, glass_r), glass_r - 1, 255, -1, cv2.LINE_AA)
+    region = img[c[1] - glass_r:c[1] + glass_r, c[0] - glass_r:c[0] + glass_r]
+    a = disc[..., None].astype(np.float32) / 255
+    region[..., :3] = (a * glass + (1 - a) * region[..., :3]).astype(np.uint8)
+    return img
+
+
+def _printed_roundel(rng):
+    """A sign-like roundel printed on a billboard or a lorry's side, with its print around."""
+    w, h = int(rng.integers(200, 360)), int(rng.integers(110, 200))
+    img = _bgra(h, w, _rand_colour(rng), 255)
+    if rng.random() < 0.5:  # a gradient or a stripe of the print
+        img[:, : w // 3, :3] = _rand_colour(rng)
+    r = int(min(h, w) * rng.uniform(0.18, 0.32))
+    c = (int(rng.integers(r + 4, w - r - 4)), int(rng.integers(r + 4, h - r - 4)))
+    cv2.circle(img, c, r, (*_RED, 255), -1, cv2.LINE_AA)
+    cv2.circle(img, c, int(r * 0.78), (*_WHITE, 255), -1, cv2.LINE_AA)
+    _put_text(img, str(int(rng.integers(1, 13)) * 10), rng, (20, 20, 20), 1.1 * r, c)
+    _put_text(img, _WORDS[int(rng.integers(len(_WORDS)))], rng, _rand_colour(rng), w * 0.4,
+              (w * rng.uniform(0.3, 0.7), h * rng.choice([0.15, 0.85])))
+    return img
+
+
+def _sign_back(rng):
+    shape = ["circle", "triangle_up", "triangle_down", "octagon", "square", "diamond"][int(rng.integers(6))]
+    w = 96
+    h = w if shape != "square" or rng.random() < 0.5 else int(w * rng.uniform(0.5, 0.8))
+    grey = int(rng.integers(90, 200))
+    img = _bgra(h, w, (grey, grey, grey + int(rng.integers(0, 12))), 255)
+    img[..., 3] = shape_mask(shape, w, h)
+    for y in (h // 3, 2 * h // 3):  # mounting rails
+        img[y - 3:y + 3, w // 4:3 * w // 4, :3] = int(grey * 0.6)
+    return img
+
+
+NEGATIVE_MAKERS = {"traffic_light": _traffic_light, "tail_lights": _tail_lights, "shop_sign": _shop_sign,
+                   "red_ring_logo": _red_ring_logo, "convex_mirror": _convex_mirror,
+                   "printed_roundel": _printed_roundel, "sign_back": _sign_back}
+
+
+def hard_negative(rng, background=None):
+    """One procedurally drawn look-alike (BGRA) and its kind."""
+    kind = list(NEGATIVE_MAKERS)[int(rng.integers(len(NEGATIVE_MAKERS)))]
+    maker = NEGATIVE_MAKERS[kind]
+    patch = maker(rng, background) if kind == "convex_mirror" else maker(rng)
+    return patch, kind

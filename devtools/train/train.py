@@ -14,9 +14,9 @@ import torch
 import torch.nn.functional as F
 
 from . import data
-from .data import CLASSES, Sample
-from .metrics import average_precision, best_f1_threshold, match_image
-from .model import STRIDE, SignNet, calibration_power, decode, export_onnx
+from .data import CLASS_INDEX, CLASSES, Sample
+from .metrics import average_precision, best_f1_threshold, match_image, summarise
+from .model import STRIDE, ConvBN, SignNet, calibration_power, decode, export_onnx
 
 #: Generated scenes used for training: (preset, seed, panorama width or None). Seeds from
 #: 100 up are reserved for training; the bench and tests use seeds below 100.
@@ -25,7 +25,11 @@ TRAIN_SCENES = (("default", 100, None), ("tiny", 100, None), ("default", 101, No
 #: The last panoramas of each training scene (at most this many, and a sixth) are kept for validation.
 VAL_PANORAMAS_PER_SCENE = 8
 
-SOURCE_WEIGHTS = {"gtsdb": 0.28, "gtsrb_paste": 0.14, "drawn_paste": 0.16, "views": 0.42}
+SOURCE_WEIGHTS = {"gtsdb": 0.24, "gtsrb_paste": 0.30, "drawn_paste": 0.10, "views": 0.36}
+#: Share of training crops that get 1-3 pasted look-alikes (unlabelled).
+NEGATIVE_SHARE = 0.45
+#: Mandatory signs (GTSDB's weakest class) are drawn this many times more often.
+MANDATORY_BOOST = 2.5
 
 
 def scene_dir_name(preset, seed, width):
@@ -55,18 +59,28 @@ def log_uniform(rng, lo, hi):
 class DataMix:
     """Random training crops from every source (see :mod:`devtools.train.data`)."""
 
-    def __init__(self, crop_px: int, work_dir: str, seed: int = 0):
+    def __init__(self, crop_px: int, work_dir: str, seed: int = 0, mandatory_boost: float = MANDATORY_BOOST,
+                 source_weights=None):
         self.crop_px = crop_px
+        w = dict(SOURCE_WEIGHTS, **(source_weights or {}))
+        self.source_names = list(w)
+        self.source_p = np.array([w[k] for k in self.source_names], float) / sum(w.values())
         self.rng = np.random.default_rng(seed)
         self.cache = data.ImageCache()
         self.gtsdb = data.read_gtsdb(data.GTSDB_TRAIN_IDS)
-        self.gtsrb, self.gtsrb_classes = data.read_gtsrb()
+        # scenes with a mandatory sign come up more often (the weakest class on GTSDB)
+        w = np.array([1.0 + (mandatory_boost - 1.0) * bool(np.any(r[2] == CLASS_INDEX["mandatory"]))
+                      for r in self.gtsdb])
+        self.gtsdb_p = w / w.sum()
+        # gtsrb-train: the training tracks only (held-out tracks are never pasted)
+        self.gtsrb, self.gtsrb_classes, tracks, self.gtsrb_heights = data.read_gtsrb_train("train")
+        self.gtsrb_p = data.class_sampling_weights(self.gtsrb_classes, {CLASS_INDEX["mandatory"]: mandatory_boost})
         self.drawn, self.drawn_classes = data.drawn_signs()
         self.distractors = data.distractor_patches(self.rng)
         self.work_dir = work_dir
         self.views, self.val_views, self.scenes = [], [], set()
-        print(f"[train] {len(self.gtsdb)} GTSDB scenes, {len(self.gtsrb)} GTSRB crops, "
-              f"{len(self.drawn)} drawn signs, {len(self.distractors)} distractors", flush=True)
+        print(f"[train] {len(self.gtsdb)} GTSDB scenes, {len(self.gtsrb)} GTSRB crops of {len(set(tracks))} "
+              f"training tracks, {len(self.drawn)} drawn signs, {len(self.distractors)} distractors", flush=True)
 
     def add_scenes(self, folders):
         """Cut the views of scenes not loaded yet (those whose scene.json exists)."""
@@ -111,38 +125,82 @@ class DataMix:
             klass = None if classes is None else int(classes[k])
             data.paste(s, patches[k], log_uniform(self.rng, lo, hi), klass, self.rng)
 
+    def _gtsrb_height(self, k: int) -> float:
+        """Pasted height of a real crop: near its own size (the camera's real blur), or the
+        15-60 px of a distant sign, now and then larger."""
+        r = self.rng.random()
+        if r < 0.4:
+            h = self.gtsrb_heights[k] * self.rng.uniform(0.6, 1.2)
+        elif r < 0.9:
+            h = log_uniform(self.rng, 15, 60)
+        else:
+            h = log_uniform(self.rng, 60, 130)
+        return float(np.clip(h, 13, 130))
+
+    def _paste_real(self, s: Sample, n: int):
+        for _ in range(n):
+            k = int(self.rng.choice(len(self.gtsrb), p=self.gtsrb_p))
+            data.paste(s, self.gtsrb[k], self._gtsrb_height(k), int(self.gtsrb_classes[k]), self.rng,
+                       post=lambda p: data.degrade(p, self.rng))
+
+    def _paste_negatives(self, s: Sample, n: int):
+        for _ in range(n):
+            if self.rng.random() < 0.75:
+                patch, _ = data.hard_negative(self.rng, background=s.image)
+            else:
+                patch = self.distractors[int(self.rng.integers(len(self.distractors)))]
+            data.paste(s, patch, log_uniform(self.rng, 14, 140), None, self.rng,
+                       post=lambda p: data.degrade(p, self.rng))
+
     def _background(self) -> Sample:
         """A crop of a real scene or a view to paste onto (its own signs stay labelled)."""
         if self.views and self.rng.random() < 0.4:
             return self._crop(self._load(self.views[int(self.rng.integers(len(self.views)))]),
                               log_uniform(self.rng, 0.7, 1.4), 0.0)
-        return self._crop(self._load(self.gtsdb[int(self.rng.integers(len(self.gtsdb)))]),
-                          log_uniform(self.rng, 0.6, 1.5), 0.0)
+        k = int(self.rng.choice(len(self.gtsdb), p=self.gtsdb_p))
+        return self._crop(self._load(self.gtsdb[k]), log_uniform(self.rng, 0.6, 1.5), 0.0)
 
     def sample(self) -> Sample:
         rng = self.rng
-        source = rng.choice(list(SOURCE_WEIGHTS), p=list(SOURCE_WEIGHTS.values()))
+        source = self.source_names[int(rng.choice(len(self.source_names), p=self.source_p))]
         if source == "views" and not self.views:
             source = "gtsdb"
         if source == "gtsdb":
-            s = self._crop(self._load(self.gtsdb[int(rng.integers(len(self.gtsdb)))]),
-                           log_uniform(rng, 0.5, 1.8), 0.8)
-            if rng.random() < 0.3:
-                self._paste_many(s, self.distractors, None, 1, 14, 120)
+            k = int(rng.choice(len(self.gtsdb), p=self.gtsdb_p))
+            s = self._crop(self._load(self.gtsdb[k]), log_uniform(rng, 0.5, 1.8), 0.8)
         elif source == "gtsrb_paste":
             s = self._background()
-            self._paste_many(s, self.gtsrb, self.gtsrb_classes, int(rng.integers(1, 5)), 10, 110)
+            self._paste_real(s, int(rng.integers(1, 6)))
         elif source == "drawn_paste":
             s = self._background()
             self._paste_many(s, self.drawn, self.drawn_classes, int(rng.integers(1, 4)), 10, 120)
-            self._paste_many(s, self.distractors, None, int(rng.integers(0, 3)), 14, 160)
         else:
             s = self._load(self.views[int(rng.integers(len(self.views)))])
             if rng.random() < 0.3:
                 s.image = data.resample_blur(s.image, rng)
             s = self._crop(s, log_uniform(rng, 0.65, 1.6), 0.75)
+        if rng.random() < NEGATIVE_SHARE:
+            self._paste_negatives(s, int(rng.integers(1, 4)))
         s.image = data.colour_jitter(s.image, rng)
+        if rng.random() < 0.3:
+            s.image = data.jpeg(s.image, rng)
         return s
+
+
+def pasted_validation(n_images: int = 30, seed: int = 1234):
+    """A fixed validation set of held-out real signs: the held-out gtsrb-train tracks pasted
+    (15-60 px, degraded) onto GTSDB 500-599 frames. Rows (image BGR, boxes, classes)."""
+    rng = np.random.default_rng(seed)
+    patches, classes, _, _ = data.read_gtsrb_train("val")
+    rows = []
+    for path, boxes, cls in data.read_gtsdb(data.GTSDB_HELDOUT_IDS)[:n_images]:
+        s = Sample(cv2.imread(path), boxes.copy(), cls.copy())
+        for _ in range(int(rng.integers(3, 7))):
+            k = int(rng.integers(len(patches)))
+            data.paste(s, patches[k], log_uniform(rng, 15, 60), int(classes[k]), rng,
+                       post=lambda p: data.degrade(p, rng))
+        rows.append((s.image, s.boxes, s.classes))
+    return rows
 
 
 # --- targets and losses --------------------------------------------------------------------
@@ -212,116 +270,312 @@ def _pad_to(image, multiple=32):
 @torch.no_grad()
 def predict(net, image_bgr, threshold=0.05):
     """Decoded detections (boxes, scores, classes) of one whole image, padded to a multiple of 32."""
-    x = torch.from_numpy(cv2.cvtColor(_pad_to(image_bgr), cv2.COLOR_BGR2RGB)).permute(2, 0, 1)[None].float() / 255.0
-    out = decode(*net(x))[0].numpy()
+    device = next(net.parameters()).device
+    x = torch.from_numpy(cv2.cvtColor(_pad_to(image_bgr), cv2.COLOR_BGR2RGB)).permute(2, 0, 1)[None]
+    heat, reg = net(x.to(device).float() / 255.0)
+    out = decode(heat.float(), reg.float())[0].cpu().numpy()
     out = out[out[:, 4] >= threshold]
     return out[:, :4], out[:, 4], out[:, 5].astype(np.int64)
 
 
 def validate(net, sets):
-    """AP50 and best-F1 precision/recall on each validation set: {name: [(path, boxes, classes, ignore)]}."""
+    """AP50 and best-F1 precision/recall on each validation set: {name: [(path or image,
+    boxes, classes[, ignore])]}; per-class recall at the best-F1 threshold for GTSDB."""
+    was_training = net.training
     net.eval()
     results = {}
     for name, rows in sets.items():
         matches = []
         for row in rows:
-            boxes, scores, classes = predict(net, cv2.imread(row[0]))
+            image = cv2.imread(row[0]) if isinstance(row[0], str) else row[0]
+            boxes, scores, classes = predict(net, image)
             matches.append(match_image(boxes, scores, classes, row[1], row[2], 0.5,
                                        ignore_boxes=row[3] if len(row) > 3 else None))
         t, p, r = best_f1_threshold(matches)
         results[name] = {"ap50": average_precision(matches), "best_f1_threshold": t, "precision": p, "recall": r,
                          "images": len(rows), "signs": int(sum(len(row[2]) for row in rows))}
-    net.train()
+        if name.startswith("gtsdb"):
+            per = summarise(matches, CLASSES, t)
+            results[name]["recall_per_class"] = {k: round(v["recall"], 3) for k, v in per.items()
+                                                 if k != "all" and v["true"]}
+    net.train(was_training)
     return results
+
+
+# --- starting points: checkpoints and the bundled ONNX ----------------------------------------
+
+def recover_from_onnx(net: SignNet, onnx_path: str, calibration_batches) -> SignNet:
+    """Load the weights of an exported ONNX file (convolutions with batch norm folded in)
+    into ``net``. Each batch norm gets the statistics of its convolution's output on
+    ``calibration_batches`` and the scale and shift that undo them, so the network in eval
+    mode computes exactly the exported function and training-mode batch statistics start
+    close to the running ones."""
+    import onnx
+    from onnx import numpy_helper
+
+    proto = onnx.load(onnx_path)
+    init = {i.name: numpy_helper.to_array(i) for i in proto.graph.initializer}
+    conv_inputs = [(n.input[1], n.input[2] if len(n.input) > 2 else None)
+                   for n in proto.graph.node if n.op_type == "Conv"]
+    # the torch convolutions in the order the forward pass runs them (= the graph's order)
+    order, hooks = [], []
+    for module in net.modules():
+        if isinstance(module, torch.nn.Conv2d):
+            hooks.append(module.register_forward_hook(lambda m, i, o: order.append(m)))
+    net.eval()
+    with torch.no_grad():
+        net(torch.zeros(1, 3, 64, 64))
+    for h in hooks:
+        h.remove()
+    if len(order) != len(conv_inputs):
+        raise ValueError(f"{onnx_path}: {len(conv_inputs)} convolutions, the network has {len(order)}")
+    bn_of = {}
+    for module in net.modules():
+        if isinstance(module, ConvBN):
+            bn_of[module[0]] = module[1]
+    for conv, (w_name, b_name) in zip(order, conv_inputs):
+        w = torch.from_numpy(init[w_name].copy())
+        if tuple(w.shape) != tuple(conv.weight.shape):
+            raise ValueError(f"{w_name}: shape {tuple(w.shape)} != {tuple(conv.weight.shape)}")
+        b = torch.from_numpy(init[b_name].copy()) if b_name else torch.zeros(w.shape[0])
+        with torch.no_grad():
+            conv.weight.copy_(w)
+            if conv in bn_of:
+                bn = bn_of[conv]
+                bn.weight.fill_(1.0)
+                bn.bias.copy_(b)
+                bn.running_mean.zero_()
+                bn.running_var.fill_(1.0 - bn.eps)
+            else:
+                conv.bias.copy_(b)
+    # statistics of each convolution's output (exact function in eval mode)
+    sums = {conv: [0.0, 0.0, 0] for conv in bn_of}
+    hooks = [conv.register_forward_hook(
+        lambda m, i, o: sums[m].__setitem__(slice(0, 3), [sums[m][0] + o.double().mean((0, 2, 3)),
+                                                          sums[m][1] + (o.double() ** 2).mean((0, 2, 3)),
+                                                          sums[m][2] + 1])) for conv in bn_of]
+    with torch.no_grad():
+        for x in calibration_batches:
+            net(x)
+    for h in hooks:
+        h.remove()
+    with torch.no_grad():
+        for conv, bn in bn_of.items():
+            s1, s2, n = sums[conv]
+            if not n:
+                continue
+            mean = (s1 / n).float()
+            var = (s2 / n - (s1 / n) ** 2).clamp(min=1e-6).float()
+            bn.running_mean.copy_(mean)
+            bn.running_var.copy_(var)
+            bn.weight.copy_(torch.sqrt(var + bn.eps))
+            bn.bias.add_(mean)
+    return net
+
+
+# --- checkpoints -------------------------------------------------------------------------------
+
+def save_checkpoint(path, net, ema, opt, scaler, step, elapsed_s, history, best_score, mix, extra=None):
+    """Everything a run needs to go on: raw and EMA weights, optimiser, AMP scaler, step,
+    training time, validation history, and the random states (numpy, torch, cuda)."""
+    state = {"model": ema.state_dict(), "net": net.state_dict(), "opt": opt.state_dict(),
+             "scaler": scaler.state_dict() if scaler is not None else None, "step": step,
+             "elapsed_s": elapsed_s, "history": history, "best_score": best_score,
+             "rng": {"numpy": mix.rng.bit_generator.state, "torch": torch.get_rng_state(),
+                     "cuda": torch.cuda.get_rng_state_all() if torch.cuda.is_available() else None},
+             "entry": history[-1] if history else None, **(extra or {})}
+    tmp = path + ".tmp"
+    torch.save(state, tmp)
+    os.replace(tmp, path)
+
+
+def pick_device(name: str) -> torch.device:
+    if name == "auto":
+        return torch.device("cuda" if torch.cuda.is_available() else "cpu")
+    return torch.device(name)
+
+
+def _until_seconds(until: str):
+    """Seconds from now to ``HH:MM`` (UTC, today or tomorrow) or an ISO time."""
+    import datetime as dt
+
+    now = dt.datetime.now(dt.timezone.utc)
+    if until is None:
+        return None
+    if len(until) <= 5:
+        hh, mm = (int(v) for v in until.split(":"))
+        t = now.replace(hour=hh, minute=mm, second=0, microsecond=0)
+        if t < now:
+            t += dt.timedelta(days=1)
+    else:
+        t = dt.datetime.fromisoformat(until)
+        t = t if t.tzinfo else t.replace(tzinfo=dt.timezone.utc)
+    return max(0.0, (t - now).total_seconds())
 
 
 # --- the loop --------------------------------------------------------------------------------
 
 def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generate_scenes: bool = True,
           crop_px: int = 320, batch_size: int = 16, lr: float = 3e-3, threads: int = 2,
-          validate_every_min: float = 5.0, seed: int = 0, resume: str = None, val_images: int = 60):
+          validate_every_min: float = 5.0, seed: int = 0, resume: str = None, val_images: int = 60,
+          init: str = None, device: str = "auto", checkpoint_every_min: float = 10.0, until: str = None,
+          warmup_steps: int = 300, amp: bool = True, scenes=TRAIN_SCENES, export: bool = True,
+          ema_decay: float = 0.998, source_weights=None):
+    """Train (or go on training) for ``minutes`` of training time in all (a resumed run
+    counts the time already spent), or until the wall-clock time ``until``; validate every
+    ``validate_every_min`` (best by AP50 on GTSDB 500-599), checkpoint every
+    ``checkpoint_every_min`` and on SIGTERM/SIGINT, then export the best checkpoint."""
+    import signal
+
     torch.set_num_threads(threads)
     torch.manual_seed(seed)
+    dev = pick_device(device)
+    use_amp = amp and dev.type == "cuda"
     os.makedirs(work_dir, exist_ok=True)
     t_start = time.perf_counter()
-    scene_folders = ensure_scenes(scene_root, generate=generate_scenes)
-    mix = DataMix(crop_px, work_dir, seed)
+    scene_folders = ensure_scenes(scene_root, specs=scenes, generate=generate_scenes)
+    mix = DataMix(crop_px, work_dir, seed, source_weights=source_weights)
     mix.add_scenes(scene_folders)
-    # a fixed subset of each validation set keeps a validation round under a minute
+    # GTSDB 500-599 picks the best checkpoint; views and pasted held-out tracks are watched
     val_sets = {"gtsdb_500_599": data.read_gtsdb(data.GTSDB_HELDOUT_IDS)[:val_images],
+                "gtsrb_val_tracks": pasted_validation(min(30, val_images)),
                 "views": mix.val_views[::max(1, len(mix.val_views) // val_images)]}
 
-    net = SignNet(len(CLASSES))  # channels_last makes the depthwise convolutions slower here
-    if resume:
-        net.load_state_dict(torch.load(resume)["model"])
+    net = SignNet(len(CLASSES))
+    state = torch.load(resume, map_location="cpu", weights_only=False) if resume else None
+    if state is not None:
+        net.load_state_dict(state.get("net", state["model"]))
+    elif init and init.endswith(".onnx"):
+        calib = [batch_tensors([mix.sample() for _ in range(batch_size)], crop_px, len(CLASSES))[0]
+                 for _ in range(6)]
+        recover_from_onnx(net, init, calib)
+        print(f"[train] weights recovered from {init}", flush=True)
+    elif init:
+        net.load_state_dict(torch.load(init, map_location="cpu", weights_only=False)["model"])
+    net.to(dev)
+    if dev.type == "cuda":
+        net = net.to(memory_format=torch.channels_last)
     ema = copy.deepcopy(net).eval()
+    if state is not None:
+        ema.load_state_dict(state["model"])
     for p in ema.parameters():
         p.requires_grad_(False)
     opt = torch.optim.AdamW(net.parameters(), lr=lr, weight_decay=5e-4)
+    scaler = torch.amp.GradScaler("cuda") if use_amp else None
+    step, elapsed0, best_score, history = 0, 0.0, -1.0, []
+    if state is not None:
+        if state.get("opt"):
+            opt.load_state_dict(state["opt"])
+        if scaler is not None and state.get("scaler"):
+            scaler.load_state_dict(state["scaler"])
+        step, elapsed0 = state.get("step", 0), state.get("elapsed_s", 0.0)
+        history, best_score = state.get("history", []), state.get("best_score", -1.0)
+        rng = state.get("rng") or {}
+        if rng.get("numpy"):
+            mix.rng.bit_generator.state = rng["numpy"]
+        if rng.get("torch") is not None:
+            torch.set_rng_state(rng["torch"])
+        if rng.get("cuda") is not None and torch.cuda.is_available():
+            torch.cuda.set_rng_state_all(rng["cuda"])
+        print(f"[train] resumed {resume} at step {step}, {elapsed0 / 60:.1f} min trained", flush=True)
     budget_s = minutes * 60.0
+    left = _until_seconds(until)
+    if left is not None:
+        budget_s = min(budget_s, elapsed0 + left)
+    stop = {"now": False}
+
+    def on_signal(signum, frame):
+        stop["now"] = True
+    for sig in (signal.SIGTERM, signal.SIGINT):
+        signal.signal(sig, on_signal)
+
     t_train = time.perf_counter()
-    step, next_val, best_score, history = 0, validate_every_min * 60.0, -1.0, []
+    next_val = elapsed0 + validate_every_min * 60.0
+    next_ckpt = elapsed0 + checkpoint_every_min * 60.0
     log = os.path.join(work_dir, "history.json")
     losses = []
-    print(f"[train] {sum(p.numel() for p in net.parameters())} parameters; training for {minutes} min "
-          f"(setup took {t_train - t_start:.0f} s)", flush=True)
+    resumed = state is not None
+    print(f"[train] {sum(p.numel() for p in net.parameters())} parameters on {dev} (amp {use_amp}, "
+          f"{threads} threads); training to {budget_s / 60:.1f} min (setup took {t_train - t_start:.0f} s)",
+          flush=True)
     while True:
-        elapsed = time.perf_counter() - t_train
-        done = elapsed >= budget_s
+        elapsed = elapsed0 + time.perf_counter() - t_train
+        done = elapsed >= budget_s or stop["now"]
         if elapsed >= next_val or done:
             mix.add_scenes(scene_folders)  # scenes generated meanwhile join in
             val_sets["views"] = mix.val_views[::max(1, len(mix.val_views) // val_images)]
             scores = validate(ema, val_sets)
-            score = np.mean([v["ap50"] for v in scores.values() if v["images"]])
+            score = scores["gtsdb_500_599"]["ap50"]
             entry = {"step": step, "minutes": round(elapsed / 60, 2), "loss": float(np.mean(losses[-200:] or [0])),
                      "score": float(score), **scores, "views_train": len(mix.views)}
             history.append(entry)
             print(f"[train] {json.dumps(entry)}", flush=True)
-            state = {"model": ema.state_dict(), "step": step, "entry": entry}
-            torch.save(state, os.path.join(work_dir, "last.pt"))
             if score > best_score:
                 best_score = score
-                torch.save(state, os.path.join(work_dir, "best.pt"))
+                torch.save({"model": ema.state_dict(), "step": step, "entry": entry},
+                           os.path.join(work_dir, "best.pt"))
+            save_checkpoint(os.path.join(work_dir, "last.pt"), net, ema, opt, scaler, step, elapsed, history,
+                            best_score, mix)
             with open(log, "w") as f:
                 json.dump(history, f, indent=1)
-            next_val += validate_every_min * 60.0
+            next_val = elapsed + validate_every_min * 60.0
+            next_ckpt = elapsed + checkpoint_every_min * 60.0
             if done:
                 break
-        # linear warm-up, then cosine over the time budget
+        elif elapsed >= next_ckpt:
+            save_checkpoint(os.path.join(work_dir, "last.pt"), net, ema, opt, scaler, step, elapsed, history,
+                            best_score, mix)
+            next_ckpt = elapsed + checkpoint_every_min * 60.0
+        # linear warm-up (from the run's first step), then cosine over the time budget
         frac = min(elapsed / budget_s, 1.0)
         for group in opt.param_groups:
-            group["lr"] = lr * min(1.0, (step + 1) / 300) * (0.02 + 0.98 * 0.5 * (1 + math.cos(math.pi * frac)))
+            warm = 1.0 if resumed else min(1.0, (step + 1) / warmup_steps)
+            group["lr"] = lr * warm * (0.02 + 0.98 * 0.5 * (1 + math.cos(math.pi * frac)))
         samples = [mix.sample() for _ in range(batch_size)]
         x, (heat, valid, ind, reg, mask) = batch_tensors(samples, crop_px, len(CLASSES))
-        logits, regression = net(x)
-        l_heat = focal_loss(logits, heat, valid)
-        l_off, l_size = regression_loss(regression, ind, reg, mask)
+        x, heat, valid, ind, reg, mask = (t.to(dev, non_blocking=True) for t in (x, heat, valid, ind, reg, mask))
+        if dev.type == "cuda":
+            x = x.contiguous(memory_format=torch.channels_last)
+        with torch.autocast(device_type=dev.type, dtype=torch.float16, enabled=use_amp):
+            logits, regression = net(x)
+        l_heat = focal_loss(logits.float(), heat, valid)
+        l_off, l_size = regression_loss(regression.float(), ind, reg, mask)
         loss = l_heat + l_off + l_size
         opt.zero_grad(set_to_none=True)
-        loss.backward()
-        torch.nn.utils.clip_grad_norm_(net.parameters(), 10.0)
-        opt.step()
+        if scaler is not None:
+            scaler.scale(loss).backward()
+            scaler.unscale_(opt)
+            torch.nn.utils.clip_grad_norm_(net.parameters(), 10.0)
+            scaler.step(opt)
+            scaler.update()
+        else:
+            loss.backward()
+            torch.nn.utils.clip_grad_norm_(net.parameters(), 10.0)
+            opt.step()
         with torch.no_grad():
-            decay = min(0.998, (1 + step) / (10 + step))
+            decay = min(ema_decay, (1 + step) / (10 + step))
             for e, p in zip(ema.state_dict().values(), net.state_dict().values()):
                 if e.dtype.is_floating_point:
                     e.mul_(decay).add_(p.detach(), alpha=1 - decay)
                 else:
                     e.copy_(p)
-        losses.append(float(loss))
+        losses.append(float(loss.detach()))
         step += 1
         if step % 50 == 0:
             print(f"[train] step {step} {elapsed / 60:.1f} min loss {np.mean(losses[-50:]):.3f} "
                   f"(heat {float(l_heat):.3f} off {float(l_off):.3f} size {float(l_size):.3f})", flush=True)
 
-    return export_checkpoint(os.path.join(work_dir, "best.pt"), out_path, net)
+    if not export:
+        return None
+    return export_checkpoint(os.path.join(work_dir, "best.pt"), out_path)
 
 
 def export_checkpoint(checkpoint: str, out_path: str, net: SignNet = None):
     """Export a checkpoint with its scores calibrated on the GTSDB validation: the best-F1
     threshold found there becomes the plugin's default confidence (0.4)."""
-    best = torch.load(checkpoint)
+    best = torch.load(checkpoint, map_location="cpu", weights_only=False)
     net = net or SignNet(len(CLASSES))
+    net = net.cpu().to(memory_format=torch.contiguous_format)
     net.load_state_dict(best["model"])
     threshold = best["entry"]["gtsdb_500_599"]["best_f1_threshold"]
     power = calibration_power(threshold)

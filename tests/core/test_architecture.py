@@ -9,7 +9,7 @@ import pytest
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 PACKAGE = "roadsigns"
 #: the shipped Python code, by layer: a module may import its own layer or lower ones only
-LAYERS = {"": 0, "plugin": 0, "provider": 1, "algorithms": 2, "dependencies": 3, "core": 4}
+LAYERS = {"": 0, "plugin": 0, "provider": 1, "gui": 1, "algorithms": 2, "dependencies": 3, "core": 4}
 
 
 def module_name(root, path):

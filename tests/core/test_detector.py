@@ -261,3 +261,73 @@ def test_boxes_under_the_minimum_size_are_dropped():
     assert len(kept) == 1
     assert min(kept.u1[0] - kept.u0[0], kept.v1[0] - kept.v0[0]) == pytest.approx(sizes[1])
     assert 0.5 * (kept.u0[0] + kept.u1[0]) == pytest.approx(0.25 * W, abs=2.0)
+
+
+# --- int8 models (devtools/train/quantize.py) ------------------------------------------
+
+def _brightness_model(path):
+    """A float 'detector': score = the brightest 3 x 3 patch's response, one fixed box."""
+    import onnx
+    from onnx import TensorProto, helper, numpy_helper
+
+    rng = np.random.default_rng(0)
+    w1 = (np.abs(rng.normal(0, 0.1, (8, 3, 3, 3))) + 0.02).astype(np.float32)
+    w2 = np.full((1, 8, 1, 1), 1.0 / (8 * 3 * 9 * 0.1), np.float32)
+    graph = helper.make_graph(
+        [helper.make_node("Conv", ["images", "w1", "b1"], ["c1"], pads=[1, 1, 1, 1], name="/net/stem/Conv"),
+         helper.make_node("Relu", ["c1"], ["r1"]),
+         helper.make_node("Conv", ["r1", "w2", "b2"], ["c2"], name="/net/heatmap/Conv"),
+         helper.make_node("GlobalMaxPool", ["c2"], ["peak"]),
+         helper.make_node("Reshape", ["peak", "shape"], ["score"]),
+         helper.make_node("Expand", ["box", "bshape"], ["boxes"]),
+         helper.make_node("Expand", ["cls", "bshape1"], ["classes"]),
+         helper.make_node("Concat", ["boxes", "score", "classes"], ["output0"], axis=2)],
+        "brightness",
+        [helper.make_tensor_value_info("images", TensorProto.FLOAT, ["batch", 3, 64, 64])],
+        [helper.make_tensor_value_info("output0", TensorProto.FLOAT, ["batch", 1, 6])],
+        [numpy_helper.from_array(w1, "w1"), numpy_helper.from_array(np.zeros(8, np.float32), "b1"),
+         numpy_helper.from_array(w2, "w2"), numpy_helper.from_array(np.zeros(1, np.float32), "b2"),
+         numpy_helper.from_array(np.array([-1, 1, 1], np.int64), "shape"),
+         numpy_helper.from_array(np.array([[[10, 12, 30, 40]]], np.float32), "box"),
+         numpy_helper.from_array(np.array([[[1]]], np.float32), "cls"),
+         numpy_helper.from_array(np.array([1, 1, 4], np.int64), "bshape"),
+         numpy_helper.from_array(np.array([1, 1, 1], np.int64), "bshape1")])
+    model = helper.make_model(graph, opset_imports=[helper.make_opsetid("", 17)])
+    model.ir_version = 8
+    helper.set_model_props(model, {"names": NAMES2, "task": "detect"})
+    onnx.save(model, str(path))
+    return str(path)
+
+
+@pytest.mark.parametrize("fmt", ["qdq", "qoperator"])
+def test_int8_model_runs_like_the_float_one(tmp_path, fmt):
+    """A statically quantised model (int8 convolutions, float head kept) loads and decodes
+    like the float file, with the same metadata, and scores within quantisation error."""
+    pytest.importorskip("onnxruntime.quantization")
+    import onnx
+
+    from devtools.train import quantize
+
+    src = _brightness_model(tmp_path / "float.onnx")
+    rng = np.random.default_rng(1)
+    calib = []  # representative: flat grey images with a patch, as the checks below
+    for v in rng.integers(0, 256, 12):
+        img = np.full((64, 64, 3), v, np.uint8)
+        img[10:40, 30:50] = 255 - v
+        calib.append(img)
+    out = quantize.quantize(src, str(tmp_path / f"int8-{fmt}.onnx"), calib, fmt=fmt)
+    q = onnx.load(out)
+    ops = {n.op_type for n in q.graph.node}
+    assert ("QLinearConv" in ops) if fmt == "qoperator" else ("DequantizeLinear" in ops)
+    head = [n for n in q.graph.node if n.name == "/net/heatmap/Conv"]
+    assert head and head[0].op_type == "Conv"  # the output layer stays float
+    meta = {p.key: p.value for p in q.metadata_props}
+    assert meta["names"] == NAMES2 and fmt in meta["quantization"]
+    f, i8 = Detector(src, threads=1), Detector(out, threads=1)
+    assert i8.layout == f.layout == "nms" and i8.class_names == ["warning", "stop"]
+    for value in (40, 128, 230):
+        img = np.full((64, 64, 3), value, np.uint8)
+        img[20:30, 20:30] = 255 - value
+        a, b = f.detect(img, 0.0), i8.detect(img, 0.0)
+        assert b.class_ids.tolist() == [1] and b.boxes_xyxy == pytest.approx(a.boxes_xyxy)
+        assert b.scores[0] == pytest.approx(a.scores[0], rel=0.05, abs=0.02)

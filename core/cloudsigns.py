@@ -1,0 +1,671 @@
+"""Sign panels and poles from the point cloud alone (``roadsigns:findsignsincloud``).
+
+From a ground-classified LAS/LAZ cloud and the drive's track (station positions and
+times, or a trajectory line) it finds sign panels without any image, the poles and
+gantries that carry them, and a retroreflectivity condition per panel (after the Utah I-15
+mobile-LiDAR inventory paper: candidates above the road by height, an adaptive
+intensity threshold, orientation-constrained RANSAC planes, shape tests, signs told from
+light poles by height).
+
+One streaming read of the cloud, then one pass over the windows; memory is bounded by a
+window's points at any drive length:
+
+1. **Read** (:func:`pointcloud.iter_chunks`): each point is located on the drive
+   (:mod:`.drivewindows`); ground points (class 2) in the corridor are kept thinned to one
+   per ``ground_cell_m`` cell and chunk, non-ground points within ``corridor_m`` of the
+   track and in a height band around the sensor are kept; all are appended to files per
+   window of ``window_m`` of drive (plus ``margin_m`` on each side). An intensity histogram
+   by range (:class:`.retroreflectivity.IntensityHistogram`) gives, after the pass, the
+   range exponent and the adaptive bright threshold (both stated in the log).
+2. **Windows**, one at a time: height above a ground model (median of the nearest ground
+   points), sensor positions, normalised intensity, local PCA features; poles
+   (:mod:`.poles`); panels (:mod:`.cloudpanels`); each panel's support: a pole whose axis
+   passes just behind it, else a gantry beam over its top. Dark panels (faded faces,
+   backs of signs) need a support, must hang below ``dark_max_bottom_m`` on a pole (lamp
+   heads are not signs) and stand free (at most ``dark_max_clutter`` points around them
+   per panel point, their pole and a stacked panel aside: pieces of billboards and hedges
+   do not). The face is the side away from the support (signs are mounted in front of
+   their poles and beams), else the side the sensor saw; ``face_seen`` says whether the
+   scanner saw the face at all. Objects are kept by the window whose core holds their
+   centre (or foot), within ``corridor_m - edge_clearance_m`` of the track.
+
+Then: gantry posts hidden at the top are found from their beam's far end, trunks under a
+crown that carry nothing are dropped (trees), poles get their kind and carried signs, and
+every panel its condition against the drive's reference
+(:func:`.retroreflectivity.condition_of`).
+
+Outputs: :class:`CloudSign` (:data:`CLOUD_SIGN_FIELDS`) and :class:`.poles.Pole`
+(:data:`.poles.POLE_FIELDS`). Positions are world coordinates of the cloud's CRS; azimuths
+are of the face normal, degrees clockwise from grid north in [0, 360).
+"""
+from __future__ import annotations
+
+import math
+import os
+import time
+from dataclasses import dataclass, field
+from typing import Dict, List, Optional, Tuple
+
+import numpy as np
+import shapely
+from scipy.spatial import cKDTree
+
+from . import geometry
+from .cloudpanels import PanelCandidate, PanelParams, WindowPoints, find_panels, local_features, panel_frame
+from .drivewindows import DriveAxis, Track, Window, WindowSpool, make_windows
+from .errors import SILENT, InputError, Message, Progress
+from .pointcloud import DEFAULT_CHUNK_POINTS, GROUND_CLASS, crs_wkt_of_header, iter_chunks, read_header, xyz_of
+from .poles import GANTRY, Pole, PoleParams, classify_pole, find_poles, promote_far_posts
+from .retroreflectivity import (
+    GOOD_RATIO,
+    MIN_RANGE_BINS,
+    POOR_RATIO,
+    SATURATED_SHARE_WARNING,
+    ZERO_SHARE_WARNING,
+    IntensityHistogram,
+    IntensityModel,
+    Threshold,
+    condition_of,
+    drive_reference,
+    retro_index,
+)
+from .schema import fields
+
+#: The cloud sign layer's fields. ``height``: centre above ground; ``azimuth``: of the face
+#: normal; ``outline_wkt``: the panel's corners (top-left, top-right, bottom-right,
+#: bottom-left seen from the front) as a POLYGON Z; ``support``: pole, gantry or none.
+CLOUD_SIGN_FIELDS = fields(
+    ("sign_id", int), ("x", float), ("y", float), ("z", float), ("height", float),
+    ("bottom_height", float), ("width", float), ("panel_height", float), ("azimuth", float),
+    ("normal_e", float), ("normal_n", float), ("normal_u", float), ("n_points", int),
+    ("intensity_median", float), ("intensity_p10", float), ("intensity_p90", float),
+    ("retro_index", float), ("bright_share", float), ("face_seen", int), ("condition", str),
+    ("support", str), ("pole_id", int), ("range_m", float), ("chainage_m", float),
+    ("outline_wkt", str))
+
+SUPPORT_POLE, SUPPORT_GANTRY, SUPPORT_NONE = "pole", "gantry", "none"
+#: Point record dtypes of the window files.
+POINT_DTYPE = np.dtype([("x", "f8"), ("y", "f8"), ("z", "f8"), ("intensity", "f4"),
+                        ("time", "f8"), ("s", "f4"), ("offset", "f4"),
+                        ("tx", "f4"), ("ty", "f4")])
+GROUND_DTYPE = np.dtype([("x", "f8"), ("y", "f8"), ("z", "f8")])
+#: Nearest ground points averaged by the ground model, and how far they may be.
+GROUND_NEIGHBOURS = 8
+GROUND_MAX_DISTANCE_M = 3.0
+
+
+@dataclass
+class CloudSignParams:
+    """Tuning of :func:`find_signs_in_cloud`; lengths in metres."""
+
+    corridor_m: float = 12.0            # points this far from the track at most (lateral)
+    end_margin_m: float = 5.0           # objects this far before the start / after the end
+    sensor_band_m: Tuple[float, float] = (-6.0, 14.0)   # kept z relative to the track
+    histogram_band_m: Tuple[float, float] = (-1.5, 8.0)  # z rel. track of the threshold's points
+    edge_clearance_m: float = 1.0       # objects this close to the corridor's edge are cut by it
+    window_m: float = 50.0
+    margin_m: float = 10.0
+    ground_cell_m: float = 0.25
+    min_height_m: float = 0.1           # candidate points above the ground model
+    feature_min_height_m: float = 0.75  # local PCA features only above this (panels, pole heads)
+    max_height_m: float = 12.0
+    range_exponent: Optional[float] = None   # None: estimated from the cloud
+    threshold: Optional[float] = None        # range-normalised; None: adaptive
+    retro_reference: Optional[float] = None  # None: the drive's own
+    good_ratio: float = GOOD_RATIO
+    poor_ratio: float = POOR_RATIO
+    face_min_points: int = 10
+    face_min_share: float = 0.3
+    pole_link_m: float = 0.35           # pole axis this close to a panel's centre line
+    pole_behind_max_m: float = 0.5      # ... and at most this far behind its plane
+    min_width_to_pole: float = 2.0      # a panel is this many times as wide as its pole
+    dark_max_bottom_m: float = 5.0      # dark panels on poles hang lower than this
+    clutter_margin_m: float = 0.5       # a dark panel's surroundings (beyond its outline, its plane)
+    dark_max_clutter: float = 0.5       # ... hold at most this many points per panel point
+    beam_above_m: float = 0.8           # a gantry beam within this above the panel's top
+    beam_min_points: int = 10
+    beam_depth_m: float = 0.6           # a beam: the top layer of a gantry post's head
+    gantry_over_track_m: float = 3.0    # a gantry's beam passes this close to the track (over the road)
+    gantry_link_m: float = 15.0         # gantry posts this far from a gantry panel (horizontal)
+    gantry_link_along_m: float = 3.0    # ... and this close along the drive
+    panels: PanelParams = field(default_factory=PanelParams)
+    poles: PoleParams = field(default_factory=PoleParams)
+
+
+@dataclass
+class CloudSign:
+    """A sign panel found in the cloud (fields of :data:`CLOUD_SIGN_FIELDS`)."""
+
+    sign_id: int
+    centre_world: np.ndarray
+    normal_world: np.ndarray          # unit, out of the face
+    corners_world: np.ndarray         # (4, 3) TL, TR, BR, BL seen from the front
+    height: float
+    bottom_height: float
+    width: float
+    panel_height: float
+    n_points: int
+    intensity_median: float
+    intensity_p10: float
+    intensity_p90: float
+    retro_index: float
+    bright_share: float
+    face_seen: bool
+    condition: str
+    support: str
+    pole_id: int
+    range_m: float
+    chainage_m: float
+    support_xy: Optional[np.ndarray] = None   # foot of the carrying pole (linking)
+
+    @property
+    def azimuth_deg(self) -> float:
+        return float(geometry.azimuth_deg_of_enu(self.normal_world))
+
+    @property
+    def outline_wkt(self) -> str:
+        ring = list(self.corners_world) + [self.corners_world[0]]
+        return "POLYGON Z (({}))".format(", ".join("{:.4f} {:.4f} {:.4f}".format(*c) for c in ring))
+
+    def as_dict(self) -> Dict:
+        n = self.normal_world
+        return {"sign_id": self.sign_id, "x": float(self.centre_world[0]),
+                "y": float(self.centre_world[1]), "z": float(self.centre_world[2]),
+                "height": self.height, "bottom_height": self.bottom_height, "width": self.width,
+                "panel_height": self.panel_height, "azimuth": self.azimuth_deg,
+                "normal_e": float(n[0]), "normal_n": float(n[1]), "normal_u": float(n[2]),
+                "n_points": self.n_points, "intensity_median": self.intensity_median,
+                "intensity_p10": self.intensity_p10, "intensity_p90": self.intensity_p90,
+                "retro_index": self.retro_index, "bright_share": self.bright_share,
+                "face_seen": int(self.face_seen), "condition": self.condition,
+                "support": self.support, "pole_id": self.pole_id, "range_m": self.range_m,
+                "chainage_m": self.chainage_m, "outline_wkt": self.outline_wkt}
+
+
+@dataclass
+class CloudSignResult:
+    """Signs and poles of a cloud, with what the log should say."""
+
+    signs: List[CloudSign]
+    poles: List[Pole]
+    threshold: Threshold
+    reference: float
+    reference_source: str
+    n_points: int
+    n_candidates: int
+    n_windows: int
+    max_window_points: int            # the most points one window held (memory)
+    coverage_wkt: str
+    crs_wkt: Optional[str]
+    seconds: float
+    messages: List[Message] = field(default_factory=list)
+    warnings: List[Message] = field(default_factory=list)
+    rejected: Dict[str, int] = field(default_factory=dict)
+
+    def sign_records(self) -> List[Dict]:
+        return [s.as_dict() for s in self.signs]
+
+    def pole_records(self) -> List[Dict]:
+        return [p.as_dict() for p in self.poles]
+
+
+# --------------------------------------------------------------------------------------
+# Ground model
+# --------------------------------------------------------------------------------------
+
+class GroundModel:
+    """Ground height under any point: median z of the nearest ground points (within
+    :data:`GROUND_MAX_DISTANCE_M`; beyond, the nearest one's)."""
+
+    def __init__(self, xyz_world: np.ndarray):
+        self.xyz = np.asarray(xyz_world, dtype=np.float64).reshape(-1, 3)
+        self.tree = cKDTree(self.xyz[:, :2]) if len(self.xyz) else None
+
+    def __call__(self, xy: np.ndarray) -> np.ndarray:
+        xy = np.asarray(xy, dtype=np.float64).reshape(-1, 2)
+        if self.tree is None:
+            return np.full(len(xy), np.nan)
+        k = min(GROUND_NEIGHBOURS, len(self.xyz))
+        d, idx = self.tree.query(xy, k=k)
+        d, idx = d.reshape(len(xy), k), idx.reshape(len(xy), k)
+        z = self.xyz[idx, 2]
+        z = np.where(d <= GROUND_MAX_DISTANCE_M, z, np.nan)
+        out = np.nanmedian(np.where(np.isnan(z).all(axis=1, keepdims=True), self.xyz[idx[:, :1], 2], z),
+                           axis=1)
+        return out
+
+
+# --------------------------------------------------------------------------------------
+# Input checks
+# --------------------------------------------------------------------------------------
+
+def _check_overlap(path: str, header, axis: DriveAxis, corridor_m: float) -> None:
+    """:class:`InputError` when the track's corridor misses the cloud's extent, saying by
+    how much."""
+    lo, hi = header.mins, header.maxs
+    cloud_box = shapely.box(float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
+    track = shapely.linestrings(axis.xyz_world[:, :2])
+    gap = float(cloud_box.distance(track))
+    if gap > corridor_m:
+        raise InputError("The stations do not overlap the cloud {path}: the track passes {gap:.1f} m "
+                         "from the cloud's extent ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}), "
+                         "more than the corridor of {corridor} m; are the cloud and the stations in "
+                         "the same CRS and of the same drive?",
+                         path=path, gap=gap, xmin=float(lo[0]), ymin=float(lo[1]), xmax=float(hi[0]),
+                         ymax=float(hi[1]), corridor=corridor_m)
+
+
+def _check_dimensions(path: str, header) -> bool:
+    """Whether the file has ``gps_time``; :class:`InputError` without intensity or
+    classification."""
+    names = set(header.point_format.dimension_names)
+    if "intensity" not in names:
+        raise InputError("{path} has no intensity dimension (point format {fmt}): signs cannot be "
+                         "found in it without images", path=path, fmt=header.point_format.id)
+    if "classification" not in names:
+        raise InputError("{path} has no classification dimension: run roadsigns:groundfilter on it "
+                         "first", path=path)
+    return "gps_time" in names
+
+
+# --------------------------------------------------------------------------------------
+# Pass 1: read and spool
+# --------------------------------------------------------------------------------------
+
+def _thin_ground(xyz: np.ndarray, cell_m: float) -> np.ndarray:
+    """One ground point per ``cell_m`` cell (the first of each)."""
+    if len(xyz) == 0:
+        return np.zeros(0, np.int64)
+    cells = np.floor(xyz[:, :2] / cell_m).astype(np.int64)
+    cells -= cells.min(axis=0)
+    _, first = np.unique(cells[:, 0] * (int(cells[:, 1].max()) + 1) + cells[:, 1], return_index=True)
+    return np.sort(first)
+
+
+def _spool_cloud(path: str, axis: DriveAxis, spool: WindowSpool, hist: IntensityHistogram,
+                 has_time: bool, params: CloudSignParams, chunk_points: int, progress: Progress
+                 ) -> Tuple[int, int, int, Tuple[float, float]]:
+    n_read = n_cand = n_ground = 0
+    t_min, t_max = math.inf, -math.inf
+    lo_s, hi_s = -params.end_margin_m - params.margin_m, axis.length_m + params.end_margin_m + params.margin_m
+    for chunk in iter_chunks(path, chunk_points, progress):
+        n_read += len(chunk)
+        xyz = xyz_of(chunk)
+        s, offset, idx = axis.locate(xyz)
+        z_rel = xyz[:, 2] - axis.xyz_world[idx, 2]
+        inside = (np.abs(offset) <= params.corridor_m) & (s >= lo_s) & (s <= hi_s)
+        cls = np.asarray(chunk.classification)
+        ground = inside & (cls == GROUND_CLASS)
+        cand = (inside & (cls != GROUND_CLASS) & (z_rel >= params.sensor_band_m[0])
+                & (z_rel <= params.sensor_band_m[1]))
+        g_rows = np.flatnonzero(ground)
+        g_rows = g_rows[_thin_ground(xyz[g_rows], params.ground_cell_m)]
+        if len(g_rows):
+            g = np.zeros(len(g_rows), GROUND_DTYPE)
+            g["x"], g["y"], g["z"] = xyz[g_rows, 0], xyz[g_rows, 1], xyz[g_rows, 2]
+            spool.add("ground", s[g_rows], g)
+            n_ground += len(g_rows)
+        rows = np.flatnonzero(cand)
+        if len(rows) == 0:
+            continue
+        intensity = np.asarray(chunk.intensity)[rows].astype(np.float32)
+        times = np.asarray(chunk.gps_time)[rows].astype(np.float64) if has_time else np.full(len(rows), np.nan)
+        if has_time:
+            t_min, t_max = min(t_min, float(times.min())), max(t_max, float(times.max()))
+        rec = np.zeros(len(rows), POINT_DTYPE)
+        rec["x"], rec["y"], rec["z"] = xyz[rows, 0], xyz[rows, 1], xyz[rows, 2]
+        rec["intensity"], rec["time"] = intensity, times
+        rec["s"], rec["offset"] = s[rows], offset[rows]
+        rec["tx"], rec["ty"] = axis.tangent_xy[idx[rows], 0], axis.tangent_xy[idx[rows], 1]
+        spool.add("points", s[rows], rec)
+        n_cand += len(rows)
+        band = (z_rel[rows] >= params.histogram_band_m[0]) & (z_rel[rows] <= params.histogram_band_m[1])
+        if band.any():
+            sensor = axis.sensor_positions(xyz[rows][band], times[band] if has_time else None)
+            hist.add(intensity[band], np.linalg.norm(xyz[rows][band] - sensor, axis=1))
+    spool.flush()
+    return n_read, n_cand, n_ground, (t_min, t_max)
+
+
+# --------------------------------------------------------------------------------------
+# Pass 2: one window
+# --------------------------------------------------------------------------------------
+
+@dataclass
+class _Found:
+    panel: PanelCandidate
+    support: str
+    support_xy: Optional[np.ndarray]
+    normal: np.ndarray
+    stats: Dict[str, float]
+    face_seen: bool
+    n_points: int
+
+
+def _window_points(rows: np.ndarray, ground: GroundModel, axis: DriveAxis, model: IntensityModel,
+                   threshold: float, params: CloudSignParams) -> WindowPoints:
+    xyz = np.column_stack([rows["x"], rows["y"], rows["z"]])
+    h = xyz[:, 2] - ground(xyz[:, :2])
+    keep = np.isfinite(h) & (h >= params.min_height_m) & (h <= params.max_height_m)
+    rows, xyz, h = rows[keep], xyz[keep], h[keep]
+    times = rows["time"].astype(np.float64)
+    sensor = axis.sensor_positions(xyz, None if np.isnan(times).all() else times)
+    intensity = rows["intensity"].astype(np.float64)
+    rn = model.range_normalised(intensity, np.linalg.norm(xyz - sensor, axis=1))
+    tangent = np.column_stack([rows["tx"], rows["ty"]]).astype(np.float64)
+    pts = WindowPoints(xyz=xyz, h=h, sensor=sensor, intensity=intensity, intensity_rn=rn,
+                       bright=rn >= threshold, s_m=rows["s"].astype(np.float64),
+                       offset_m=rows["offset"].astype(np.float64), tangent_xy=tangent)
+    pts.normal, pts.linearity = np.zeros((len(xyz), 3)), np.zeros(len(xyz))
+    pts.flatness, pts.scattering = np.ones(len(xyz)), np.ones(len(xyz))
+    up = np.flatnonzero(h >= params.feature_min_height_m)   # panels and pole heads are higher
+    pts.normal[up], pts.linearity[up], pts.flatness[up], pts.scattering[up] = local_features(xyz[up])
+    return pts
+
+
+def _support_of(panel: PanelCandidate, poles: List[Pole], params: CloudSignParams
+                ) -> Tuple[str, Optional[np.ndarray], Optional[np.ndarray]]:
+    """(support kind, the foot xy of the carrying pole, a point of the support behind the
+    panel) or (``none``, None, None). A pole: its axis passes behind the panel's centre
+    line (trunks under a crown only carry bright panels). A gantry: a post whose head
+    reaches across the road near here, with its beam just over the panel's top."""
+    right, _ = panel_frame(panel.normal)
+    n_h = panel.normal[:2] / max(float(np.linalg.norm(panel.normal[:2])), 1e-9)
+    best, best_d = None, math.inf
+    for p in poles:
+        if p.crown and not panel.bright:
+            continue
+        if p.is_gantry(params.poles) or panel.width_m < params.min_width_to_pole * p.diameter:
+            continue                      # a gantry carries by its beam; a part of a pole is no panel
+        if p.z_foot + p.height < panel.centre[2] - 0.5 * panel.height_m - 0.2:
+            continue
+        rel = p.axis_xy_at(float(panel.centre[2])) - panel.centre[:2]
+        across = abs(float(rel @ right[:2]))
+        depth = abs(float(rel @ n_h))
+        if across <= max(params.pole_link_m, 0.5 * panel.width_m) and depth <= params.pole_behind_max_m:
+            d = math.hypot(across, depth)
+            if d < best_d:
+                best, best_d = p, d
+    if best is not None:
+        axis_xy = best.axis_xy_at(float(panel.centre[2]))
+        return SUPPORT_POLE, np.array([best.x, best.y]), np.array([axis_xy[0], axis_xy[1], panel.centre[2]])
+    top_z = panel.centre[2] + 0.5 * panel.height_m
+    for p in poles:
+        if (p.crown or not p.is_gantry(params.poles) or abs(p.s_m - panel.s_m) > params.gantry_link_along_m
+                or math.hypot(p.x - panel.centre[0], p.y - panel.centre[1]) > params.gantry_link_m):
+            continue
+        beam = p.beam_xyz(params.beam_depth_m)
+        rel = beam - panel.centre
+        above = ((beam[:, 2] >= top_z + 0.02) & (beam[:, 2] <= top_z + params.beam_above_m)
+                 & (np.abs(rel @ right) <= 0.5 * panel.width_m) & (np.abs(rel @ panel.normal) <= 0.5))
+        if int(above.sum()) >= params.beam_min_points:
+            return SUPPORT_GANTRY, np.array([p.x, p.y]), beam[above].mean(axis=0)
+    return SUPPORT_NONE, None, None
+
+
+def _clutter(panel: PanelCandidate, pts: WindowPoints, support: str, support_xy: Optional[np.ndarray],
+             params: CloudSignParams) -> float:
+    """Points around a panel (within ``clutter_margin_m`` beyond its outline and of its
+    plane) per point of the panel, leaving out its pole, coplanar panels stacked with it
+    and, on a gantry, the beam above: a sign stands free; a piece of a billboard or of a
+    hedge does not."""
+    right, up = panel_frame(panel.normal)
+    m = params.clutter_margin_m
+    reach = 0.5 * math.hypot(panel.width_m, panel.height_m) + m
+    near = np.asarray(pts.tree.query_ball_point(panel.centre, reach * math.sqrt(2.0)), dtype=np.int64)
+    near = np.setdiff1d(near, panel.rows)
+    if len(near) == 0:
+        return 0.0
+    rel = pts.xyz[near] - panel.centre
+    u, v, d = rel @ right, rel @ up, rel @ panel.normal
+    hw, hh = 0.5 * panel.width_m, 0.5 * panel.height_m
+    around = (np.abs(u) <= hw + m) & (np.abs(v) <= hh + m) & (np.abs(d) <= m)
+    stacked = (np.abs(d) <= 2.0 * params.panels.plane_threshold_m) & (np.abs(u) <= hw)
+    around &= ~stacked
+    if support == SUPPORT_POLE and support_xy is not None:
+        around &= np.linalg.norm(pts.xyz[near, :2] - support_xy, axis=1) > params.poles.top_radius_m
+    elif support == SUPPORT_GANTRY:
+        around &= v <= hh - params.clutter_margin_m / 5.0
+    return float(np.count_nonzero(around)) / max(len(panel.rows), 1)
+
+
+def _panel_stats(panel: PanelCandidate, normal: np.ndarray, pts: WindowPoints, model: IntensityModel,
+                 params: CloudSignParams) -> Tuple[Dict[str, float], bool]:
+    """Intensity statistics of a panel's points and its retro index from the face's
+    interior points; whether the face was scanned."""
+    rows = panel.rows
+    xyz = pts.xyz[rows]
+    to_sensor = pts.sensor[rows] - xyz
+    r = np.linalg.norm(to_sensor, axis=1)
+    cos_inc = (to_sensor @ normal) / np.maximum(r, 1e-9)
+    value = model.normalised(pts.intensity[rows], r, cos_inc)
+    front = cos_inc > 0
+    face_seen = (int(front.sum()) >= params.face_min_points
+                 and float(front.mean()) >= params.face_min_share)
+    right, up = panel_frame(normal)
+    rel = xyz - panel.centre
+    uv = np.column_stack([rel @ right, rel @ up])
+    margin = max(params.panels.edge_margin_m, params.panels.edge_spacings * panel.spacing_m)
+    hull = shapely.MultiPoint(uv).convex_hull
+    inner_geom = hull.buffer(-margin) if hull.geom_type == "Polygon" else shapely.Polygon()
+    interior = (shapely.contains_xy(inner_geom, uv[:, 0], uv[:, 1]) if not inner_geom.is_empty
+                else np.zeros(len(uv), bool))
+    face_values = value[front] if face_seen else value
+    stats = {"median": float(np.median(value)), "p10": float(np.percentile(value, 10)),
+             "p90": float(np.percentile(value, 90)),
+             "retro": retro_index(value[front], interior[front]) if face_seen else float("nan"),
+             "face_median": float(np.median(face_values)), "range": float(np.median(r))}
+    return stats, face_seen
+
+
+def _process_window(window: Window, rows: np.ndarray, ground_rows: np.ndarray, axis: DriveAxis,
+                    model: IntensityModel, threshold: float, params: CloudSignParams,
+                    rejected: Dict[str, int], diagnostics: Optional[list] = None
+                    ) -> Tuple[List[_Found], List[Pole]]:
+    ground = GroundModel(np.column_stack([ground_rows["x"], ground_rows["y"], ground_rows["z"]]))
+    pts = _window_points(rows, ground, axis, model, threshold, params)
+    if len(pts) == 0:
+        return [], []
+    poles = find_poles(pts.xyz, pts.h, pts.sensor, pts.scattering, ground, params.poles)
+    for p in poles:
+        p.s_m = float(axis.locate(np.array([[p.x, p.y]]))[0][0])
+        if p.reach_m >= params.poles.gantry_reach_m and len(p.head_xyz):
+            p.spans_road = bool(np.abs(axis.locate(p.head_xyz)[1]).min() <= params.gantry_over_track_m)
+    edge = params.corridor_m - params.edge_clearance_m
+    s_lo, s_hi = -params.end_margin_m, axis.length_m + params.end_margin_m
+    pole_axes = [(np.array([p.x, p.y]), max(0.5 * p.diameter, params.poles.min_radius_m)) for p in poles
+                 if p.lean_deg < 1.0]
+    panels, reasons = find_panels(pts, ground, params.panels, seed=window.index, poles=pole_axes,
+                                  diagnostics=diagnostics)
+    for k, v in reasons.items():
+        rejected[k] = rejected.get(k, 0) + v
+    found: List[_Found] = []
+    for panel in panels:
+        if not window.owns(panel.s_m) or abs(panel.offset_m) > edge or not s_lo <= panel.s_m <= s_hi:
+            continue
+        support, support_xy, behind = _support_of(panel, poles, params)
+        if not panel.bright and support == SUPPORT_POLE and panel.bottom_height_m > params.dark_max_bottom_m:
+            support = SUPPORT_NONE            # dark parts high on a pole: lamp heads, arms
+        if not panel.bright and support != SUPPORT_NONE and _clutter(panel, pts, support, support_xy, params) \
+                > params.dark_max_clutter:
+            rejected["cluttered"] = rejected.get("cluttered", 0) + 1
+            continue
+        if support == SUPPORT_NONE and not panel.bright:
+            rejected["dark without support"] = rejected.get("dark without support", 0) + 1
+            if diagnostics is not None:
+                diagnostics.append({"centre": panel.centre, "n": len(panel.rows), "reason": "dark without support",
+                                    "bright": False})
+            continue
+        normal = panel.normal.copy()
+        if behind is not None:
+            depth = float((behind - panel.centre) @ normal)
+            if depth > 0.0:
+                normal = -normal          # the support is in front: the scanner saw the back
+        stats, face_seen = _panel_stats(panel, normal, pts, model, params)
+        found.append(_Found(panel, support, support_xy, normal, stats, face_seen, len(panel.rows)))
+    owned_poles = [p for p in poles if window.owns(p.s_m) and s_lo <= p.s_m <= s_hi
+                   and abs(float(axis.locate(np.array([[p.x, p.y]]))[1][0])) <= edge]
+    return found, owned_poles
+
+
+# --------------------------------------------------------------------------------------
+# The stage
+# --------------------------------------------------------------------------------------
+
+def find_signs_in_cloud(cloud_path: str, track: Track, params: Optional[CloudSignParams] = None,
+                        chunk_points: int = DEFAULT_CHUNK_POINTS, progress: Progress = SILENT,
+                        work_folder: Optional[str] = None, diagnostics: Optional[list] = None
+                        ) -> CloudSignResult:
+    """Sign panels and poles of a ground-classified LAS/LAZ cloud along ``track``.
+
+    ``work_folder``: where the window files go (a temporary folder inside it, deleted at
+    the end; the system's temporary folder by default); ``diagnostics`` (a list, for
+    debugging) gets a dict per planar part measured and per panel rejected. Raises :class:`InputError` for a
+    cloud without intensity (or only zeros), without ground points, or out of the track's
+    reach (saying how far); cancelling raises :class:`~.errors.Cancelled`.
+    """
+    params = params or CloudSignParams()
+    started = time.perf_counter()
+    cloud_path = os.fspath(cloud_path)
+    header = read_header(cloud_path)
+    has_time = _check_dimensions(cloud_path, header)
+    axis = DriveAxis(track)
+    _check_overlap(cloud_path, header, axis, params.corridor_m)
+    windows = make_windows(axis.length_m, params.window_m)
+    hist = IntensityHistogram()
+    messages: List[Message] = []
+    warnings: List[Message] = []
+    rejected: Dict[str, int] = {}
+    with WindowSpool(windows, params.margin_m, {"points": POINT_DTYPE, "ground": GROUND_DTYPE},
+                     folder=work_folder) as spool:
+        n_read, n_cand, n_ground, (t_min, t_max) = _spool_cloud(
+            cloud_path, axis, spool, hist, has_time, params, chunk_points, progress.sub(0.0, 0.5))
+        if n_cand == 0 and n_ground == 0:
+            raise InputError("No point of {path} lies within {corridor} m of the stations' track "
+                             "({n} points read)", path=cloud_path, corridor=params.corridor_m, n=n_read)
+        if n_ground == 0:
+            raise InputError("{path} has no ground points (class 2) along the track: run "
+                             "roadsigns:groundfilter on it first (or classify the ground with another "
+                             "tool)", path=cloud_path)
+        if hist.n_total and hist.n_zero == hist.n_total:
+            raise InputError("{path} has no intensity: all {n} points near the track have intensity 0; "
+                             "signs cannot be found in it without images", path=cloud_path, n=hist.n_total)
+        if has_time and axis.has_times() and not axis.times_overlap(t_min, t_max):
+            warnings.append(progress.warning(
+                "The cloud's GPS times [{t0:.1f}, {t1:.1f}] do not meet the stations' times: ranges "
+                "are taken from the nearest track position instead (is one of them in GPS week "
+                "seconds and the other in adjusted standard GPS time?)", t0=t_min, t1=t_max))
+        threshold = hist.threshold(params.range_exponent)
+        if params.threshold is not None:
+            threshold.value = float(params.threshold)
+        model = IntensityModel(range_exponent=threshold.range_exponent)
+        messages.append(progress.info(
+            "Intensity: range exponent {alpha:.2f} ({source}), bright threshold {thr:.3f} of full scale "
+            "at 10 m ({method}; background level {bg:.3f}, bright mode {mode:.3f}; {n} non-ground points near the "
+            "road)", alpha=threshold.range_exponent,
+            source=("given" if params.range_exponent is not None else
+                    "estimated from {} range bins".format(threshold.range_bins_used)
+                    if threshold.range_bins_used >= MIN_RANGE_BINS else
+                    "not estimated: {} range bins with bright returns".format(threshold.range_bins_used)),
+            thr=threshold.value, method=threshold.method, bg=threshold.background, mode=threshold.bright_mode,
+            n=threshold.n_points))
+        if threshold.zero_share >= ZERO_SHARE_WARNING:
+            warnings.append(progress.warning(
+                "{share:.0%} of the points near the road have intensity 0: the bright threshold "
+                "{thr:.3f} of full scale may be meaningless", share=threshold.zero_share,
+                thr=threshold.value))
+        if threshold.saturated_share >= SATURATED_SHARE_WARNING:
+            warnings.append(progress.warning(
+                "{share:.0%} of the points near the road have saturated intensity: the bright threshold "
+                "{thr:.3f} of full scale and the condition of the signs may be meaningless",
+                share=threshold.saturated_share, thr=threshold.value))
+        found: List[_Found] = []
+        poles: List[Pole] = []
+        max_window_points = 0
+        win_progress = progress.sub(0.5, 0.98)
+        for i, window in enumerate(windows):
+            win_progress.check()
+            rows = spool.read("points", window.index)
+            ground_rows = spool.read("ground", window.index)
+            max_window_points = max(max_window_points, len(rows) + len(ground_rows))
+            if len(rows) and len(ground_rows):
+                f, p = _process_window(window, rows, ground_rows, axis, model, threshold.value, params,
+                                       rejected, diagnostics)
+                found.extend(f)
+                poles.extend(p)
+            win_progress.report((i + 1) / len(windows))
+    signs, poles = _finish(found, poles, threshold, params, messages, progress)
+    ref = drive_reference(np.array([f.stats["retro"] for f in found if f.panel.bright and f.face_seen]),
+                          threshold.value, params.retro_reference)
+    coverage = shapely.linestrings(axis.xyz_world[:, :2]).buffer(params.corridor_m)
+    messages.append(progress.info(
+        "Found {signs} sign panels ({bright} retroreflective) and {poles} poles in {n} points "
+        "({cand} kept near the road, {windows} windows of {w} m); condition reference {ref:.3f} ({src})",
+        signs=len(signs), bright=sum(1 for f in found if f.panel.bright), poles=len(poles), n=n_read,
+        cand=n_cand, windows=len(windows), w=params.window_m, ref=ref[0], src=ref[1]))
+    progress.report(1.0)
+    return CloudSignResult(signs=signs, poles=poles, threshold=threshold, reference=ref[0],
+                           reference_source=ref[1], n_points=n_read, n_candidates=n_cand,
+                           n_windows=len(windows), max_window_points=max_window_points,
+                           coverage_wkt=coverage.wkt,
+                           crs_wkt=crs_wkt_of_header(header), seconds=time.perf_counter() - started,
+                           messages=messages, warnings=warnings, rejected=rejected)
+
+
+def _finish(found: List[_Found], poles: List[Pole], threshold: Threshold, params: CloudSignParams,
+            messages: List[Message], progress: Progress) -> Tuple[List[CloudSign], List[Pole]]:
+    """Number the signs and poles along the drive, link them, set kinds and conditions."""
+    found.sort(key=lambda f: (f.panel.s_m, f.panel.centre[2]))
+    poles.sort(key=lambda p: p.s_m)
+    promote_far_posts(poles, params.poles)
+    for k, p in enumerate(poles, start=1):
+        p.pole_id = k
+    reference, _ = drive_reference(
+        np.array([f.stats["retro"] for f in found if f.panel.bright and f.face_seen]),
+        threshold.value, params.retro_reference)
+    feet = np.array([[p.x, p.y] for p in poles]) if poles else np.zeros((0, 2))
+    signs: List[CloudSign] = []
+    carried: Dict[int, List[int]] = {}
+    for k, f in enumerate(found, start=1):
+        pole_id = 0
+        if f.support == SUPPORT_POLE and f.support_xy is not None and len(feet):
+            d = np.linalg.norm(feet - f.support_xy, axis=1)
+            j = int(np.argmin(d))
+            if d[j] <= 0.3:
+                pole_id = poles[j].pole_id
+                carried.setdefault(j, []).append(k)
+        elif f.support == SUPPORT_GANTRY:
+            for j, p in enumerate(poles):
+                if (p.is_gantry(params.poles) and abs(p.s_m - f.panel.s_m) <= params.gantry_link_along_m
+                        and math.hypot(p.x - f.panel.centre[0], p.y - f.panel.centre[1]) <= params.gantry_link_m):
+                    carried.setdefault(j, []).append(k)
+                    pole_id = pole_id or p.pole_id
+        panel = f.panel
+        normal = f.normal
+        corners = panel.corners
+        if float(normal @ panel.normal) < 0:   # seen from behind: the face's corners mirror
+            corners = corners[[1, 0, 3, 2]]
+        condition = condition_of(f.stats["retro"], reference, f.face_seen, params.good_ratio, params.poor_ratio)
+        signs.append(CloudSign(
+            sign_id=k, centre_world=panel.centre, normal_world=normal, corners_world=corners,
+            height=panel.centre_height_m, bottom_height=panel.bottom_height_m, width=panel.width_m,
+            panel_height=panel.height_m, n_points=f.n_points, intensity_median=f.stats["median"],
+            intensity_p10=f.stats["p10"], intensity_p90=f.stats["p90"], retro_index=f.stats["retro"],
+            bright_share=panel.bright_share, face_seen=f.face_seen, condition=condition,
+            support=f.support, pole_id=pole_id, range_m=f.stats["range"], chainage_m=panel.s_m,
+            support_xy=f.support_xy))
+    for j, p in enumerate(poles):
+        p.sign_ids = sorted(carried.get(j, []))
+        p.kind = classify_pole(p, len(p.sign_ids), params.poles)
+    # trunks under a crown are trees unless they carry a sign or a gantry beam; number the rest
+    kept = [p for p in poles if not p.crown or p.sign_ids or p.kind == GANTRY]
+    renumber = {p.pole_id: k for k, p in enumerate(kept, start=1)}
+    for p in kept:
+        p.pole_id = renumber[p.pole_id]
+    for sign in signs:
+        sign.pole_id = renumber.get(sign.pole_id, 0)
+    poles = kept
+    n_gantry = sum(1 for p in poles if p.kind == GANTRY)
+    if n_gantry:
+        messages.append(progress.info("{n} gantry posts", n=n_gantry))
+    return signs, poles

@@ -1,0 +1,445 @@
+"""Sign panels and poles from the cloud alone (core.cloudsigns and its modules).
+
+Two kinds of scenes: a hand-built cloud (a straight drive, flat ground, a sign on a pole,
+a faded sign on a pole, a bare pole; exact truth, fast) and a generated ``tiny`` scene
+(devtools/scenegen: gantry, shared poles, signs seen from behind, a faded sign, trees,
+billboards, mirrors, lamp posts) whose reference files give the truth.
+"""
+import csv
+import math
+import os
+
+import laspy
+import numpy as np
+import pytest
+import shapely
+
+from roadsigns.core import cloudsigns as CS
+from roadsigns.core import retroreflectivity as RR
+from roadsigns.core.drivewindows import DriveAxis, Track, Window, WindowSpool, make_windows
+from roadsigns.core.errors import Cancelled, InputError, Progress
+from roadsigns.core.poles import POLE_FIELDS
+from roadsigns.core.schema import names, typed_record
+
+FULL = 65535
+SPEED_MPS = 10.0
+SENSOR_Z = 2.5
+
+
+# --------------------------------------------------------------------------------------
+# A hand-built drive
+# --------------------------------------------------------------------------------------
+
+class Built:
+    """Truth of the hand-built scene."""
+    signs = [  # centre, width, height, intensity share of full scale, faded
+        {"centre": np.array([30.0, 6.0, 2.7]), "w": 0.6, "h": 0.6, "level": 0.92, "faded": False},
+        {"centre": np.array([45.0, -6.0, 2.5]), "w": 0.9, "h": 0.6, "level": 0.18, "faded": True},
+    ]
+    poles = [np.array([30.06, 6.0]), np.array([45.06, -6.0]), np.array([20.0, 6.5])]
+    pole_tops = [3.05, 2.85, 3.0]
+
+
+def _half_cylinder(axis_xy, radius, z0, z1, view_xy, rng, step=0.02):
+    """Points on the half of a vertical cylinder facing ``view_xy``."""
+    ang = np.arange(0, 2 * np.pi, step / radius)
+    z = np.arange(z0, z1, step)
+    A, Z = np.meshgrid(ang, z)
+    nrm = np.column_stack([np.cos(A.ravel()), np.sin(A.ravel())])
+    view = np.asarray(view_xy, float) - axis_xy
+    keep = nrm @ (view / np.linalg.norm(view)) > 0.05
+    xy = axis_xy + radius * nrm[keep]
+    return np.column_stack([xy, Z.ravel()[keep]]) + rng.normal(0, 0.003, (int(keep.sum()), 3))
+
+
+def build_cloud(path, intensity_scale=1.0, ground_class=2, zero_intensity=False, saturate=False, seed=0):
+    """Write the hand-built scene; the sensor drives along +x at y = 0 and sees each point
+    from 45 degrees ahead (its gps_time is when the sensor was |y| m before it)."""
+    rng = np.random.default_rng(seed)
+    parts, inten, cls = [], [], []
+    gx, gy = np.meshgrid(np.arange(0.0, 60.0, 0.12), np.arange(-11.0, 11.0, 0.12))
+    ground = np.column_stack([gx.ravel(), gy.ravel(), rng.normal(0, 0.005, gx.size)])
+    parts.append(ground)
+    inten.append(np.full(len(ground), 0.08))
+    cls.append(np.full(len(ground), ground_class))
+    for sign in Built.signs:
+        c = sign["centre"]
+        u, v = np.meshgrid(np.arange(-sign["w"] / 2 + 0.0125, sign["w"] / 2, 0.025),
+                           np.arange(-sign["h"] / 2 + 0.0125, sign["h"] / 2, 0.025))
+        # the face looks at -x (oncoming traffic); in-plane axes: y (right seen from the front: -y... any) and z
+        pts = np.column_stack([np.full(u.size, c[0]) + rng.normal(0, 0.004, u.size), c[1] + u.ravel(),
+                               c[2] + v.ravel()])
+        parts.append(pts)
+        inten.append(np.full(len(pts), sign["level"]))
+        cls.append(np.full(len(pts), 1))
+    for axis_xy, top in zip(Built.poles, Built.pole_tops):
+        view = (axis_xy[0] - abs(axis_xy[1]), 0.0)
+        pts = _half_cylinder(axis_xy, 0.035, 0.0, top, view, rng)
+        if axis_xy[0] < 40:  # the pole behind the sign at x = 30 is hidden where the panel is
+            hidden = (pts[:, 2] > 2.4) & (axis_xy[0] > 25)
+            pts = pts[~hidden]
+        else:
+            hidden = pts[:, 2] > 2.2
+            pts = pts[~hidden]
+        parts.append(pts)
+        inten.append(np.full(len(pts), 0.3))
+        cls.append(np.full(len(pts), 1))
+    xyz = np.concatenate(parts)
+    level = np.concatenate(inten) * intensity_scale * (1 + 0.03 * rng.standard_normal(len(xyz)))
+    if zero_intensity:
+        level[:] = 0.0
+    if saturate:
+        level[np.concatenate(cls) != 2] = 1.5
+    header = laspy.LasHeader(point_format=6, version="1.4")
+    header.scales = np.array([0.001, 0.001, 0.001])
+    header.offsets = np.array([0.0, 0.0, 0.0])
+    rec = laspy.ScaleAwarePointRecord.zeros(len(xyz), header=header)
+    rec.x, rec.y, rec.z = xyz[:, 0], xyz[:, 1], xyz[:, 2]
+    rec.intensity = np.clip(np.round(level * FULL), 0, FULL).astype(np.uint16)
+    rec.classification = np.concatenate(cls).astype(np.uint8)
+    rec.gps_time = (xyz[:, 0] - np.abs(xyz[:, 1])) / SPEED_MPS
+    with laspy.open(str(path), mode="w", header=header) as w:
+        w.write_points(rec)
+    return str(path)
+
+
+def built_track(shift_x=0.0):
+    x = np.arange(-5.0, 65.0, 0.5)
+    return Track(np.column_stack([x + shift_x, np.zeros_like(x), np.full_like(x, SENSOR_Z)]), x / SPEED_MPS)
+
+
+@pytest.fixture(scope="module")
+def built_path(tmp_path_factory):
+    return build_cloud(tmp_path_factory.mktemp("built") / "cloud.las")
+
+
+@pytest.fixture(scope="module")
+def built_result(built_path):
+    return CS.find_signs_in_cloud(built_path, built_track())
+
+
+def _nearest(found_xyz, xyz):
+    d = np.linalg.norm(np.asarray(found_xyz) - xyz, axis=1)
+    k = int(np.argmin(d))
+    return k, float(d[k])
+
+
+def test_built_signs_found_at_their_place_with_size_and_facing(built_result):
+    res = built_result
+    assert len(res.signs) == len(Built.signs)
+    centres = np.array([s.centre_world for s in res.signs])
+    for truth in Built.signs:
+        k, d = _nearest(centres, truth["centre"])
+        sign = res.signs[k]
+        assert d < 0.02, (truth, sign.centre_world)
+        assert abs(sign.width - truth["w"]) < 0.04 and abs(sign.panel_height - truth["h"]) < 0.04
+        assert abs(((sign.azimuth_deg - 270.0) + 180) % 360 - 180) < 2.0   # the face looks west (-x)
+        assert abs(sign.height - truth["centre"][2]) < 0.03
+        assert sign.support == CS.SUPPORT_POLE and sign.face_seen
+
+
+def test_built_poles_feet_kinds_and_carried_signs(built_result):
+    res = built_result
+    assert len(res.poles) == len(Built.poles)
+    feet = np.array([[p.x, p.y, 0.0] for p in res.poles])
+    centres = np.array([s.centre_world for s in res.signs])
+    for axis_xy, top, carries in zip(Built.poles, Built.pole_tops, (0, 1, None)):
+        k, d = _nearest(feet, np.array([*axis_xy, 0.0]))
+        pole = res.poles[k]
+        assert d <= 0.03, (axis_xy, pole)
+        assert abs(pole.z_foot) < 0.02 and pole.lean_deg < 3.0
+        if carries is None:
+            assert pole.kind == "other" and pole.sign_ids == []
+        else:
+            j, _ = _nearest(centres, Built.signs[carries]["centre"])
+            assert pole.kind == "sign_pole" and pole.sign_ids == [res.signs[j].sign_id]
+            assert res.signs[j].pole_id == pole.pole_id
+            top_truth = Built.signs[carries]["centre"][2] + Built.signs[carries]["h"] / 2
+            assert abs(pole.height - top_truth) < 0.1
+
+
+def test_built_faded_sign_flagged_healthy_not(built_result):
+    centres = np.array([s.centre_world for s in built_result.signs])
+    for truth in Built.signs:
+        k, _ = _nearest(centres, truth["centre"])
+        condition = built_result.signs[k].condition
+        assert (condition in ("check", "poor")) == truth["faded"], (truth, condition)
+        assert built_result.signs[k].bright_share > 0.5 or truth["faded"]
+
+
+def test_built_log_states_threshold(built_result):
+    text = " ".join(built_result.messages)
+    assert "bright threshold" in text and "{:.3f}".format(built_result.threshold.value) in text
+
+
+def test_small_chunks_and_windows_give_the_same_answer(built_path, built_result):
+    params = CS.CloudSignParams(window_m=10.0, margin_m=5.0)
+    small = CS.find_signs_in_cloud(built_path, built_track(), params=params, chunk_points=7_000)
+    assert small.n_windows > built_result.n_windows
+    assert small.max_window_points < 0.6 * built_result.max_window_points
+    a = np.array(sorted(tuple(np.round(s.centre_world, 2)) for s in built_result.signs))
+    b = np.array(sorted(tuple(np.round(s.centre_world, 2)) for s in small.signs))
+    assert a.shape == b.shape and np.abs(a - b).max() <= 0.011
+    pa = np.array(sorted((round(p.x, 2), round(p.y, 2)) for p in built_result.poles))
+    pb = np.array(sorted((round(p.x, 2), round(p.y, 2)) for p in small.poles))
+    assert pa.shape == pb.shape and np.abs(pa - pb).max() <= 0.011
+
+
+def test_window_spool_bounds_memory_and_duplicates_margins(tmp_path):
+    windows = make_windows(100.0, 20.0)
+    dtype = np.dtype([("s", "f8")])
+    with WindowSpool(windows, 5.0, {"p": dtype}, folder=str(tmp_path), flush_rows=100) as spool:
+        s_all = np.arange(0.0, 100.0, 0.1)
+        for k in range(0, len(s_all), 50):
+            s = s_all[k:k + 50]
+            rows = np.zeros(len(s), dtype)
+            rows["s"] = s
+            spool.add("p", s, rows)
+            assert spool._pending_rows < 100 + 2 * 50      # flushed once past the limit
+        spool.flush()
+        for w in windows:
+            got = spool.read("p", w.index)["s"]
+            lo, hi = max(w.s0_m, -1e9) - 5.0, min(w.s1_m, 1e9) + 5.0
+            want = s_all[(s_all >= lo) & (s_all < hi)]
+            assert np.array_equal(np.sort(got), want)
+    assert not os.path.exists(spool.folder)
+
+
+def test_records_follow_the_schemas(built_result):
+    records = built_result.sign_records()
+    assert records and all(tuple(r) == names(CS.CLOUD_SIGN_FIELDS) for r in records)
+    for r in records:
+        assert typed_record(CS.CLOUD_SIGN_FIELDS, r)["sign_id"] == r["sign_id"]
+        outline = shapely.from_wkt(r["outline_wkt"])
+        corners = np.array(outline.exterior.coords)[:4]
+        assert np.allclose(corners.mean(axis=0), [r["x"], r["y"], r["z"]], atol=1e-3)
+        assert abs(np.linalg.norm(corners[1] - corners[0]) - r["width"]) < 1e-3
+        assert abs(np.linalg.norm(corners[3] - corners[0]) - r["panel_height"]) < 1e-3
+        assert r["condition"] in RR.CONDITIONS
+    poles = built_result.pole_records()
+    assert poles and all(tuple(p) == names(POLE_FIELDS) for p in poles)
+
+
+# --------------------------------------------------------------------------------------
+# Bad input
+# --------------------------------------------------------------------------------------
+
+def test_all_zero_intensity_is_an_error_naming_the_file(tmp_path):
+    path = build_cloud(tmp_path / "dark.las", zero_intensity=True)
+    with pytest.raises(InputError) as e:
+        CS.find_signs_in_cloud(path, built_track())
+    assert path in str(e.value) and "intensity" in str(e.value)
+
+
+def test_saturated_intensity_warns_with_the_threshold(tmp_path):
+    path = build_cloud(tmp_path / "hot.las", saturate=True)
+    warnings = []
+    res = CS.find_signs_in_cloud(path, built_track(), progress=Progress(on_warning=warnings.append))
+    saturated = [w for w in res.warnings if "saturated" in w]
+    assert saturated and saturated[0] in warnings
+    assert "{:.3f}".format(res.threshold.value) in saturated[0]
+    assert saturated[0].fields["thr"] == res.threshold.value
+
+
+def test_stations_away_from_the_cloud_say_by_how_much(built_path):
+    with pytest.raises(InputError) as e:
+        CS.find_signs_in_cloud(built_path, built_track(shift_x=1000.0))
+    # cloud x in [0, 60); the shifted track starts at x = 995
+    assert e.value.fields["path"] == built_path
+    assert abs(e.value.fields["gap"] - (995.0 - 59.96)) < 0.1
+    assert "do not overlap" in str(e.value)
+
+
+def test_cloud_without_ground_is_an_error(tmp_path):
+    path = build_cloud(tmp_path / "noground.las", ground_class=1)
+    with pytest.raises(InputError) as e:
+        CS.find_signs_in_cloud(path, built_track())
+    assert path in str(e.value) and "ground" in str(e.value)
+
+
+def test_cancel_stops_the_stage(built_path):
+    calls = {"n": 0}
+
+    def cancelled():
+        calls["n"] += 1
+        return calls["n"] > 3
+
+    with pytest.raises(Cancelled):
+        CS.find_signs_in_cloud(built_path, built_track(), progress=Progress(is_cancelled=cancelled),
+                               chunk_points=20_000)
+
+
+# --------------------------------------------------------------------------------------
+# Intensity model, threshold, condition; the drive axis
+# --------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("alpha", [0.0, 1.0, 2.0])
+def test_threshold_separates_retroreflective_returns_and_finds_the_range_exponent(alpha):
+    rng = np.random.default_rng(1)
+    hist = RR.IntensityHistogram()
+    r = rng.uniform(3.0, 30.0, 200_000)
+    dull = 0.15 * 2 ** (0.5 * rng.standard_normal(len(r))) * (10.0 / r) ** alpha
+    hist.add(np.clip(dull * FULL, 1, FULL), r)
+    r_b = rng.uniform(3.0, 30.0, 6_000)
+    bright = 0.9 * (10.0 / r_b) ** alpha * (1 + 0.05 * rng.standard_normal(len(r_b)))
+    hist.add(np.clip(bright * FULL, 1, FULL), r_b)
+    thr = hist.threshold()
+    assert abs(thr.range_exponent - alpha) < 0.1 and thr.method == RR.METHOD_VALLEY
+    model = RR.IntensityModel(range_exponent=thr.range_exponent)
+    assert np.mean(model.range_normalised(bright * FULL, r_b) >= thr.value) > 0.97
+    assert np.mean(model.range_normalised(dull * FULL, r) >= thr.value) < 0.001
+    fixed = hist.threshold(range_exponent=0.0)
+    assert fixed.range_exponent == 0.0 and fixed.range_bins_used == 0
+
+
+def test_threshold_without_sheeting_is_the_background_level():
+    rng = np.random.default_rng(2)
+    hist = RR.IntensityHistogram()
+    hist.add(0.15 * 2 ** (0.5 * rng.standard_normal(100_000)) * FULL, np.full(100_000, 10.0))
+    thr = hist.threshold()
+    assert thr.method == RR.METHOD_BACKGROUND and thr.value == pytest.approx(thr.background)
+    assert thr.value > 0.15 * 2 ** 1.5
+
+
+def test_incidence_normalisation_is_capped():
+    model = RR.IntensityModel()
+    head_on = model.normalised(FULL * 0.5, 10.0, 1.0)
+    assert head_on == pytest.approx(0.5)
+    assert model.normalised(FULL * 0.25, 10.0, 0.5) == pytest.approx(0.5)
+    assert model.normalised(FULL * 0.25, 10.0, 0.01) == pytest.approx(0.5)   # capped at 60 degrees
+
+
+def test_condition_thresholds_and_reference():
+    assert RR.condition_of(1.0, 1.0, True) == RR.GOOD
+    assert RR.condition_of(0.5, 1.0, True) == RR.CHECK
+    assert RR.condition_of(0.2, 1.0, True) == RR.POOR
+    assert RR.condition_of(1.0, 1.0, False) == RR.UNKNOWN
+    assert RR.drive_reference(np.array([1.0, 1.2, 1.4]), 0.5) == (1.2, "drive")
+    assert RR.drive_reference(np.array([1.0]), 0.5) == (0.75, "threshold")
+    assert RR.drive_reference(np.array([1.0, 1.2, 1.4]), 0.5, retro_reference=2.0) == (2.0, "given")
+    values = np.r_[np.full(50, 1.0), np.full(10, 0.1)]
+    interior = np.r_[np.ones(50, bool), np.zeros(10, bool)]
+    assert RR.retro_index(values, interior) == 1.0
+
+
+def test_drive_axis_locates_points_and_sensor_positions():
+    axis = DriveAxis(built_track())
+    s, off, _ = axis.locate(np.array([[10.0, 3.0], [20.0, -2.0]]))
+    assert np.allclose(s, [15.0, 25.0], atol=0.26) and np.allclose(off, [-3.0, 2.0])  # right is -y here
+    sensor = axis.sensor_positions(np.array([[10.0, 3.0, 1.0]]), np.array([0.7]))
+    assert np.allclose(sensor, [[7.0, 0.0, SENSOR_Z]])
+    near = axis.sensor_positions(np.array([[10.0, 3.0, 1.0]]), None)
+    assert np.allclose(near[0, :2], [10.0, 0.0], atol=0.26)
+    assert Window(0, 0.0, 10.0).owns(np.array([0.0, 9.99, 10.0])).tolist() == [True, True, False]
+
+
+# --------------------------------------------------------------------------------------
+# A generated scene
+# --------------------------------------------------------------------------------------
+
+def _read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+@pytest.fixture(scope="module")
+def tiny(tmp_path_factory):
+    from devtools.scenegen import generate_scene
+
+    folder = str(tmp_path_factory.mktemp("cloudsigns_tiny"))
+    generate_scene("tiny", seed=4, out_dir=folder, panoramas=False, masks=False)
+    traj = np.genfromtxt(os.path.join(folder, "trajectory.csv"), delimiter=",", names=True)
+    track = Track(np.column_stack([traj["x"], traj["y"], traj["z"] + 2.0]), traj["time"])
+    res = CS.find_signs_in_cloud(os.path.join(folder, "cloud.laz"), track)
+    las = laspy.read(os.path.join(folder, "cloud.laz"))
+    cloud = {"xyz": np.column_stack([las.x, las.y, las.z]), "cls": np.asarray(las.classification)}
+    return folder, res, DriveAxis(track), cloud
+
+
+def _seen(folder, axis, cloud, xyz, classes, radius, planar=False):
+    """Reference objects the drive saw: along the drive, in the corridor, scanned."""
+    s, off, _ = axis.locate(np.atleast_2d(xyz))
+    pts = cloud["xyz"][np.isin(cloud["cls"], classes)]
+    dims = 2 if planar else 3
+    d = np.linalg.norm(pts[None, :, :dims] - np.atleast_2d(xyz)[:, None, :dims], axis=2)
+    return (s >= 0) & (s <= axis.length_m) & (np.abs(off) <= 11.0) & ((d <= radius).sum(axis=1) >= 20)
+
+
+def test_scene_signs_found_to_the_centimetre(tiny):
+    folder, res, axis, cloud = tiny
+    ref = _read_csv(os.path.join(folder, "reference_signs.csv"))
+    xyz = np.array([[float(r["x"]), float(r["y"]), float(r["z"])] for r in ref])
+    seen = _seen(folder, axis, cloud, xyz, [64], 0.5)
+    assert seen.sum() >= 6
+    found = np.array([s.centre_world for s in res.signs])
+    d = np.linalg.norm(found[:, None, :] - xyz[None, :, :], axis=2)
+    for j in np.flatnonzero(seen):
+        assert d[:, j].min() <= 0.10, ("missed", ref[j])
+    s_found, off_found, _ = axis.locate(found)
+    in_area = (s_found >= 0) & (s_found <= axis.length_m) & (np.abs(off_found) <= 11.0)
+    assert np.all(d[in_area].min(axis=1) <= 0.10), "a sign where the reference has none"
+    assert np.median(d.min(axis=0)[seen]) <= 0.03
+
+
+def test_scene_poles_feet_kinds_and_signs(tiny):
+    folder, res, axis, cloud = tiny
+    ref = _read_csv(os.path.join(folder, "reference_poles.csv"))
+    feet = np.array([[float(r["x"]), float(r["y"]), float(r["z_foot"])] for r in ref])
+    seen = _seen(folder, axis, cloud, feet, [65, 66], 0.3, planar=True)
+    assert seen.sum() >= 6
+    found = np.array([[p.x, p.y, p.z_foot] for p in res.poles])
+    d = np.linalg.norm(found[:, None, :2] - feet[None, :, :2], axis=2)
+    signs = _read_csv(os.path.join(folder, "reference_signs.csv"))
+    sign_xyz = {r["sign_id"]: np.array([float(r["x"]), float(r["y"]), float(r["z"])]) for r in signs}
+    by_id = {s.sign_id: s for s in res.signs}
+    for j in np.flatnonzero(seen):
+        k = int(np.argmin(d[:, j]))
+        assert d[k, j] <= 0.10, ("foot", ref[j], res.poles[k])
+        pole = res.poles[k]
+        assert abs(pole.z_foot - feet[j, 2]) <= 0.05
+        assert pole.kind == ref[j]["kind"], (ref[j], pole)
+        carried = [sign_xyz[i] for i in ref[j]["sign_ids"].split()]
+        got = [by_id[i].centre_world for i in pole.sign_ids]
+        assert len(got) == len(carried), (ref[j], pole)
+        for c in carried:
+            assert min(np.linalg.norm(g - c) for g in got) <= 0.10
+    assert np.all(d.min(axis=1) <= 0.5), "a pole where the reference has none"
+
+
+def test_scene_faded_signs_flagged(tiny):
+    folder, res, _, _ = tiny
+    ref = _read_csv(os.path.join(folder, "reference_signs.csv"))
+    assert list(ref[0])[-1] == "faded"
+    found = np.array([s.centre_world for s in res.signs])
+    n_faded = 0
+    for r in ref:
+        xyz = np.array([float(r["x"]), float(r["y"]), float(r["z"])])
+        d = np.linalg.norm(found - xyz, axis=1)
+        if d.min() > 0.1:
+            continue
+        sign = res.signs[int(np.argmin(d))]
+        if r["faded"] == "1":
+            n_faded += 1
+            assert sign.condition in ("check", "poor"), (r, sign.retro_index)
+        elif sign.face_seen:
+            assert sign.condition == "good", (r, sign.retro_index, res.reference)
+        else:
+            assert sign.condition == "unknown"
+    assert n_faded >= 1
+
+
+def test_scene_panels_seen_from_behind_face_the_right_way(tiny):
+    folder, res, _, _ = tiny
+    ref = _read_csv(os.path.join(folder, "reference_signs.csv"))
+    found = np.array([s.centre_world for s in res.signs])
+    checked = 0
+    for r in ref:
+        d = np.linalg.norm(found - np.array([float(r["x"]), float(r["y"]), float(r["z"])]), axis=1)
+        if d.min() <= 0.1:
+            sign = res.signs[int(np.argmin(d))]
+            diff = abs((sign.azimuth_deg - float(r["azimuth"]) + 180.0) % 360.0 - 180.0)
+            assert diff < 5.0, (r, sign.azimuth_deg, sign.face_seen)
+            checked += 1
+    assert checked >= 6
+    assert any(not s.face_seen for s in res.signs)     # the scene has signs seen from behind
+    assert math.isfinite(res.reference) and res.reference_source == "drive"
