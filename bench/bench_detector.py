@@ -153,13 +153,14 @@ class PanoramaBench:
     def __init__(self, detector, views, confidence, min_box_px):
         self.d, self.views, self.confidence, self.min_box_px = detector, views, confidence, min_box_px
         self.matches, self.small, self.hidden, self.face_on = [], [], [], []
-        self.back_hits, self.detect_s, self.n = 0, 0.0, 0
+        self.back_hits, self.detect_s, self.cpu_s, self.n = 0, 0.0, 0.0, 0
         self.bands = BandCounter(width=8)
 
     def run(self, pano, meta, sign_class):
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         found = detector_mod.detect_panorama(self.d, pano, self.views, confidence=0.05, min_box_px=self.min_box_px)
         self.detect_s += time.perf_counter() - t0
+        self.cpu_s += time.process_time() - c0
         self.n += 1
         iou = seam_iou(pano.shape[1])
         counted, classes, small, hidden, back = scene_truth(meta, sign_class)
@@ -197,6 +198,9 @@ class PanoramaBench:
                 "detections_on_back_faces": int(self.back_hits),
                 "seconds_per_panorama_detect": self.detect_s / max(self.n, 1),
                 "panoramas_per_second": self.n / max(self.detect_s, 1e-9),
+                # CPU seconds of this process per panorama (all threads, onnxruntime's spin-waiting
+                # included): compares models when other jobs load the machine and wall time drifts
+                "cpu_seconds_per_panorama": self.cpu_s / max(self.n, 1),
                 "curve": curve(self.matches)}
 
 
@@ -331,7 +335,8 @@ def print_model(name, r, confidence):
           f"without signs seen edge-on (< {EDGE_ON_MAX_WIDTH_PX:.0f} px wide): {p['without_edge_on']}")
     print_curve("P/R curve (all classes)", p["curve"])
     print(f"panoramas per second ({r['threads']} threads, decoded): {p['panoramas_per_second']:.2f} "
-          f"(+ {p['seconds_per_panorama_decode_jpeg']:.3f} s to decode each JPEG)")
+          f"(+ {p['seconds_per_panorama_decode_jpeg']:.3f} s to decode each JPEG); "
+          f"{p['cpu_seconds_per_panorama']:.3f} CPU s per panorama; load average {os.getloadavg()[0]:.1f}")
     for mode, g in (r.get("gtsdb_500_599") or {}).items():
         print_table(f"GTSDB 500-599, {mode}, confidence {confidence}", g["per_class"])
         print(f"signs >= 20 px: {g['signs_20px_and_up']}")
@@ -344,7 +349,8 @@ def headline(r):
     """The figures of the issue's aims, one dict per model."""
     p, g = r["panoramas"], (r.get("gtsdb_500_599") or {}).get("tiles_640")
     out = {"generated_P": p["per_class"]["all"]["precision"], "generated_R": p["per_class"]["all"]["recall"],
-           "panoramas_per_s": p["panoramas_per_second"], "model_mb": r["model_mb"]}
+           "panoramas_per_s": p["panoramas_per_second"], "cpu_s_per_panorama": p["cpu_seconds_per_panorama"],
+           "model_mb": r["model_mb"]}
     if g:
         out.update({"gtsdb_P": g["per_class"]["all"]["precision"], "gtsdb_R": g["per_class"]["all"]["recall"],
                     "gtsdb_20_P": g["signs_20px_and_up"]["precision"], "gtsdb_20_R": g["signs_20px_and_up"]["recall"],
@@ -382,6 +388,7 @@ def main(argv=None):
     for d in detectors:
         print(d.info().describe())
     results = [{"model": os.path.relpath(m, REPO_ROOT), "model_mb": os.path.getsize(m) / 1e6, "threads": a.threads,
+                "cpus": os.cpu_count(), "load_average_at_start": os.getloadavg()[0],
                 "confidence": a.confidence, "scenes": scenes, "min_size_px": a.min_size} for m in models]
     for r, p in zip(results, bench_panoramas(detectors, scenes, a.confidence, a.max_images, a.min_size)):
         r["panoramas"] = p

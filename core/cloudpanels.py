@@ -78,6 +78,8 @@ class PanelParams:
     dark_max_flatness: float = 0.25       # local l3/l2 of a dark panel point at most
     dark_max_linearity: float = 0.9       # ... and not on a line (a pole, an edge)
     dark_max_normal_tilt_deg: float = 30.0
+    dark_normal_slack_deg: float = 10.0   # a dark point's normal: the panel's test plus this
+    max_cluster_extent_m: float = 12.0    # clusters larger than this are not searched for panels
     dark_clearance_m: float = 0.15        # dark points this close to bright ones belong to them
     edge_margin_m: float = 0.05           # face points this close to the outline: edge points
     edge_spacings: float = 1.5            # ... or this many point spacings
@@ -460,7 +462,7 @@ def find_panels(pts: WindowPoints, ground_z, params: PanelParams, seed: int = 0,
     dark = (~pts.bright & (pts.h >= params.min_bottom_height_m) & (pts.h <= params.max_top_height_m)
             & (pts.flatness <= params.dark_max_flatness) & (pts.linearity <= params.dark_max_linearity)
             & (np.abs(pts.normal[:, 2]) <= tilt_sin)
-            & (along >= math.cos(math.radians(params.max_normal_to_track_deg + 10.0))))
+            & (along >= math.cos(math.radians(params.max_normal_to_track_deg + params.dark_normal_slack_deg))))
     if len(bright_rows):
         near_bright = cKDTree(pts.xyz[bright_rows]).query(pts.xyz[dark], k=1,
                                                           distance_upper_bound=params.dark_clearance_m)[0]
@@ -482,7 +484,7 @@ def find_panels(pts: WindowPoints, ground_z, params: PanelParams, seed: int = 0,
             if len(rows) < params.min_points:
                 continue
             ext = np.ptp(pts.xyz[rows], axis=0)
-            if max(float(np.hypot(ext[0], ext[1])), float(ext[2])) > 3.0 * params.max_width_m:
+            if max(float(np.hypot(ext[0], ext[1])), float(ext[2])) > params.max_cluster_extent_m:
                 reasons["too large"] = reasons.get("too large", 0) + 1
                 continue
             parts.extend(segment_panels(pts, rows, params, seed, poles))

@@ -44,7 +44,7 @@ import math
 import os
 import time
 from dataclasses import dataclass, field
-from typing import Dict, List, Optional, Tuple
+from typing import TYPE_CHECKING, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 import shapely
@@ -52,7 +52,7 @@ from scipy.spatial import cKDTree
 
 from . import geometry
 from .cloudpanels import PanelCandidate, PanelParams, WindowPoints, find_panels, local_features, panel_frame
-from .drivewindows import DriveAxis, Track, Window, WindowSpool, make_windows
+from .drivewindows import DriveAxis, Track, Window, WindowSpool, as_track, make_windows
 from .errors import SILENT, InputError, Message, Progress
 from .pointcloud import DEFAULT_CHUNK_POINTS, GROUND_CLASS, crs_wkt_of_header, iter_chunks, read_header, xyz_of
 from .poles import GANTRY, Pole, PoleParams, classify_pole, find_poles, promote_far_posts
@@ -71,9 +71,18 @@ from .retroreflectivity import (
 )
 from .schema import fields
 
-#: The cloud sign layer's fields. ``height``: centre above ground; ``azimuth``: of the face
-#: normal; ``outline_wkt``: the panel's corners (top-left, top-right, bottom-right,
-#: bottom-left seen from the front) as a POLYGON Z; ``support``: pole, gantry or none.
+if TYPE_CHECKING:
+    from .trajectory import Stations
+
+#: The cloud sign layer's fields. ``x, y, z``: centre of the outline; ``height``: centre
+#: above ground; ``azimuth``: of the face normal; ``intensity_*``: normalised intensity
+#: (:mod:`.retroreflectivity`) of all the panel's points, median and 10th/90th percentiles;
+#: ``retro_index``: median of the face's interior points (NULL when only the back was
+#: scanned); ``bright_share``: share of points above the bright threshold; ``face_seen``:
+#: 1 when the scanner saw the face; ``condition``: good / check / poor / unknown;
+#: ``support``: pole, gantry or none; ``pole_id``: 0 when none; ``chainage_m``: arc length
+#: along the track; ``outline_wkt``: the corners (top-left, top-right, bottom-right,
+#: bottom-left seen from the front) as a POLYGON Z.
 CLOUD_SIGN_FIELDS = fields(
     ("sign_id", int), ("x", float), ("y", float), ("z", float), ("height", float),
     ("bottom_height", float), ("width", float), ("panel_height", float), ("azimuth", float),
@@ -118,13 +127,19 @@ class CloudSignParams:
     face_min_share: float = 0.3
     pole_link_m: float = 0.35           # pole axis this close to a panel's centre line
     pole_behind_max_m: float = 0.5      # ... and at most this far behind its plane
+    pole_top_slack_m: float = 0.2       # ... and its top at most this below the panel's bottom
+    pole_match_m: float = 0.3           # a panel's pole found again among the drive's poles
     min_width_to_pole: float = 2.0      # a panel is this many times as wide as its pole
+    pole_points_max_lean_deg: float = 1.0  # points of poles this upright are kept out of panels
     dark_max_bottom_m: float = 5.0      # dark panels on poles hang lower than this
     clutter_margin_m: float = 0.5       # a dark panel's surroundings (beyond its outline, its plane)
     dark_max_clutter: float = 0.5       # ... hold at most this many points per panel point
+    clutter_beam_clearance_m: float = 0.08  # under a gantry beam: the band left out below its top
     beam_above_m: float = 0.8           # a gantry beam within this above the panel's top
     beam_min_points: int = 10
-    beam_depth_m: float = 0.6           # a beam: the top layer of a gantry post's head
+    beam_gap_m: float = 0.02            # ... strictly above the panel's top (not the panel itself)
+    beam_depth_m: float = 0.5           # ... within this of the panel's plane
+    beam_layer_m: float = 0.6           # a beam: the top layer of a gantry post's head
     gantry_over_track_m: float = 3.0    # a gantry's beam passes this close to the track (over the road)
     gantry_link_m: float = 15.0         # gantry posts this far from a gantry panel (horizontal)
     gantry_link_along_m: float = 3.0    # ... and this close along the drive
@@ -377,7 +392,7 @@ def _support_of(panel: PanelCandidate, poles: List[Pole], params: CloudSignParam
             continue
         if p.is_gantry(params.poles) or panel.width_m < params.min_width_to_pole * p.diameter:
             continue                      # a gantry carries by its beam; a part of a pole is no panel
-        if p.z_foot + p.height < panel.centre[2] - 0.5 * panel.height_m - 0.2:
+        if p.z_foot + p.height < panel.centre[2] - 0.5 * panel.height_m - params.pole_top_slack_m:
             continue
         rel = p.axis_xy_at(float(panel.centre[2])) - panel.centre[:2]
         across = abs(float(rel @ right[:2]))
@@ -394,10 +409,10 @@ def _support_of(panel: PanelCandidate, poles: List[Pole], params: CloudSignParam
         if (p.crown or not p.is_gantry(params.poles) or abs(p.s_m - panel.s_m) > params.gantry_link_along_m
                 or math.hypot(p.x - panel.centre[0], p.y - panel.centre[1]) > params.gantry_link_m):
             continue
-        beam = p.beam_xyz(params.beam_depth_m)
+        beam = p.beam_xyz(params.beam_layer_m)
         rel = beam - panel.centre
-        above = ((beam[:, 2] >= top_z + 0.02) & (beam[:, 2] <= top_z + params.beam_above_m)
-                 & (np.abs(rel @ right) <= 0.5 * panel.width_m) & (np.abs(rel @ panel.normal) <= 0.5))
+        above = ((beam[:, 2] >= top_z + params.beam_gap_m) & (beam[:, 2] <= top_z + params.beam_above_m)
+                 & (np.abs(rel @ right) <= 0.5 * panel.width_m) & (np.abs(rel @ panel.normal) <= params.beam_depth_m))
         if int(above.sum()) >= params.beam_min_points:
             return SUPPORT_GANTRY, np.array([p.x, p.y]), beam[above].mean(axis=0)
     return SUPPORT_NONE, None, None
@@ -425,7 +440,7 @@ def _clutter(panel: PanelCandidate, pts: WindowPoints, support: str, support_xy:
     if support == SUPPORT_POLE and support_xy is not None:
         around &= np.linalg.norm(pts.xyz[near, :2] - support_xy, axis=1) > params.poles.top_radius_m
     elif support == SUPPORT_GANTRY:
-        around &= v <= hh - params.clutter_margin_m / 5.0
+        around &= v <= hh - params.beam_gap_m - params.clutter_beam_clearance_m
     return float(np.count_nonzero(around)) / max(len(panel.rows), 1)
 
 
@@ -450,11 +465,10 @@ def _panel_stats(panel: PanelCandidate, normal: np.ndarray, pts: WindowPoints, m
     inner_geom = hull.buffer(-margin) if hull.geom_type == "Polygon" else shapely.Polygon()
     interior = (shapely.contains_xy(inner_geom, uv[:, 0], uv[:, 1]) if not inner_geom.is_empty
                 else np.zeros(len(uv), bool))
-    face_values = value[front] if face_seen else value
     stats = {"median": float(np.median(value)), "p10": float(np.percentile(value, 10)),
              "p90": float(np.percentile(value, 90)),
              "retro": retro_index(value[front], interior[front]) if face_seen else float("nan"),
-             "face_median": float(np.median(face_values)), "range": float(np.median(r))}
+             "range": float(np.median(r))}
     return stats, face_seen
 
 
@@ -474,7 +488,7 @@ def _process_window(window: Window, rows: np.ndarray, ground_rows: np.ndarray, a
     edge = params.corridor_m - params.edge_clearance_m
     s_lo, s_hi = -params.end_margin_m, axis.length_m + params.end_margin_m
     pole_axes = [(np.array([p.x, p.y]), max(0.5 * p.diameter, params.poles.min_radius_m)) for p in poles
-                 if p.lean_deg < 1.0]
+                 if p.lean_deg <= params.pole_points_max_lean_deg]
     panels, reasons = find_panels(pts, ground, params.panels, seed=window.index, poles=pole_axes,
                                   diagnostics=diagnostics)
     for k, v in reasons.items():
@@ -512,11 +526,14 @@ def _process_window(window: Window, rows: np.ndarray, ground_rows: np.ndarray, a
 # The stage
 # --------------------------------------------------------------------------------------
 
-def find_signs_in_cloud(cloud_path: str, track: Track, params: Optional[CloudSignParams] = None,
+def find_signs_in_cloud(cloud_path: str, track: Union[Track, "Stations", np.ndarray],
+                        params: Optional[CloudSignParams] = None,
                         chunk_points: int = DEFAULT_CHUNK_POINTS, progress: Progress = SILENT,
                         work_folder: Optional[str] = None, diagnostics: Optional[list] = None
                         ) -> CloudSignResult:
-    """Sign panels and poles of a ground-classified LAS/LAZ cloud along ``track``.
+    """Sign panels and poles of a ground-classified LAS/LAZ cloud along ``track`` (a
+    :class:`.drivewindows.Track`, panorama ``Stations`` or an ``(n, 3)`` trajectory line in the
+    cloud's CRS).
 
     ``work_folder``: where the window files go (a temporary folder inside it, deleted at
     the end; the system's temporary folder by default); ``diagnostics`` (a list, for
@@ -529,7 +546,7 @@ def find_signs_in_cloud(cloud_path: str, track: Track, params: Optional[CloudSig
     cloud_path = os.fspath(cloud_path)
     header = read_header(cloud_path)
     has_time = _check_dimensions(cloud_path, header)
-    axis = DriveAxis(track)
+    axis = DriveAxis(as_track(track))
     _check_overlap(cloud_path, header, axis, params.corridor_m)
     windows = make_windows(axis.length_m, params.window_m)
     hist = IntensityHistogram()
@@ -631,7 +648,7 @@ def _finish(found: List[_Found], poles: List[Pole], threshold: Threshold, params
         if f.support == SUPPORT_POLE and f.support_xy is not None and len(feet):
             d = np.linalg.norm(feet - f.support_xy, axis=1)
             j = int(np.argmin(d))
-            if d[j] <= 0.3:
+            if d[j] <= params.pole_match_m:
                 pole_id = poles[j].pole_id
                 carried.setdefault(j, []).append(k)
         elif f.support == SUPPORT_GANTRY:

@@ -74,6 +74,16 @@ class Track:
         return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])
 
 
+def as_track(track) -> Track:
+    """A :class:`Track` from a track, from panorama ``Stations`` (centres and times) or from
+    an ``(n, 3)`` array of positions (a trajectory line without times)."""
+    if isinstance(track, Track):
+        return track
+    if hasattr(track, "xyz_world"):
+        return Track.from_stations(track)
+    return Track.from_polyline(np.asarray(track, dtype=np.float64))
+
+
 class DriveAxis:
     """Arc length, lateral offset, direction and sensor position along a :class:`Track`.
 

@@ -6,8 +6,9 @@ Method (per window of non-ground points with their height above ground ``h``):
    horizontal slices of ``slice_m``; in each slice, 2D clusters (8-connected cells of
    ``cluster_tolerance_m``, :func:`grid_clusters`) whose extent is at most
    ``max_diameter_m`` (plus a point spacing), with no other point of the slice within
-   ``isolation_m`` and none on two opposite sides within ``flank_m``, are pole sections.
-   Wide clusters (cars, walls, panels, crowns) and pieces of them are not.
+   ``isolation_m`` and none on two opposite sides within ``flank_m``, and round when wider
+   than ``round_min_width_m`` (a straight piece is a wall's), are pole sections. Wide
+   clusters (cars, walls, panels, crowns) and pieces of them are not.
 2. **Chains.** Sections of consecutive slices (one missing slice allowed) whose centres
    are within ``link_m`` horizontally are chained; a chain covering at least
    ``min_run_m`` of height is a pole. Parked cars may hide a pole's lower part: the chain
@@ -28,7 +29,8 @@ Method (per window of non-ground points with their height above ground ``h``):
    points connected to it form a crown (spread roundly about the axis, or mostly scattered
    foliage: a tree trunk, dropped unless it carries a sign; a neighbouring tree's crown is
    not connected to a pole; over a trunk at least ``trunk_min_diameter_m`` thick, whose
-   crown's inside is hidden, the crown may be ``crown_link_m`` away). Whether a long head
+   crown's inside is hidden, the crown may be ``crown_link_m`` away and seen in a narrower
+   sector, ``thick_crown_isotropy``). Whether a long head
    spans the road is decided by the caller, who knows the track (:attr:`Pole.spans_road`).
 
 Kinds (:data:`POLE_KINDS`): ``gantry`` (the head reaches ``gantry_reach_m`` over the road
@@ -73,6 +75,8 @@ class PoleParams:
     isolation_m: float = 0.2             # no other point of the slice this close to a section
     flank_m: float = 0.6                 # ... nor points this close on two opposite sides
     flank_angle_deg: float = 150.0
+    round_min_width_m: float = 0.15      # sections this wide must be round (an arc, not a line):
+    min_roundness: float = 0.06          # ... covariance eigenvalue ratio at least this
     link_m: float = 0.15
     min_run_m: float = 0.75
     max_width_jump_m: float = 0.1        # sections wider than the chain's typical one by more
@@ -93,10 +97,12 @@ class PoleParams:
     crown_min_depth_m: float = 0.8       # ... and this deep vertically
     trunk_min_diameter_m: float = 0.18   # a trunk this thick: its crown may be connected loosely
     crown_link_m: float = 0.5            # ... through cells of this
+    thick_crown_isotropy: float = 0.1    # ... and seen in a narrower sector
     foliage_scattering: float = 0.12     # local PCA scattering above this: a foliage point
     foliage_share: float = 0.5           # crown points mostly foliage: a tree (either test)
     min_lean_run_m: float = 1.5          # a lean is only fitted to chains this long
     lean_significance: float = 3.0       # ... and kept when this many standard errors
+    max_lean_deg: float = 15.0           # ... and at most this
     gantry_reach_m: float = 4.0
     gantry_head_radius_m: float = 16.0   # a gantry's head is followed this far (its beam)
     gantry_end_m: float = 0.6            # a pole this close to the far end of a beam is its post
@@ -200,6 +206,8 @@ def _sections(xyz: np.ndarray, h: np.ndarray, sensor: np.ndarray, params: PolePa
                 continue                  # a piece of something wider
             if _flanked(xy[~m], p.mean(axis=0), 0.5 * extent + params.flank_m, params.flank_angle_deg):
                 continue                  # one of a row of pieces (a wall sampled in stripes)
+            if extent >= params.round_min_width_m and _roundness(p) < params.min_roundness:
+                continue                  # a straight piece (of a wall), not the arc of a pole
             view = p.mean(axis=0) - sensor[rows[m], :2].mean(axis=0)
             view /= max(float(np.linalg.norm(view)), 1e-9)
             across = np.array([-view[1], view[0]])
@@ -224,6 +232,13 @@ def grid_clusters(xy: np.ndarray, cell_m: float) -> np.ndarray:
     grid[ij[:, 0], ij[:, 1]] = True
     labels, _ = ndimage.label(grid, structure=np.ones((3, 3), bool))
     return labels[ij[:, 0], ij[:, 1]] - 1
+
+
+def _roundness(xy: np.ndarray) -> float:
+    """Smaller over larger spread (2D covariance eigenvalues) of a section's points: a
+    straight piece of wall ~0, the visible half of a round pole ~0.2 or more."""
+    w = np.linalg.eigvalsh(np.cov((xy - xy.mean(axis=0)).T))
+    return float(w[0] / max(w[1], 1e-12))
 
 
 def _flanked(others_xy: np.ndarray, centre: np.ndarray, radius: float, angle_deg: float) -> bool:
@@ -318,7 +333,7 @@ def _pole_from_sections(secs: Sequence[_Section], xyz: np.ndarray, h: np.ndarray
         se = math.sqrt(sigma2 / max(float(np.sum((hs - hs.mean()) ** 2)), 1e-9))
         fitted = coef[1]
         if (float(np.linalg.norm(fitted)) > params.lean_significance * se
-                and float(np.linalg.norm(fitted)) <= math.tan(math.radians(15.0))):
+                and float(np.linalg.norm(fitted)) <= math.tan(math.radians(params.max_lean_deg))):
             foot_xy, slope = coef[0], fitted
     z_foot = float(ground_z(foot_xy[None, :])[0])
     axis = np.array([slope[0], slope[1], 1.0])
@@ -357,13 +372,15 @@ def _pole_from_sections(secs: Sequence[_Section], xyz: np.ndarray, h: np.ndarray
         head_xyz = xyz[head][connected]
         ring = connected & (d > params.crown_inner_m) & (d <= params.crown_outer_m)
         if int(ring.sum()) >= params.min_crown_points:
-            has_crown, isotropy = _is_crown(rel[ring], h[head][ring], scattering[head][ring], params)
+            has_crown, isotropy = _is_crown(rel[ring], h[head][ring], scattering[head][ring], params,
+                                            params.crown_isotropy)
         thick = float(np.median([sec.width for sec in secs])) >= params.trunk_min_diameter_m
         if not has_crown and thick:          # a crown floating over a thick trunk (its inside hidden)
             _, loose = _connected_reach(xyz[head], d, params, params.crown_link_m)
             ring = loose & (d > params.crown_inner_m) & (d <= params.crown_outer_m)
             if int(ring.sum()) >= params.min_crown_points:
-                has_crown, isotropy = _is_crown(rel[ring], h[head][ring], scattering[head][ring], params)
+                has_crown, isotropy = _is_crown(rel[ring], h[head][ring], scattering[head][ring], params,
+                                                params.thick_crown_isotropy)
     if reach >= params.gantry_reach_m:       # a gantry: its whole beam, for the far post
         wide = np.asarray(tree.query_ball_point(foot_xy, params.gantry_head_radius_m), dtype=np.int64)
         wide = wide[(h[wide] >= params.head_from_share * top) & (h[wide] <= top + params.head_above_m)]
@@ -376,16 +393,17 @@ def _pole_from_sections(secs: Sequence[_Section], xyz: np.ndarray, h: np.ndarray
                 reach, has_crown, 0.0, isotropy, head_xyz)
 
 
-def _is_crown(rel_xy: np.ndarray, h: np.ndarray, scattering: np.ndarray, params: PoleParams
-              ) -> Tuple[bool, float]:
-    """Points around a pole's top that spread roundly about its axis in plan and in depth (a
-    crown seen from one side is a half shell around the trunk), or that are mostly foliage;
+def _is_crown(rel_xy: np.ndarray, h: np.ndarray, scattering: np.ndarray, params: PoleParams,
+              min_isotropy: float) -> Tuple[bool, float]:
+    """Points around a pole's top that spread roundly about its axis in plan (second
+    moments about the axis at least ``min_isotropy`` of each other) and in depth (a crown
+    seen from one side is a half shell around the trunk), or that are mostly foliage;
     arms, beams and panels spread along a line, a neighbour's crown lies to one side."""
-    w = np.linalg.eigvalsh(rel_xy.T @ rel_xy / len(rel_xy))   # second moment about the axis
+    w = np.linalg.eigvalsh(rel_xy.T @ rel_xy / len(rel_xy))
     isotropy = float(w[0] / max(w[1], 1e-12))
     if float(np.mean(scattering > params.foliage_scattering)) >= params.foliage_share:
         return True, isotropy
-    return isotropy >= params.crown_isotropy and float(np.ptp(h)) >= params.crown_min_depth_m, isotropy
+    return isotropy >= min_isotropy and float(np.ptp(h)) >= params.crown_min_depth_m, isotropy
 
 
 def _connected_reach(head_xyz: np.ndarray, dist_axis: np.ndarray, params: PoleParams,

@@ -13,8 +13,9 @@ shows its pictures and attributes, and writes the analyst's verdict to the layer
   field), needs another look (L); each writes ``review_status``, ``reviewed_class``,
   ``reviewed_code`` and ``reviewed_at`` (fields added when missing) through the layer's
   edit buffer as one undoable edit command, and steps on to the next unreviewed sign.
-  N and P step without a verdict, V opens the panorama view, Ctrl+Z (in the panel) undoes
-  the last verdict. Saving the layer's edits (QGIS's Save, or the panel's) writes them.
+  N and P step without a verdict, V opens the panorama view, U undoes the last verdict (as
+  QGIS's Undo, Ctrl+Z, does on the active layer). Saving the layer's edits (QGIS's Save, or
+  the panel's button) writes them to the file.
 """
 import math
 import os
@@ -31,7 +32,7 @@ from qgis.core import (
 )
 from qgis.gui import QgsFileWidget, QgsMapLayerComboBox
 from qgis.PyQt.QtCore import QMetaType, QSize, Qt, QTimer
-from qgis.PyQt.QtGui import QColor, QImage, QKeySequence, QPainter, QPen, QPixmap
+from qgis.PyQt.QtGui import QColor, QIcon, QImage, QKeySequence, QPainter, QPen, QPixmap
 from qgis.PyQt.QtWidgets import (
     QComboBox,
     QDialog,
@@ -117,7 +118,19 @@ class ReviewPanel(Translatable, QDockWidget):
         self.layer_combo.layerChanged.connect(self.set_layer)
         self.stations_combo.layerChanged.connect(self._stations_changed)
         self.folder_widget.fileChanged.connect(self._stations_changed)
+        # the layer box picks a layer of its own when the first layers come (no layerChanged then)
+        QgsProject.instance().layersAdded.connect(self._sync_layer)
         self.set_layer(self.layer_combo.currentLayer())
+
+    def _sync_layer(self, *args):
+        if self.layer_combo.currentLayer() is not self.layer:
+            self.set_layer(self.layer_combo.currentLayer())
+        if self.layer is not None and self.stations_combo.currentLayer() is None:
+            self._pick_stations()
+
+    def showEvent(self, event):  # noqa: N802 (Qt's name)
+        super().showEvent(event)
+        self._sync_layer()
 
     # --- building ---------------------------------------------------------------------------
 
@@ -201,7 +214,7 @@ class ReviewPanel(Translatable, QDockWidget):
                                         self.tr("The next sign without a verdict."))
         self.view_button = self._button(self.tr("Panorama view (V)"), self.show_panorama,
                                         self.tr("The panorama around the sign, from its best panorama."))
-        self.undo_button = self._button(self.tr("Undo (Ctrl+Z)"), self.undo,
+        self.undo_button = self._button(self.tr("Undo (U)"), self.undo,
                                         self.tr("Undo the last verdict given here."))
         self.save_button = self._button(self.tr("Save edits"), self.save,
                                         self.tr("Write the verdicts to the layer's file."))
@@ -226,7 +239,7 @@ class ReviewPanel(Translatable, QDockWidget):
         self.shortcuts = []
         for keys, slot in (("A", self.accept_sign), ("R", self.reject_sign), ("C", self.change),
                            ("L", self.unsure_sign), ("N", self.next_sign), ("P", self.previous_sign),
-                           ("V", self.show_panorama), ("Ctrl+Z", self.undo)):
+                           ("V", self.show_panorama), ("U", self.undo)):
             shortcut = QShortcut(QKeySequence(keys), self.root)
             shortcut.setContext(Qt.ShortcutContext.WidgetWithChildrenShortcut)
             shortcut.activated.connect(slot)
@@ -458,10 +471,10 @@ class ReviewPanel(Translatable, QDockWidget):
             if item.widget() is not None:
                 item.widget().deleteLater()
 
-    def _add_chip(self, pixmap, caption, tip, view=None):
+    def _add_chip(self, pixmap, caption, tip, view=None, on_click=None):
         button = QToolButton(self.chips_box)
-        button.setIcon(QPixmap(pixmap).scaled(CHIP_PX, CHIP_PX, Qt.AspectRatioMode.KeepAspectRatio,
-                                              Qt.TransformationMode.SmoothTransformation))
+        button.setIcon(QIcon(QPixmap(pixmap).scaled(CHIP_PX, CHIP_PX, Qt.AspectRatioMode.KeepAspectRatio,
+                                                    Qt.TransformationMode.SmoothTransformation)))
         button.setIconSize(QSize(CHIP_PX, CHIP_PX))
         button.setText(caption)
         button.setToolTip(tip)
@@ -469,6 +482,8 @@ class ReviewPanel(Translatable, QDockWidget):
         button.setAutoRaise(True)
         if view is not None:
             button.clicked.connect(lambda checked=False, v=view: self.show_panorama(v))
+        elif on_click is not None:
+            button.clicked.connect(lambda checked=False: on_click())
         self.chips_layout.addWidget(button)
         return button
 
@@ -491,8 +506,10 @@ class ReviewPanel(Translatable, QDockWidget):
         if record is None:
             return
         path = self.chip_path(record)
-        if path:
-            self._add_chip(QPixmap(path), self.tr("review chip"), path)
+        if path:  # the layer's chip is from the best panorama: it stands for that one
+            best = record.get("best_image")
+            self._add_chip(QPixmap(path), self.tr("best · {} (review chip)").format(best) if best else
+                           self.tr("review chip"), path, on_click=self.show_panorama)
         token = self._chip_token
         QTimer.singleShot(0, lambda: self._cut_chips(token, record, skip_best=bool(path)))
 
@@ -520,6 +537,8 @@ class ReviewPanel(Translatable, QDockWidget):
         for view in views:
             if token != self._chip_token:
                 return
+            if skip_best and view.best:
+                continue
             try:
                 image = self._cache.cut(view)
             except InputError as error:
@@ -700,6 +719,10 @@ class ReviewPanel(Translatable, QDockWidget):
 
     def cleanup(self):
         """Before the panel goes (the plugin is unloaded): let go of the layer."""
+        try:
+            QgsProject.instance().layersAdded.disconnect(self._sync_layer)
+        except (TypeError, RuntimeError):
+            pass
         if self.layer is not None:
             self._disconnect(self.layer)
         self.layer = None

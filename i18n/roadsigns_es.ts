@@ -4,7 +4,7 @@
 <context>
     <name>@default</name>
     <message>
-        <location filename="../plugin.py" line="32" />
+        <location filename="../plugin.py" line="58" />
         <source>Road Sign Inventory</source>
         <translation>Inventario de señales viales</translation>
     </message>
@@ -97,6 +97,11 @@
         <location filename="../algorithms/layers.py" line="167" />
         <source>The point cloud {cloud} has no coordinate reference system: give it one with Ground filter (parameter Cloud CRS); a CRS is never guessed</source>
         <translation>La nube de puntos {cloud} no tiene sistema de referencia de coordenadas: asígnele uno con Filtro de suelo (parámetro SRC de la nube); el SRC nunca se adivina</translation>
+    </message>
+    <message>
+        <location filename="../plugin.py" line="51" />
+        <source>Sign review panel</source>
+        <translation>Panel de revisión de señales</translation>
     </message>
 </context>
 <context>
@@ -426,6 +431,274 @@
     </message>
 </context>
 <context>
+    <name>ExportHandover</name>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="49" />
+        <source>Export handover package</source>
+        <translation>Exportar paquete de entrega</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="52" />
+        <source>The reviewed sign layer as a GeoPackage, a CSV and an OpenStreetMap file for handover.</source>
+        <translation>La capa de señales revisada como GeoPackage, CSV y archivo de OpenStreetMap para la entrega.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="55" />
+        <source>Writes the signs with the review states you choose (default: accepted and corrected) into a folder: &lt;i&gt;handover.gpkg&lt;/i&gt; and &lt;i&gt;handover.csv&lt;/i&gt; with one row per sign in a documented schema (docs/formats.md, section 4.9), and &lt;i&gt;osm_signs.osm&lt;/i&gt; (or .geojson) for OpenStreetMap.&lt;br&gt;&lt;br&gt;Each sign gets its code and class (after review), its position (x, y, z and WGS 84 longitude and latitude), mounting height, panel size, the azimuth its face looks towards (0-359, from true or grid north as chosen; the column azimuth_north says which), the side of the road and the lateral offset relative to the drive, the chainage along the drive (the stations' track), the nearest road segment's id and the fraction along it when a road network is given, condition and pole when the layer has them, survey date, first and last seen, source images and review status.&lt;br&gt;&lt;br&gt;The OpenStreetMap nodes carry &lt;i&gt;traffic_sign&lt;/i&gt; (the code, prefixed with the country) and &lt;i&gt;direction&lt;/i&gt; (true north) and stand beside the road: a sign over the road is moved to its side of the drive.</source>
+        <translation>Escribe en una carpeta las señales con los estados de revisión que elija (por defecto: aceptadas y corregidas): &lt;i&gt;handover.gpkg&lt;/i&gt; y &lt;i&gt;handover.csv&lt;/i&gt;, con una fila por señal en un esquema documentado (docs/formats.md, sección 4.9), y &lt;i&gt;osm_signs.osm&lt;/i&gt; (o .geojson) para OpenStreetMap.&lt;br&gt;&lt;br&gt;Cada señal lleva su código y clase (tras la revisión), su posición (x, y, z y longitud y latitud WGS 84), la altura de montaje, el tamaño del panel, el azimut hacia el que mira su cara (0-359, desde el norte verdadero o el de cuadrícula, según se elija; la columna azimuth_north indica cuál), el lado de la carretera y el desplazamiento lateral respecto al recorrido, el PK a lo largo del recorrido (el trayecto de las estaciones), el id del tramo de carretera más cercano y la fracción a lo largo de él cuando se da una red viaria, el estado y el poste cuando la capa los tiene, la fecha del levantamiento, la primera y la última vez que se vio, las imágenes de origen y el estado de revisión.&lt;br&gt;&lt;br&gt;Los nodos de OpenStreetMap llevan &lt;i&gt;traffic_sign&lt;/i&gt; (el código, precedido del país) y &lt;i&gt;direction&lt;/i&gt; (norte verdadero) y quedan junto a la carretera: una señal sobre la calzada se desplaza a su lado del recorrido.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="145" />
+        <source>Reviewed sign layer</source>
+        <translation>Capa de señales revisada</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="70" />
+        <source>The sign layer after review (fields review_status, reviewed_code... as the review panel writes them), in a projected CRS.</source>
+        <translation>La capa de señales tras la revisión (campos review_status, reviewed_code... tal como los escribe el panel de revisión), en un SRC proyectado.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="152" />
+        <source>Panorama stations</source>
+        <translation>Estaciones de panorama</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="74" />
+        <source>The output of Import trajectory for the same drive: its track gives side, offset and chainage, its times first and last seen.</source>
+        <translation>La salida de Importar trayectoria del mismo recorrido: su trayecto da el lado, el desplazamiento y el PK; sus tiempos, la primera y la última vez que se vio cada señal.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="78" />
+        <source>Road network (optional)</source>
+        <translation>Red viaria (opcional)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="78" />
+        <source>Road segments (lines): each sign gets the nearest one's id and the fraction along it. Lines in another CRS are reprojected.</source>
+        <translation>Tramos de carretera (líneas): cada señal recibe el id del más cercano y la fracción a lo largo de él. Las líneas en otro SRC se reproyectan.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="82" />
+        <source>Road segment id field</source>
+        <translation>Campo de id del tramo</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="82" />
+        <source>The road network's field holding the segment ids; empty: the feature id.</source>
+        <translation>El campo de la red viaria con los ids de los tramos; vacío: el id de la entidad.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="85" />
+        <source>Review states to hand over</source>
+        <translation>Estados de revisión a entregar</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="85" />
+        <source>accepted</source>
+        <translation>aceptada</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="85" />
+        <source>corrected (accepted with a new class or code)</source>
+        <translation>corregida (aceptada con otra clase o código)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="85" />
+        <source>rejected</source>
+        <translation>rechazada</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="85" />
+        <source>needs another look</source>
+        <translation>hay que volver a mirarla</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="85" />
+        <source>not reviewed</source>
+        <translation>sin revisar</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="85" />
+        <source>Only signs with these review states are written (several may be chosen).</source>
+        <translation>Solo se escriben las señales con estos estados de revisión (se pueden elegir varios).</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="91" />
+        <source>Azimuth from</source>
+        <translation>Azimut desde</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="91" />
+        <source>true north</source>
+        <translation>norte verdadero</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="91" />
+        <source>grid north</source>
+        <translation>norte de cuadrícula</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="91" />
+        <source>The facing azimuth is written clockwise from true north (grid azimuth plus meridian convergence) or from grid north of the layer's CRS; the file says which.</source>
+        <translation>El azimut de la cara se escribe en sentido horario desde el norte verdadero (azimut de cuadrícula más la convergencia de meridianos) o desde el norte de cuadrícula del SRC de la capa; el archivo indica cuál.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="95" />
+        <source>Survey date (YYYY-MM-DD)</source>
+        <translation>Fecha del levantamiento (AAAA-MM-DD)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="95" />
+        <source>The date of the drive: with station times in GPS seconds of the week, first and last seen become dates and times (UTC).</source>
+        <translation>La fecha del recorrido: con tiempos de estación en segundos GPS de la semana, la primera y la última vez que se vio pasan a ser fechas y horas (UTC).</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="99" />
+        <source>Station times are</source>
+        <translation>Los tiempos de las estaciones son</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="99" />
+        <source>GPS seconds of the week</source>
+        <translation>segundos GPS de la semana</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="99" />
+        <source>GPS time (seconds since 1980-01-06)</source>
+        <translation>tiempo GPS (segundos desde 1980-01-06)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="99" />
+        <source>UNIX time (seconds since 1970-01-01 UTC)</source>
+        <translation>tiempo UNIX (segundos desde 1970-01-01 UTC)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="99" />
+        <source>The time base of the stations' time field (that of the trajectory).</source>
+        <translation>La base de tiempo del campo time de las estaciones (la de la trayectoria).</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="122" />
+        <source>OpenStreetMap file</source>
+        <translation>Archivo de OpenStreetMap</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="105" />
+        <source>OSM XML (.osm, opens in JOSM)</source>
+        <translation>OSM XML (.osm, se abre en JOSM)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="105" />
+        <source>GeoJSON (.geojson)</source>
+        <translation>GeoJSON (.geojson)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="105" />
+        <source>The format of the OpenStreetMap nodes file.</source>
+        <translation>El formato del archivo de nodos de OpenStreetMap.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="109" />
+        <source>Country prefix for traffic_sign</source>
+        <translation>Prefijo de país para traffic_sign</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="109" />
+        <source>ISO country code written before codes without one: DE gives traffic_sign=DE:206.</source>
+        <translation>Código ISO de país que se antepone a los códigos que no lo tienen: DE da traffic_sign=DE:206.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="112" />
+        <source>Least distance of OSM nodes from the road (m)</source>
+        <translation>Distancia mínima de los nodos OSM a la carretera (m)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="112" />
+        <source>OpenStreetMap nodes closer than this to the drive (or to the nearest road line) are moved away from it on the sign's side, so that no sign node sits on the road.</source>
+        <translation>Los nodos de OpenStreetMap más cercanos que esto al recorrido (o a la línea de carretera más próxima) se alejan de él por el lado de la señal, para que ningún nodo de señal quede sobre la calzada.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="117" />
+        <source>Handover folder</source>
+        <translation>Carpeta de entrega</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="117" />
+        <source>The folder the package is written to (created when missing; files of an earlier package are replaced).</source>
+        <translation>La carpeta donde se escribe el paquete (se crea si no existe; los archivos de un paquete anterior se reemplazan).</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="120" />
+        <source>Handover GeoPackage</source>
+        <translation>GeoPackage de entrega</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="121" />
+        <source>Handover CSV</source>
+        <translation>CSV de entrega</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="135" />
+        <source>Choose at least one review state to hand over.</source>
+        <translation>Elija al menos un estado de revisión para entregar.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="141" />
+        <source>The sign layer has no CRS: set its projected CRS (layer properties) and run again.</source>
+        <translation>La capa de señales no tiene SRC: asígnele su SRC proyectado (propiedades de la capa) y vuelva a ejecutar.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="143" />
+        <source>The sign layer</source>
+        <translation>La capa de señales</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="149" />
+        <source>The stations are in {}, the sign layer in {}: use the stations of the drive the signs come from</source>
+        <translation>Las estaciones están en {}, la capa de señales en {}: use las estaciones del recorrido del que proceden las señales</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="175" />
+        <source>Handover package: {} signs in {}</source>
+        <translation>Paquete de entrega: {} señales en {}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="185" />
+        <source>Survey date '{}' is not a date: write it as YYYY-MM-DD, e.g. 2024-03-14</source>
+        <translation>La fecha del levantamiento '{}' no es una fecha: escríbala como AAAA-MM-DD, p. ej. 2024-03-14</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="201" />
+        <source>Sign {} has neither a point geometry nor x and y fields</source>
+        <translation>La señal {} no tiene ni geometría de punto ni campos x e y</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="215" />
+        <source>The road network has no field {}; fields found: {}</source>
+        <translation>La red viaria no tiene el campo {}; campos encontrados: {}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="220" />
+        <source>The road network is in {}: reprojected to {}, the sign layer's CRS.</source>
+        <translation>La red viaria está en {}: reproyectada a {}, el SRC de la capa de señales.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="223" />
+        <source>No road segment id field chosen: the road ids are the feature ids.</source>
+        <translation>No se eligió campo de id de tramo: los ids de carretera son los ids de las entidades.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="239" />
+        <source>The road network has no lines: road_id and road_fraction stay empty.</source>
+        <translation>La red viaria no tiene líneas: road_id y road_fraction quedan vacíos.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="258" />
+        <source>Cannot write {}: {}</source>
+        <translation>No se puede escribir {}: {}</translation>
+    </message>
+</context>
+<context>
     <name>FindSignsInCloud</name>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="24" />
@@ -520,6 +793,154 @@
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="119" />
         <source>{} sign panels and {} poles found in the cloud.</source>
+        <translation type="unfinished" />
+    </message>
+</context>
+<context>
+    <name>FuseSigns</name>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="29" />
+        <source>Fuse image and cloud signs</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="32" />
+        <source>Merges the signs found in the images with the panels found in the cloud alone: one sign layer that says which sources found each sign.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="36" />
+        <source>Matches each sign of the image chain (Refine and merge signs) to at most one panel found in the cloud alone (Find signs in the point cloud) by optimal assignment: centres within the match radius and facings within 90°.&lt;br&gt;&lt;br&gt;A matched sign keeps its class and gains the panel's retroreflectivity index and condition (&lt;i&gt;source&lt;/i&gt; = image+lidar). A panel no image sign explains becomes a sign of its own (&lt;i&gt;source&lt;/i&gt; = lidar): with the stations and the panorama folder, the panoramas in front of its face are cut into views centred on it and the detector reads its class there; if none recognises it, its class is &lt;i&gt;unknown&lt;/i&gt; and it is flagged for review. An image sign whose place in the cloud holds no retro-reflective panel loses confidence (its score × 0.6) and is flagged for review (&lt;i&gt;source&lt;/i&gt; = image).&lt;br&gt;&lt;br&gt;Output: the sign layer with the fields of Refine and merge signs plus source, review, image_sign_id, cloud_sign_id, retro_index and condition, styled like the sign layer.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="95" />
+        <source>Signs (from the images)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="51" />
+        <source>The output of Refine and merge signs.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="96" />
+        <source>Sign panels found in the cloud</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="54" />
+        <source>The output of Find signs in the point cloud.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="57" />
+        <source>Panorama stations (to classify panels found in the cloud alone)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="57" />
+        <source>The output of Import trajectory. With the panorama folder, the class of each panel no image sign explains is read from the panoramas in front of it.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="62" />
+        <source>Panorama folder (optional)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="62" />
+        <source>The folder of the panoramas (empty: the paths in the stations layer).</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="66" />
+        <source>ONNX model (empty: the bundled model)</source>
+        <translation>Modelo ONNX (vacío: el modelo incluido)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="66" />
+        <source>The detector that reads the class of panels found in the cloud alone.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="66" />
+        <source>ONNX models (*.onnx);;All files (*.*)</source>
+        <translation>Modelos ONNX (*.onnx);;Todos los archivos (*.*)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="70" />
+        <source>Minimum confidence</source>
+        <translation>Confianza mínima</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="70" />
+        <source>A class read from the panoramas is kept when the detector scores it at least this (0-1).</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="74" />
+        <source>Match radius (m)</source>
+        <translation>Radio de emparejamiento (m)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="74" />
+        <source>An image sign and a cloud panel farther apart than this (3D, metres) are never the same sign.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="78" />
+        <source>Signs (fused)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="78" />
+        <source>PointZ sign layer: the sign fields, and source (image, lidar, image+lidar), review (1: to be checked), image_sign_id, cloud_sign_id, retro_index, condition and the review chip of the image sign (chip, relative to the layer's folder).</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="83" />
+        <source>Signs found by both</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="84" />
+        <source>Signs found in the images only</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="85" />
+        <source>Signs found in the cloud only</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="100" />
+        <source>The signs are in {}, the panels found in the cloud in {}: both must be in the cloud's CRS</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="111" />
+        <source>No stations given: the {} signs found in the cloud alone keep the class unknown.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="127" />
+        <source>{} signs: {} found by both, {} in the images only ({} of them where the cloud was searched: score lowered, to review), {} in the cloud only.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="140" />
+        <source>Panorama stations</source>
+        <translation>Estaciones de panorama</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="146" />
+        <source>ONNX model not found: {}</source>
+        <translation>No se encontró el modelo ONNX: {}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="157" />
+        <source>{} of the {} signs found in the cloud alone were recognised in the panoramas; the others keep the class unknown and are to review.</source>
         <translation type="unfinished" />
     </message>
 </context>
@@ -977,7 +1398,7 @@
         <translation>Las detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="83" />
+        <location filename="../algorithms/projectdetections.py" line="84" />
         <source>{} detections: {} with a surface in the cloud, {} without</source>
         <translation>{} detecciones: {} con superficie en la nube, {} sin ella</translation>
     </message>
@@ -1105,32 +1526,32 @@
         <translation>Los candidatos</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="140" />
+        <location filename="../algorithms/refinesigns.py" line="141" />
         <source>The review report needs the panorama folder: not written.</source>
         <translation>El informe de revisión necesita la carpeta de panoramas: no se escribió.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="146" />
+        <location filename="../algorithms/refinesigns.py" line="147" />
         <source>{} sign points written to {}</source>
         <translation>{} puntos de señales escritos en {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="171" />
+        <location filename="../algorithms/refinesigns.py" line="172" />
         <source>{} signs from {} candidates ({})</source>
         <translation>{} señales a partir de {} candidatos ({})</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="181" />
+        <location filename="../algorithms/refinesigns.py" line="182" />
         <source>Review chips need a sign layer written to a file: skipped.</source>
         <translation>Las miniaturas de revisión necesitan una capa de señales escrita en un archivo: se omiten.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="194" />
+        <location filename="../algorithms/refinesigns.py" line="195" />
         <source>Road signs for review</source>
         <translation>Señales viales para revisión</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="196" />
+        <location filename="../algorithms/refinesigns.py" line="197" />
         <source>{} review chips in {}</source>
         <translation>{} miniaturas de revisión en {}</translation>
     </message>
@@ -1145,81 +1566,424 @@
         <translation>El SRC de la nube cuando el archivo no registra ninguno (debe ser el SRC de los candidatos); sustituye al SRC del archivo. El SRC nunca se adivina.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="119" />
+        <location filename="../algorithms/refinesigns.py" line="120" />
         <source>Panorama folder not found: {}</source>
         <translation>No se encontró la carpeta de panoramas: {}</translation>
     </message>
 </context>
 <context>
+    <name>ReviewPanel</name>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="718" />
+        <source>Sign review</source>
+        <translation>Revisión de señales</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="144" />
+        <source>The sign layer to review (the output of Refine and merge signs, or any point layer with the sign fields).</source>
+        <translation>La capa de señales a revisar (la salida de Refinar y fusionar señales, o cualquier capa de puntos con los campos de señal).</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="146" />
+        <source>Signs</source>
+        <translation>Señales</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="150" />
+        <source>The panorama stations of the drive: with them the panel cuts the sign from every panorama that saw it.</source>
+        <translation>Las estaciones de panorama del recorrido: con ellas el panel recorta la señal de cada panorama que la vio.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="152" />
+        <source>Stations</source>
+        <translation>Estaciones</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="155" />
+        <source>The panorama folder; empty: the path field of the stations layer.</source>
+        <translation>La carpeta de panoramas; vacía: el campo path de la capa de estaciones.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="156" />
+        <source>Panoramas</source>
+        <translation>Panoramas</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="709" />
+        <source>Sign</source>
+        <translation>Señal</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="179" />
+        <source>Class</source>
+        <translation>Clase</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="179" />
+        <source>Code</source>
+        <translation>Código</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="179" />
+        <source>Confidence</source>
+        <translation>Confianza</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="179" />
+        <source>Condition</source>
+        <translation>Estado</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="179" />
+        <source>Sources</source>
+        <translation>Fuentes</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="179" />
+        <source>Panel</source>
+        <translation>Panel</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="179" />
+        <source>Review</source>
+        <translation>Revisión</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="193" />
+        <source>The sign's class: pick or type another one, then Change.</source>
+        <translation>La clase de la señal: elija o escriba otra y pulse Cambiar.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="195" />
+        <source>code</source>
+        <translation>código</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="196" />
+        <source>The sign's code (e.g. 206): type it, then Enter or Change.</source>
+        <translation>El código de la señal (p. ej. 206): escríbalo y pulse Intro o Cambiar.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="203" />
+        <source>Accept (A)</source>
+        <translation>Aceptar (A)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="203" />
+        <source>A real sign, class and code right: next sign.</source>
+        <translation>Una señal real, con clase y código correctos: siguiente señal.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="205" />
+        <source>Reject (R)</source>
+        <translation>Rechazar (R)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="205" />
+        <source>Not a sign, or a duplicate: next sign.</source>
+        <translation>No es una señal, o es un duplicado: siguiente señal.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="207" />
+        <source>Change (C)</source>
+        <translation>Cambiar (C)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="207" />
+        <source>A real sign with the class and code above: next sign.</source>
+        <translation>Una señal real con la clase y el código de arriba: siguiente señal.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="209" />
+        <source>Look again (L)</source>
+        <translation>Volver a mirar (L)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="209" />
+        <source>Needs another look: next sign.</source>
+        <translation>Hay que volver a mirarla: siguiente señal.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="211" />
+        <source>Previous (P)</source>
+        <translation>Anterior (P)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="211" />
+        <source>The sign before this one.</source>
+        <translation>La señal anterior a esta.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="213" />
+        <source>Next unreviewed (N)</source>
+        <translation>Siguiente sin revisar (N)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="213" />
+        <source>The next sign without a verdict.</source>
+        <translation>La siguiente señal sin veredicto.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="215" />
+        <source>Panorama view (V)</source>
+        <translation>Vista del panorama (V)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="215" />
+        <source>The panorama around the sign, from its best panorama.</source>
+        <translation>El panorama alrededor de la señal, desde su mejor panorama.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="217" />
+        <source>Undo (U)</source>
+        <translation>Deshacer (U)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="217" />
+        <source>Undo the last verdict given here.</source>
+        <translation>Deshace el último veredicto dado aquí.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="219" />
+        <source>Save edits</source>
+        <translation>Guardar ediciones</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="219" />
+        <source>Write the verdicts to the layer's file.</source>
+        <translation>Escribe los veredictos en el archivo de la capa.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="302" />
+        <source>Choose a sign layer to review.</source>
+        <translation>Elija una capa de señales para revisar.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="268" />
+        <source>The layer {layer} lacks the field(s) {missing}. The review needs a sign layer with the fields {required} (the output of Refine and merge signs).</source>
+        <translation>A la capa {layer} le faltan los campos {missing}. La revisión necesita una capa de señales con los campos {required} (la salida de Refinar y fusionar señales).</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="286" />
+        <source>(point geometry)</source>
+        <translation>(geometría de punto)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="380" />
+        <source>The layer {} has no signs.</source>
+        <translation>La capa {} no tiene señales.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="391" />
+        <source>&lt;b&gt;Sign {sign}&lt;/b&gt; ({position} of {total}) &amp;#8212; {reviewed} of {total} reviewed</source>
+        <translation>&lt;b&gt;Señal {sign}&lt;/b&gt; ({position} de {total}) &amp;#8212; {reviewed} de {total} revisadas</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="394" />
+        <source>Sign {}</source>
+        <translation>Señal {}</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="399" />
+        <source>(none)</source>
+        <translation>(ninguno)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="406" />
+        <source>(no condition field)</source>
+        <translation>(sin campo de estado)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="411" />
+        <source>{source}; seen in {n} panorama(s): {images}</source>
+        <translation>{source}; vista en {n} panorama(s): {images}</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="414" />
+        <source>{width} × {height} m, {above} m above the ground, facing {azimuth}°</source>
+        <translation>{width} × {height} m, a {above} m sobre el suelo, orientada a {azimuth}°</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="430" />
+        <source>accepted</source>
+        <translation>aceptada</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="430" />
+        <source>corrected</source>
+        <translation>corregida</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="431" />
+        <source>rejected</source>
+        <translation>rechazada</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="431" />
+        <source>needs another look</source>
+        <translation>hay que volver a mirarla</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="432" />
+        <source>not reviewed</source>
+        <translation>sin revisar</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="511" />
+        <source>review chip</source>
+        <translation>miniatura de revisión</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="522" />
+        <source>no picture</source>
+        <translation>sin imagen</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="522" />
+        <source>Choose the stations layer (and the panorama folder) to see the sign in every panorama that saw it.</source>
+        <translation>Elija la capa de estaciones (y la carpeta de panoramas) para ver la señal en cada panorama que la vio.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="548" />
+        <source>best · </source>
+        <translation>mejor · </translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="549" />
+        <source>{} at {:.1f} m; click for the panorama view</source>
+        <translation>{} a {:.1f} m; pulse para la vista del panorama</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="553" />
+        <source>{} panorama(s) not found</source>
+        <translation>{} panorama(s) no encontrado(s)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="553" />
+        <source>Not found or unreadable: {}. Set the panorama folder.</source>
+        <translation>No encontrados o ilegibles: {}. Indique la carpeta de panoramas.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="566" />
+        <source>The panorama view needs the stations layer of the drive.</source>
+        <translation>La vista del panorama necesita la capa de estaciones del recorrido.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="575" />
+        <source>No panorama of the stations layer saw this sign.</source>
+        <translation>Ningún panorama de la capa de estaciones vio esta señal.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="600" />
+        <source>Panorama view: sign {}</source>
+        <translation>Vista del panorama: señal {}</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="602" />
+        <source>{} · {:.1f} m from the sign</source>
+        <translation>{} · a {:.1f} m de la señal</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="629" />
+        <source>The layer {} cannot be edited: its verdicts cannot be written.</source>
+        <translation>La capa {} no se puede editar: no se pueden escribir sus veredictos.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="632" />
+        <source>Sign review: {} sign {}</source>
+        <translation>Revisión de señales: {} señal {}</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="637" />
+        <source>Cannot add the field {} to the layer {}.</source>
+        <translation>No se puede añadir el campo {} a la capa {}.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="658" />
+        <source>Cannot save the edits of {}: {}</source>
+        <translation>No se pueden guardar las ediciones de {}: {}</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="670" />
+        <source>Every sign has a verdict.</source>
+        <translation>Todas las señales tienen veredicto.</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="511" />
+        <source>best · {} (review chip)</source>
+        <translation>mejor · {} (miniatura de revisión)</translation>
+    </message>
+</context>
+<context>
     <name>RoadSigns</name>
     <message>
-        <location filename="../core/cloudsigns.py" line="249" />
+        <location filename="../core/cloudsigns.py" line="265" />
         <source>The stations do not overlap the cloud {path}: the track passes {gap:.1f} m from the cloud's extent ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}), more than the corridor of {corridor} m; are the cloud and the stations in the same CRS and of the same drive?</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Las estaciones no se solapan con la nube {path}: el trayecto pasa a {gap:.1f} m de la extensión de la nube ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}), más que el corredor de {corridor} m; ¿están la nube y las estaciones en el mismo SRC y son del mismo recorrido?</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="262" />
+        <location filename="../core/cloudsigns.py" line="278" />
         <source>{path} has no intensity dimension (point format {fmt}): signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene dimensión de intensidad (formato de punto {fmt}): sin imágenes no se pueden encontrar señales en ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="265" />
+        <location filename="../core/cloudsigns.py" line="281" />
         <source>{path} has no classification dimension: run roadsigns:groundfilter on it first</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene dimensión de clasificación: ejecute primero roadsigns:groundfilter sobre ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="599" />
+        <location filename="../core/cloudsigns.py" line="618" />
         <source>Found {signs} sign panels ({bright} retroreflective) and {poles} poles in {n} points ({cand} kept near the road, {windows} windows of {w} m); condition reference {ref:.3f} ({src})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se encontraron {signs} paneles de señal ({bright} retrorreflectantes) y {poles} postes en {n} puntos ({cand} conservados cerca de la vía, {windows} ventanas de {w} m); referencia de estado {ref:.3f} ({src})</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="542" />
+        <location filename="../core/cloudsigns.py" line="561" />
         <source>No point of {path} lies within {corridor} m of the stations' track ({n} points read)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} está a menos de {corridor} m del trayecto de las estaciones ({n} puntos leídos)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="545" />
+        <location filename="../core/cloudsigns.py" line="564" />
         <source>{path} has no ground points (class 2) along the track: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene puntos de suelo (clase 2) a lo largo del trayecto: ejecute primero roadsigns:groundfilter sobre ella (o clasifique el suelo con otra herramienta)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="549" />
+        <location filename="../core/cloudsigns.py" line="568" />
         <source>{path} has no intensity: all {n} points near the track have intensity 0; signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene intensidad: los {n} puntos cercanos al trayecto tienen intensidad 0; sin imágenes no se pueden encontrar señales en ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="560" />
+        <location filename="../core/cloudsigns.py" line="579" />
         <source>Intensity: range exponent {alpha:.2f} ({source}), bright threshold {thr:.3f} of full scale at 10 m ({method}; background level {bg:.3f}, bright mode {mode:.3f}; {n} non-ground points near the road)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation type="unfinished">Intensidad: exponente de distancia {alpha:.2f} ({source}), umbral de brillo {thr:.3f} del fondo de escala a 10 m (nivel de fondo {bg:.3f}, Otsu sobre la cola brillante {otsu:.3f}; {n} puntos que no son de suelo cerca de la vía)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="668" />
+        <location filename="../core/cloudsigns.py" line="687" />
         <source>{n} gantry posts</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} postes de pórtico</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="552" />
+        <location filename="../core/cloudsigns.py" line="571" />
         <source>The cloud's GPS times [{t0:.1f}, {t1:.1f}] do not meet the stations' times: ranges are taken from the nearest track position instead (is one of them in GPS week seconds and the other in adjusted standard GPS time?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Los tiempos GPS de la nube [{t0:.1f}, {t1:.1f}] no coinciden con los de las estaciones: las distancias se toman en su lugar desde la posición más cercana del trayecto (¿está uno en segundos de la semana GPS y el otro en tiempo GPS estándar ajustado?)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="571" />
+        <location filename="../core/cloudsigns.py" line="590" />
         <source>{share:.0%} of the points near the road have intensity 0: the bright threshold {thr:.3f} of full scale may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El {share:.0%} de los puntos cercanos a la vía tiene intensidad 0: el umbral de brillo {thr:.3f} del fondo de escala puede carecer de sentido</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="576" />
+        <location filename="../core/cloudsigns.py" line="595" />
         <source>{share:.0%} of the points near the road have saturated intensity: the bright threshold {thr:.3f} of full scale and the condition of the signs may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El {share:.0%} de los puntos cercanos a la vía tiene la intensidad saturada: el umbral de brillo {thr:.3f} del fondo de escala y el estado de las señales pueden carecer de sentido</translation>
@@ -1251,14 +2015,14 @@
     <message>
         <location filename="../core/crs.py" line="113" />
         <location filename="../core/crs.py" line="123" />
-        <location filename="../core/trajectory.py" line="488" />
+        <location filename="../core/trajectory.py" line="489" />
         <source>trajectory CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SRC de la trayectoria</translation>
     </message>
     <message>
         <location filename="../core/crs.py" line="124" />
-        <location filename="../core/trajectory.py" line="495" />
+        <location filename="../core/trajectory.py" line="496" />
         <source>target CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SRC de destino</translation>
@@ -1349,14 +2113,14 @@
     </message>
     <message>
         <location filename="../core/detections.py" line="90" />
-        <location filename="../core/projection.py" line="329" />
+        <location filename="../core/projection.py" line="335" />
         <source>Detection {det_id}: the field {field} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}: el campo {field} está vacío</translation>
     </message>
     <message>
         <location filename="../core/detections.py" line="98" />
-        <location filename="../core/projection.py" line="321" />
+        <location filename="../core/projection.py" line="327" />
         <source>Detection {det_id}, field {field}: expected a number, found '{value}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}, campo {field}: se esperaba un número, se encontró '{value}'</translation>
@@ -1440,7 +2204,7 @@
         <translation>El trayecto necesita al menos 2 posiciones finitas; se recibieron {n}</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="95" />
+        <location filename="../core/drivewindows.py" line="105" />
         <source>The track does not move: all its positions are at one place</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El trayecto no se desplaza: todas sus posiciones están en el mismo lugar</translation>
@@ -1525,7 +2289,7 @@
     </message>
     <message>
         <location filename="../core/ground/engine.py" line="219" />
-        <location filename="../core/pointcloud.py" line="242" />
+        <location filename="../core/pointcloud.py" line="244" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la salida debe terminar en .las o .laz</translation>
@@ -1632,43 +2396,110 @@
         <location filename="../core/ground/pdal.py" line="288" />
         <location filename="../core/ground/pdal.py" line="273" />
         <location filename="../core/ground/pdal.py" line="282" />
-        <location filename="../core/pointcloud.py" line="110" />
-        <location filename="../core/pointcloud.py" line="125" />
-        <location filename="../core/pointcloud.py" line="183" />
-        <location filename="../core/pointcloud.py" line="86" />
-        <location filename="../core/pointcloud.py" line="89" />
-        <location filename="../core/pointcloud.py" line="105" />
-        <location filename="../core/pointcloud.py" line="176" />
+        <location filename="../core/pointcloud.py" line="112" />
+        <location filename="../core/pointcloud.py" line="127" />
+        <location filename="../core/pointcloud.py" line="185" />
+        <location filename="../core/pointcloud.py" line="88" />
+        <location filename="../core/pointcloud.py" line="91" />
+        <location filename="../core/pointcloud.py" line="107" />
+        <location filename="../core/pointcloud.py" line="178" />
         <source>Cannot read {path}: the file is truncated or corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo está truncado o dañado ({detail})</translation>
     </message>
     <message>
         <location filename="../core/ground/pdal.py" line="286" />
-        <location filename="../core/pointcloud.py" line="65" />
-        <location filename="../core/pointcloud.py" line="108" />
+        <location filename="../core/pointcloud.py" line="67" />
+        <location filename="../core/pointcloud.py" line="110" />
         <source>Cannot read {path}: {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: {detail}</translation>
     </message>
     <message>
-        <location filename="../core/outputs.py" line="69" />
+        <location filename="../core/handover.py" line="299" />
+        <source>Unknown time base {base}: expected one of {bases}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Base de tiempo desconocida {base}: se esperaba una de {bases}</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="376" />
+        <source>sign layer CRS</source>
+        <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
+        <translation>SRC de la capa de señales</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="313" />
+        <source>No output folder given for the handover package</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se indicó carpeta de salida para el paquete de entrega</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="319" />
+        <source>Cannot write the handover package to {folder}: {path} is a file, not a folder</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede escribir el paquete de entrega en {folder}: {path} es un archivo, no una carpeta</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="372" />
+        <source>Unknown review state(s) {states}: expected some of {known}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Estado(s) de revisión desconocido(s) {states}: se esperaba alguno de {known}</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="375" />
+        <source>Unknown north {north}: expected grid or true</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Norte desconocido {north}: se esperaba grid o true</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="389" />
+        <source>No sign has the review state(s) {states} ({counts}): review the signs with the review panel, or choose other states</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Ninguna señal tiene el estado o estados de revisión {states} ({counts}): revise las señales con el panel de revisión o elija otros estados</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="460" />
+        <source>{n} of {total} signs handed over (review states {states}); left out: {left}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{n} de {total} señales entregadas (estados de revisión {states}); excluidas: {left}</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="163" />
+        <source>The stations layer has fewer than two stations at different places: the export needs the drive's track (chainage, side and offset of each sign)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>La capa de estaciones tiene menos de dos estaciones en lugares distintos: la exportación necesita el trayecto del recorrido (PK, lado y desplazamiento de cada señal)</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="326" />
+        <source>Cannot write the handover package to {folder}: the folder {path} is not writable ({error})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede escribir el paquete de entrega en {folder}: en la carpeta {path} no se puede escribir ({error})</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="393" />
+        <source>The station times are GPS seconds of the week: give the survey date to get first and last seen as dates and times (first_seen_s and last_seen_s are written)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Los tiempos de las estaciones son segundos GPS de la semana: indique la fecha del levantamiento para obtener la primera y la última vez que se vio como fechas y horas (se escriben first_seen_s y last_seen_s)</translation>
+    </message>
+    <message>
+        <location filename="../core/outputs.py" line="68" />
         <source>Cannot write {path}: the folder {folder} does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la carpeta {folder} no existe</translation>
     </message>
     <message>
-        <location filename="../core/outputs.py" line="81" />
-        <location filename="../core/outputs.py" line="93" />
-        <location filename="../core/outputs.py" line="148" />
-        <location filename="../core/outputs.py" line="196" />
-        <location filename="../core/pointcloud.py" line="253" />
+        <location filename="../core/outputs.py" line="80" />
+        <location filename="../core/outputs.py" line="92" />
+        <location filename="../core/outputs.py" line="147" />
+        <location filename="../core/outputs.py" line="209" />
+        <location filename="../core/outputs.py" line="178" />
+        <location filename="../core/pointcloud.py" line="255" />
         <source>Cannot write {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/outputs.py" line="189" />
+        <location filename="../core/outputs.py" line="204" />
         <source>The output {path} was not written</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La salida {path} no se escribió</translation>
@@ -1717,116 +2548,116 @@
         <translation>No se puede leer el panorama {path}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="323" />
+        <location filename="../core/pointcloud.py" line="325" />
         <source>Cannot use {item!r} as a crop geometry: expected a shapely geometry, WKB or WKT</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede usar {item!r} como geometría de recorte: se esperaba una geometría de shapely, WKB o WKT</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="67" />
+        <location filename="../core/pointcloud.py" line="69" />
         <source>Cannot read {path}: expected a LAS or LAZ file ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: se esperaba un archivo LAS o LAZ ({detail})</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="413" />
+        <location filename="../core/pointcloud.py" line="433" />
         <source>{path} has no coordinate reference system and none was given</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene sistema de referencia de coordenadas y no se indicó ninguno</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="63" />
+        <location filename="../core/pointcloud.py" line="65" />
         <source>Cannot read {path}: the file does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo no existe</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="246" />
+        <location filename="../core/pointcloud.py" line="248" />
         <source>Cannot write {path}: the folder does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la carpeta no existe</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="346" />
+        <location filename="../core/pointcloud.py" line="348" />
         <source>The crop layer has no geometry</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La capa de recorte no tiene geometría</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="357" />
+        <location filename="../core/pointcloud.py" line="359" />
         <source>A corridor needs a positive buffer, got {buffer_m} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un corredor necesita un búfer positivo; se recibió {buffer_m} m</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="367" />
+        <location filename="../core/pointcloud.py" line="369" />
         <source>A corridor needs stations or lines</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un corredor necesita estaciones o líneas</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="423" />
+        <location filename="../core/pointcloud.py" line="443" />
         <source>No point of {path} lies inside the crop area; {output} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} está dentro del área de recorte; {output} está vacío</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="503" />
+        <location filename="../core/pointcloud.py" line="523" />
         <source>{path} has no dimension {names} (point format {fmt})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene la dimensión {names} (formato de punto {fmt})</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="521" />
+        <location filename="../core/projection.py" line="527" />
         <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{ok} de {count} detecciones encontraron una superficie en la nube ({no_points} sin puntos, {no_surface} sin superficie plana)</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="350" />
-        <location filename="../core/projection.py" line="580" />
+        <location filename="../core/projection.py" line="356" />
+        <location filename="../core/projection.py" line="588" />
         <source>{source} has no ground points (class 2) where the signs are: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{source} no tiene puntos de suelo (clase 2) donde están las señales: ejecute primero roadsigns:groundfilter sobre ella (o clasifique el suelo con otra herramienta)</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="489" />
+        <location filename="../core/projection.py" line="495" />
         <source>The maximum range must exceed {min} m, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El alcance máximo debe superar {min} m; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="314" />
+        <location filename="../core/projection.py" line="320" />
         <source>The candidates lack the field(s) {fields}; expected the output of Project detections</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>A los candidatos les faltan los campos {fields}; se esperaba la salida de «Proyectar detecciones en la nube de puntos»</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="339" />
+        <location filename="../core/projection.py" line="345" />
         <source>Unknown candidate status {status!r}; expected ok, no_points or no_surface</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Estado de candidato desconocido {status!r}; se esperaba ok, no_points o no_surface</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="343" />
+        <location filename="../core/projection.py" line="349" />
         <source>A candidate with status ok has no position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un candidato con estado ok no tiene posición</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="363" />
+        <location filename="../core/projection.py" line="369" />
         <source>The point index lacks {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Al índice de puntos le falta {names}</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="494" />
+        <location filename="../core/projection.py" line="500" />
         <source>No detections to project; the candidates are empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay detecciones que proyectar; los candidatos están vacíos</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="517" />
+        <location filename="../core/projection.py" line="523" />
         <source>{path} has no point inside the detections' frusta; no candidate found</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene puntos dentro de los troncos de visión de las detecciones; no se encontró ningún candidato</translation>
@@ -2012,190 +2843,190 @@
         <translation>Archivo de {what} {path}, línea {line}, campo '{field}': se esperaba un número, se encontró '{value}': ¿una coma decimal? Escriba los números con punto decimal (1.5, no 1,5)</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="192" />
+        <location filename="../core/trajectory.py" line="193" />
         <source>is duplicated</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>está duplicado</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="192" />
+        <location filename="../core/trajectory.py" line="193" />
         <source>goes back in time</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>va hacia atrás</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="200" />
-        <location filename="../core/trajectory.py" line="204" />
+        <location filename="../core/trajectory.py" line="201" />
+        <location filename="../core/trajectory.py" line="205" />
         <source>Trajectory</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>trayectoria</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="244" />
+        <location filename="../core/trajectory.py" line="245" />
         <source>SBET</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SBET</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="261" />
-        <location filename="../core/trajectory.py" line="263" />
+        <location filename="../core/trajectory.py" line="262" />
+        <location filename="../core/trajectory.py" line="264" />
         <source>Image times</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>tiempos de imagen</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="352" />
-        <location filename="../core/trajectory.py" line="355" />
+        <location filename="../core/trajectory.py" line="353" />
+        <location filename="../core/trajectory.py" line="356" />
         <source>Poses</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>poses</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="193" />
+        <location filename="../core/trajectory.py" line="194" />
         <source>{what} file {path}, {location}: time {time} {kind} (previous {previous}); times must increase strictly</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo de {what} {path}, {location}: el tiempo {time} {kind} (anterior {previous}); los tiempos deben aumentar estrictamente</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="227" />
+        <location filename="../core/trajectory.py" line="228" />
         <source>SBET file {path}, record {record}: non-finite value (NaN or infinity)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo SBET {path}, registro {record}: valor no finito (NaN o infinito)</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="232" />
+        <location filename="../core/trajectory.py" line="233" />
         <source>SBET file {path}: latitude/longitude out of range for radians: not an SBET, or wrong byte order</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo SBET {path}: latitud/longitud fuera de rango para radianes: no es un SBET o el orden de bytes es incorrecto</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="237" />
+        <location filename="../core/trajectory.py" line="238" />
         <source>SBET file {path}, record {record}: roll, pitch, heading or wander out of range for radians, or the height beyond 100 km: not an SBET, or wrong byte order</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo SBET {path}, registro {record}: alabeo, cabeceo, rumbo o ángulo de deriva fuera de rango para radianes, o la altura más allá de 100 km: no es un SBET, o el orden de bytes es incorrecto</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="255" />
+        <location filename="../core/trajectory.py" line="256" />
         <source>Trajectory file not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró el archivo de trayectoria: {path}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="310" />
+        <location filename="../core/trajectory.py" line="311" />
         <source>Trajectory file {path} has {count} sample(s): at least 2 are needed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El archivo de trayectoria {path} tiene {count} muestra(s): se necesitan al menos 2</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="330" />
+        <location filename="../core/trajectory.py" line="331" />
         <source>No image time falls inside the trajectory's span [{start}, {end}]</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún tiempo de imagen cae dentro del intervalo de la trayectoria [{start}, {end}]</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="426" />
+        <location filename="../core/trajectory.py" line="427" />
         <source>Panorama folder not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró la carpeta de panoramas: {path}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="466" />
+        <location filename="../core/trajectory.py" line="467" />
         <source>None of the {count} panoramas listed was found in {folder}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró en {folder} ninguno de los {count} panoramas de la lista</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="503" />
+        <location filename="../core/trajectory.py" line="504" />
         <source>Panorama {image}: its position x {x}, y {y} in the target CRS lies outside the area of use of {crs} (longitude {west} to {east}, latitude {south} to {north}): choose the target CRS of the drive's region (e.g. its UTM zone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Panorama {image}: su posición x {x}, y {y} en el SRC de destino queda fuera del área de uso de {crs} (longitud {west} a {east}, latitud {south} a {north}): elija el SRC de destino de la región del recorrido (p. ej. su zona UTM)</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="156" />
+        <location filename="../core/trajectory.py" line="157" />
         <source>{layer}: station {station}: the quaternion qw, qx, qy, qz has norm {norm:.4f}, not 1; expected the output of Import trajectory</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{layer}: estación {station}: el cuaternión qw, qx, qy, qz tiene norma {norm:.4f}, no 1; se esperaba la salida de Importar trayectoria</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="217" />
+        <location filename="../core/trajectory.py" line="218" />
         <source>SBET file {path} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El archivo SBET {path} está vacío</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="219" />
+        <location filename="../core/trajectory.py" line="220" />
         <source>SBET file {path} is {size} bytes, not a multiple of {record} bytes (17 float64 per record): truncated or not an SBET</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El archivo SBET {path} tiene {size} bytes, que no es múltiplo de {record} bytes (17 float64 por registro): truncado o no es un SBET</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="224" />
+        <location filename="../core/trajectory.py" line="225" />
         <source>Cannot read SBET file {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer el archivo SBET {path}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="271" />
+        <location filename="../core/trajectory.py" line="272" />
         <source>{what} file {path}, line {line}, field 'image': empty image name</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo de {what} {path}, línea {line}, campo 'image': nombre de imagen vacío</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="274" />
+        <location filename="../core/trajectory.py" line="275" />
         <source>{what} file {path}, line {line}: image '{image}' already listed on line {first}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo de {what} {path}, línea {line}: la imagen '{image}' ya figura en la línea {first}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="317" />
+        <location filename="../core/trajectory.py" line="318" />
         <source>Image times file {path}, {location}: time {time} of image '{image}' is outside the trajectory's span [{start}, {end}] ({count} image(s) outside in all; set the option to skip them)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo de tiempos de imagen {path}, {location}: el tiempo {time} de la imagen '{image}' está fuera del intervalo de la trayectoria [{start}, {end}] ({count} imagen(es) fuera en total; active la opción para omitirlas)</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="323" />
+        <location filename="../core/trajectory.py" line="324" />
         <source>Skipped {count} image(s) whose time is outside the trajectory's span [{start}, {end}], the first: {image}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se omitieron {count} imagen(es) cuyo tiempo está fuera del intervalo de la trayectoria [{start}, {end}]; la primera: {image}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="340" />
+        <location filename="../core/trajectory.py" line="341" />
         <source>{count} image(s) fall in a trajectory gap longer than {max_gap} s; the longest gap is {gap:.3f} s around image '{image}' at time {time}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} imagen(es) caen en un hueco de la trayectoria de más de {max_gap} s; el hueco más largo es de {gap:.3f} s, en torno a la imagen '{image}' en el tiempo {time}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="406" />
+        <location filename="../core/trajectory.py" line="407" />
         <source>Skipped {count} panorama(s) that are missing or unreadable; the first: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se omitieron {count} panorámica(s) que faltan o no se pueden leer; la primera: {path}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="429" />
+        <location filename="../core/trajectory.py" line="430" />
         <source>Give either a per-image pose file, or a trajectory with image times, not both</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Indique un archivo de poses por imagen o una trayectoria con tiempos de imagen, no ambos</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="437" />
+        <location filename="../core/trajectory.py" line="438" />
         <source>A trajectory file and an image times file are needed (or a per-image pose file instead)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se necesitan un archivo de trayectoria y un archivo de tiempos de imagen (o, en su lugar, un archivo de poses por imagen)</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="459" />
+        <location filename="../core/trajectory.py" line="460" />
         <source>No target CRS given: using {crs}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se indicó SRC de destino: se usa {crs}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="442" />
+        <location filename="../core/trajectory.py" line="443" />
         <source>SBET trajectory: WGS 84 geographic with ellipsoidal heights, {count} records</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Trayectoria SBET: WGS 84 geográfico con alturas elipsoidales, {count} registros</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="448" />
+        <location filename="../core/trajectory.py" line="449" />
         <source>Trajectory: {count} samples over {span:.1f} s</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Trayectoria: {count} muestras en {span:.1f} s</translation>
@@ -2225,91 +3056,91 @@
         <translation>Inventario de señales viales necesita los paquetes de Python {packages}, que no se encuentran en el Python de QGIS. Instálelos con: {command}</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="491" />
-        <source>The whole road-sign inventory: panorama stations from the trajectory, sign detection in the panoramas, ground filter and crop of the point cloud around the drive, projection of each detection into the cloud, and refinement and merging into the sign layer, with a review chip of every sign and the review report.</source>
+        <location filename="../models/sign_inventory.model3" line="693" />
+        <source>The whole road-sign inventory: panorama stations from the trajectory, sign detection in the panoramas, ground filter and crop of the point cloud around the drive, projection of each detection into the cloud, and refinement and merging into the sign layer, with a review chip of every sign and the review report; then the sign panels and poles found in the cloud alone, fused with the image signs into the final inventory (Signs (fused): which sources found each sign, its condition, the signs the cameras missed).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
-        <translation>El inventario completo de señales viales: estaciones de panorama a partir de la trayectoria, detección de señales en los panoramas, filtro de suelo y recorte de la nube de puntos alrededor del recorrido, proyección de cada detección en la nube, y refinamiento y fusión en la capa de señales, con una miniatura de revisión de cada señal y el informe de revisión.</translation>
+        <translation type="unfinished" />
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="492" />
+        <location filename="../models/sign_inventory.model3" line="620" />
         <source>Boresight pitch (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Boresight: cabeceo (°).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="493" />
+        <location filename="../models/sign_inventory.model3" line="626" />
         <source>Boresight roll (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Boresight: alabeo (°).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="494" />
+        <location filename="../models/sign_inventory.model3" line="632" />
         <source>Boresight yaw (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Boresight: guiñada (°).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="495" />
+        <location filename="../models/sign_inventory.model3" line="239" />
         <source>Detections scoring below this are dropped.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Se descartan las detecciones con una puntuación inferior a este valor.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="496" />
+        <location filename="../models/sign_inventory.model3" line="325" />
         <source>Folder of the equirectangular panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Carpeta de los panoramas equirrectangulares.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="497" />
+        <location filename="../models/sign_inventory.model3" line="644" />
         <source>image,time CSV of the panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>CSV image,time de los panoramas.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="498" />
+        <location filename="../models/sign_inventory.model3" line="650" />
         <source>Lever arm x, forward (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Brazo de palanca x, adelante (m).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="499" />
+        <location filename="../models/sign_inventory.model3" line="656" />
         <source>Lever arm y, right (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Brazo de palanca y, derecha (m).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="500" />
+        <location filename="../models/sign_inventory.model3" line="662" />
         <source>Lever arm z, down (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Brazo de palanca z, abajo (m).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="501" />
+        <location filename="../models/sign_inventory.model3" line="245" />
         <source>Your own ONNX detector, or empty for the bundled one.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Su propio detector ONNX, o vacío para usar el incluido.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="502" />
+        <location filename="../models/sign_inventory.model3" line="69" />
         <source>The drive's LiDAR cloud.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>La nube LiDAR del recorrido.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="503" />
+        <location filename="../models/sign_inventory.model3" line="668" />
         <source>Projected CRS of the outputs: the point cloud's CRS.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>SRC proyectado de las salidas: el SRC de la nube de puntos.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="504" />
+        <location filename="../models/sign_inventory.model3" line="674" />
         <source>time,x,y,z,roll,pitch,heading CSV, or an Applanix SBET.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>CSV time,x,y,z,roll,pitch,heading, o un SBET de Applanix.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="505" />
+        <location filename="../models/sign_inventory.model3" line="680" />
         <source>CRS of the trajectory positions (ignored for an SBET).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>SRC de las posiciones de la trayectoria (se ignora para un SBET).</translation>
@@ -2356,17 +3187,17 @@
 <context>
     <name>RoadSignsProvider</name>
     <message>
-        <location filename="../provider/provider.py" line="29" />
+        <location filename="../provider/provider.py" line="31" />
         <source>Road sign inventory</source>
         <translation>Inventario de señales viales</translation>
     </message>
     <message>
-        <location filename="../provider/provider.py" line="32" />
+        <location filename="../provider/provider.py" line="34" />
         <source>Road sign inventory from mobile mapping (panoramas, trajectory, LiDAR)</source>
         <translation>Inventario de señales viales a partir de cartografía móvil (panoramas, trayectoria, LiDAR)</translation>
     </message>
     <message>
-        <location filename="../provider/provider.py" line="45" />
+        <location filename="../provider/provider.py" line="47" />
         <source>PDAL executable for the ground filter (empty: search PATH and QGIS)</source>
         <translation>Ejecutable de PDAL para el filtro de suelo (vacío: buscar en el PATH y en QGIS)</translation>
     </message>
@@ -2374,12 +3205,12 @@
 <context>
     <name>ShippedModel</name>
     <message>
-        <location filename="../provider/provider.py" line="92" />
+        <location filename="../provider/provider.py" line="94" />
         <source>Sign inventory (whole chain)</source>
         <translation>Inventario de señales (cadena completa)</translation>
     </message>
     <message>
-        <location filename="../provider/provider.py" line="105" />
+        <location filename="../provider/provider.py" line="107" />
         <source>Road sign inventory</source>
         <translation>Inventario de señales viales</translation>
     </message>

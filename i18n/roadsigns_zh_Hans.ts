@@ -4,7 +4,7 @@
 <context>
     <name>@default</name>
     <message>
-        <location filename="../plugin.py" line="32" />
+        <location filename="../plugin.py" line="58" />
         <source>Road Sign Inventory</source>
         <translation>道路标志清查</translation>
     </message>
@@ -97,6 +97,11 @@
         <location filename="../algorithms/layers.py" line="167" />
         <source>The point cloud {cloud} has no coordinate reference system: give it one with Ground filter (parameter Cloud CRS); a CRS is never guessed</source>
         <translation>点云 {cloud} 没有坐标参考系：请用地面滤波（参数“点云坐标参考系”）为其指定一个；坐标参考系从不猜测</translation>
+    </message>
+    <message>
+        <location filename="../plugin.py" line="51" />
+        <source>Sign review panel</source>
+        <translation>标志审核面板</translation>
     </message>
 </context>
 <context>
@@ -426,6 +431,274 @@
     </message>
 </context>
 <context>
+    <name>ExportHandover</name>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="49" />
+        <source>Export handover package</source>
+        <translation>导出交付包</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="52" />
+        <source>The reviewed sign layer as a GeoPackage, a CSV and an OpenStreetMap file for handover.</source>
+        <translation>将审核后的标志图层导出为 GeoPackage、CSV 和 OpenStreetMap 文件以便交付。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="55" />
+        <source>Writes the signs with the review states you choose (default: accepted and corrected) into a folder: &lt;i&gt;handover.gpkg&lt;/i&gt; and &lt;i&gt;handover.csv&lt;/i&gt; with one row per sign in a documented schema (docs/formats.md, section 4.9), and &lt;i&gt;osm_signs.osm&lt;/i&gt; (or .geojson) for OpenStreetMap.&lt;br&gt;&lt;br&gt;Each sign gets its code and class (after review), its position (x, y, z and WGS 84 longitude and latitude), mounting height, panel size, the azimuth its face looks towards (0-359, from true or grid north as chosen; the column azimuth_north says which), the side of the road and the lateral offset relative to the drive, the chainage along the drive (the stations' track), the nearest road segment's id and the fraction along it when a road network is given, condition and pole when the layer has them, survey date, first and last seen, source images and review status.&lt;br&gt;&lt;br&gt;The OpenStreetMap nodes carry &lt;i&gt;traffic_sign&lt;/i&gt; (the code, prefixed with the country) and &lt;i&gt;direction&lt;/i&gt; (true north) and stand beside the road: a sign over the road is moved to its side of the drive.</source>
+        <translation>将所选审核状态（默认：已接受和已更正）的标志写入一个文件夹：&lt;i&gt;handover.gpkg&lt;/i&gt; 和 &lt;i&gt;handover.csv&lt;/i&gt;，每个标志一行，采用有文档说明的模式（docs/formats.md 第 4.9 节），以及供 OpenStreetMap 使用的 &lt;i&gt;osm_signs.osm&lt;/i&gt;（或 .geojson）。&lt;br&gt;&lt;br&gt;每个标志包含其代码和类别（审核后）、位置（x、y、z 及 WGS 84 经纬度）、安装高度、标志牌尺寸、标志牌正面朝向的方位角（0-359，按所选从真北或坐标北起算；azimuth_north 列注明是哪一种）、相对于行驶采集方向的道路侧别和横向偏移、沿行驶采集的里程（全景站点的轨迹线）、给定路网时最近路段的 id 及沿该路段的比例、图层中有相应字段时的状况和立杆、采集日期、首次和最后一次看到的时间、来源图像以及审核状态。&lt;br&gt;&lt;br&gt;OpenStreetMap 节点带有 &lt;i&gt;traffic_sign&lt;/i&gt;（代码，前加国家前缀）和 &lt;i&gt;direction&lt;/i&gt;（真北），并位于道路旁边：位于道路上方的标志会被移到其所在的行驶采集一侧。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="145" />
+        <source>Reviewed sign layer</source>
+        <translation>已审核的标志图层</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="70" />
+        <source>The sign layer after review (fields review_status, reviewed_code... as the review panel writes them), in a projected CRS.</source>
+        <translation>审核后的标志图层（包含审核面板写入的 review_status、reviewed_code 等字段），采用投影坐标参考系。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="152" />
+        <source>Panorama stations</source>
+        <translation>全景站点</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="74" />
+        <source>The output of Import trajectory for the same drive: its track gives side, offset and chainage, its times first and last seen.</source>
+        <translation>同一次行驶采集的“导入轨迹”输出：其轨迹线给出侧别、偏移和里程，其时间给出首次和最后一次看到的时间。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="78" />
+        <source>Road network (optional)</source>
+        <translation>路网（可选）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="78" />
+        <source>Road segments (lines): each sign gets the nearest one's id and the fraction along it. Lines in another CRS are reprojected.</source>
+        <translation>路段（线）：每个标志获得最近路段的 id 及沿该路段的比例。其他坐标参考系中的线会被重投影。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="82" />
+        <source>Road segment id field</source>
+        <translation>路段 id 字段</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="82" />
+        <source>The road network's field holding the segment ids; empty: the feature id.</source>
+        <translation>路网中存放路段 id 的字段；留空：使用要素 id。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="85" />
+        <source>Review states to hand over</source>
+        <translation>要交付的审核状态</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="85" />
+        <source>accepted</source>
+        <translation>已接受</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="85" />
+        <source>corrected (accepted with a new class or code)</source>
+        <translation>已更正（以新的类别或代码接受）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="85" />
+        <source>rejected</source>
+        <translation>已拒绝</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="85" />
+        <source>needs another look</source>
+        <translation>需要再看一次</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="85" />
+        <source>not reviewed</source>
+        <translation>未审核</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="85" />
+        <source>Only signs with these review states are written (several may be chosen).</source>
+        <translation>只写入具有这些审核状态的标志（可多选）。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="91" />
+        <source>Azimuth from</source>
+        <translation>方位角起算</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="91" />
+        <source>true north</source>
+        <translation>真北</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="91" />
+        <source>grid north</source>
+        <translation>坐标北</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="91" />
+        <source>The facing azimuth is written clockwise from true north (grid azimuth plus meridian convergence) or from grid north of the layer's CRS; the file says which.</source>
+        <translation>朝向方位角按顺时针从真北（坐标方位角加子午线收敛角）或从图层坐标参考系的坐标北起算写出；文件中注明是哪一种。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="95" />
+        <source>Survey date (YYYY-MM-DD)</source>
+        <translation>采集日期（YYYY-MM-DD）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="95" />
+        <source>The date of the drive: with station times in GPS seconds of the week, first and last seen become dates and times (UTC).</source>
+        <translation>行驶采集的日期：当全景站点时间为 GPS 周内秒时，首次和最后一次看到的时间将换算为日期和时间（UTC）。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="99" />
+        <source>Station times are</source>
+        <translation>全景站点时间为</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="99" />
+        <source>GPS seconds of the week</source>
+        <translation>GPS 周内秒</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="99" />
+        <source>GPS time (seconds since 1980-01-06)</source>
+        <translation>GPS 时间（自 1980-01-06 起的秒数）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="99" />
+        <source>UNIX time (seconds since 1970-01-01 UTC)</source>
+        <translation>UNIX 时间（自 1970-01-01 UTC 起的秒数）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="99" />
+        <source>The time base of the stations' time field (that of the trajectory).</source>
+        <translation>全景站点 time 字段的时间基准（即轨迹的时间基准）。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="122" />
+        <source>OpenStreetMap file</source>
+        <translation>OpenStreetMap 文件</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="105" />
+        <source>OSM XML (.osm, opens in JOSM)</source>
+        <translation>OSM XML（.osm，可在 JOSM 中打开）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="105" />
+        <source>GeoJSON (.geojson)</source>
+        <translation>GeoJSON（.geojson）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="105" />
+        <source>The format of the OpenStreetMap nodes file.</source>
+        <translation>OpenStreetMap 节点文件的格式。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="109" />
+        <source>Country prefix for traffic_sign</source>
+        <translation>traffic_sign 的国家前缀</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="109" />
+        <source>ISO country code written before codes without one: DE gives traffic_sign=DE:206.</source>
+        <translation>写在没有前缀的代码之前的 ISO 国家代码：DE 得到 traffic_sign=DE:206。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="112" />
+        <source>Least distance of OSM nodes from the road (m)</source>
+        <translation>OSM 节点离道路的最小距离（米）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="112" />
+        <source>OpenStreetMap nodes closer than this to the drive (or to the nearest road line) are moved away from it on the sign's side, so that no sign node sits on the road.</source>
+        <translation>离行驶采集轨迹（或最近道路线）比此值更近的 OpenStreetMap 节点会向标志所在一侧移开，使标志节点不会落在道路上。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="117" />
+        <source>Handover folder</source>
+        <translation>交付文件夹</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="117" />
+        <source>The folder the package is written to (created when missing; files of an earlier package are replaced).</source>
+        <translation>写入交付包的文件夹（不存在时创建；先前交付包的文件会被替换）。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="120" />
+        <source>Handover GeoPackage</source>
+        <translation>交付 GeoPackage</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="121" />
+        <source>Handover CSV</source>
+        <translation>交付 CSV</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="135" />
+        <source>Choose at least one review state to hand over.</source>
+        <translation>请至少选择一种要交付的审核状态。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="141" />
+        <source>The sign layer has no CRS: set its projected CRS (layer properties) and run again.</source>
+        <translation>标志图层没有坐标参考系：请在图层属性中设置其投影坐标参考系后再运行。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="143" />
+        <source>The sign layer</source>
+        <translation>标志图层</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="149" />
+        <source>The stations are in {}, the sign layer in {}: use the stations of the drive the signs come from</source>
+        <translation>全景站点位于 {}，标志图层位于 {}：请使用标志所来自的行驶采集的全景站点</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="175" />
+        <source>Handover package: {} signs in {}</source>
+        <translation>交付包：{} 个标志，位于 {}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="185" />
+        <source>Survey date '{}' is not a date: write it as YYYY-MM-DD, e.g. 2024-03-14</source>
+        <translation>采集日期“{}”不是日期：请写成 YYYY-MM-DD，例如 2024-03-14</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="201" />
+        <source>Sign {} has neither a point geometry nor x and y fields</source>
+        <translation>标志 {} 既没有点几何，也没有 x 和 y 字段</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="215" />
+        <source>The road network has no field {}; fields found: {}</source>
+        <translation>路网没有字段 {}；找到的字段：{}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="220" />
+        <source>The road network is in {}: reprojected to {}, the sign layer's CRS.</source>
+        <translation>路网位于 {}：已重投影到标志图层的坐标参考系 {}。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="223" />
+        <source>No road segment id field chosen: the road ids are the feature ids.</source>
+        <translation>未选择路段 id 字段：道路 id 使用要素 id。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="239" />
+        <source>The road network has no lines: road_id and road_fraction stay empty.</source>
+        <translation>路网中没有线：road_id 和 road_fraction 保持为空。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/exporthandover.py" line="258" />
+        <source>Cannot write {}: {}</source>
+        <translation>无法写入 {}：{}</translation>
+    </message>
+</context>
+<context>
     <name>FindSignsInCloud</name>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="24" />
@@ -520,6 +793,154 @@
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="119" />
         <source>{} sign panels and {} poles found in the cloud.</source>
+        <translation type="unfinished" />
+    </message>
+</context>
+<context>
+    <name>FuseSigns</name>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="29" />
+        <source>Fuse image and cloud signs</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="32" />
+        <source>Merges the signs found in the images with the panels found in the cloud alone: one sign layer that says which sources found each sign.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="36" />
+        <source>Matches each sign of the image chain (Refine and merge signs) to at most one panel found in the cloud alone (Find signs in the point cloud) by optimal assignment: centres within the match radius and facings within 90°.&lt;br&gt;&lt;br&gt;A matched sign keeps its class and gains the panel's retroreflectivity index and condition (&lt;i&gt;source&lt;/i&gt; = image+lidar). A panel no image sign explains becomes a sign of its own (&lt;i&gt;source&lt;/i&gt; = lidar): with the stations and the panorama folder, the panoramas in front of its face are cut into views centred on it and the detector reads its class there; if none recognises it, its class is &lt;i&gt;unknown&lt;/i&gt; and it is flagged for review. An image sign whose place in the cloud holds no retro-reflective panel loses confidence (its score × 0.6) and is flagged for review (&lt;i&gt;source&lt;/i&gt; = image).&lt;br&gt;&lt;br&gt;Output: the sign layer with the fields of Refine and merge signs plus source, review, image_sign_id, cloud_sign_id, retro_index and condition, styled like the sign layer.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="95" />
+        <source>Signs (from the images)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="51" />
+        <source>The output of Refine and merge signs.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="96" />
+        <source>Sign panels found in the cloud</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="54" />
+        <source>The output of Find signs in the point cloud.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="57" />
+        <source>Panorama stations (to classify panels found in the cloud alone)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="57" />
+        <source>The output of Import trajectory. With the panorama folder, the class of each panel no image sign explains is read from the panoramas in front of it.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="62" />
+        <source>Panorama folder (optional)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="62" />
+        <source>The folder of the panoramas (empty: the paths in the stations layer).</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="66" />
+        <source>ONNX model (empty: the bundled model)</source>
+        <translation>ONNX 模型（留空：使用内置模型）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="66" />
+        <source>The detector that reads the class of panels found in the cloud alone.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="66" />
+        <source>ONNX models (*.onnx);;All files (*.*)</source>
+        <translation>ONNX 模型 (*.onnx);;所有文件 (*.*)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="70" />
+        <source>Minimum confidence</source>
+        <translation>最低置信度</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="70" />
+        <source>A class read from the panoramas is kept when the detector scores it at least this (0-1).</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="74" />
+        <source>Match radius (m)</source>
+        <translation>匹配半径 (m)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="74" />
+        <source>An image sign and a cloud panel farther apart than this (3D, metres) are never the same sign.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="78" />
+        <source>Signs (fused)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="78" />
+        <source>PointZ sign layer: the sign fields, and source (image, lidar, image+lidar), review (1: to be checked), image_sign_id, cloud_sign_id, retro_index, condition and the review chip of the image sign (chip, relative to the layer's folder).</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="83" />
+        <source>Signs found by both</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="84" />
+        <source>Signs found in the images only</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="85" />
+        <source>Signs found in the cloud only</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="100" />
+        <source>The signs are in {}, the panels found in the cloud in {}: both must be in the cloud's CRS</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="111" />
+        <source>No stations given: the {} signs found in the cloud alone keep the class unknown.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="127" />
+        <source>{} signs: {} found by both, {} in the images only ({} of them where the cloud was searched: score lowered, to review), {} in the cloud only.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="140" />
+        <source>Panorama stations</source>
+        <translation>全景站点</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="146" />
+        <source>ONNX model not found: {}</source>
+        <translation>未找到 ONNX 模型：{}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="157" />
+        <source>{} of the {} signs found in the cloud alone were recognised in the panoramas; the others keep the class unknown and are to review.</source>
         <translation type="unfinished" />
     </message>
 </context>
@@ -977,7 +1398,7 @@
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="83" />
+        <location filename="../algorithms/projectdetections.py" line="84" />
         <source>{} detections: {} with a surface in the cloud, {} without</source>
         <translation>{} 个检测：{} 个在点云中找到表面，{} 个未找到</translation>
     </message>
@@ -1105,32 +1526,32 @@
         <translation>候选</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="140" />
+        <location filename="../algorithms/refinesigns.py" line="141" />
         <source>The review report needs the panorama folder: not written.</source>
         <translation>审核报告需要全景图文件夹：未写入。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="146" />
+        <location filename="../algorithms/refinesigns.py" line="147" />
         <source>{} sign points written to {}</source>
         <translation>已将 {} 个标志点写入 {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="171" />
+        <location filename="../algorithms/refinesigns.py" line="172" />
         <source>{} signs from {} candidates ({})</source>
         <translation>{} 个标志，来自 {} 个候选（{}）</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="181" />
+        <location filename="../algorithms/refinesigns.py" line="182" />
         <source>Review chips need a sign layer written to a file: skipped.</source>
         <translation>审核切片需要写入文件的标志图层：已跳过。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="194" />
+        <location filename="../algorithms/refinesigns.py" line="195" />
         <source>Road signs for review</source>
         <translation>待审核的道路标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="196" />
+        <location filename="../algorithms/refinesigns.py" line="197" />
         <source>{} review chips in {}</source>
         <translation>{} 张审核切片，位于 {}</translation>
     </message>
@@ -1145,81 +1566,424 @@
         <translation>文件中没有记录坐标参考系时点云的坐标参考系（必须与候选的坐标参考系相同）；它会覆盖文件中的坐标参考系。坐标参考系从不猜测。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="119" />
+        <location filename="../algorithms/refinesigns.py" line="120" />
         <source>Panorama folder not found: {}</source>
         <translation>未找到全景图文件夹：{}</translation>
     </message>
 </context>
 <context>
+    <name>ReviewPanel</name>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="718" />
+        <source>Sign review</source>
+        <translation>标志审核</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="144" />
+        <source>The sign layer to review (the output of Refine and merge signs, or any point layer with the sign fields).</source>
+        <translation>要审核的标志图层（“精化并合并标志”的输出，或任何具有标志字段的点图层）。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="146" />
+        <source>Signs</source>
+        <translation>标志</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="150" />
+        <source>The panorama stations of the drive: with them the panel cuts the sign from every panorama that saw it.</source>
+        <translation>行驶采集的全景站点：借助它们，面板从每张看到该标志的全景图中裁出标志。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="152" />
+        <source>Stations</source>
+        <translation>全景站点</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="155" />
+        <source>The panorama folder; empty: the path field of the stations layer.</source>
+        <translation>全景图文件夹；留空：使用全景站点图层的 path 字段。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="156" />
+        <source>Panoramas</source>
+        <translation>全景图</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="709" />
+        <source>Sign</source>
+        <translation>标志</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="179" />
+        <source>Class</source>
+        <translation>类别</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="179" />
+        <source>Code</source>
+        <translation>代码</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="179" />
+        <source>Confidence</source>
+        <translation>置信度</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="179" />
+        <source>Condition</source>
+        <translation>状况</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="179" />
+        <source>Sources</source>
+        <translation>来源</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="179" />
+        <source>Panel</source>
+        <translation>标志牌</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="179" />
+        <source>Review</source>
+        <translation>审核</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="193" />
+        <source>The sign's class: pick or type another one, then Change.</source>
+        <translation>标志的类别：选择或输入另一个类别，然后点击“更改”。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="195" />
+        <source>code</source>
+        <translation>代码</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="196" />
+        <source>The sign's code (e.g. 206): type it, then Enter or Change.</source>
+        <translation>标志的代码（例如 206）：输入后按回车或点击“更改”。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="203" />
+        <source>Accept (A)</source>
+        <translation>接受 (A)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="203" />
+        <source>A real sign, class and code right: next sign.</source>
+        <translation>真实的标志，类别和代码正确：下一个标志。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="205" />
+        <source>Reject (R)</source>
+        <translation>拒绝 (R)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="205" />
+        <source>Not a sign, or a duplicate: next sign.</source>
+        <translation>不是标志或是重复项：下一个标志。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="207" />
+        <source>Change (C)</source>
+        <translation>更改 (C)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="207" />
+        <source>A real sign with the class and code above: next sign.</source>
+        <translation>真实的标志，采用上面的类别和代码：下一个标志。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="209" />
+        <source>Look again (L)</source>
+        <translation>再看一次 (L)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="209" />
+        <source>Needs another look: next sign.</source>
+        <translation>需要再看一次：下一个标志。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="211" />
+        <source>Previous (P)</source>
+        <translation>上一个 (P)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="211" />
+        <source>The sign before this one.</source>
+        <translation>当前标志之前的标志。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="213" />
+        <source>Next unreviewed (N)</source>
+        <translation>下一个未审核 (N)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="213" />
+        <source>The next sign without a verdict.</source>
+        <translation>下一个尚无结论的标志。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="215" />
+        <source>Panorama view (V)</source>
+        <translation>全景视图 (V)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="215" />
+        <source>The panorama around the sign, from its best panorama.</source>
+        <translation>从最佳全景图看到的标志周围的全景。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="217" />
+        <source>Undo (U)</source>
+        <translation>撤销 (U)</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="217" />
+        <source>Undo the last verdict given here.</source>
+        <translation>撤销在此给出的最后一个结论。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="219" />
+        <source>Save edits</source>
+        <translation>保存编辑</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="219" />
+        <source>Write the verdicts to the layer's file.</source>
+        <translation>将结论写入图层文件。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="302" />
+        <source>Choose a sign layer to review.</source>
+        <translation>请选择要审核的标志图层。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="268" />
+        <source>The layer {layer} lacks the field(s) {missing}. The review needs a sign layer with the fields {required} (the output of Refine and merge signs).</source>
+        <translation>图层 {layer} 缺少字段 {missing}。审核需要具有字段 {required} 的标志图层（“精化并合并标志”的输出）。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="286" />
+        <source>(point geometry)</source>
+        <translation>（点几何）</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="380" />
+        <source>The layer {} has no signs.</source>
+        <translation>图层 {} 中没有标志。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="391" />
+        <source>&lt;b&gt;Sign {sign}&lt;/b&gt; ({position} of {total}) &amp;#8212; {reviewed} of {total} reviewed</source>
+        <translation>&lt;b&gt;标志 {sign}&lt;/b&gt;（第 {position} 个，共 {total} 个）&amp;#8212; 已审核 {reviewed} / {total}</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="394" />
+        <source>Sign {}</source>
+        <translation>标志 {}</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="399" />
+        <source>(none)</source>
+        <translation>（无）</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="406" />
+        <source>(no condition field)</source>
+        <translation>（无状况字段）</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="411" />
+        <source>{source}; seen in {n} panorama(s): {images}</source>
+        <translation>{source}；在 {n} 张全景图中看到：{images}</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="414" />
+        <source>{width} × {height} m, {above} m above the ground, facing {azimuth}°</source>
+        <translation>{width} × {height} 米，离地 {above} 米，朝向 {azimuth}°</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="430" />
+        <source>accepted</source>
+        <translation>已接受</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="430" />
+        <source>corrected</source>
+        <translation>已更正</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="431" />
+        <source>rejected</source>
+        <translation>已拒绝</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="431" />
+        <source>needs another look</source>
+        <translation>需要再看一次</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="432" />
+        <source>not reviewed</source>
+        <translation>未审核</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="511" />
+        <source>review chip</source>
+        <translation>审核切片</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="522" />
+        <source>no picture</source>
+        <translation>无图像</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="522" />
+        <source>Choose the stations layer (and the panorama folder) to see the sign in every panorama that saw it.</source>
+        <translation>选择全景站点图层（以及全景图文件夹），即可在每张看到该标志的全景图中查看它。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="548" />
+        <source>best · </source>
+        <translation>最佳 · </translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="549" />
+        <source>{} at {:.1f} m; click for the panorama view</source>
+        <translation>{}，距离 {:.1f} 米；点击查看全景视图</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="553" />
+        <source>{} panorama(s) not found</source>
+        <translation>{} 张全景图未找到</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="553" />
+        <source>Not found or unreadable: {}. Set the panorama folder.</source>
+        <translation>未找到或无法读取：{}。请设置全景图文件夹。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="566" />
+        <source>The panorama view needs the stations layer of the drive.</source>
+        <translation>全景视图需要行驶采集的全景站点图层。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="575" />
+        <source>No panorama of the stations layer saw this sign.</source>
+        <translation>全景站点图层中没有全景图看到此标志。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="600" />
+        <source>Panorama view: sign {}</source>
+        <translation>全景视图：标志 {}</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="602" />
+        <source>{} · {:.1f} m from the sign</source>
+        <translation>{} · 距标志 {:.1f} 米</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="629" />
+        <source>The layer {} cannot be edited: its verdicts cannot be written.</source>
+        <translation>图层 {} 无法编辑：无法写入其结论。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="632" />
+        <source>Sign review: {} sign {}</source>
+        <translation>标志审核：{} 标志 {}</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="637" />
+        <source>Cannot add the field {} to the layer {}.</source>
+        <translation>无法添加字段 {}（图层 {}）。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="658" />
+        <source>Cannot save the edits of {}: {}</source>
+        <translation>无法保存 {} 的编辑：{}</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="670" />
+        <source>Every sign has a verdict.</source>
+        <translation>所有标志都已有结论。</translation>
+    </message>
+    <message>
+        <location filename="../gui/reviewpanel.py" line="511" />
+        <source>best · {} (review chip)</source>
+        <translation>最佳 · {}（审核切片）</translation>
+    </message>
+</context>
+<context>
     <name>RoadSigns</name>
     <message>
-        <location filename="../core/cloudsigns.py" line="249" />
+        <location filename="../core/cloudsigns.py" line="265" />
         <source>The stations do not overlap the cloud {path}: the track passes {gap:.1f} m from the cloud's extent ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}), more than the corridor of {corridor} m; are the cloud and the stations in the same CRS and of the same drive?</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>全景站点与点云 {path} 不重叠：轨迹线距点云范围 ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}) {gap:.1f} m，超出 {corridor} m 的走廊；点云和全景站点是否在同一坐标参考系中、是否来自同一次行驶采集？</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="262" />
+        <location filename="../core/cloudsigns.py" line="278" />
         <source>{path} has no intensity dimension (point format {fmt}): signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有强度维度（点格式 {fmt}）：没有图像时无法在其中找到标志</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="265" />
+        <location filename="../core/cloudsigns.py" line="281" />
         <source>{path} has no classification dimension: run roadsigns:groundfilter on it first</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有分类维度：请先对其运行 roadsigns:groundfilter</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="599" />
+        <location filename="../core/cloudsigns.py" line="618" />
         <source>Found {signs} sign panels ({bright} retroreflective) and {poles} poles in {n} points ({cand} kept near the road, {windows} windows of {w} m); condition reference {ref:.3f} ({src})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>在 {n} 个点中找到 {signs} 个标志牌（其中 {bright} 个具有逆反射性）和 {poles} 根杆（道路附近保留 {cand} 个点，{windows} 个 {w} m 的窗口）；状态参考值 {ref:.3f}（{src}）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="542" />
+        <location filename="../core/cloudsigns.py" line="561" />
         <source>No point of {path} lies within {corridor} m of the stations' track ({n} points read)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中没有点位于全景站点轨迹线 {corridor} m 范围内（已读取 {n} 个点）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="545" />
+        <location filename="../core/cloudsigns.py" line="564" />
         <source>{path} has no ground points (class 2) along the track: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 沿轨迹线没有地面点（类别 2）：请先对其运行 roadsigns:groundfilter（或用其他工具对地面进行分类）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="549" />
+        <location filename="../core/cloudsigns.py" line="568" />
         <source>{path} has no intensity: all {n} points near the track have intensity 0; signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有强度：轨迹线附近的全部 {n} 个点强度均为 0；没有图像时无法在其中找到标志</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="560" />
+        <location filename="../core/cloudsigns.py" line="579" />
         <source>Intensity: range exponent {alpha:.2f} ({source}), bright threshold {thr:.3f} of full scale at 10 m ({method}; background level {bg:.3f}, bright mode {mode:.3f}; {n} non-ground points near the road)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation type="unfinished">强度：距离指数 {alpha:.2f}（{source}），亮度阈值为 10 m 处满量程的 {thr:.3f}（背景水平 {bg:.3f}，亮尾部的 Otsu 阈值 {otsu:.3f}；道路附近 {n} 个非地面点）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="668" />
+        <location filename="../core/cloudsigns.py" line="687" />
         <source>{n} gantry posts</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} 根门架立柱</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="552" />
+        <location filename="../core/cloudsigns.py" line="571" />
         <source>The cloud's GPS times [{t0:.1f}, {t1:.1f}] do not meet the stations' times: ranges are taken from the nearest track position instead (is one of them in GPS week seconds and the other in adjusted standard GPS time?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点云的 GPS 时间 [{t0:.1f}, {t1:.1f}] 与全景站点的时间不重合：改为从最近的轨迹线位置计算距离（是否一个使用 GPS 周秒、另一个使用调整后的标准 GPS 时间？）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="571" />
+        <location filename="../core/cloudsigns.py" line="590" />
         <source>{share:.0%} of the points near the road have intensity 0: the bright threshold {thr:.3f} of full scale may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>道路附近 {share:.0%} 的点强度为 0：满量程的亮度阈值 {thr:.3f} 可能没有意义</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="576" />
+        <location filename="../core/cloudsigns.py" line="595" />
         <source>{share:.0%} of the points near the road have saturated intensity: the bright threshold {thr:.3f} of full scale and the condition of the signs may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>道路附近 {share:.0%} 的点强度饱和：满量程的亮度阈值 {thr:.3f} 以及标志的状态可能没有意义</translation>
@@ -1251,14 +2015,14 @@
     <message>
         <location filename="../core/crs.py" line="113" />
         <location filename="../core/crs.py" line="123" />
-        <location filename="../core/trajectory.py" line="488" />
+        <location filename="../core/trajectory.py" line="489" />
         <source>trajectory CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>轨迹坐标参考系</translation>
     </message>
     <message>
         <location filename="../core/crs.py" line="124" />
-        <location filename="../core/trajectory.py" line="495" />
+        <location filename="../core/trajectory.py" line="496" />
         <source>target CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>目标坐标参考系</translation>
@@ -1349,14 +2113,14 @@
     </message>
     <message>
         <location filename="../core/detections.py" line="90" />
-        <location filename="../core/projection.py" line="329" />
+        <location filename="../core/projection.py" line="335" />
         <source>Detection {det_id}: the field {field} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}：字段 {field} 为空</translation>
     </message>
     <message>
         <location filename="../core/detections.py" line="98" />
-        <location filename="../core/projection.py" line="321" />
+        <location filename="../core/projection.py" line="327" />
         <source>Detection {det_id}, field {field}: expected a number, found '{value}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}，字段 {field}：应为数字，实际为 '{value}'</translation>
@@ -1440,7 +2204,7 @@
         <translation>轨迹线至少需要 2 个有限位置，实际为 {n} 个</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="95" />
+        <location filename="../core/drivewindows.py" line="105" />
         <source>The track does not move: all its positions are at one place</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>轨迹线没有移动：其所有位置都在同一处</translation>
@@ -1525,7 +2289,7 @@
     </message>
     <message>
         <location filename="../core/ground/engine.py" line="219" />
-        <location filename="../core/pointcloud.py" line="242" />
+        <location filename="../core/pointcloud.py" line="244" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：输出文件必须以 .las 或 .laz 结尾</translation>
@@ -1632,43 +2396,110 @@
         <location filename="../core/ground/pdal.py" line="288" />
         <location filename="../core/ground/pdal.py" line="273" />
         <location filename="../core/ground/pdal.py" line="282" />
-        <location filename="../core/pointcloud.py" line="110" />
-        <location filename="../core/pointcloud.py" line="125" />
-        <location filename="../core/pointcloud.py" line="183" />
-        <location filename="../core/pointcloud.py" line="86" />
-        <location filename="../core/pointcloud.py" line="89" />
-        <location filename="../core/pointcloud.py" line="105" />
-        <location filename="../core/pointcloud.py" line="176" />
+        <location filename="../core/pointcloud.py" line="112" />
+        <location filename="../core/pointcloud.py" line="127" />
+        <location filename="../core/pointcloud.py" line="185" />
+        <location filename="../core/pointcloud.py" line="88" />
+        <location filename="../core/pointcloud.py" line="91" />
+        <location filename="../core/pointcloud.py" line="107" />
+        <location filename="../core/pointcloud.py" line="178" />
         <source>Cannot read {path}: the file is truncated or corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件被截断或已损坏（{detail}）</translation>
     </message>
     <message>
         <location filename="../core/ground/pdal.py" line="286" />
-        <location filename="../core/pointcloud.py" line="65" />
-        <location filename="../core/pointcloud.py" line="108" />
+        <location filename="../core/pointcloud.py" line="67" />
+        <location filename="../core/pointcloud.py" line="110" />
         <source>Cannot read {path}: {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：{detail}</translation>
     </message>
     <message>
-        <location filename="../core/outputs.py" line="69" />
+        <location filename="../core/handover.py" line="299" />
+        <source>Unknown time base {base}: expected one of {bases}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>未知的时间基准 {base}：应为 {bases} 之一</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="376" />
+        <source>sign layer CRS</source>
+        <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
+        <translation>标志图层坐标参考系</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="313" />
+        <source>No output folder given for the handover package</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>未指定交付包的输出文件夹</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="319" />
+        <source>Cannot write the handover package to {folder}: {path} is a file, not a folder</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法将交付包写入 {folder}：{path} 是文件而不是文件夹</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="372" />
+        <source>Unknown review state(s) {states}: expected some of {known}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>未知的审核状态 {states}：应为 {known} 中的若干项</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="375" />
+        <source>Unknown north {north}: expected grid or true</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>未知的北方向 {north}：应为 grid 或 true</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="389" />
+        <source>No sign has the review state(s) {states} ({counts}): review the signs with the review panel, or choose other states</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>没有标志具有审核状态 {states}（{counts}）：请用审核面板审核标志，或选择其他状态</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="460" />
+        <source>{n} of {total} signs handed over (review states {states}); left out: {left}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>已交付 {n} / {total} 个标志（审核状态 {states}）；未包含：{left}</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="163" />
+        <source>The stations layer has fewer than two stations at different places: the export needs the drive's track (chainage, side and offset of each sign)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>全景站点图层中位于不同位置的全景站点少于两个：导出需要行驶采集的轨迹线（用于每个标志的里程、侧别和偏移）</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="326" />
+        <source>Cannot write the handover package to {folder}: the folder {path} is not writable ({error})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法将交付包写入 {folder}：文件夹 {path} 不可写（{error}）</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="393" />
+        <source>The station times are GPS seconds of the week: give the survey date to get first and last seen as dates and times (first_seen_s and last_seen_s are written)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>全景站点时间为 GPS 周内秒：请提供采集日期，以将首次和最后一次看到的时间换算为日期和时间（仍会写出 first_seen_s 和 last_seen_s）</translation>
+    </message>
+    <message>
+        <location filename="../core/outputs.py" line="68" />
         <source>Cannot write {path}: the folder {folder} does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：文件夹 {folder} 不存在</translation>
     </message>
     <message>
-        <location filename="../core/outputs.py" line="81" />
-        <location filename="../core/outputs.py" line="93" />
-        <location filename="../core/outputs.py" line="148" />
-        <location filename="../core/outputs.py" line="196" />
-        <location filename="../core/pointcloud.py" line="253" />
+        <location filename="../core/outputs.py" line="80" />
+        <location filename="../core/outputs.py" line="92" />
+        <location filename="../core/outputs.py" line="147" />
+        <location filename="../core/outputs.py" line="209" />
+        <location filename="../core/outputs.py" line="178" />
+        <location filename="../core/pointcloud.py" line="255" />
         <source>Cannot write {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：{error}</translation>
     </message>
     <message>
-        <location filename="../core/outputs.py" line="189" />
+        <location filename="../core/outputs.py" line="204" />
         <source>The output {path} was not written</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>输出 {path} 未被写入</translation>
@@ -1717,116 +2548,116 @@
         <translation>无法读取全景图 {path}：{error}</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="323" />
+        <location filename="../core/pointcloud.py" line="325" />
         <source>Cannot use {item!r} as a crop geometry: expected a shapely geometry, WKB or WKT</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法将 {item!r} 用作裁剪几何：应为 shapely 几何、WKB 或 WKT</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="67" />
+        <location filename="../core/pointcloud.py" line="69" />
         <source>Cannot read {path}: expected a LAS or LAZ file ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：应为 LAS 或 LAZ 文件（{detail}）</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="413" />
+        <location filename="../core/pointcloud.py" line="433" />
         <source>{path} has no coordinate reference system and none was given</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有坐标参考系，也未提供坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="63" />
+        <location filename="../core/pointcloud.py" line="65" />
         <source>Cannot read {path}: the file does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件不存在</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="246" />
+        <location filename="../core/pointcloud.py" line="248" />
         <source>Cannot write {path}: the folder does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：文件夹不存在</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="346" />
+        <location filename="../core/pointcloud.py" line="348" />
         <source>The crop layer has no geometry</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>裁剪图层没有几何</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="357" />
+        <location filename="../core/pointcloud.py" line="359" />
         <source>A corridor needs a positive buffer, got {buffer_m} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>走廊需要正的缓冲距离，实际为 {buffer_m} m</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="367" />
+        <location filename="../core/pointcloud.py" line="369" />
         <source>A corridor needs stations or lines</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>走廊需要站点或线</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="423" />
+        <location filename="../core/pointcloud.py" line="443" />
         <source>No point of {path} lies inside the crop area; {output} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中没有点位于裁剪区域内；{output} 为空</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="503" />
+        <location filename="../core/pointcloud.py" line="523" />
         <source>{path} has no dimension {names} (point format {fmt})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有维度 {names}（点格式 {fmt}）</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="521" />
+        <location filename="../core/projection.py" line="527" />
         <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 个检测结果中有 {ok} 个在点云中找到了表面（{no_points} 个没有点，{no_surface} 个没有平面）</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="350" />
-        <location filename="../core/projection.py" line="580" />
+        <location filename="../core/projection.py" line="356" />
+        <location filename="../core/projection.py" line="588" />
         <source>{source} has no ground points (class 2) where the signs are: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{source} 在标志所在区域没有地面点（类别 2）：请先对其运行 roadsigns:groundfilter（或用其他工具进行地面分类）</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="489" />
+        <location filename="../core/projection.py" line="495" />
         <source>The maximum range must exceed {min} m, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>最大距离必须大于 {min} m，实际为 {value} m</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="314" />
+        <location filename="../core/projection.py" line="320" />
         <source>The candidates lack the field(s) {fields}; expected the output of Project detections</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>候选缺少字段 {fields}；应为“将检测投影到点云”的输出</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="339" />
+        <location filename="../core/projection.py" line="345" />
         <source>Unknown candidate status {status!r}; expected ok, no_points or no_surface</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未知的候选状态 {status!r}；应为 ok、no_points 或 no_surface</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="343" />
+        <location filename="../core/projection.py" line="349" />
         <source>A candidate with status ok has no position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>状态为 ok 的候选没有位置</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="363" />
+        <location filename="../core/projection.py" line="369" />
         <source>The point index lacks {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点索引缺少 {names}</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="494" />
+        <location filename="../core/projection.py" line="500" />
         <source>No detections to project; the candidates are empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有要投影的检测结果；候选为空</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="517" />
+        <location filename="../core/projection.py" line="523" />
         <source>{path} has no point inside the detections' frusta; no candidate found</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 在检测结果的视锥内没有点；未找到候选</translation>
@@ -2012,190 +2843,190 @@
         <translation>{what}文件 {path}，第 {line} 行，字段 '{field}'：应为数字，实际为 '{value}'：是否使用了小数逗号？请用小数点书写数字（应写 1.5，而非 1,5）</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="192" />
+        <location filename="../core/trajectory.py" line="193" />
         <source>is duplicated</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>重复</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="192" />
+        <location filename="../core/trajectory.py" line="193" />
         <source>goes back in time</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>出现倒退</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="200" />
-        <location filename="../core/trajectory.py" line="204" />
+        <location filename="../core/trajectory.py" line="201" />
+        <location filename="../core/trajectory.py" line="205" />
         <source>Trajectory</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>轨迹</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="244" />
+        <location filename="../core/trajectory.py" line="245" />
         <source>SBET</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SBET</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="261" />
-        <location filename="../core/trajectory.py" line="263" />
+        <location filename="../core/trajectory.py" line="262" />
+        <location filename="../core/trajectory.py" line="264" />
         <source>Image times</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>图像时间</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="352" />
-        <location filename="../core/trajectory.py" line="355" />
+        <location filename="../core/trajectory.py" line="353" />
+        <location filename="../core/trajectory.py" line="356" />
         <source>Poses</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>位姿</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="193" />
+        <location filename="../core/trajectory.py" line="194" />
         <source>{what} file {path}, {location}: time {time} {kind} (previous {previous}); times must increase strictly</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what}文件 {path}，{location}：时间 {time} {kind}（前一个为 {previous}）；时间必须严格递增</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="227" />
+        <location filename="../core/trajectory.py" line="228" />
         <source>SBET file {path}, record {record}: non-finite value (NaN or infinity)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>SBET 文件 {path}，第 {record} 条记录：存在非有限值（NaN 或无穷大）</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="232" />
+        <location filename="../core/trajectory.py" line="233" />
         <source>SBET file {path}: latitude/longitude out of range for radians: not an SBET, or wrong byte order</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>SBET 文件 {path}：纬度/经度超出弧度的取值范围：不是 SBET 文件，或字节序错误</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="237" />
+        <location filename="../core/trajectory.py" line="238" />
         <source>SBET file {path}, record {record}: roll, pitch, heading or wander out of range for radians, or the height beyond 100 km: not an SBET, or wrong byte order</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>SBET 文件 {path}，第 {record} 条记录：横滚角、俯仰角、航向角或游移角超出弧度范围，或高度超过 100 km：不是 SBET 文件，或字节序错误</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="255" />
+        <location filename="../core/trajectory.py" line="256" />
         <source>Trajectory file not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到轨迹文件：{path}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="310" />
+        <location filename="../core/trajectory.py" line="311" />
         <source>Trajectory file {path} has {count} sample(s): at least 2 are needed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>轨迹文件 {path} 有 {count} 个采样点：至少需要 2 个</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="330" />
+        <location filename="../core/trajectory.py" line="331" />
         <source>No image time falls inside the trajectory's span [{start}, {end}]</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有任何图像时间落在轨迹的时间范围 [{start}, {end}] 内</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="426" />
+        <location filename="../core/trajectory.py" line="427" />
         <source>Panorama folder not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到全景图文件夹：{path}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="466" />
+        <location filename="../core/trajectory.py" line="467" />
         <source>None of the {count} panoramas listed was found in {folder}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>在 {folder} 中未找到所列 {count} 张全景图中的任何一张</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="503" />
+        <location filename="../core/trajectory.py" line="504" />
         <source>Panorama {image}: its position x {x}, y {y} in the target CRS lies outside the area of use of {crs} (longitude {west} to {east}, latitude {south} to {north}): choose the target CRS of the drive's region (e.g. its UTM zone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>全景图 {image}：其在目标坐标参考系中的位置 x {x}，y {y} 位于 {crs} 的适用范围（经度 {west} 至 {east}，纬度 {south} 至 {north}）之外：请选择行驶采集所在区域的目标坐标参考系（例如其 UTM 分带）</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="156" />
+        <location filename="../core/trajectory.py" line="157" />
         <source>{layer}: station {station}: the quaternion qw, qx, qy, qz has norm {norm:.4f}, not 1; expected the output of Import trajectory</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{layer}：全景站点 {station}：四元数 qw、qx、qy、qz 的模为 {norm:.4f}，不是 1；应为“导入轨迹”的输出</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="217" />
+        <location filename="../core/trajectory.py" line="218" />
         <source>SBET file {path} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>SBET 文件 {path} 为空</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="219" />
+        <location filename="../core/trajectory.py" line="220" />
         <source>SBET file {path} is {size} bytes, not a multiple of {record} bytes (17 float64 per record): truncated or not an SBET</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>SBET 文件 {path} 大小为 {size} 字节，不是 {record} 字节（每条记录 17 个 float64）的整数倍：文件被截断或不是 SBET</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="224" />
+        <location filename="../core/trajectory.py" line="225" />
         <source>Cannot read SBET file {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 SBET 文件 {path}：{error}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="271" />
+        <location filename="../core/trajectory.py" line="272" />
         <source>{what} file {path}, line {line}, field 'image': empty image name</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what}文件 {path}，第 {line} 行，字段 'image'：图像名称为空</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="274" />
+        <location filename="../core/trajectory.py" line="275" />
         <source>{what} file {path}, line {line}: image '{image}' already listed on line {first}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what}文件 {path}，第 {line} 行：图像 '{image}' 已在第 {first} 行列出</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="317" />
+        <location filename="../core/trajectory.py" line="318" />
         <source>Image times file {path}, {location}: time {time} of image '{image}' is outside the trajectory's span [{start}, {end}] ({count} image(s) outside in all; set the option to skip them)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>图像时间文件 {path}，{location}：图像 '{image}' 的时间 {time} 超出轨迹的时间范围 [{start}, {end}]（共有 {count} 张图像超出；可设置选项跳过它们）</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="323" />
+        <location filename="../core/trajectory.py" line="324" />
         <source>Skipped {count} image(s) whose time is outside the trajectory's span [{start}, {end}], the first: {image}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已跳过 {count} 张时间超出轨迹范围 [{start}, {end}] 的图像，第一张：{image}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="340" />
+        <location filename="../core/trajectory.py" line="341" />
         <source>{count} image(s) fall in a trajectory gap longer than {max_gap} s; the longest gap is {gap:.3f} s around image '{image}' at time {time}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 张图像落在长于 {max_gap} 秒的轨迹间隙中；最长的间隙为 {gap:.3f} 秒，位于图像 '{image}'（时间 {time}）附近</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="406" />
+        <location filename="../core/trajectory.py" line="407" />
         <source>Skipped {count} panorama(s) that are missing or unreadable; the first: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已跳过 {count} 张缺失或无法读取的全景图；第一张：{path}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="429" />
+        <location filename="../core/trajectory.py" line="430" />
         <source>Give either a per-image pose file, or a trajectory with image times, not both</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>请提供逐图像位姿文件，或带图像时间的轨迹，但不能同时提供两者</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="437" />
+        <location filename="../core/trajectory.py" line="438" />
         <source>A trajectory file and an image times file are needed (or a per-image pose file instead)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>需要轨迹文件和图像时间文件（或改为提供逐图像位姿文件）</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="459" />
+        <location filename="../core/trajectory.py" line="460" />
         <source>No target CRS given: using {crs}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未指定目标坐标参考系：使用 {crs}</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="442" />
+        <location filename="../core/trajectory.py" line="443" />
         <source>SBET trajectory: WGS 84 geographic with ellipsoidal heights, {count} records</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>SBET 轨迹：WGS 84 地理坐标，椭球高，{count} 条记录</translation>
     </message>
     <message>
-        <location filename="../core/trajectory.py" line="448" />
+        <location filename="../core/trajectory.py" line="449" />
         <source>Trajectory: {count} samples over {span:.1f} s</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>轨迹：{count} 个采样，历时 {span:.1f} 秒</translation>
@@ -2225,91 +3056,91 @@
         <translation>道路标志清查需要 Python 包 {packages}，但在 QGIS 的 Python 中未找到。安装命令：{command}</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="491" />
-        <source>The whole road-sign inventory: panorama stations from the trajectory, sign detection in the panoramas, ground filter and crop of the point cloud around the drive, projection of each detection into the cloud, and refinement and merging into the sign layer, with a review chip of every sign and the review report.</source>
+        <location filename="../models/sign_inventory.model3" line="693" />
+        <source>The whole road-sign inventory: panorama stations from the trajectory, sign detection in the panoramas, ground filter and crop of the point cloud around the drive, projection of each detection into the cloud, and refinement and merging into the sign layer, with a review chip of every sign and the review report; then the sign panels and poles found in the cloud alone, fused with the image signs into the final inventory (Signs (fused): which sources found each sign, its condition, the signs the cameras missed).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
-        <translation>完整的道路标志清查流程：由轨迹生成全景站点，在全景图中检测标志，对行驶路线周围的点云进行地面滤波和裁剪，将每个检测投影到点云中，再精化与合并为标志图层，并生成每个标志的审核切片和审核报告。</translation>
+        <translation type="unfinished" />
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="492" />
+        <location filename="../models/sign_inventory.model3" line="620" />
         <source>Boresight pitch (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>安置角：俯仰（°）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="493" />
+        <location filename="../models/sign_inventory.model3" line="626" />
         <source>Boresight roll (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>安置角：横滚（°）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="494" />
+        <location filename="../models/sign_inventory.model3" line="632" />
         <source>Boresight yaw (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>安置角：偏航（°）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="495" />
+        <location filename="../models/sign_inventory.model3" line="239" />
         <source>Detections scoring below this are dropped.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>得分低于此值的检测将被丢弃。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="496" />
+        <location filename="../models/sign_inventory.model3" line="325" />
         <source>Folder of the equirectangular panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>等距柱状全景图所在的文件夹。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="497" />
+        <location filename="../models/sign_inventory.model3" line="644" />
         <source>image,time CSV of the panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>全景图的 image,time CSV。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="498" />
+        <location filename="../models/sign_inventory.model3" line="650" />
         <source>Lever arm x, forward (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>杆臂 x，向前（m）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="499" />
+        <location filename="../models/sign_inventory.model3" line="656" />
         <source>Lever arm y, right (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>杆臂 y，向右（m）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="500" />
+        <location filename="../models/sign_inventory.model3" line="662" />
         <source>Lever arm z, down (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>杆臂 z，向下（m）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="501" />
+        <location filename="../models/sign_inventory.model3" line="245" />
         <source>Your own ONNX detector, or empty for the bundled one.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>您自己的 ONNX 检测器；留空则使用内置检测器。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="502" />
+        <location filename="../models/sign_inventory.model3" line="69" />
         <source>The drive's LiDAR cloud.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>本次行驶采集的激光雷达点云。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="503" />
+        <location filename="../models/sign_inventory.model3" line="668" />
         <source>Projected CRS of the outputs: the point cloud's CRS.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>输出的投影坐标参考系：即点云的坐标参考系。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="504" />
+        <location filename="../models/sign_inventory.model3" line="674" />
         <source>time,x,y,z,roll,pitch,heading CSV, or an Applanix SBET.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>time,x,y,z,roll,pitch,heading CSV，或 Applanix SBET。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="505" />
+        <location filename="../models/sign_inventory.model3" line="680" />
         <source>CRS of the trajectory positions (ignored for an SBET).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>轨迹位置的坐标参考系（对 SBET 忽略）。</translation>
@@ -2356,17 +3187,17 @@
 <context>
     <name>RoadSignsProvider</name>
     <message>
-        <location filename="../provider/provider.py" line="29" />
+        <location filename="../provider/provider.py" line="31" />
         <source>Road sign inventory</source>
         <translation>道路标志清查</translation>
     </message>
     <message>
-        <location filename="../provider/provider.py" line="32" />
+        <location filename="../provider/provider.py" line="34" />
         <source>Road sign inventory from mobile mapping (panoramas, trajectory, LiDAR)</source>
         <translation>基于移动测量的道路标志清查（全景图、轨迹、激光雷达）</translation>
     </message>
     <message>
-        <location filename="../provider/provider.py" line="45" />
+        <location filename="../provider/provider.py" line="47" />
         <source>PDAL executable for the ground filter (empty: search PATH and QGIS)</source>
         <translation>地面滤波使用的 PDAL 可执行文件（留空：在 PATH 和 QGIS 中查找）</translation>
     </message>
@@ -2374,12 +3205,12 @@
 <context>
     <name>ShippedModel</name>
     <message>
-        <location filename="../provider/provider.py" line="92" />
+        <location filename="../provider/provider.py" line="94" />
         <source>Sign inventory (whole chain)</source>
         <translation>标志清查（完整流程）</translation>
     </message>
     <message>
-        <location filename="../provider/provider.py" line="105" />
+        <location filename="../provider/provider.py" line="107" />
         <source>Road sign inventory</source>
         <translation>道路标志清查</translation>
     </message>

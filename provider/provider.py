@@ -10,6 +10,7 @@ from ..algorithms.detectsigns import DetectSigns
 from ..algorithms.evaluate import Evaluate
 from ..algorithms.exporthandover import ExportHandover
 from ..algorithms.findsignsincloud import FindSignsInCloud
+from ..algorithms.fusesigns import FuseSigns
 from ..algorithms.groundfilter import PDAL_SETTING, GroundFilter
 from ..algorithms.i18n import Translatable, tr_core
 from ..algorithms.importtrajectory import ImportTrajectory
@@ -19,7 +20,7 @@ from ..algorithms.refinesigns import RefineSigns
 
 #: The algorithms, in the order of the chain.
 ALGORITHMS = (ImportTrajectory, DetectSigns, GroundFilter, ProjectDetections, RefineSigns, FindSignsInCloud,
-              Evaluate, ExportHandover)
+              FuseSigns, Evaluate, ExportHandover)
 
 
 class RoadSignsProvider(Translatable, QgsProcessingProvider):

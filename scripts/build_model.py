@@ -1,5 +1,6 @@
 """Build the shipped Processing model ``models/sign_inventory.model3``: the whole chain,
-stations -> detections -> ground filter -> candidates -> signs (with review chips), with
+stations -> detections -> ground filter -> candidates -> signs (with review chips) -> signs
+and poles found in the cloud alone -> the fused inventory, with
 sensible defaults. Run with QGIS's Python (the plugin's provider must resolve its ids):
 
     QT_QPA_PLATFORM=offscreen /usr/bin/python3 scripts/build_model.py
@@ -20,6 +21,7 @@ from qgis.core import (  # noqa: E402
     QgsProcessingModelChildParameterSource,
     QgsProcessingModelOutput,
     QgsProcessingModelParameter,
+    QgsProcessingOutputLayerDefinition,
     QgsProcessingParameterCrs,
     QgsProcessingParameterFile,
     QgsProcessingParameterNumber,
@@ -45,10 +47,13 @@ def child(model, child_id, algorithm, sources, x, y, outputs=()):
     for name, source in sources.items():
         c.addParameterSources(name, [source])
     model_outputs = {}
-    for name, label in outputs:
+    for name, label, *temporary in outputs:
         output = QgsProcessingModelOutput(label)
         output.setChildId(child_id)
         output.setChildOutputName(name)
+        if temporary:  # optional: a temporary layer unless the user names a file
+            output.setMandatory(False)
+            output.setDefaultValue(QgsProcessingOutputLayerDefinition("TEMPORARY_OUTPUT"))
         output.setPosition(QPointF(x + 200, y + 40))
         model_outputs[label] = output
     c.setModelOutputs(model_outputs)
@@ -75,7 +80,10 @@ def build():
         "The whole road-sign inventory: panorama stations from the trajectory, sign detection "
         "in the panoramas, ground filter and crop of the point cloud around the drive, "
         "projection of each detection into the cloud, and refinement and merging into the "
-        "sign layer, with a review chip of every sign and the review report."),
+        "sign layer, with a review chip of every sign and the review report; then the sign "
+        "panels and poles found in the cloud alone, fused with the image signs into the final "
+        "inventory (Signs (fused): which sources found each sign, its condition, the signs "
+        "the cameras missed)."),
         "ALG_CREATOR": "Road Sign Inventory"})
     file_ = Qgis.ProcessingFileParameterBehavior.File
     y = 60
@@ -127,10 +135,17 @@ def build():
     candidates = child(model, "candidates", "roadsigns:projectdetections", dict(
         DETECTIONS=output_of(detections), POINT_CLOUD=output_of(ground), MAX_RANGE=static(30.0)),
         450, 500, [("OUTPUT", "Sign candidates")])
-    child(model, "signs", "roadsigns:refinesigns", dict(
+    signs = child(model, "signs", "roadsigns:refinesigns", dict(
         CANDIDATES=output_of(candidates), POINT_CLOUD=output_of(ground), MERGE_RADIUS=static(1.0),
         IMAGES=param("IMAGES")), 450, 640,
         [("OUTPUT", "Signs"), ("OUTLINES", "Panel outlines"), ("REVIEW_REPORT", "Review report")])
+    cloud = child(model, "cloudsigns", "roadsigns:findsignsincloud", dict(
+        POINT_CLOUD=output_of(ground), STATIONS=output_of(stations)), 750, 500,
+        [("POLES", "Poles", True)])  # its sign panels are an intermediate result: temporary
+    child(model, "fused", "roadsigns:fusesigns", dict(
+        SIGNS=output_of(signs), CLOUD_SIGNS=output_of(cloud), STATIONS=output_of(stations),
+        IMAGES=param("IMAGES"), MODEL=param("MODEL"), CONFIDENCE=param("CONFIDENCE")), 750, 640,
+        [("OUTPUT", "Signs (fused)")])
     model.updateDestinationParameters()  # the children's model outputs become the model's
     return model
 

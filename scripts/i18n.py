@@ -37,11 +37,11 @@ I18N_DIR = os.path.join(REPO_ROOT, "i18n")
 LANGUAGES = OrderedDict([("zh_Hans", "zh_CN"), ("es", "es")])
 CORE_CONTEXT = "RoadSigns"
 #: what pylupdate5 reads: the shipped Python code but core (scripts/package.py ships it)
-PLUGIN_SOURCES = ("__init__.py", "plugin.py", "dependencies.py", "provider", "algorithms")
+PLUGIN_SOURCES = ("__init__.py", "plugin.py", "dependencies.py", "provider", "gui", "algorithms")
 #: where the core's texts are
 CORE_SOURCES = ("core", "dependencies.py")
 #: the code that shows text to users (audit)
-ADAPTERS = ("__init__.py", "plugin.py", "provider", "algorithms")
+ADAPTERS = ("__init__.py", "plugin.py", "provider", "gui", "algorithms")
 #: core message fields whose values are words, translated too (algorithms/base.py localise)
 TRANSLATED_FIELDS = ("what", "role", "kind")
 TEMPLATE = "template"

@@ -12,7 +12,7 @@ import zipfile
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 #: what the plugin needs at run time, relative to the checkout
 RUNTIME = ("metadata.txt", "__init__.py", "plugin.py", "dependencies.py", "requirements.txt",
-           "README.md", "docs", "provider", "algorithms", "core", "models", "i18n", "icons")
+           "README.md", "docs", "provider", "gui", "algorithms", "core", "models", "i18n", "icons")
 #: never shipped, even inside the folders above
 EXCLUDED_SUFFIXES = (".pyc", ".ts", ".pt", ".ckpt")
 EXCLUDED_NAMES = ("__pycache__",)

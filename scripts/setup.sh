@@ -15,8 +15,9 @@ log() { printf '[setup] %s\n' "$*"; }
 # libgeos-dev: shapely is built against the system GEOS (the one QGIS links): a shapely wheel
 # bundles another GEOS whose C++ symbols clash with QGIS's inside qgis_process and crash it.
 # qttools5-dev-tools (lrelease) and pyqt5-dev-tools (pylupdate5): translations, make i18n.
+# xvfb and xauth (xvfb-run): the review panel's tests run the QGIS desktop on a virtual display.
 apt_pkgs=(qgis python3-qgis qgis-providers python3-venv python3-pip python3-dev python3-scipy python3-pyproj
-          python3-numpy libgeos-dev qttools5-dev-tools pyqt5-dev-tools)
+          python3-numpy libgeos-dev qttools5-dev-tools pyqt5-dev-tools xvfb xauth)
 need_apt=0
 if ! command -v qgis_process >/dev/null 2>&1; then need_apt=1; fi
 for p in "${apt_pkgs[@]}"; do
@@ -72,12 +73,14 @@ log "python deps ok: $("$VENV/bin/python" -c 'import numpy, scipy, pyproj, shape
 # ships them; --no-deps keeps the venv's numpy (pinned to Debian's).
 pdal_dir="$(cd "$here/.." && pwd)/shared/tools/pdal-2.9.2"
 if [ -d "$pdal_dir" ]; then
-  pdal_whl="$(ls "$pdal_dir"/python/pdal-*.whl 2>/dev/null | head -n1)"
-  pdal_want="$(basename "$pdal_whl" | cut -d- -f2)"
+  pdal_whl="$(ls "$pdal_dir"/python/pdal-*.whl 2>/dev/null | head -n1 || true)"
+  pdal_want="$(basename "${pdal_whl:-none-none}" | cut -d- -f2)"
   pdal_have="$("$VENV/bin/python" -c 'import importlib.metadata as m; print(m.version("pdal"))' 2>/dev/null || true)"
   if [ -n "$pdal_whl" ] && [ "$pdal_have" != "$pdal_want" ]; then
     log "installing PDAL's Python bindings $pdal_want (tests only) from $pdal_whl"
     "$VENV/bin/python" -m pip install -q --disable-pip-version-check --no-deps --force-reinstall "$pdal_whl"
   fi
-  log "PDAL for the tests: $("$pdal_dir/bin/pdal" --version 2>/dev/null | grep -m1 -o 'pdal [0-9.]*' || echo 'pdal: does not run'), bindings $("$VENV/bin/python" -c 'import pdal; print(pdal.__version__, "on PDAL", pdal.info.version)' 2>/dev/null || echo 'do not import')"
+  pdal_app="$("$pdal_dir/bin/pdal" --version 2>/dev/null || true)"
+  pdal_py="$("$VENV/bin/python" -c 'import pdal; print(pdal.__version__, "on PDAL", pdal.info.version)' 2>/dev/null || true)"
+  log "PDAL for the tests: $(echo "$pdal_app" | grep -o 'pdal [0-9][0-9.]*' | head -n1 || true), bindings ${pdal_py:-that do not import}"
 fi

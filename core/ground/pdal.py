@@ -335,6 +335,7 @@ def run_pdal_engine(input_path: str, output_path: str, method: str, params: Para
     is left then."""
     input_path = os.path.abspath(os.fspath(input_path))
     output_path = os.path.abspath(os.fspath(output_path))
+    check_complete(input_path, header)
     extra_dims = pdal_extra_dims(header)
 
     def pipeline_to(path: str) -> str:

@@ -7,9 +7,10 @@ Calibration images are fed exactly as ``core.detector.Detector`` feeds the model
 (letterboxed 640 x 640, RGB 0..1): perspective views cut with ``ViewSet.default`` from the
 panoramas of the *training* scenes (``bench/out/train/scenes``, seeds from 100 up; the
 bench's seeds are never used) and 640-px tiles of GTSDB training images 0-499 (500-599
-stay held out). Only the convolutions are quantised (weights per channel, int8;
-activations uint8); the two 1 x 1 output convolutions (heatmap, box regression) and the
-decoder after them (sigmoid, peaks, top-k) stay float, so scores keep their resolution.
+stay held out). The backbone and pyramid are quantised (convolutions with per-channel int8
+weights, additions, resizes, ReLUs; activations uint8); the two 1 x 1 output
+convolutions (heatmap, box regression) and the decoder after them (sigmoid, peaks, top-k,
+box arithmetic) stay float, so scores and coordinates keep their resolution.
 Weights use 7 bits (``reduce_range``): on
 CPUs without VNNI (AVX2 only, as the development machine) onnxruntime's u8 x s8 kernels
 add pairs of products in int16 and saturate with full 8-bit weights (scores off by up to
@@ -53,7 +54,7 @@ def calibration_images(n: int, scene_root: str = DEFAULT_SCENES, seed: int = 0, 
         per_pano = 4
         for path in rng.choice(panos, -(-(n - n_gtsdb) // per_pano), replace=False):
             pano = panorama.read_panorama(str(path))
-            cut = views.cut_all(pano)
+            cut = list(views.cut_all(pano))
             for j in rng.choice(len(cut), per_pano, replace=False):
                 out.append(cut[int(j)])
     return out[:n]
@@ -86,8 +87,21 @@ def output_conv_nodes(model) -> list:
             if n.op_type == "Conv" and not inner.intersection(consumers.get(n.output[0], []))]
 
 
+def head_and_decoder_nodes(model) -> list:
+    """The output convolutions and every node downstream of them (sigmoid, peaks, top-k,
+    box arithmetic): kept float so scores and coordinates keep their resolution."""
+    heads = set(output_conv_nodes(model))
+    tainted, names = set(), []
+    for n in model.graph.node:  # ONNX graphs are topologically sorted
+        if n.name in heads or tainted.intersection(n.input):
+            tainted.update(n.output)
+            names.append(n.name)
+    return names
+
+
 def quantize(model_path: str, out_path: str, images, fmt: str = "qdq", per_channel: bool = True,
-             reduce_range: bool = True, method: str = "minmax", keep_head_float: bool = True) -> str:
+             reduce_range: bool = True, method: str = "minmax", keep_head_float: bool = True,
+             op_types=None) -> str:
     import onnx
     from onnxruntime.quantization import CalibrationMethod, QuantFormat, QuantType, quantize_static
     from onnxruntime.quantization.shape_inference import quant_pre_process
@@ -104,11 +118,12 @@ def quantize(model_path: str, out_path: str, images, fmt: str = "qdq", per_chann
         # node names survive pre-processing; re-read them there
         pre_model = onnx.load(pre)
         if keep_head_float:
-            exclude = output_conv_nodes(pre_model)
+            exclude = head_and_decoder_nodes(pre_model)
         quantize_static(
             pre, out_path, _Reader(input_name, images, size_px),
             quant_format=QuantFormat.QDQ if fmt == "qdq" else QuantFormat.QOperator,
-            op_types_to_quantize=["Conv"], per_channel=per_channel, reduce_range=reduce_range,
+            op_types_to_quantize=list(op_types) if op_types else None, per_channel=per_channel,
+            reduce_range=reduce_range,
             activation_type=QuantType.QUInt8, weight_type=QuantType.QInt8, nodes_to_exclude=exclude,
             calibrate_method={"minmax": CalibrationMethod.MinMax, "percentile": CalibrationMethod.Percentile,
                               "entropy": CalibrationMethod.Entropy}[method],
@@ -117,7 +132,10 @@ def quantize(model_path: str, out_path: str, images, fmt: str = "qdq", per_chann
     del q.metadata_props[:]
     meta["quantization"] = (f"int8 static ({fmt}, {'per-channel' if per_channel else 'per-tensor'} "
                             f"{'7-bit' if reduce_range else '8-bit'} weights, "
-                            f"{method} calibration on {len(images)} images; float head: {', '.join(exclude)})")
+                            f"{method} calibration on {len(images)} images; "
+                            f"operators: {', '.join(op_types) if op_types else 'all'}; "
+                            f"float head and decoder: {len(exclude)} nodes from "
+                            f"{', '.join(output_conv_nodes(onnx.load(model_path)))})")
     for key, value in meta.items():
         entry = q.metadata_props.add()
         entry.key, entry.value = key, value
@@ -138,10 +156,13 @@ def main(argv=None):
                     help="8-bit weights; the default 7-bit weights avoid the int16 overflow of u8 x s8 "
                          "products on CPUs without VNNI (AVX2), which costs several %% of score there")
     ap.add_argument("--quantize-head", action="store_true", help="also quantise the two output convolutions")
+    ap.add_argument("--ops", default="all", help="operator types to quantise, comma-separated, or 'all' "
+                    "(onnxruntime's default set: Conv, Add, Resize, MaxPool, ...)")
     ap.add_argument("--scenes", default=DEFAULT_SCENES, help="training scenes for panorama views")
     a = ap.parse_args(argv)
     images = calibration_images(a.calibration, a.scenes)
-    quantize(a.model, a.out, images, a.format, not a.per_tensor, not a.full_range, a.method, not a.quantize_head)
+    quantize(a.model, a.out, images, a.format, not a.per_tensor, not a.full_range, a.method, not a.quantize_head,
+             None if a.ops == "all" else tuple(a.ops.split(",")))
     print(f"wrote {a.out} ({os.path.getsize(a.out) / 1e6:.2f} MB) from {len(images)} calibration images")
     return 0
 

@@ -443,3 +443,16 @@ def test_scene_panels_seen_from_behind_face_the_right_way(tiny):
     assert checked >= 6
     assert any(not s.face_seen for s in res.signs)     # the scene has signs seen from behind
     assert math.isfinite(res.reference) and res.reference_source == "drive"
+
+
+def test_stations_or_a_line_serve_as_the_track(built_path, built_result):
+    from types import SimpleNamespace
+
+    t = built_track()
+    stations = SimpleNamespace(xyz_world=t.xyz_world[::10], time_s=t.time_s[::10])
+    line = t.xyz_world                                   # no times: nearest track positions
+    want = np.array(sorted(tuple(s.centre_world) for s in built_result.signs))
+    for track in (stations, line):
+        res = CS.find_signs_in_cloud(built_path, track)
+        got = np.array(sorted(tuple(s.centre_world) for s in res.signs))
+        assert got.shape == want.shape and np.abs(got - want).max() < 0.02

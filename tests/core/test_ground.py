@@ -591,6 +591,16 @@ def real_pdal():
     return realpdal.require()
 
 
+def test_without_the_real_pdal_skip_but_fail_under_ci(tmp_path, monkeypatch):
+    monkeypatch.setattr(realpdal, "PDAL_DIR", str(tmp_path / "pdal-2.9.2"))
+    monkeypatch.delenv("CI", raising=False)
+    with pytest.raises(pytest.skip.Exception, match="pdal-2.9.2 is absent"):
+        realpdal.require()
+    monkeypatch.setenv("CI", "true")
+    with pytest.raises(pytest.fail.Exception, match="CI=true but no real PDAL"):
+        realpdal.require()
+
+
 @pytest.fixture(scope="module")
 def street_no_crs(tmp_path_factory):
     """A 30 m street on a 3 % slope (~145 000 points) whose file records no CRS."""

@@ -10,6 +10,7 @@ import math
 import os
 
 import numpy as np
+
 from helpers.badinputs import point_z, write_layer
 from helpers.synthpano import paint_discs
 

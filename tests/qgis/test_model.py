@@ -10,6 +10,8 @@ from osgeo import ogr
 SIGN_FIELDS = ["sign_id", "class", "score", "height", "bottom_height", "width", "panel_height",
                "azimuth", "n_views", "n_points", "source_images", "best_image", "mean_intensity",
                "planarity", "position_source", "x", "y", "z", "chip"]
+FUSED_FIELDS = SIGN_FIELDS[:-1] + ["source", "review", "image_sign_id", "cloud_sign_id", "retro_index",
+                                   "condition", "chip"]
 
 
 @pytest.fixture(scope="module")
@@ -20,7 +22,8 @@ def model_run(qgis_process, scene_tiny, tmp_path_factory):
                "stations:Panorama stations": str(out / "stations.gpkg"),
                "detections:Detections": str(out / "detections.gpkg"),
                "ground:Ground-classified cloud": str(out / "ground.laz"),
-               "candidates:Sign candidates": str(out / "candidates.gpkg")}
+               "candidates:Sign candidates": str(out / "candidates.gpkg"),
+               "fused:Signs (fused)": str(out / "fused.gpkg"), "cloudsigns:Poles": str(out / "poles.gpkg")}
     run = qgis_process.run("roadsigns:signinventory", POINT_CLOUD=os.path.join(scene_dir, "cloud.laz"),
                            CONFIDENCE=0.4, **scene_inputs(scene_dir, scene), **outputs)
     assert run.returncode == 0, run.text
@@ -42,9 +45,20 @@ def test_sign_layer_schema_and_review(model_run):
     assert (out / "signs.qml").exists() and (out / "review.html").exists()
 
 
-def test_signs_match_the_reference(qgis_process, model_run):
+def test_fused_layer_schema(model_run):
+    out, _, _ = model_run
+    dataset = ogr.Open(str(out / "fused.gpkg"))
+    definition = dataset.GetLayer(0).GetLayerDefn()
+    assert [definition.GetFieldDefn(i).GetName() for i in range(definition.GetFieldCount())] == FUSED_FIELDS
+    fused = list(dataset.GetLayer(0))
+    assert fused and all(f["source"] in ("image", "lidar", "image+lidar") for f in fused)
+    assert ogr.Open(str(out / "poles.gpkg")).GetLayer(0).GetFeatureCount() > 0
+
+
+@pytest.mark.parametrize("layer", ["signs.gpkg", "fused.gpkg"])
+def test_signs_match_the_reference(qgis_process, model_run, layer):
     out, _, scene_dir = model_run
-    run = qgis_process.run("roadsigns:evaluate", SIGNS=str(out / "signs.gpkg"),
+    run = qgis_process.run("roadsigns:evaluate", SIGNS=str(out / layer),
                            REFERENCE=os.path.join(scene_dir, "reference_signs.csv"), MATCH_RADIUS=1.0,
                            OUTPUT_REPORT=str(out / "evaluation.html"))
     assert run.returncode == 0, run.text

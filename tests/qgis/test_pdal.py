@@ -9,8 +9,11 @@
 Each is compared with the built-in engine on the same generated cloud (LAS 1.4, format
 7, odd scales and offsets, extra bytes, a user VLR, other classes): the same points kept
 by a crop layer in another CRS (EPSG:4326 for an EPSG:25833 cloud), the same ground on at
-least 99.5 % of them, the header and every other dimension unchanged. Then PDAL failures
-(a truncated LAZ, an unwritable folder) and a real PDAL failure under ENGINE=auto.
+least 99.5 % of them, the header and every other dimension unchanged. Then failures, each
+naming the file and leaving nothing behind: a truncated LAZ (refused before PDAL, which
+hangs on it), an unwritable folder, and PDAL's own refusal of a cloud (ENGINE=pdal: the
+error; ENGINE=auto: a warning, and the built-in engine in the same QGIS process).
+Cancelling the ``pdal`` process is tested in tests/core/test_ground.py.
 
 Without ``../shared/tools/pdal-2.9.2`` these tests are skipped, and fail under CI=true.
 """
