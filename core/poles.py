@@ -6,8 +6,9 @@ Method (per window of non-ground points with their height above ground ``h``):
    horizontal slices of ``slice_m``; in each slice, 2D clusters (8-connected cells of
    ``cluster_tolerance_m``, :func:`grid_clusters`) whose extent is at most
    ``max_diameter_m`` (plus a point spacing), with no other point of the slice within
-   ``isolation_m`` and none on two opposite sides within ``flank_m``, and round when wider
-   than ``round_min_width_m`` (a straight piece is a wall's), are pole sections. Wide
+   ``isolation_m``, none on two opposite sides within ``flank_m`` nor on a straight line
+   running into it (a wall's stripes and its end), and round when wider than
+   ``round_min_width_m`` (a straight piece is a wall's), are pole sections. Wide
    clusters (cars, walls, panels, crowns) and pieces of them are not.
 2. **Chains.** Sections of consecutive slices (one missing slice allowed) whose centres
    are within ``link_m`` horizontally are chained; a chain covering at least
@@ -77,6 +78,9 @@ class PoleParams:
     flank_angle_deg: float = 150.0
     round_min_width_m: float = 0.15      # sections this wide must be round (an arc, not a line):
     min_roundness: float = 0.06          # ... covariance eigenvalue ratio at least this
+    min_line_points: int = 5             # neighbours within flank_m on a straight line ...
+    line_max_ratio: float = 0.05         # (covariance eigenvalue ratio at most this) ...
+    line_tolerance_m: float = 0.05       # ... that passes this close to a section: a wall's end
     link_m: float = 0.15
     min_run_m: float = 0.75
     max_width_jump_m: float = 0.1        # sections wider than the chain's typical one by more
@@ -208,6 +212,8 @@ def _sections(xyz: np.ndarray, h: np.ndarray, sensor: np.ndarray, params: PolePa
                 continue                  # one of a row of pieces (a wall sampled in stripes)
             if extent >= params.round_min_width_m and _roundness(p) < params.min_roundness:
                 continue                  # a straight piece (of a wall), not the arc of a pole
+            if _ends_a_line(xy[~m], p.mean(axis=0), 0.5 * extent + params.flank_m, params):
+                continue                  # the end of a wall sampled in stripes
             view = p.mean(axis=0) - sensor[rows[m], :2].mean(axis=0)
             view /= max(float(np.linalg.norm(view)), 1e-9)
             across = np.array([-view[1], view[0]])
@@ -232,6 +238,20 @@ def grid_clusters(xy: np.ndarray, cell_m: float) -> np.ndarray:
     grid[ij[:, 0], ij[:, 1]] = True
     labels, _ = ndimage.label(grid, structure=np.ones((3, 3), bool))
     return labels[ij[:, 0], ij[:, 1]] - 1
+
+
+def _ends_a_line(others_xy: np.ndarray, centre: np.ndarray, radius: float, params: PoleParams) -> bool:
+    """Whether the points within ``radius`` of ``centre`` lie on a straight line that passes
+    through it (within ``line_tolerance_m``): the last stripe of a wall, not a pole beside
+    a parked car (the car's side passes beside the pole)."""
+    near = others_xy[np.linalg.norm(others_xy - centre, axis=1) <= radius]
+    if len(near) < params.min_line_points:
+        return False
+    c = near.mean(axis=0)
+    w, V = np.linalg.eigh(np.cov((near - c).T))
+    if w[0] > params.line_max_ratio * w[1]:
+        return False
+    return abs(float((centre - c) @ V[:, 0])) <= params.line_tolerance_m
 
 
 def _roundness(xy: np.ndarray) -> float:

@@ -50,11 +50,14 @@ def main():
                            "candidates:Sign candidates": out("candidates.gpkg"),
                            "signs:Signs": out("signs.gpkg"),
                            "signs:Panel outlines": out("panel_outlines.gpkg"),
-                           "signs:Review report": out("review.html")})
-    signs = out("signs.gpkg")
+                           "signs:Review report": out("review.html"),
+                           "fused:Signs (fused)": out("inventory.gpkg"), "cloudsigns:Poles": out("poles.gpkg")})
+    signs = out("inventory.gpkg")
     scores = run("evaluate", SIGNS=signs, REFERENCE=os.path.join(sample, "reference_signs.csv"),
                  MATCH_RADIUS=1.0, OUTPUT_REPORT=out("evaluation.html"))
-    print("\nSign layer: {} (style signs.qml, review chips in signs_chips/)".format(signs))
+    print("\nSign inventory: {} (images and cloud fused; style inventory.qml, review chips in signs_chips/)"
+          .format(signs))
+    print("Poles: {}".format(out("poles.gpkg")))
     print("Review report: {}".format(out("review.html")))
     print("Evaluation report: {}".format(scores["OUTPUT_REPORT"]))
     print("precision {PRECISION:.3f}  recall {RECALL:.3f}  class accuracy {CLASS_ACCURACY:.3f}  "
