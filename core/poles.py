@@ -6,8 +6,7 @@ Method (per window of non-ground points with their height above ground ``h``):
    horizontal slices of ``slice_m``; in each slice, 2D clusters (8-connected cells of
    ``cluster_tolerance_m``, :func:`grid_clusters`) whose extent is at most
    ``max_diameter_m`` (plus a point spacing), with no other point of the slice within
-   ``isolation_m``, none on two opposite sides within ``flank_m`` nor on a straight line
-   running into it (a wall's stripes and its end), and round when wider than
+   ``isolation_m``, none on two opposite sides within ``flank_m``, and round when wider than
    ``round_min_width_m`` (a straight piece is a wall's), are pole sections. Wide
    clusters (cars, walls, panels, crowns) and pieces of them are not.
 2. **Chains.** Sections of consecutive slices (one missing slice allowed) whose centres
@@ -20,7 +19,9 @@ Method (per window of non-ground points with their height above ground ``h``):
    width across the line of sight. Sections much wider than the chain's typical one (a
    panel's lower edge, a bracket) are left out. A line ``x(h), y(h)`` fitted to the
    centres gives the lean when it is significant (else the pole is vertical through their
-   median) and the foot (the axis at the ground, ``z_foot`` from the ground model).
+   median) and the foot (the axis at the ground, ``z_foot`` from the ground model). A
+   chain whose neighbours (within ``flank_m``, over its heights) lie on a straight line
+   through it is the end of a wall sampled in stripes, not a pole.
 4. **Top.** From the chain upwards, points within ``top_radius_m`` of the axis are
    followed while gaps stay under ``max_gap_m``: panels, brackets and lamp heads count,
    so a sign pole's top is its panel's top.
@@ -78,7 +79,7 @@ class PoleParams:
     flank_angle_deg: float = 150.0
     round_min_width_m: float = 0.15      # sections this wide must be round (an arc, not a line):
     min_roundness: float = 0.06          # ... covariance eigenvalue ratio at least this
-    min_line_points: int = 5             # neighbours within flank_m on a straight line ...
+    min_line_points: int = 10            # points within flank_m beside a chain on a straight line ...
     line_max_ratio: float = 0.05         # (covariance eigenvalue ratio at most this) ...
     line_tolerance_m: float = 0.05       # ... that passes this close to a section: a wall's end
     link_m: float = 0.15
@@ -212,8 +213,6 @@ def _sections(xyz: np.ndarray, h: np.ndarray, sensor: np.ndarray, params: PolePa
                 continue                  # one of a row of pieces (a wall sampled in stripes)
             if extent >= params.round_min_width_m and _roundness(p) < params.min_roundness:
                 continue                  # a straight piece (of a wall), not the arc of a pole
-            if _ends_a_line(xy[~m], p.mean(axis=0), 0.5 * extent + params.flank_m, params):
-                continue                  # the end of a wall sampled in stripes
             view = p.mean(axis=0) - sensor[rows[m], :2].mean(axis=0)
             view /= max(float(np.linalg.norm(view)), 1e-9)
             across = np.array([-view[1], view[0]])
@@ -240,11 +239,10 @@ def grid_clusters(xy: np.ndarray, cell_m: float) -> np.ndarray:
     return labels[ij[:, 0], ij[:, 1]] - 1
 
 
-def _ends_a_line(others_xy: np.ndarray, centre: np.ndarray, radius: float, params: PoleParams) -> bool:
-    """Whether the points within ``radius`` of ``centre`` lie on a straight line that passes
-    through it (within ``line_tolerance_m``): the last stripe of a wall, not a pole beside
-    a parked car (the car's side passes beside the pole)."""
-    near = others_xy[np.linalg.norm(others_xy - centre, axis=1) <= radius]
+def _ends_a_line(near: np.ndarray, centre: np.ndarray, params: PoleParams) -> bool:
+    """Whether the points ``near`` a pole (in plan, over its chain's heights) lie on a
+    straight line that passes through it (within ``line_tolerance_m``): the last stripes of
+    a wall, not a pole beside a parked car (the car's side passes beside the pole)."""
     if len(near) < params.min_line_points:
         return False
     c = near.mean(axis=0)
@@ -355,6 +353,12 @@ def _pole_from_sections(secs: Sequence[_Section], xyz: np.ndarray, h: np.ndarray
         if (float(np.linalg.norm(fitted)) > params.lean_significance * se
                 and float(np.linalg.norm(fitted)) <= math.tan(math.radians(params.max_lean_deg))):
             foot_xy, slope = coef[0], fitted
+    # the last stripes of a sparsely sampled wall line up with the "pole": not a pole
+    side = np.asarray(tree.query_ball_point(foot_xy, 0.5 * typical + params.flank_m), dtype=np.int64)
+    side = side[(h[side] >= hs.min() - 0.5 * params.slice_m) & (h[side] <= hs.max() + 0.5 * params.slice_m)]
+    side = side[np.linalg.norm(xyz[side, :2] - foot_xy, axis=1) > 0.5 * typical + params.cluster_tolerance_m]
+    if _ends_a_line(xyz[side, :2], foot_xy, params):
+        return None
     z_foot = float(ground_z(foot_xy[None, :])[0])
     axis = np.array([slope[0], slope[1], 1.0])
     axis /= np.linalg.norm(axis)

@@ -80,9 +80,9 @@ def _plain(value):
 
 def _qimage(bgr):
     """A QImage (owning its pixels) of an OpenCV BGR uint8 array."""
-    rgb = bgr[:, :, ::-1].copy()
-    height, width = rgb.shape[:2]
-    return QImage(rgb.data, width, height, 3 * width, QImage.Format.Format_RGB888).copy()
+    height, width = bgr.shape[:2]
+    data = bgr[:, :, ::-1].tobytes()
+    return QImage(data, width, height, 3 * width, QImage.Format.Format_RGB888).copy()
 
 
 def _point_layer_filter():
@@ -305,7 +305,7 @@ class ReviewPanel(Translatable, QDockWidget):
         """Feature id and ``fields`` (those the layer has) of every feature."""
         have = [name for name in fields if self.layer.fields().indexOf(name) >= 0]
         request = QgsFeatureRequest().setSubsetOfAttributes(have, self.layer.fields())
-        request.setFlags(QgsFeatureRequest.Flag.NoGeometry)
+        request.setFlags(Qgis.FeatureRequestFlag.NoGeometry)
         return [dict({name: _plain(f[name]) for name in have}, fid=f.id()) for f in self.layer.getFeatures(request)]
 
     def _states(self):

@@ -3056,67 +3056,67 @@
         <translation>Inventario de señales viales necesita los paquetes de Python {packages}, que no se encuentran en el Python de QGIS. Instálelos con: {command}</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="693" />
+        <location filename="../models/sign_inventory.model3" line="660" />
         <source>The whole road-sign inventory: panorama stations from the trajectory, sign detection in the panoramas, ground filter and crop of the point cloud around the drive, projection of each detection into the cloud, and refinement and merging into the sign layer, with a review chip of every sign and the review report; then the sign panels and poles found in the cloud alone, fused with the image signs into the final inventory (Signs (fused): which sources found each sign, its condition, the signs the cameras missed).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation type="unfinished" />
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="620" />
+        <location filename="../models/sign_inventory.model3" line="587" />
         <source>Boresight pitch (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Boresight: cabeceo (°).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="626" />
+        <location filename="../models/sign_inventory.model3" line="593" />
         <source>Boresight roll (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Boresight: alabeo (°).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="632" />
+        <location filename="../models/sign_inventory.model3" line="599" />
         <source>Boresight yaw (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Boresight: guiñada (°).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="239" />
+        <location filename="../models/sign_inventory.model3" line="206" />
         <source>Detections scoring below this are dropped.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Se descartan las detecciones con una puntuación inferior a este valor.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="325" />
+        <location filename="../models/sign_inventory.model3" line="292" />
         <source>Folder of the equirectangular panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Carpeta de los panoramas equirrectangulares.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="644" />
+        <location filename="../models/sign_inventory.model3" line="611" />
         <source>image,time CSV of the panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>CSV image,time de los panoramas.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="650" />
+        <location filename="../models/sign_inventory.model3" line="617" />
         <source>Lever arm x, forward (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Brazo de palanca x, adelante (m).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="656" />
+        <location filename="../models/sign_inventory.model3" line="623" />
         <source>Lever arm y, right (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Brazo de palanca y, derecha (m).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="662" />
+        <location filename="../models/sign_inventory.model3" line="629" />
         <source>Lever arm z, down (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Brazo de palanca z, abajo (m).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="245" />
+        <location filename="../models/sign_inventory.model3" line="212" />
         <source>Your own ONNX detector, or empty for the bundled one.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Su propio detector ONNX, o vacío para usar el incluido.</translation>
@@ -3128,19 +3128,19 @@
         <translation>La nube LiDAR del recorrido.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="668" />
+        <location filename="../models/sign_inventory.model3" line="635" />
         <source>Projected CRS of the outputs: the point cloud's CRS.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>SRC proyectado de las salidas: el SRC de la nube de puntos.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="674" />
+        <location filename="../models/sign_inventory.model3" line="641" />
         <source>time,x,y,z,roll,pitch,heading CSV, or an Applanix SBET.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>CSV time,x,y,z,roll,pitch,heading, o un SBET de Applanix.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="680" />
+        <location filename="../models/sign_inventory.model3" line="647" />
         <source>CRS of the trajectory positions (ignored for an SBET).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>SRC de las posiciones de la trayectoria (se ignora para un SBET).</translation>

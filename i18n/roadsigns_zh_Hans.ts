@@ -3056,67 +3056,67 @@
         <translation>道路标志清查需要 Python 包 {packages}，但在 QGIS 的 Python 中未找到。安装命令：{command}</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="693" />
+        <location filename="../models/sign_inventory.model3" line="660" />
         <source>The whole road-sign inventory: panorama stations from the trajectory, sign detection in the panoramas, ground filter and crop of the point cloud around the drive, projection of each detection into the cloud, and refinement and merging into the sign layer, with a review chip of every sign and the review report; then the sign panels and poles found in the cloud alone, fused with the image signs into the final inventory (Signs (fused): which sources found each sign, its condition, the signs the cameras missed).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation type="unfinished" />
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="620" />
+        <location filename="../models/sign_inventory.model3" line="587" />
         <source>Boresight pitch (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>安置角：俯仰（°）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="626" />
+        <location filename="../models/sign_inventory.model3" line="593" />
         <source>Boresight roll (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>安置角：横滚（°）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="632" />
+        <location filename="../models/sign_inventory.model3" line="599" />
         <source>Boresight yaw (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>安置角：偏航（°）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="239" />
+        <location filename="../models/sign_inventory.model3" line="206" />
         <source>Detections scoring below this are dropped.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>得分低于此值的检测将被丢弃。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="325" />
+        <location filename="../models/sign_inventory.model3" line="292" />
         <source>Folder of the equirectangular panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>等距柱状全景图所在的文件夹。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="644" />
+        <location filename="../models/sign_inventory.model3" line="611" />
         <source>image,time CSV of the panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>全景图的 image,time CSV。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="650" />
+        <location filename="../models/sign_inventory.model3" line="617" />
         <source>Lever arm x, forward (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>杆臂 x，向前（m）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="656" />
+        <location filename="../models/sign_inventory.model3" line="623" />
         <source>Lever arm y, right (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>杆臂 y，向右（m）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="662" />
+        <location filename="../models/sign_inventory.model3" line="629" />
         <source>Lever arm z, down (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>杆臂 z，向下（m）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="245" />
+        <location filename="../models/sign_inventory.model3" line="212" />
         <source>Your own ONNX detector, or empty for the bundled one.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>您自己的 ONNX 检测器；留空则使用内置检测器。</translation>
@@ -3128,19 +3128,19 @@
         <translation>本次行驶采集的激光雷达点云。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="668" />
+        <location filename="../models/sign_inventory.model3" line="635" />
         <source>Projected CRS of the outputs: the point cloud's CRS.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>输出的投影坐标参考系：即点云的坐标参考系。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="674" />
+        <location filename="../models/sign_inventory.model3" line="641" />
         <source>time,x,y,z,roll,pitch,heading CSV, or an Applanix SBET.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>time,x,y,z,roll,pitch,heading CSV，或 Applanix SBET。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="680" />
+        <location filename="../models/sign_inventory.model3" line="647" />
         <source>CRS of the trajectory positions (ignored for an SBET).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>轨迹位置的坐标参考系（对 SBET 忽略）。</translation>

@@ -79,7 +79,8 @@ def focus_panel(panel):
     window = iface.mainWindow()
     window.activateWindow()
     window.raise_()
-    QApplication.setActiveWindow(window)
+    if hasattr(QApplication, "setActiveWindow"):  # Qt 5
+        QApplication.setActiveWindow(window)
     panel.root.setFocus()
     QApplication.processEvents()
 

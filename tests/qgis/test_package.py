@@ -40,7 +40,7 @@ def test_chain_runs_from_the_unpacked_zip(plugin_zip, scene_tiny, tmp_path):
         archive.extractall(plugins)
     qgis = QgisProcess(str(plugins), str(tmp_path / "profile"))
     listing = qgis("--json", "list").json["providers"]["roadsigns"]["algorithms"]
-    assert len(listing) == 7  # six algorithms and the shipped model
+    assert len(listing) == 10  # nine algorithms and the shipped model
     scene_dir, scene = scene_tiny
     stations = str(tmp_path / "stations.gpkg")
     run = qgis.run("roadsigns:importtrajectory", POSES=os.path.join(scene_dir, "poses.csv"),

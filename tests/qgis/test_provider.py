@@ -3,8 +3,8 @@ parameter carries help text."""
 import pytest
 
 EXPECTED_ALGORITHMS = {"roadsigns:" + a for a in (
-    "importtrajectory", "detectsigns", "groundfilter", "projectdetections", "refinesigns", "evaluate",
-    "signinventory")}
+    "importtrajectory", "detectsigns", "groundfilter", "projectdetections", "refinesigns", "findsignsincloud",
+    "fusesigns", "evaluate", "exporthandover", "signinventory")}
 
 
 @pytest.fixture(scope="module")
