@@ -246,9 +246,11 @@ class _Builder:
         lamp = self.add_pole("light_pole", base[:2], 0.08, base[2] + 8.0)
         arm_c = base + [0, 0, 7.9] - side * N * 0.9
         axes = np.array([T, -N, [0, 0, 1.0]])
-        self.scene.prims.append(Box(arm_c, axes, [0.05, 0.9, 0.05], (0.45, 0.47, 0.5), REFLECTANCE["pole"], CLASS_CODES["pole"]))
+        self.scene.prims.append(Box(arm_c, axes, [0.05, 0.9, 0.05], (0.45, 0.47, 0.5),
+                                    REFLECTANCE["pole"], CLASS_CODES["pole"]))
         head_c = base + [0, 0, 7.8] - side * N * 1.7
-        self.scene.prims.append(Box(head_c, axes, [0.15, 0.3, 0.08], (0.3, 0.3, 0.32), REFLECTANCE["pole"], CLASS_CODES["pole"]))
+        self.scene.prims.append(Box(head_c, axes, [0.15, 0.3, 0.08], (0.3, 0.3, 0.32),
+                                    REFLECTANCE["pole"], CLASS_CODES["pole"]))
         if with_sign:
             facing = "oncoming" if side > 0 else "away"
             normal = self.sign_normal(s, side, facing)
@@ -330,7 +332,8 @@ class _Builder:
         c = self.at(sm, side * (front + depth / 2))
         # the road curves: widen the box so the front corners keep ~front from the centre line
         half_len = 0.5 * (s1 - s0)
-        corner_z = [float(self.road.base_z(*self.road.point(s, side * t))) for s in (s0, s1) for t in (front, front + depth)]
+        corner_z = [float(self.road.base_z(*self.road.point(s, side * t)))
+                    for s in (s0, s1) for t in (front, front + depth)]
         z_lo = min(corner_z) - 1.0
         z_hi = float(self.road.base_z(c[0], c[1])) + height
         axes = np.array([T, -N, [0, 0, 1.0]])

@@ -133,7 +133,8 @@ def scan(scene, pose_fn, tau_start, tau_end, mount: ScannerMount, rng, writer, o
         n_first, n_last = R_ws[0][:, 0], R_ws[-1][:, 0]
         ahead = (centres - S[0]) @ n_first >= -radii - 0.1
         behind = (centres - S[-1]) @ n_last <= radii + 0.1
-        in_range = np.linalg.norm(centres - S[len(S) // 2], axis=1) <= mount.max_range_m + radii + np.linalg.norm(S[-1] - S[0])
+        in_range = (np.linalg.norm(centres - S[len(S) // 2], axis=1)
+                    <= mount.max_range_m + radii + np.linalg.norm(S[-1] - S[0]))
         for i in np.nonzero(ahead & behind & in_range)[0]:
             prim = scene.prims[i]
             win = _scan_window(prim, S, R_ws, N)

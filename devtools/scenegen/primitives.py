@@ -157,7 +157,8 @@ class Box(Primitive):
             wall = face != 2
             along = np.where(face == 0, local[..., 1], local[..., 0])
             floor_z = local[..., 2] + self.half[2]
-            win = wall & (np.mod(along, 3.0) > 1.0) & (np.mod(along, 3.0) < 2.2) & (np.mod(floor_z, 3.2) > 1.0) & (np.mod(floor_z, 3.2) < 2.5) & (floor_z > 1.0)
+            win = (wall & (np.mod(along, 3.0) > 1.0) & (np.mod(along, 3.0) < 2.2)
+                   & (np.mod(floor_z, 3.2) > 1.0) & (np.mod(floor_z, 3.2) < 2.5) & (floor_z > 1.0))
             rgb[win] = (0.22, 0.27, 0.33)
         elif self.style == "car_cabin":
             rgb[(face != 2) & (local[..., 2] > -0.8 * self.half[2])] = (0.12, 0.14, 0.17)   # windows

@@ -186,7 +186,8 @@ class Motion:
 
     def lateral(self, s):
         k = 2 * np.pi / self.wander_wavelength_m
-        return self.lane_t + self.wander_m * np.sin(k * s + self.phase[0]), self.wander_m * k * np.cos(k * s + self.phase[0])
+        return (self.lane_t + self.wander_m * np.sin(k * s + self.phase[0]),
+                self.wander_m * k * np.cos(k * s + self.phase[0]))
 
     def state(self, tau):
         """Body pose at times ``tau``: local x, y, z (m), roll, pitch, grid heading (deg)."""
@@ -205,5 +206,6 @@ class Motion:
                 + 0.25 * np.sin(2 * np.pi * 1.3 * tau + self.phase[1]) + 0.1 * np.sin(2 * np.pi * 0.37 * tau))
         pitch = (np.degrees(np.arctan(slope_fwd)) + 0.2 * np.sin(2 * np.pi * 0.9 * tau + self.phase[2])
                  - 0.3 * np.sin(2 * np.pi * tau / self.speed_period_s))
-        z = self.road.base_z(xy[..., 0], xy[..., 1]) + self.imu_height + 0.01 * np.sin(2 * np.pi * 1.7 * tau + self.phase[3])
+        z = (self.road.base_z(xy[..., 0], xy[..., 1]) + self.imu_height
+             + 0.01 * np.sin(2 * np.pi * 1.7 * tau + self.phase[3]))
         return xy[..., 0], xy[..., 1], z, roll, pitch, heading

@@ -83,19 +83,24 @@ def sign_texture(cls: str, variant: str, size_px: int = 256) -> np.ndarray:
         if cls == "warning":
             c = centroid + [0, 0.05 * h]
             if variant == "exclamation":
-                _fill(img, [c + [-0.035 * w, -0.22 * h], c + [0.035 * w, -0.22 * h], c + [0.018 * w, 0.08 * h], c + [-0.018 * w, 0.08 * h]], BLACK)
+                _fill(img, [c + [-0.035 * w, -0.22 * h], c + [0.035 * w, -0.22 * h],
+                            c + [0.018 * w, 0.08 * h], c + [-0.018 * w, 0.08 * h]], BLACK)
                 cv2.circle(img, tuple(np.round(c + [0, 0.16 * h]).astype(int)), int(0.04 * w), (*BLACK, 255), -1, AA)
             elif variant == "curve":
-                _arrow(img, [c + [0.05 * w, 0.2 * h], c + [0.05 * w, 0.0], c + [-0.05 * w, -0.12 * h], c + [-0.05 * w, -0.2 * h]], BLACK, max(2, int(0.05 * w)))
+                _arrow(img, [c + [0.05 * w, 0.2 * h], c + [0.05 * w, 0.0], c + [-0.05 * w, -0.12 * h],
+                             c + [-0.05 * w, -0.2 * h]], BLACK, max(2, int(0.05 * w)))
             elif variant == "crossroads":
                 t = max(2, int(0.06 * w))
-                cv2.line(img, tuple(np.round(c + [0, -0.25 * h]).astype(int)), tuple(np.round(c + [0, 0.22 * h]).astype(int)), (*BLACK, 255), t, AA)
-                cv2.line(img, tuple(np.round(c + [-0.17 * w, 0]).astype(int)), tuple(np.round(c + [0.17 * w, 0]).astype(int)), (*BLACK, 255), t, AA)
+                cv2.line(img, tuple(np.round(c + [0, -0.25 * h]).astype(int)),
+                         tuple(np.round(c + [0, 0.22 * h]).astype(int)), (*BLACK, 255), t, AA)
+                cv2.line(img, tuple(np.round(c + [-0.17 * w, 0]).astype(int)),
+                         tuple(np.round(c + [0.17 * w, 0]).astype(int)), (*BLACK, 255), t, AA)
             else:  # children: two figures
                 for dx, s in ((-0.08, 1.0), (0.08, 0.8)):
                     hc = c + [dx * w, -0.12 * h * s]
                     cv2.circle(img, tuple(np.round(hc).astype(int)), int(0.035 * w * s), (*BLACK, 255), -1, AA)
-                    _fill(img, [hc + [-0.04 * w * s, 0.05 * h], hc + [0.04 * w * s, 0.05 * h], hc + [0.05 * w * s, 0.3 * h * s], hc + [-0.05 * w * s, 0.3 * h * s]], BLACK)
+                    _fill(img, [hc + [-0.04 * w * s, 0.05 * h], hc + [0.04 * w * s, 0.05 * h],
+                                hc + [0.05 * w * s, 0.3 * h * s], hc + [-0.05 * w * s, 0.3 * h * s]], BLACK)
     elif cls == "prohibitory":
         cv2.circle(img, (int(cx), int(cy)), int(r - 1), (*RED, 255), -1, AA)
         cv2.circle(img, (int(cx), int(cy)), int(0.78 * r), (*WHITE, 255), -1, AA)
@@ -106,8 +111,10 @@ def sign_texture(cls: str, variant: str, size_px: int = 256) -> np.ndarray:
                 _fill(img, [[cx + (dx - 0.15) * r, cy + 0.25 * r], [cx + (dx + 0.15) * r, cy + 0.25 * r],
                             [cx + (dx + 0.12) * r, cy - 0.3 * r], [cx + (dx - 0.12) * r, cy - 0.3 * r]], col)
         else:
-            _fill(img, [[cx - 0.45 * r, cy - 0.2 * r], [cx + 0.1 * r, cy - 0.2 * r], [cx + 0.1 * r, cy + 0.2 * r], [cx - 0.45 * r, cy + 0.2 * r]], BLACK)
-            _fill(img, [[cx + 0.15 * r, cy - 0.05 * r], [cx + 0.45 * r, cy - 0.05 * r], [cx + 0.45 * r, cy + 0.2 * r], [cx + 0.15 * r, cy + 0.2 * r]], BLACK)
+            _fill(img, [[cx - 0.45 * r, cy - 0.2 * r], [cx + 0.1 * r, cy - 0.2 * r],
+                        [cx + 0.1 * r, cy + 0.2 * r], [cx - 0.45 * r, cy + 0.2 * r]], BLACK)
+            _fill(img, [[cx + 0.15 * r, cy - 0.05 * r], [cx + 0.45 * r, cy - 0.05 * r],
+                        [cx + 0.45 * r, cy + 0.2 * r], [cx + 0.15 * r, cy + 0.2 * r]], BLACK)
     elif cls == "mandatory":
         cv2.circle(img, (int(cx), int(cy)), int(r - 1), (*BLUE, 255), -1, AA)
         t = max(2, int(0.16 * r))
@@ -115,7 +122,8 @@ def sign_texture(cls: str, variant: str, size_px: int = 256) -> np.ndarray:
             _arrow(img, [(cx, cy + 0.6 * r), (cx, cy - 0.25 * r)], WHITE, t)
         elif variant in ("right", "left"):
             sgn = 1 if variant == "right" else -1
-            _arrow(img, [(cx - 0.2 * sgn * r, cy + 0.6 * r), (cx - 0.2 * sgn * r, cy - 0.05 * r), (cx + 0.3 * sgn * r, cy - 0.05 * r)], WHITE, t)
+            _arrow(img, [(cx - 0.2 * sgn * r, cy + 0.6 * r), (cx - 0.2 * sgn * r, cy - 0.05 * r),
+                         (cx + 0.3 * sgn * r, cy - 0.05 * r)], WHITE, t)
         elif variant == "keep_right":
             _arrow(img, [(cx - 0.35 * r, cy - 0.35 * r), (cx + 0.2 * r, cy + 0.2 * r)], WHITE, t)
         else:  # roundabout: three arrows on a circle
@@ -139,7 +147,8 @@ def sign_texture(cls: str, variant: str, size_px: int = 256) -> np.ndarray:
         elif variant == "crossing":
             _fill(img, [[cx, 0.15 * h], [0.12 * w, 0.82 * h], [0.88 * w, 0.82 * h]], WHITE)
             cv2.circle(img, (int(cx), int(0.38 * h)), int(0.05 * w), (*BLACK, 255), -1, AA)
-            cv2.line(img, (int(cx), int(0.43 * h)), (int(cx - 0.06 * w), int(0.75 * h)), (*BLACK, 255), max(2, int(0.035 * w)), AA)
+            cv2.line(img, (int(cx), int(0.43 * h)), (int(cx - 0.06 * w), int(0.75 * h)), (*BLACK, 255),
+                     max(2, int(0.035 * w)), AA)
             for k in range(4):
                 x0 = 0.2 * w + k * 0.16 * w
                 cv2.rectangle(img, (int(x0), int(0.77 * h)), (int(x0 + 0.08 * w), int(0.8 * h)), (*BLACK, 255), -1)
