@@ -28,15 +28,8 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
 SHIFT_M = (160.0, 0.0, 1.6)
-
-
-def _import_package():
-    if os.path.isdir("/usr/share/proj"):  # pyproj inside a venv looks under the venv otherwise
-        os.environ.setdefault("PROJ_DATA", "/usr/share/proj")
-    sys.path.insert(0, REPO)
-    from devtools import import_roadsigns
-    import_roadsigns()
-    sys.path.insert(0, os.path.join(REPO, "tests"))
+sys.path.insert(0, HERE)
+from bench_projection import _import_package  # noqa: E402  (the bench folder is not a package)
 
 
 def drive(copies: int):

@@ -15,3 +15,17 @@ def scene_inputs(scene_dir, scene):
                 IMAGE_TIMES=os.path.join(scene_dir, "image_times.csv"),
                 IMAGES=os.path.join(scene_dir, "images"), TRAJECTORY_CRS=scene["trajectory_crs"],
                 TARGET_CRS=scene["target_crs"], **scene_mount(scene))
+
+
+def ground_and_oracle(qgis_process, scene_dir, stations, work):
+    """The scene's cloud ground-filtered around the stations (classes reset) and detections
+    made from its true boxes (devtools/oracle.py): ``(ground.laz, detections.gpkg)`` in ``work``."""
+    from devtools.oracle import oracle_detections
+
+    ground = str(work / "ground.laz")
+    run = qgis_process.run("roadsigns:groundfilter", INPUT=os.path.join(scene_dir, "cloud.laz"),
+                           CROP=stations, CROP_BUFFER=25, RESET_CLASSES=True, OUTPUT=ground)
+    assert run.returncode == 0, run.text
+    detections = str(work / "detections.gpkg")
+    assert oracle_detections(scene_dir, stations, detections) > 10
+    return ground, detections

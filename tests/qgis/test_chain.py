@@ -6,9 +6,8 @@ import os
 import laspy
 import numpy as np
 import pytest
+from helpers.scenes import ground_and_oracle
 from osgeo import ogr
-
-from devtools.oracle import oracle_detections
 
 # the goals of the issue (Zhang 2023: P 0.978 / R 0.947; Balado 2020: 97.5 % within 0.5 m)
 GOALS = dict(PRECISION=0.97, RECALL=0.95, MEDIAN_ERROR=0.05, P95_ERROR=0.20,
@@ -32,12 +31,7 @@ def chain(qgis_process, scene_tiny, scene_tiny_stations, tmp_path_factory):
     scene_dir, scene = scene_tiny
     work = tmp_path_factory.mktemp("chain")
     stations = scene_tiny_stations
-    ground = str(work / "ground.laz")
-    run = qgis_process.run("roadsigns:groundfilter", INPUT=os.path.join(scene_dir, "cloud.laz"),
-                           CROP=stations, CROP_BUFFER=25, RESET_CLASSES=True, OUTPUT=ground)
-    assert run.returncode == 0, run.text
-    detections = str(work / "detections.gpkg")
-    assert oracle_detections(scene_dir, stations, detections) > 10
+    ground, detections = ground_and_oracle(qgis_process, scene_dir, stations, work)
     return dict(work=work, stations=stations, ground=ground, detections=detections, scene=scene,
                 scene_dir=scene_dir)
 

@@ -6,9 +6,8 @@ import os
 import re
 
 import pytest
+from helpers.scenes import ground_and_oracle
 from osgeo import ogr
-
-from devtools.oracle import oracle_detections
 
 MISSED_CLASSES = ("mandatory", "warning")
 
@@ -23,12 +22,7 @@ def fused(qgis_process, scene_tiny, scene_tiny_stations, tmp_path_factory):
     scene_dir, _ = scene_tiny
     work = tmp_path_factory.mktemp("fusion")
     stations = scene_tiny_stations
-    ground = str(work / "ground.laz")
-    run = qgis_process.run("roadsigns:groundfilter", INPUT=os.path.join(scene_dir, "cloud.laz"),
-                           CROP=stations, CROP_BUFFER=25, RESET_CLASSES=True, OUTPUT=ground)
-    assert run.returncode == 0, run.text
-    detections = str(work / "detections.gpkg")
-    assert oracle_detections(scene_dir, stations, detections) > 10
+    ground, detections = ground_and_oracle(qgis_process, scene_dir, stations, work)
     dataset = ogr.Open(detections, 1)
     layer = dataset.GetLayer(0)
     missed = [f.GetFID() for f in layer if f["class"] in MISSED_CLASSES]
