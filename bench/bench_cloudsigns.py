@@ -55,8 +55,21 @@ def _import_package():
     import_roadsigns()
 
 
-def _peak_rss_mb() -> float:
+def _memory_mb(field: str) -> float:
+    """``VmHWM`` (peak) or ``VmRSS`` (now) of this process in MB from /proc (a child's
+    ``ru_maxrss`` starts at its parent's size at fork), else ``ru_maxrss``."""
+    try:
+        with open("/proc/self/status") as fh:
+            for line in fh:
+                if line.startswith(field + ":"):
+                    return float(line.split()[1]) / 1024.0
+    except OSError:
+        pass
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+
+def _peak_rss_mb() -> float:
+    return _memory_mb("VmHWM")
 
 
 def _read_csv(path):
@@ -81,7 +94,7 @@ def run_finder(folder: str, chunk_points: int) -> dict:
     from roadsigns.core.cloudsigns import find_signs_in_cloud
     from roadsigns.core.drivewindows import Track
 
-    base = _peak_rss_mb()
+    base = _memory_mb("VmRSS")
     traj = np.genfromtxt(os.path.join(folder, "trajectory.csv"), delimiter=",", names=True)
     track = Track(np.column_stack([traj["x"], traj["y"], traj["z"] + SCANNER_ABOVE_IMU_M]), traj["time"])
     t0 = time.perf_counter()

@@ -125,9 +125,6 @@ class WindowPoints:
             self._tree = cKDTree(self.xyz)
         return self._tree
 
-    @property
-    def range_m(self) -> np.ndarray:
-        return np.linalg.norm(self.xyz - self.sensor, axis=1)
 
 
 def local_features(xyz: np.ndarray, k: int = FEATURE_NEIGHBOURS
@@ -221,7 +218,6 @@ class PanelCandidate:
     offset_m: float
     bright: bool
     corners: np.ndarray = field(default_factory=lambda: np.zeros((4, 3)))
-    uv_hull: Optional[object] = None   # shapely polygon in the (right, up) frame at the centre
 
 
 def _split_connected(uv: np.ndarray, link_m: float) -> List[np.ndarray]:
@@ -361,7 +357,7 @@ def measure_panel(pts: WindowPoints, rows: np.ndarray, ground_z, params: PanelPa
                           height_m=height, area_m2=area, fill=fill, rms_m=rms, spacing_m=spacing,
                           bright_share=bright_share, bottom_height_m=bottom,
                           centre_height_m=float(centre[2] - gz), s_m=s_m, offset_m=offset,
-                          bright=bright_share >= params.bright_min_share, corners=corners, uv_hull=hull), "ok"
+                          bright=bright_share >= params.bright_min_share, corners=corners), "ok"
 
 
 def _band_share(uv: np.ndarray, u_range: Tuple[float, float], v_range: Tuple[float, float],

@@ -67,11 +67,6 @@ class Track:
         points of the line."""
         return cls(np.asarray(xyz_world, dtype=np.float64), None)
 
-    @property
-    def bounds_xy(self) -> Tuple[float, float, float, float]:
-        lo = self.xyz_world[:, :2].min(axis=0)
-        hi = self.xyz_world[:, :2].max(axis=0)
-        return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])
 
 
 def as_track(track) -> Track:

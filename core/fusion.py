@@ -119,6 +119,11 @@ def _xyz(records: Sequence[Dict[str, Any]], what: str) -> np.ndarray:
     return out
 
 
+def _float_or_nan(value) -> float:
+    """``value`` as a float, NaN for NULL (an unknown azimuth does not veto a match)."""
+    return math.nan if value is None else float(value)
+
+
 def _azimuth_diff_deg(a, b) -> np.ndarray:
     return np.abs(np.mod(np.asarray(a, float) - np.asarray(b, float) + 180.0, 360.0) - 180.0)
 
@@ -168,9 +173,8 @@ def fuse_signs(image_signs: Sequence[Dict[str, Any]], cloud_panels: Sequence[Any
     panels = [_panel_record(p) for p in cloud_panels]
     img_xyz = _xyz(images, "Image sign")
     cld_xyz = _xyz(panels, "Cloud panel")
-    img_az = np.array([float(r.get("azimuth", math.nan) if r.get("azimuth") is not None else math.nan)
-                       for r in images])
-    cld_az = np.array([float(r.get("azimuth", math.nan)) for r in panels])
+    img_az = np.array([_float_or_nan(r.get("azimuth")) for r in images])
+    cld_az = np.array([_float_or_nan(r.get("azimuth")) for r in panels])
     pairs = match_signs(img_xyz, img_az, cld_xyz, cld_az, params)
     by_image = {i: j for i, j, _ in pairs}
     matched_panels = {j for _, j, _ in pairs}

@@ -20,8 +20,8 @@ Method (per window of non-ground points with their height above ground ``h``):
    panel's lower edge, a bracket) are left out. A line ``x(h), y(h)`` fitted to the
    centres gives the lean when it is significant (else the pole is vertical through their
    median) and the foot (the axis at the ground, ``z_foot`` from the ground model). A
-   chain whose neighbours (within ``flank_m``, over its heights) lie on a straight line
-   through it is the end of a wall sampled in stripes, not a pole.
+   chain whose neighbours (within ``flank_m``, a slice below its top: not what it carries)
+   lie on a straight line through it is the end of a wall sampled in stripes, not a pole.
 4. **Top.** From the chain upwards, points within ``top_radius_m`` of the axis are
    followed while gaps stay under ``max_gap_m``: panels, brackets and lamp heads count,
    so a sign pole's top is its panel's top.
@@ -355,7 +355,7 @@ def _pole_from_sections(secs: Sequence[_Section], xyz: np.ndarray, h: np.ndarray
             foot_xy, slope = coef[0], fitted
     # the last stripes of a sparsely sampled wall line up with the "pole": not a pole
     side = np.asarray(tree.query_ball_point(foot_xy, 0.5 * typical + params.flank_m), dtype=np.int64)
-    side = side[(h[side] >= hs.min() - 0.5 * params.slice_m) & (h[side] <= hs.max() + 0.5 * params.slice_m)]
+    side = side[(h[side] >= params.slice_bottom_m) & (h[side] <= hs.max() - params.slice_m)]
     side = side[np.linalg.norm(xyz[side, :2] - foot_xy, axis=1) > 0.5 * typical + params.cluster_tolerance_m]
     if _ends_a_line(xyz[side, :2], foot_xy, params):
         return None
@@ -488,14 +488,3 @@ def classify_pole(pole: Pole, n_signs: int, params: Optional[PoleParams] = None)
 def pole_records(poles: Sequence[Pole]) -> List[dict]:
     """The pole layer's records (:data:`POLE_FIELDS`)."""
     return [p.as_dict() for p in poles]
-
-
-def nearest_pole(poles: Sequence[Pole], xy: np.ndarray, max_distance_m: float
-                 ) -> Tuple[Optional[int], float]:
-    """Index of the pole whose foot is nearest to ``xy`` within ``max_distance_m``."""
-    best, best_d = None, float(max_distance_m)
-    for i, p in enumerate(poles):
-        d = float(np.hypot(p.x - xy[0], p.y - xy[1]))
-        if d <= best_d:
-            best, best_d = i, d
-    return best, best_d

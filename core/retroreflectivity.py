@@ -16,9 +16,10 @@ incidence angle between the beam and the surface normal, ``I_full`` the file's f
   every sign) is found in each bin on its own (as the threshold below), and ``alpha`` is
   minus the slope of its median log-intensity against log-range (least squares over the
   bins with a bright mode of at least 200 returns below saturation, weighted by the square
-  root of their counts, clipped to ``[0, 3]``). Scanners that
-  already compensate range give ``alpha`` ~ 0; raw amplitudes ~ 2. Fewer than
-  :data:`MIN_RANGE_BINS` usable bins: ``alpha`` = 0 (no range correction), said in the log.
+  root of their counts, clipped to ``[0, 3]``). Scanners that already compensate range
+  give ``alpha`` ~ 0; raw amplitudes ~ 2. Fewer than :data:`MIN_RANGE_BINS` usable bins
+  (sheeting saturating the receiver, a short drive): ``alpha`` = 0 (no range correction),
+  said in the log.
 * ``beta`` = 1 (Lambertian). Retroreflective sheeting returns light towards the source
   over a wide range of entrance angles, better than a diffuse surface, so the correction
   over-corrects bright sheeting seen obliquely; ``theta`` is capped at ``theta_max`` = 60

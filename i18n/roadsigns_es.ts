@@ -703,17 +703,17 @@
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="24" />
         <source>Find signs in the point cloud (no images)</source>
-        <translation type="unfinished" />
+        <translation>Buscar señales en la nube de puntos (sin imágenes)</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="27" />
         <source>Finds retro-reflective sign panels and their poles in the LiDAR cloud alone, and flags faded sheeting.</source>
-        <translation type="unfinished" />
+        <translation>Encuentra los paneles de señal retrorreflectantes y sus postes solo en la nube LiDAR, y marca las láminas retrorreflectantes deterioradas.</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="31" />
         <source>Finds sign panels from the point cloud alone, after the Utah I-15 mobile-LiDAR method (Ai and Tsai): the drive's track (the panorama stations) locates every point along the road; points above the ground (class 2) and beside or above the road are kept; their intensity is normalised for range and incidence angle; a threshold adapted to the cloud (stated in the log) picks the retro-reflective sheeting; planar clusters of sign size and shape at sign heights become panels, each with the pole or gantry that carries it. The cloud is read once and worked through in windows of drive, so memory does not grow with the drive.&lt;br&gt;&lt;br&gt;Outputs: the sign panels (PointZ at the panel centre: size, face normal and azimuth, height above the ground, intensity statistics, the retroreflectivity index and a &lt;b&gt;condition&lt;/b&gt; of good, check or poor), their outlines (PolygonZ), and the poles (sign poles, light poles, gantry posts: foot, height, diameter, lean and the signs each carries).&lt;br&gt;&lt;br&gt;&lt;b&gt;Condition&lt;/b&gt; is a screening flag, not a measurement: the retroreflectivity index is the median normalised intensity of the panel's face, compared with the drive's own healthy signs. It is not the coefficient of retroreflection of the MUTCD (observation angle 0.2°, entrance angle −4°): confirm flagged signs in the field. The cloud needs an intensity dimension and ground points (run Ground filter first).</source>
-        <translation type="unfinished" />
+        <translation>Encuentra paneles de señal solo a partir de la nube de puntos, siguiendo el método de LiDAR móvil de la I-15 de Utah (Ai y Tsai): el trayecto del recorrido (las estaciones de panorama) sitúa cada punto a lo largo de la vía; se conservan los puntos por encima del suelo (clase 2) y junto a la vía o sobre ella; su intensidad se normaliza según la distancia y el ángulo de incidencia; un umbral adaptado a la nube (indicado en el registro) selecciona las láminas retrorreflectantes; los grupos planos con el tamaño y la forma de una señal, a la altura de las señales, se convierten en paneles, cada uno con el poste o pórtico que lo sostiene. La nube se lee una sola vez y se procesa por ventanas del recorrido, de modo que la memoria no crece con la longitud del recorrido.&lt;br&gt;&lt;br&gt;Salidas: los paneles de señal (PointZ en el centro del panel: tamaño, normal y acimut de la cara, altura sobre el suelo, estadísticas de intensidad, el índice de retrorreflexión y un &lt;b&gt;estado&lt;/b&gt; (condition): good, check o poor), sus contornos (PolygonZ) y los postes (postes de señal, postes de alumbrado, postes de pórtico: pie, altura, diámetro, inclinación y las señales que sostiene cada uno).&lt;br&gt;&lt;br&gt;El &lt;b&gt;estado&lt;/b&gt; es un indicador de cribado, no una medición: el índice de retrorreflexión es la mediana de la intensidad normalizada de la cara del panel, comparada con las señales en buen estado del propio recorrido. No es el coeficiente de retrorreflexión del MUTCD (ángulo de observación 0,2°, ángulo de entrada −4°): confirme en campo las señales marcadas. La nube necesita una dimensión de intensidad y puntos de suelo (ejecute antes «Filtro de suelo y recorte de nube de puntos»).</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="50" />
@@ -723,7 +723,7 @@
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="50" />
         <source>The cloud with ground as class 2 (the output of Ground filter) and an intensity dimension, in the stations' CRS.</source>
-        <translation type="unfinished" />
+        <translation>La nube con el suelo como clase 2 (la salida de «Filtro de suelo y recorte de nube de puntos») y una dimensión de intensidad, en el SRC de las estaciones.</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="88" />
@@ -733,27 +733,27 @@
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="54" />
         <source>The output of Import trajectory: the drive's track (positions and times).</source>
-        <translation type="unfinished" />
+        <translation>La salida de «Importar trayectoria y panoramas»: el trayecto del recorrido (posiciones y tiempos).</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="57" />
         <source>Corridor half-width (m)</source>
-        <translation type="unfinished" />
+        <translation>Semiancho del corredor (m)</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="57" />
         <source>Signs are searched this far to each side of the track, in metres.</source>
-        <translation type="unfinished" />
+        <translation>Las señales se buscan hasta esta distancia a cada lado del trayecto, en metros.</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="61" />
         <source>Sign panels found in the cloud</source>
-        <translation type="unfinished" />
+        <translation>Paneles de señal encontrados en la nube</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="61" />
         <source>PointZ layer, one point per panel centre, with its size, face normal and azimuth, heights, intensity statistics, retroreflectivity index, condition and support.</source>
-        <translation type="unfinished" />
+        <translation>Capa PointZ, un punto por centro de panel, con su tamaño, normal y acimut de la cara, alturas, estadísticas de intensidad, índice de retrorreflexión, estado y soporte.</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="65" />
@@ -763,37 +763,37 @@
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="65" />
         <source>PolygonZ layer of each panel's rectangle in its plane.</source>
-        <translation type="unfinished" />
+        <translation>Capa PolygonZ con el rectángulo de cada panel en su plano.</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="68" />
         <source>Poles</source>
-        <translation type="unfinished" />
+        <translation>Postes</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="68" />
         <source>PointZ layer, one point per pole foot: kind (sign_pole, light_pole, gantry, other), height, diameter, lean and the ids of the signs it carries.</source>
-        <translation type="unfinished" />
+        <translation>Capa PointZ, un punto por pie de poste: tipo (sign_pole, light_pole, gantry, other), altura, diámetro, inclinación y los identificadores de las señales que sostiene.</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="72" />
         <source>Sign panels found</source>
-        <translation type="unfinished" />
+        <translation>Paneles de señal encontrados</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="73" />
         <source>Poles found</source>
-        <translation type="unfinished" />
+        <translation>Postes encontrados</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="87" />
         <source>The stations</source>
-        <translation type="unfinished" />
+        <translation>La capa de estaciones</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="119" />
         <source>{} sign panels and {} poles found in the cloud.</source>
-        <translation type="unfinished" />
+        <translation>{} paneles de señal y {} postes encontrados en la nube.</translation>
     </message>
 </context>
 <context>
@@ -801,57 +801,57 @@
     <message>
         <location filename="../algorithms/fusesigns.py" line="29" />
         <source>Fuse image and cloud signs</source>
-        <translation type="unfinished" />
+        <translation>Fusionar señales de imagen y de nube</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="32" />
         <source>Merges the signs found in the images with the panels found in the cloud alone: one sign layer that says which sources found each sign.</source>
-        <translation type="unfinished" />
+        <translation>Fusiona las señales encontradas en las imágenes con los paneles encontrados solo en la nube: una capa de señales que indica qué fuentes encontraron cada señal.</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="36" />
         <source>Matches each sign of the image chain (Refine and merge signs) to at most one panel found in the cloud alone (Find signs in the point cloud) by optimal assignment: centres within the match radius and facings within 90°.&lt;br&gt;&lt;br&gt;A matched sign keeps its class and gains the panel's retroreflectivity index and condition (&lt;i&gt;source&lt;/i&gt; = image+lidar). A panel no image sign explains becomes a sign of its own (&lt;i&gt;source&lt;/i&gt; = lidar): with the stations and the panorama folder, the panoramas in front of its face are cut into views centred on it and the detector reads its class there; if none recognises it, its class is &lt;i&gt;unknown&lt;/i&gt; and it is flagged for review. An image sign whose place in the cloud holds no retro-reflective panel loses confidence (its score × 0.6) and is flagged for review (&lt;i&gt;source&lt;/i&gt; = image).&lt;br&gt;&lt;br&gt;Output: the sign layer with the fields of Refine and merge signs plus source, review, image_sign_id, cloud_sign_id, retro_index and condition, styled like the sign layer.</source>
-        <translation type="unfinished" />
+        <translation>Empareja cada señal de la cadena de imágenes («Refinar y fusionar señales») con como máximo un panel encontrado solo en la nube («Buscar señales en la nube de puntos (sin imágenes)») mediante asignación óptima: centros dentro del radio de emparejamiento y orientaciones a menos de 90°.&lt;br&gt;&lt;br&gt;Una señal emparejada conserva su clase y recibe el índice de retrorreflexión y el estado del panel (&lt;i&gt;source&lt;/i&gt; = image+lidar). Un panel que ninguna señal de imagen explica se convierte en una señal propia (&lt;i&gt;source&lt;/i&gt; = lidar): con las estaciones y la carpeta de panoramas, los panoramas situados frente a su cara se recortan en vistas centradas en él y el detector lee allí su clase; si en ninguna se reconoce, su clase es &lt;i&gt;unknown&lt;/i&gt; y se marca para revisión. Una señal de imagen en cuyo lugar de la nube no hay ningún panel retrorreflectante pierde confianza (su puntuación × 0,6) y se marca para revisión (&lt;i&gt;source&lt;/i&gt; = image).&lt;br&gt;&lt;br&gt;Salida: la capa de señales con los campos de «Refinar y fusionar señales» más source, review, image_sign_id, cloud_sign_id, retro_index y condition, con el mismo estilo que la capa de señales.</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="95" />
         <source>Signs (from the images)</source>
-        <translation type="unfinished" />
+        <translation>Señales (de las imágenes)</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="51" />
         <source>The output of Refine and merge signs.</source>
-        <translation type="unfinished" />
+        <translation>La salida de «Refinar y fusionar señales».</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="96" />
         <source>Sign panels found in the cloud</source>
-        <translation type="unfinished" />
+        <translation>Paneles de señal encontrados en la nube</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="54" />
         <source>The output of Find signs in the point cloud.</source>
-        <translation type="unfinished" />
+        <translation>La salida de «Buscar señales en la nube de puntos (sin imágenes)».</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="57" />
         <source>Panorama stations (to classify panels found in the cloud alone)</source>
-        <translation type="unfinished" />
+        <translation>Estaciones de panorama (para clasificar los paneles encontrados solo en la nube)</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="57" />
         <source>The output of Import trajectory. With the panorama folder, the class of each panel no image sign explains is read from the panoramas in front of it.</source>
-        <translation type="unfinished" />
+        <translation>La salida de «Importar trayectoria y panoramas». Con la carpeta de panoramas, la clase de cada panel que ninguna señal de imagen explica se lee de los panoramas situados frente a él.</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="62" />
         <source>Panorama folder (optional)</source>
-        <translation type="unfinished" />
+        <translation>Carpeta de panoramas (opcional)</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="62" />
         <source>The folder of the panoramas (empty: the paths in the stations layer).</source>
-        <translation type="unfinished" />
+        <translation>La carpeta de los panoramas (vacía: las rutas de la capa de estaciones).</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="66" />
@@ -861,7 +861,7 @@
     <message>
         <location filename="../algorithms/fusesigns.py" line="66" />
         <source>The detector that reads the class of panels found in the cloud alone.</source>
-        <translation type="unfinished" />
+        <translation>El detector que lee la clase de los paneles encontrados solo en la nube.</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="66" />
@@ -876,7 +876,7 @@
     <message>
         <location filename="../algorithms/fusesigns.py" line="70" />
         <source>A class read from the panoramas is kept when the detector scores it at least this (0-1).</source>
-        <translation type="unfinished" />
+        <translation>Una clase leída de los panoramas se conserva si el detector le da una puntuación de al menos este valor (0-1).</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="74" />
@@ -886,47 +886,47 @@
     <message>
         <location filename="../algorithms/fusesigns.py" line="74" />
         <source>An image sign and a cloud panel farther apart than this (3D, metres) are never the same sign.</source>
-        <translation type="unfinished" />
+        <translation>Una señal de imagen y un panel de la nube separados más que esto (3D, metros) nunca son la misma señal.</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="78" />
         <source>Signs (fused)</source>
-        <translation type="unfinished" />
+        <translation>Señales (fusionadas)</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="78" />
         <source>PointZ sign layer: the sign fields, and source (image, lidar, image+lidar), review (1: to be checked), image_sign_id, cloud_sign_id, retro_index, condition and the review chip of the image sign (chip, relative to the layer's folder).</source>
-        <translation type="unfinished" />
+        <translation>Capa de señales PointZ: los campos de señal, y source (image, lidar, image+lidar), review (1: por comprobar), image_sign_id, cloud_sign_id, retro_index, condition y la miniatura de revisión de la señal de imagen (chip, relativa a la carpeta de la capa).</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="83" />
         <source>Signs found by both</source>
-        <translation type="unfinished" />
+        <translation>Señales encontradas por ambas fuentes</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="84" />
         <source>Signs found in the images only</source>
-        <translation type="unfinished" />
+        <translation>Señales encontradas solo en las imágenes</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="85" />
         <source>Signs found in the cloud only</source>
-        <translation type="unfinished" />
+        <translation>Señales encontradas solo en la nube</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="100" />
         <source>The signs are in {}, the panels found in the cloud in {}: both must be in the cloud's CRS</source>
-        <translation type="unfinished" />
+        <translation>Las señales están en {} y los paneles encontrados en la nube en {}: ambas capas deben estar en el SRC de la nube</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="111" />
         <source>No stations given: the {} signs found in the cloud alone keep the class unknown.</source>
-        <translation type="unfinished" />
+        <translation>No se indicaron estaciones: las {} señales encontradas solo en la nube conservan la clase unknown.</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="127" />
         <source>{} signs: {} found by both, {} in the images only ({} of them where the cloud was searched: score lowered, to review), {} in the cloud only.</source>
-        <translation type="unfinished" />
+        <translation>{} señales: {} encontradas por ambas fuentes, {} solo en las imágenes ({} de ellas donde se buscó en la nube: puntuación reducida, por revisar), {} solo en la nube.</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="140" />
@@ -941,7 +941,7 @@
     <message>
         <location filename="../algorithms/fusesigns.py" line="157" />
         <source>{} of the {} signs found in the cloud alone were recognised in the panoramas; the others keep the class unknown and are to review.</source>
-        <translation type="unfinished" />
+        <translation>{} de las {} señales encontradas solo en la nube se reconocieron en los panoramas; las demás conservan la clase unknown y quedan por revisar.</translation>
     </message>
 </context>
 <context>
@@ -1962,7 +1962,7 @@
         <location filename="../core/cloudsigns.py" line="579" />
         <source>Intensity: range exponent {alpha:.2f} ({source}), bright threshold {thr:.3f} of full scale at 10 m ({method}; background level {bg:.3f}, bright mode {mode:.3f}; {n} non-ground points near the road)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation type="unfinished">Intensidad: exponente de distancia {alpha:.2f} ({source}), umbral de brillo {thr:.3f} del fondo de escala a 10 m (nivel de fondo {bg:.3f}, Otsu sobre la cola brillante {otsu:.3f}; {n} puntos que no son de suelo cerca de la vía)</translation>
+        <translation>Intensidad: exponente de distancia {alpha:.2f} ({source}), umbral de brillo {thr:.3f} del fondo de escala a 10 m ({method}; nivel de fondo {bg:.3f}, moda brillante {mode:.3f}; {n} puntos que no son de suelo cerca de la vía)</translation>
     </message>
     <message>
         <location filename="../core/cloudsigns.py" line="687" />
@@ -2252,28 +2252,28 @@
         <translation>Archivo de señales de referencia {path}, línea {line}, campo '{field}': valor vacío</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="169" />
+        <location filename="../core/fusion.py" line="174" />
         <source>Image sign</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
-        <translation type="unfinished" />
+        <translation>Señal de imagen</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="170" />
+        <location filename="../core/fusion.py" line="175" />
         <source>Cloud panel</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
-        <translation type="unfinished" />
+        <translation>Panel de la nube</translation>
     </message>
     <message>
         <location filename="../core/fusion.py" line="118" />
         <source>{what} {index}: position is not finite</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation type="unfinished" />
+        <translation>{what} {index}: la posición no es finita</translation>
     </message>
     <message>
         <location filename="../core/fusion.py" line="115" />
         <source>{what} {index}: no position (x, y, z)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation type="unfinished" />
+        <translation>{what} {index}: sin posición (x, y, z)</translation>
     </message>
     <message>
         <location filename="../core/ground/csf.py" line="103" />
@@ -3059,7 +3059,7 @@
         <location filename="../models/sign_inventory.model3" line="660" />
         <source>The whole road-sign inventory: panorama stations from the trajectory, sign detection in the panoramas, ground filter and crop of the point cloud around the drive, projection of each detection into the cloud, and refinement and merging into the sign layer, with a review chip of every sign and the review report; then the sign panels and poles found in the cloud alone, fused with the image signs into the final inventory (Signs (fused): which sources found each sign, its condition, the signs the cameras missed).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
-        <translation type="unfinished" />
+        <translation>El inventario completo de señales viales: estaciones de panorama a partir de la trayectoria, detección de señales en los panoramas, filtro de suelo y recorte de la nube de puntos alrededor del recorrido, proyección de cada detección en la nube, y refinado y fusión en la capa de señales, con una miniatura de revisión de cada señal y el informe de revisión; después, los paneles de señal y los postes encontrados solo en la nube, fusionados con las señales de imagen en el inventario final (Señales (fusionadas): qué fuentes encontraron cada señal, su estado y las señales que las cámaras no vieron).</translation>
     </message>
     <message>
         <location filename="../models/sign_inventory.model3" line="587" />

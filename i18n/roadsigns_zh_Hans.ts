@@ -703,17 +703,17 @@
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="24" />
         <source>Find signs in the point cloud (no images)</source>
-        <translation type="unfinished" />
+        <translation>在点云中查找标志（无图像）</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="27" />
         <source>Finds retro-reflective sign panels and their poles in the LiDAR cloud alone, and flags faded sheeting.</source>
-        <translation type="unfinished" />
+        <translation>仅在激光雷达点云中查找逆反射标志牌及其杆，并标记出老化褪色的反光膜。</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="31" />
         <source>Finds sign panels from the point cloud alone, after the Utah I-15 mobile-LiDAR method (Ai and Tsai): the drive's track (the panorama stations) locates every point along the road; points above the ground (class 2) and beside or above the road are kept; their intensity is normalised for range and incidence angle; a threshold adapted to the cloud (stated in the log) picks the retro-reflective sheeting; planar clusters of sign size and shape at sign heights become panels, each with the pole or gantry that carries it. The cloud is read once and worked through in windows of drive, so memory does not grow with the drive.&lt;br&gt;&lt;br&gt;Outputs: the sign panels (PointZ at the panel centre: size, face normal and azimuth, height above the ground, intensity statistics, the retroreflectivity index and a &lt;b&gt;condition&lt;/b&gt; of good, check or poor), their outlines (PolygonZ), and the poles (sign poles, light poles, gantry posts: foot, height, diameter, lean and the signs each carries).&lt;br&gt;&lt;br&gt;&lt;b&gt;Condition&lt;/b&gt; is a screening flag, not a measurement: the retroreflectivity index is the median normalised intensity of the panel's face, compared with the drive's own healthy signs. It is not the coefficient of retroreflection of the MUTCD (observation angle 0.2°, entrance angle −4°): confirm flagged signs in the field. The cloud needs an intensity dimension and ground points (run Ground filter first).</source>
-        <translation type="unfinished" />
+        <translation>仅根据点云查找标志牌，参照犹他州 I-15 移动激光雷达方法（Ai 和 Tsai）：行驶采集的轨迹线（全景站点）确定每个点沿道路的位置；保留高于地面（类别 2）且位于道路旁或道路上方的点；按距离和入射角对其强度进行归一化；根据点云自适应的阈值（在日志中给出）选出逆反射反光膜；位于标志高度、具有标志大小和形状的平面聚类成为标志牌，每个标志牌附带承载它的杆或门架。点云只读取一次，并按行驶采集的分段窗口处理，因此内存占用不会随行驶采集的长度增长。&lt;br&gt;&lt;br&gt;输出：标志牌（位于标志牌中心的 PointZ：尺寸、牌面法向量和方位角、离地高度、强度统计、逆反射指数以及 good、check 或 poor 的&lt;b&gt;状态&lt;/b&gt;（condition）），其轮廓（PolygonZ），以及杆（标志杆、灯杆、门架立柱：杆底位置、高度、直径、倾斜度以及各自承载的标志）。&lt;br&gt;&lt;br&gt;&lt;b&gt;状态&lt;/b&gt;是筛查标记，而非测量结果：逆反射指数是标志牌牌面归一化强度的中位数，并与本次行驶采集中状况良好的标志进行比较。它不是 MUTCD 规定的逆反射系数（观测角 0.2°，入射角 −4°）：被标记的标志请到现场确认。点云需要强度维度和地面点（请先运行“地面滤波与点云裁剪”）。</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="50" />
@@ -723,7 +723,7 @@
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="50" />
         <source>The cloud with ground as class 2 (the output of Ground filter) and an intensity dimension, in the stations' CRS.</source>
-        <translation type="unfinished" />
+        <translation>地面为类别 2 的点云（“地面滤波与点云裁剪”的输出），带有强度维度，与全景站点位于同一坐标参考系。</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="88" />
@@ -733,27 +733,27 @@
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="54" />
         <source>The output of Import trajectory: the drive's track (positions and times).</source>
-        <translation type="unfinished" />
+        <translation>“导入轨迹和全景图”的输出：行驶采集的轨迹线（位置和时间）。</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="57" />
         <source>Corridor half-width (m)</source>
-        <translation type="unfinished" />
+        <translation>走廊半宽 (m)</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="57" />
         <source>Signs are searched this far to each side of the track, in metres.</source>
-        <translation type="unfinished" />
+        <translation>在轨迹线两侧各此距离（米）范围内搜索标志。</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="61" />
         <source>Sign panels found in the cloud</source>
-        <translation type="unfinished" />
+        <translation>点云中找到的标志牌</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="61" />
         <source>PointZ layer, one point per panel centre, with its size, face normal and azimuth, heights, intensity statistics, retroreflectivity index, condition and support.</source>
-        <translation type="unfinished" />
+        <translation>PointZ 图层，每个标志牌中心一个点，包含其尺寸、牌面法向量和方位角、高度、强度统计、逆反射指数、状态和支撑结构。</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="65" />
@@ -763,37 +763,37 @@
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="65" />
         <source>PolygonZ layer of each panel's rectangle in its plane.</source>
-        <translation type="unfinished" />
+        <translation>每个标志牌在其所在平面内的矩形的 PolygonZ 图层。</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="68" />
         <source>Poles</source>
-        <translation type="unfinished" />
+        <translation>杆</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="68" />
         <source>PointZ layer, one point per pole foot: kind (sign_pole, light_pole, gantry, other), height, diameter, lean and the ids of the signs it carries.</source>
-        <translation type="unfinished" />
+        <translation>PointZ 图层，每根杆的杆底一个点：类型（sign_pole、light_pole、gantry、other）、高度、直径、倾斜度以及其承载的标志的 ID。</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="72" />
         <source>Sign panels found</source>
-        <translation type="unfinished" />
+        <translation>找到的标志牌数</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="73" />
         <source>Poles found</source>
-        <translation type="unfinished" />
+        <translation>找到的杆数</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="87" />
         <source>The stations</source>
-        <translation type="unfinished" />
+        <translation>全景站点</translation>
     </message>
     <message>
         <location filename="../algorithms/findsignsincloud.py" line="119" />
         <source>{} sign panels and {} poles found in the cloud.</source>
-        <translation type="unfinished" />
+        <translation>在点云中找到 {} 个标志牌和 {} 根杆。</translation>
     </message>
 </context>
 <context>
@@ -801,57 +801,57 @@
     <message>
         <location filename="../algorithms/fusesigns.py" line="29" />
         <source>Fuse image and cloud signs</source>
-        <translation type="unfinished" />
+        <translation>融合图像与点云标志</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="32" />
         <source>Merges the signs found in the images with the panels found in the cloud alone: one sign layer that says which sources found each sign.</source>
-        <translation type="unfinished" />
+        <translation>将在图像中找到的标志与仅在点云中找到的标志牌合并：生成一个标志图层，注明每个标志由哪些来源找到。</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="36" />
         <source>Matches each sign of the image chain (Refine and merge signs) to at most one panel found in the cloud alone (Find signs in the point cloud) by optimal assignment: centres within the match radius and facings within 90°.&lt;br&gt;&lt;br&gt;A matched sign keeps its class and gains the panel's retroreflectivity index and condition (&lt;i&gt;source&lt;/i&gt; = image+lidar). A panel no image sign explains becomes a sign of its own (&lt;i&gt;source&lt;/i&gt; = lidar): with the stations and the panorama folder, the panoramas in front of its face are cut into views centred on it and the detector reads its class there; if none recognises it, its class is &lt;i&gt;unknown&lt;/i&gt; and it is flagged for review. An image sign whose place in the cloud holds no retro-reflective panel loses confidence (its score × 0.6) and is flagged for review (&lt;i&gt;source&lt;/i&gt; = image).&lt;br&gt;&lt;br&gt;Output: the sign layer with the fields of Refine and merge signs plus source, review, image_sign_id, cloud_sign_id, retro_index and condition, styled like the sign layer.</source>
-        <translation type="unfinished" />
+        <translation>通过最优分配，将图像流程（“精化与合并标志”）中的每个标志与最多一个仅在点云中找到的标志牌（“在点云中查找标志（无图像）”）进行匹配：中心位于匹配半径内，且朝向相差不超过 90°。&lt;br&gt;&lt;br&gt;匹配上的标志保留其类别，并获得该标志牌的逆反射指数和状态（&lt;i&gt;source&lt;/i&gt; = image+lidar）。没有任何图像标志与之对应的标志牌成为单独的标志（&lt;i&gt;source&lt;/i&gt; = lidar）：若提供全景站点和全景图文件夹，将从其牌面前方的全景图中截取以其为中心的视图，由检测器在其中识别其类别；若均未识别出，其类别为 &lt;i&gt;unknown&lt;/i&gt;，并标记为待审核。若某图像标志在点云中的位置没有逆反射标志牌，则降低其置信度（得分 × 0.6），并标记为待审核（&lt;i&gt;source&lt;/i&gt; = image）。&lt;br&gt;&lt;br&gt;输出：标志图层，包含“精化与合并标志”的字段以及 source、review、image_sign_id、cloud_sign_id、retro_index 和 condition，样式与标志图层相同。</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="95" />
         <source>Signs (from the images)</source>
-        <translation type="unfinished" />
+        <translation>标志（来自图像）</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="51" />
         <source>The output of Refine and merge signs.</source>
-        <translation type="unfinished" />
+        <translation>“精化与合并标志”的输出。</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="96" />
         <source>Sign panels found in the cloud</source>
-        <translation type="unfinished" />
+        <translation>点云中找到的标志牌</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="54" />
         <source>The output of Find signs in the point cloud.</source>
-        <translation type="unfinished" />
+        <translation>“在点云中查找标志（无图像）”的输出。</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="57" />
         <source>Panorama stations (to classify panels found in the cloud alone)</source>
-        <translation type="unfinished" />
+        <translation>全景站点（用于对仅在点云中找到的标志牌分类）</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="57" />
         <source>The output of Import trajectory. With the panorama folder, the class of each panel no image sign explains is read from the panoramas in front of it.</source>
-        <translation type="unfinished" />
+        <translation>“导入轨迹和全景图”的输出。若提供全景图文件夹，则从标志牌前方的全景图中识别每个没有图像标志与之对应的标志牌的类别。</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="62" />
         <source>Panorama folder (optional)</source>
-        <translation type="unfinished" />
+        <translation>全景图文件夹（可选）</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="62" />
         <source>The folder of the panoramas (empty: the paths in the stations layer).</source>
-        <translation type="unfinished" />
+        <translation>全景图所在的文件夹（留空：使用全景站点图层中的路径）。</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="66" />
@@ -861,7 +861,7 @@
     <message>
         <location filename="../algorithms/fusesigns.py" line="66" />
         <source>The detector that reads the class of panels found in the cloud alone.</source>
-        <translation type="unfinished" />
+        <translation>用于识别仅在点云中找到的标志牌类别的检测器。</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="66" />
@@ -876,7 +876,7 @@
     <message>
         <location filename="../algorithms/fusesigns.py" line="70" />
         <source>A class read from the panoramas is kept when the detector scores it at least this (0-1).</source>
-        <translation type="unfinished" />
+        <translation>当检测器给出的得分不低于此值（0-1）时，保留从全景图中识别出的类别。</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="74" />
@@ -886,47 +886,47 @@
     <message>
         <location filename="../algorithms/fusesigns.py" line="74" />
         <source>An image sign and a cloud panel farther apart than this (3D, metres) are never the same sign.</source>
-        <translation type="unfinished" />
+        <translation>距离超过此值（三维距离，单位为米）的图像标志与点云标志牌永远不会被视为同一个标志。</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="78" />
         <source>Signs (fused)</source>
-        <translation type="unfinished" />
+        <translation>标志（融合）</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="78" />
         <source>PointZ sign layer: the sign fields, and source (image, lidar, image+lidar), review (1: to be checked), image_sign_id, cloud_sign_id, retro_index, condition and the review chip of the image sign (chip, relative to the layer's folder).</source>
-        <translation type="unfinished" />
+        <translation>PointZ 标志图层：标志字段，以及 source（image、lidar、image+lidar）、review（1：待检查）、image_sign_id、cloud_sign_id、retro_index、condition 和图像标志的审核切片（chip，相对于图层所在文件夹的路径）。</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="83" />
         <source>Signs found by both</source>
-        <translation type="unfinished" />
+        <translation>两者均找到的标志</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="84" />
         <source>Signs found in the images only</source>
-        <translation type="unfinished" />
+        <translation>仅在图像中找到的标志</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="85" />
         <source>Signs found in the cloud only</source>
-        <translation type="unfinished" />
+        <translation>仅在点云中找到的标志</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="100" />
         <source>The signs are in {}, the panels found in the cloud in {}: both must be in the cloud's CRS</source>
-        <translation type="unfinished" />
+        <translation>标志位于 {}，点云中找到的标志牌位于 {}：两者都必须位于点云的坐标参考系中</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="111" />
         <source>No stations given: the {} signs found in the cloud alone keep the class unknown.</source>
-        <translation type="unfinished" />
+        <translation>未提供全景站点：仅在点云中找到的 {} 个标志保留类别 unknown。</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="127" />
         <source>{} signs: {} found by both, {} in the images only ({} of them where the cloud was searched: score lowered, to review), {} in the cloud only.</source>
-        <translation type="unfinished" />
+        <translation>{} 个标志：{} 个两者均找到，{} 个仅在图像中找到（其中 {} 个位于点云已搜索的范围内：得分已降低，待审核），{} 个仅在点云中找到。</translation>
     </message>
     <message>
         <location filename="../algorithms/fusesigns.py" line="140" />
@@ -941,7 +941,7 @@
     <message>
         <location filename="../algorithms/fusesigns.py" line="157" />
         <source>{} of the {} signs found in the cloud alone were recognised in the panoramas; the others keep the class unknown and are to review.</source>
-        <translation type="unfinished" />
+        <translation>有 {} 个（共 {} 个仅在点云中找到的标志）在全景图中被识别；其余标志保留类别 unknown，待审核。</translation>
     </message>
 </context>
 <context>
@@ -1962,7 +1962,7 @@
         <location filename="../core/cloudsigns.py" line="579" />
         <source>Intensity: range exponent {alpha:.2f} ({source}), bright threshold {thr:.3f} of full scale at 10 m ({method}; background level {bg:.3f}, bright mode {mode:.3f}; {n} non-ground points near the road)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation type="unfinished">强度：距离指数 {alpha:.2f}（{source}），亮度阈值为 10 m 处满量程的 {thr:.3f}（背景水平 {bg:.3f}，亮尾部的 Otsu 阈值 {otsu:.3f}；道路附近 {n} 个非地面点）</translation>
+        <translation>强度：距离指数 {alpha:.2f}（{source}），亮度阈值为 10 m 处满量程的 {thr:.3f}（{method}；背景水平 {bg:.3f}，亮峰 {mode:.3f}；道路附近 {n} 个非地面点）</translation>
     </message>
     <message>
         <location filename="../core/cloudsigns.py" line="687" />
@@ -2252,28 +2252,28 @@
         <translation>参考标志文件 {path}，第 {line} 行，字段 '{field}'：值为空</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="169" />
+        <location filename="../core/fusion.py" line="174" />
         <source>Image sign</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
-        <translation type="unfinished" />
+        <translation>图像标志</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="170" />
+        <location filename="../core/fusion.py" line="175" />
         <source>Cloud panel</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
-        <translation type="unfinished" />
+        <translation>点云标志牌</translation>
     </message>
     <message>
         <location filename="../core/fusion.py" line="118" />
         <source>{what} {index}: position is not finite</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation type="unfinished" />
+        <translation>{what} {index}：位置不是有限值</translation>
     </message>
     <message>
         <location filename="../core/fusion.py" line="115" />
         <source>{what} {index}: no position (x, y, z)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation type="unfinished" />
+        <translation>{what} {index}：没有位置（x, y, z）</translation>
     </message>
     <message>
         <location filename="../core/ground/csf.py" line="103" />
@@ -3059,7 +3059,7 @@
         <location filename="../models/sign_inventory.model3" line="660" />
         <source>The whole road-sign inventory: panorama stations from the trajectory, sign detection in the panoramas, ground filter and crop of the point cloud around the drive, projection of each detection into the cloud, and refinement and merging into the sign layer, with a review chip of every sign and the review report; then the sign panels and poles found in the cloud alone, fused with the image signs into the final inventory (Signs (fused): which sources found each sign, its condition, the signs the cameras missed).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
-        <translation type="unfinished" />
+        <translation>完整的道路标志清查：由轨迹生成全景站点，在全景图中检测标志，对行驶采集沿线的点云进行地面滤波与裁剪，将每个检测投影到点云，并精化与合并为标志图层，同时生成每个标志的审核切片和审核报告；随后仅在点云中查找标志牌和杆，并与图像标志融合为最终的清查结果（标志（融合）：每个标志由哪些来源找到、其状态，以及相机漏掉的标志）。</translation>
     </message>
     <message>
         <location filename="../models/sign_inventory.model3" line="587" />

@@ -65,6 +65,15 @@ def test_back_to_back_signs_match_by_facing():
     assert res.n_lidar_only == 0
 
 
+def test_null_azimuths_do_not_veto_a_match():
+    img = image_sign(1, 0.0, 0.0, 2.0, 90.0)
+    img["azimuth"] = None
+    pan = panel(3, 0.1, 0.0, 2.0, 90.0)
+    pan["azimuth"] = None
+    res = F.fuse_signs([img], [pan])
+    assert res.n_both == 1 and by_image(res, 1)["cloud_sign_id"] == 3
+
+
 def test_too_far_or_facing_away_is_not_a_match():
     res = F.fuse_signs([image_sign(1, 0.0, 0.0, 2.0, 90.0)],
                        [panel(1, 1.5, 0.0, 2.0, 90.0), panel(2, 0.1, 0.0, 2.0, 200.0)])
