@@ -2204,7 +2204,7 @@
         <translation>El trayecto necesita al menos 2 posiciones finitas; se recibieron {n}</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="105" />
+        <location filename="../core/drivewindows.py" line="100" />
         <source>The track does not move: all its positions are at one place</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El trayecto no se desplaza: todas sus posiciones están en el mismo lugar</translation>

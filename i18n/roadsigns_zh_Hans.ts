@@ -2204,7 +2204,7 @@
         <translation>轨迹线至少需要 2 个有限位置，实际为 {n} 个</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="105" />
+        <location filename="../core/drivewindows.py" line="100" />
         <source>The track does not move: all its positions are at one place</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>轨迹线没有移动：其所有位置都在同一处</translation>
