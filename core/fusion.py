@@ -41,7 +41,7 @@ from . import geometry
 from .errors import InputError
 from .refine import SIGN_FIELDS
 from .retroreflectivity import UNKNOWN
-from .schema import Field, Schema, fields, names
+from .schema import Schema, fields, names
 
 SOURCE_IMAGE, SOURCE_LIDAR, SOURCE_BOTH = "image", "lidar", "image+lidar"
 SOURCES = (SOURCE_IMAGE, SOURCE_LIDAR, SOURCE_BOTH)
@@ -59,30 +59,14 @@ AZIMUTH_WEIGHT_M = 0.5
 TRIANGULATED = "image"
 
 
-def _sign_schema() -> Schema:
-    """The sign layer's schema: ``refine.SIGN_FIELDS`` when it is typed, else its names with
-    the contract's kinds (:data:`_SIGN_KINDS`)."""
-    typed = tuple(f for f in SIGN_FIELDS if isinstance(f, Field))
-    if len(typed) == len(SIGN_FIELDS):
-        return typed
-    return fields(*[(str(n), _SIGN_KINDS.get(str(n), str)) for n in SIGN_FIELDS])
-
-
-#: The kinds of the sign layer's fields while ``refine.SIGN_FIELDS`` lists names only.
-_SIGN_KINDS: Dict[str, type] = {
-    "sign_id": int, "class": str, "score": float, "height": float, "bottom_height": float,
-    "width": float, "panel_height": float, "azimuth": float, "n_views": int, "n_points": int,
-    "source_images": str, "best_image": str, "mean_intensity": float, "planarity": float,
-    "position_source": str, "x": float, "y": float, "z": float}
-
 #: The fused sign layer: the sign layer's fields, then the fusion's.
-FUSED_SIGN_FIELDS: Schema = _sign_schema() + fields(
+FUSED_SIGN_FIELDS: Schema = SIGN_FIELDS + fields(
     ("source", str), ("review", int), ("image_sign_id", int), ("cloud_sign_id", int),
     ("retro_index", float), ("condition", str))
 
 
 def _sign_field_names() -> tuple:
-    return names(_sign_schema())
+    return names(SIGN_FIELDS)
 
 
 @dataclass

@@ -511,12 +511,13 @@ def project_detections(detections: Detections, cloud: Union[str, TiledIndex],
         source = str(cloud)
         reading, searching = progress.sub(0.0, 0.5), progress.sub(0.5, 1.0)
         blocks = drive_blocks(det, frusta, source, max_range_m, params, reading)
+    R, rays = det.R_world_from_pano(), det.centre_rays_world()  # once, not per block
     n_done = 0
     for rows, index in blocks:
         if not isinstance(cloud, TiledIndex):  # a block of the spooled cloud
             result.n_indexed += len(index)
             result.n_tiles += len(index.tile_keys)
-        _project_block(det, rows, index, frusta, max_range_m, params, result)
+        _project_block(det, rows, index, frusta, R, rays, max_range_m, params, result)
         n_done += len(rows)
         searching.report(n_done / len(det))
     if result.n_indexed == 0:
@@ -614,8 +615,9 @@ def frustum_cells(frusta: Frusta, cell_m: float) -> np.ndarray:
     return np.unique(np.concatenate(keys)) if keys else np.zeros(0, np.int64)
 
 
-def _project_block(det: Detections, rows: np.ndarray, index: TiledIndex, frusta: Frusta,
-                   max_range_m: float, params: ProjectionParams, result: ProjectionResult) -> None:
+def _project_block(det: Detections, rows: np.ndarray, index: TiledIndex, frusta: Frusta, R: np.ndarray,
+                   rays: np.ndarray, max_range_m: float, params: ProjectionParams,
+                   result: ProjectionResult) -> None:
     """Project the detections ``rows`` into ``index`` (non-ground points only), filling
     their rows of ``result``: one pass over the tiles, every detection crossing a tile
     tested there, then the surface search per detection."""
@@ -623,7 +625,6 @@ def _project_block(det: Detections, rows: np.ndarray, index: TiledIndex, frusta:
         return
     tile = index.tile_size_m
     per_tile = _assign_tiles(frusta, tile, set(index.tile_keys), rows)
-    R = det.R_world_from_pano()
     found: Dict[int, List[Tuple[np.ndarray, np.ndarray]]] = {int(k): [] for k in rows}
     for key, members in sorted(per_tile.items()):
         pts = index.query_box([key[0] * tile, key[1] * tile, -np.inf],
@@ -634,7 +635,6 @@ def _project_block(det: Detections, rows: np.ndarray, index: TiledIndex, frusta:
             inside = _frustum_members(pts.xyz_world, det, k, frusta, R, max_range_m, params.min_range_m)
             if inside.size:
                 found[k].append((pts.xyz_world[inside], pts.point_index[inside]))
-    rays = det.centre_rays_world()
     for k, parts in found.items():
         if not parts:
             continue
