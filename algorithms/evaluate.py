@@ -1,5 +1,5 @@
 """roadsigns:evaluate - a sign layer against reference sign panels: precision, recall,
-position, height and azimuth errors, and an HTML report."""
+position, height and azimuth errors, class and code accuracy, and an HTML report."""
 import math
 import os
 
@@ -11,14 +11,17 @@ from qgis.core import (
     QgsFeatureRequest,
     QgsProcessingException,
     QgsProcessingOutputNumber,
+    QgsProcessingOutputString,
     QgsVectorLayer,
 )
 
 from ..core.crs import check_extent
 from ..core.evaluate import (
+    CODE_CONFUSIONS,
     OUTPUT_NAMES,
     SignSet,
     check_overlap,
+    confusions_text,
     evaluate,
     read_reference_csv,
     write_html_report,
@@ -47,12 +50,15 @@ def _number_or_nan(value):
 
 
 def sign_set_from_features(features, fields, transform, label, id_field="sign_id"):
-    """A core SignSet from point features (PointZ geometry, or x, y, z fields)."""
+    """A core SignSet from point features (PointZ geometry, or x, y, z fields); with codes
+    (NULL: no code) when the layer has a field ``code``, else without (codes not scored)."""
     if fields.lookupField("class") < 0:
         raise QgsProcessingException(
             tr("{layer}: no field 'class'; fields found: {found}").format(
                 layer=label, found=", ".join(fields.names())))
     ids, classes, xyz, height, azimuth, width, panel_height, images = [], [], [], [], [], [], [], []
+    has_codes = fields.lookupField("code") >= 0
+    codes = []
     for k, feature in enumerate(features):
         geometry = feature.geometry()
         if geometry.isNull() or geometry.isEmpty():
@@ -75,12 +81,15 @@ def sign_set_from_features(features, fields, transform, label, id_field="sign_id
         width.append(_number_or_nan(_field_values(fields, feature, "width", None)))
         panel_height.append(_number_or_nan(_field_values(fields, feature, "panel_height", None)))
         images.append(str(_field_values(fields, feature, "best_image", "")))
+        if has_codes:
+            codes.append(str(_field_values(fields, feature, "code", "")))
         if not np.isfinite(point).all():
             raise QgsProcessingException(tr(
                 "{layer}: sign '{sign_id}' has no valid x, y, z position (no point geometry, and no numbers "
                 "in the fields x, y, z)").format(layer=label, sign_id=ids[-1]))
     return SignSet(ids, classes, np.array(xyz, float).reshape(-1, 3), np.array(height),
-                   np.array(azimuth), np.array(width), np.array(panel_height), images)
+                   np.array(azimuth), np.array(width), np.array(panel_height), images,
+                   codes if has_codes else None)
 
 
 class Evaluate(RoadSignsAlgorithm):
@@ -106,10 +115,16 @@ class Evaluate(RoadSignsAlgorithm):
             "ignoring class, then reports precision (matches / signs), recall (matches / "
             "reference panels), F1, the class accuracy of the matches, and the median and 95th "
             "percentile position error, the median height error and the median azimuth error."
+            "<br><br>When the reference has a <i>code</i> column and the sign layer a <i>code</i> "
+            "field (OpenStreetMap traffic_sign codes such as DE:274[50]), it also reports the code "
+            "accuracy of the matches whose reference code is not empty (a sign without a code "
+            "counts as wrong, and is counted as no code) and the code confusions, most frequent "
+            "first."
             "<br><br>The <b>reference</b> is a CSV <i>sign_id,class,x,y,z,height,width,"
-            "panel_height,azimuth</i> in the sign layer's CRS, or a point layer with those fields "
-            "(reprojected to the sign layer's CRS).<br><br>The HTML report has the summary and one "
-            "row per sign: matched (with its errors), missed or false.")
+            "panel_height,azimuth</i> (and optionally <i>code</i>) in the sign layer's CRS, or a "
+            "point layer with those fields (reprojected to the sign layer's CRS).<br><br>The HTML "
+            "report has the summary and one row per sign: matched (with its errors), missed or "
+            "false.")
 
     def output_labels(self):
         """Output name (core's ``OUTPUT_NAMES`` and the two extra errors) -> translated label."""
@@ -122,6 +137,9 @@ class Evaluate(RoadSignsAlgorithm):
             "P95_ERROR": self.tr("95th percentile 3D error (m)"),
             "MEDIAN_HEIGHT_ERROR": self.tr("Median height error (m)"),
             "MEDIAN_AZIMUTH_ERROR": self.tr("Median azimuth error (°)"),
+            "CODE_ACCURACY": self.tr("Code accuracy of matches with a reference code"),
+            "CODE_COMPARED": self.tr("Matches whose codes were compared"),
+            "NO_CODE": self.tr("Compared matches whose sign has no code"),
             self.MEDIAN_HORIZONTAL_ERROR: self.tr("Median horizontal position error (m)"),
             self.MEDIAN_VERTICAL_ERROR: self.tr("Median vertical position error (m)"),
         }
@@ -130,11 +148,13 @@ class Evaluate(RoadSignsAlgorithm):
         self.add_source(
             self.SIGNS, self.tr("Sign layer"), Qgis.ProcessingSourceType.VectorPoint,
             self.tr("The sign layer to score (PointZ at the panel centres, e.g. the output of Refine "
-                    "signs), with the fields sign_id, class and optionally height, azimuth, best_image."))
+                    "signs), with the fields sign_id, class and optionally height, azimuth, best_image, "
+                    "code."))
         self.add_file(
             self.REFERENCE, self.tr("Reference signs (CSV or point layer)"),
-            self.tr("Ground truth: a CSV sign_id,class,x,y,z,height,width,panel_height,azimuth in the sign "
-                    "layer's CRS, or a point layer with those fields (reprojected if its CRS differs)."),
+            self.tr("Ground truth: a CSV sign_id,class,x,y,z,height,width,panel_height,azimuth (and "
+                    "optionally code) in the sign layer's CRS, or a point layer with those fields "
+                    "(reprojected if its CRS differs)."),
             file_filter=self.tr("Reference signs (*.csv *.txt *.gpkg *.shp *.geojson);;All files (*.*)"))
         self.add_number(
             self.MATCH_RADIUS, self.tr("Match radius (m)"), 1.0,
@@ -146,6 +166,8 @@ class Evaluate(RoadSignsAlgorithm):
         labels = self.output_labels()
         for name in OUTPUT_NAMES + (self.MEDIAN_HORIZONTAL_ERROR, self.MEDIAN_VERTICAL_ERROR):
             self.addOutput(QgsProcessingOutputNumber(name, labels[name]))
+        self.addOutput(QgsProcessingOutputString(
+            CODE_CONFUSIONS, self.tr("Code confusions (reference code -> sign code: count)")))
 
     def _reference(self, path, signs_crs, context, feedback):
         if not path or not os.path.isfile(path):
@@ -204,6 +226,14 @@ class Evaluate(RoadSignsAlgorithm):
                                   "recall {}, median error {} m").format(
             len(signs), len(reference), outputs["TP"], outputs["FP"], outputs["FN"],
             _fmt(outputs["PRECISION"]), _fmt(outputs["RECALL"]), _fmt(outputs["MEDIAN_ERROR"])))
+        outputs[CODE_CONFUSIONS] = confusions_text(result.code_confusions)
+        if result.codes_scored:
+            feedback.pushInfo(self.tr("Code accuracy {} of {} matches with a reference code ({} without a "
+                                      "code); confusions: {}").format(
+                _fmt(outputs["CODE_ACCURACY"]), result.code_compared, result.no_code,
+                outputs[CODE_CONFUSIONS] or self.tr("none")))
+        else:
+            feedback.pushInfo(self.localise(result.code_note))
         outputs[self.OUTPUT_REPORT] = report_path
         return outputs
 

@@ -18,13 +18,21 @@ Conventions (``docs/formats.md``, "Reference (ground truth) signs CSV" and
   may be NaN (unknown) on either side; such pairs are left out of those two statistics.
 * ``P95_ERROR`` is the 95th percentile with linear interpolation between order
   statistics (``numpy.percentile``'s default).
+* Sign codes (OpenStreetMap ``traffic_sign`` values such as ``DE:274[50]``) are scored only
+  when both sets have them (``SignSet.codes`` not None: the reference's ``code`` column, the
+  sign layer's ``code`` field). Among the matches whose reference code is not empty, code
+  accuracy = share whose sign code equals it (compared as text, surrounding blanks
+  removed); a sign without a code counts as wrong and is counted as "no code" too. The
+  confusions are the (reference code, sign code) pairs that differ, most frequent first.
+  Otherwise the result says, in :attr:`EvaluationResult.code_note`, why codes were not scored.
 """
 from __future__ import annotations
 
 import html
 import math
+from collections import Counter
 from dataclasses import dataclass, field
-from typing import Dict, List, Optional, Sequence
+from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 from scipy.optimize import linear_sum_assignment
@@ -32,7 +40,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
-from .errors import InputError
+from .errors import InputError, Message
 from .outputs import write_text_atomically
 from .tables import read_table
 
@@ -41,9 +49,17 @@ REFERENCE_COLUMNS = ("sign_id", "class", "x", "y", "z", "height", "width",
                      "panel_height", "azimuth")
 REFERENCE_NUMERIC = ("x", "y", "z", "height", "width", "panel_height", "azimuth")
 
+#: Optional reference CSV column: the sign's OpenStreetMap ``traffic_sign`` code ("" unknown).
+REFERENCE_CODE = "code"
+
 #: Numeric output names of ``roadsigns:evaluate``, in order.
 OUTPUT_NAMES = ("TP", "FP", "FN", "PRECISION", "RECALL", "F1", "CLASS_ACCURACY",
-                "MEDIAN_ERROR", "P95_ERROR", "MEDIAN_HEIGHT_ERROR", "MEDIAN_AZIMUTH_ERROR")
+                "MEDIAN_ERROR", "P95_ERROR", "MEDIAN_HEIGHT_ERROR", "MEDIAN_AZIMUTH_ERROR",
+                "CODE_ACCURACY", "CODE_COMPARED", "NO_CODE")
+#: Text output of ``roadsigns:evaluate``: the code confusions (:func:`confusions_text`).
+CODE_CONFUSIONS = "CODE_CONFUSIONS"
+#: How a missing (empty) sign code is written in the confusions.
+NO_CODE_TEXT = "(none)"
 
 MATCHED, MISSED, FALSE = "matched", "missed", "false"
 
@@ -60,6 +76,13 @@ def _float_column(values, n: int, name: str) -> np.ndarray:
     return array
 
 
+def _code_text(value) -> str:
+    """A sign code as text, surrounding blanks removed; "" for None and NaN (unknown)."""
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return ""
+    return str(value).strip()
+
+
 @dataclass
 class SignSet:
     """Sign panels in one CRS: ``xyz`` (N, 3) panel centres in world metres (E, N, Up).
@@ -67,7 +90,9 @@ class SignSet:
     ``height`` (panel centre above the ground below, m), ``azimuth_deg`` (direction the
     face looks towards, clockwise from grid north), ``width_m`` / ``panel_height_m`` may
     hold NaN where unknown; None means all unknown. ``images`` are image names shown in
-    the report (e.g. a sign's ``best_image``), "" where none.
+    the report (e.g. a sign's ``best_image``), "" where none. ``codes`` are the signs'
+    ``traffic_sign`` codes, "" (or None, NaN) where unknown; ``codes`` None means the set
+    has no codes at all (no ``code`` column or field), and codes are then not scored.
     """
     ids: Sequence[str]
     classes: Sequence[str]
@@ -77,6 +102,7 @@ class SignSet:
     width_m: Optional[np.ndarray] = None
     panel_height_m: Optional[np.ndarray] = None
     images: Optional[Sequence[str]] = None
+    codes: Optional[Sequence[str]] = None
 
     def __post_init__(self):
         self.ids = [str(value) for value in self.ids]
@@ -92,6 +118,10 @@ class SignSet:
         self.images = [""] * n if self.images is None else [str(v) for v in self.images]
         if len(self.images) != n:
             raise ValueError(f"SignSet has {len(self.images)} images for {n} ids")
+        if self.codes is not None:
+            self.codes = [_code_text(value) for value in self.codes]
+            if len(self.codes) != n:
+                raise ValueError(f"SignSet has {len(self.codes)} codes for {n} ids")
 
     def __len__(self) -> int:
         return len(self.ids)
@@ -102,12 +132,15 @@ class SignSet:
 def read_reference_csv(path: str) -> SignSet:
     """Read a reference signs CSV (the columns of docs/formats.md, comma/semicolon/tab separated).
 
+    The optional column ``code`` gives the set its ``codes`` (an empty cell: no code);
+    without it ``codes`` is None.
+
     Raises :class:`InputError` naming the file (and line and field) for missing columns,
     values that are not finite numbers, empty ids or classes, duplicate ``sign_id`` and a
     file without data rows.
     """
     columns = read_table(path, required=REFERENCE_COLUMNS, numeric=REFERENCE_NUMERIC,
-                         what="reference signs")
+                         optional=(REFERENCE_CODE,), what="reference signs")
     first_line: Dict[str, int] = {}
     for name in ("sign_id", "class"):
         for value, line in zip(columns[name], columns["_line"]):
@@ -123,7 +156,8 @@ def read_reference_csv(path: str) -> SignSet:
     return SignSet(ids=list(columns["sign_id"]), classes=list(columns["class"]),
                    xyz=np.column_stack([columns["x"], columns["y"], columns["z"]]),
                    height=columns["height"], azimuth_deg=columns["azimuth"],
-                   width_m=columns["width"], panel_height_m=columns["panel_height"])
+                   width_m=columns["width"], panel_height_m=columns["panel_height"],
+                   codes=list(columns[REFERENCE_CODE]) if REFERENCE_CODE in columns else None)
 
 
 def check_overlap(signs: SignSet, reference: SignSet, match_radius_m: float, sign_label: str,
@@ -267,15 +301,25 @@ class ReportRow:
     reference_id: str = ""
     reference_class: str = ""
     image: str = ""
+    sign_code: str = ""
+    reference_code: str = ""
     distance_m: float = math.nan
     horizontal_m: float = math.nan
     dz_m: float = math.nan
     height_error_m: float = math.nan
     azimuth_error_deg: float = math.nan
 
+    #: this match is one of the code comparisons (codes scored, reference code not empty)
+    code_compared: bool = False
+
     @property
     def class_agrees(self) -> Optional[bool]:
         return self.sign_class == self.reference_class if self.status == MATCHED else None
+
+    @property
+    def code_agrees(self) -> Optional[bool]:
+        """Whether the sign's code is the reference's; None where codes are not compared."""
+        return self.sign_code == self.reference_code if self.code_compared else None
 
 
 def _ratio(numerator: float, denominator: float) -> float:
@@ -308,13 +352,63 @@ class EvaluationResult:
     median_azimuth_error_deg: float
     matching: Matching
     rows: List[ReportRow] = field(default_factory=list)
+    #: whether codes were scored (both sets have codes); else ``code_note`` says why not
+    codes_scored: bool = False
+    #: matches whose reference code is not empty, and the share of them with the same sign code
+    code_compared: int = 0
+    code_accuracy: float = math.nan
+    #: of those, the signs without a code (counted wrong)
+    no_code: int = 0
+    #: (reference code, sign code ("" none), count) of the compared matches whose codes differ,
+    #: most frequent first, then by reference code and sign code
+    code_confusions: List[Tuple[str, str, int]] = field(default_factory=list)
+    #: why codes were not scored (a :class:`Message`); None when they were
+    code_note: Optional[Message] = None
 
     def as_outputs(self) -> Dict[str, float]:
-        """The numeric outputs of ``roadsigns:evaluate`` (counts as int)."""
+        """The numeric outputs of ``roadsigns:evaluate`` (counts as int; the code figures
+        NaN when codes were not scored)."""
         values = (self.tp, self.fp, self.fn, self.precision, self.recall, self.f1,
                   self.class_accuracy, self.median_error_m, self.p95_error_m,
-                  self.median_height_error_m, self.median_azimuth_error_deg)
+                  self.median_height_error_m, self.median_azimuth_error_deg,
+                  self.code_accuracy,
+                  self.code_compared if self.codes_scored else math.nan,
+                  self.no_code if self.codes_scored else math.nan)
         return dict(zip(OUTPUT_NAMES, values))
+
+
+def confusions_text(confusions: Sequence[Tuple[str, str, int]]) -> str:
+    """The confusions as one line, ``DE:274[50] -> DE:274[30]: 2; DE:206 -> (none): 1``
+    (a missing sign code written :data:`NO_CODE_TEXT`); "" when there are none."""
+    return "; ".join(f"{reference} -> {predicted or NO_CODE_TEXT}: {count}"
+                     for reference, predicted, count in confusions)
+
+
+def _code_note(signs: SignSet, reference: SignSet) -> Optional[Message]:
+    """Why codes cannot be scored, or None when both sets have codes."""
+    if signs.codes is None and reference.codes is None:
+        return Message("Code accuracy not computed: neither the signs nor the reference have "
+                       "a 'code' field or column.")
+    if reference.codes is None:
+        return Message("Code accuracy not computed: the reference has no 'code' column or field.")
+    if signs.codes is None:
+        return Message("Code accuracy not computed: the signs have no 'code' field.")
+    return None
+
+
+def score_codes(sign_codes: Sequence[str], reference_codes: Sequence[str]
+                ) -> Tuple[int, float, int, List[Tuple[str, str, int]]]:
+    """(compared, accuracy, no code, confusions) of matched code pairs ``sign_codes[k]`` /
+    ``reference_codes[k]`` ("" unknown): the pairs whose reference code is not empty are
+    compared; accuracy NaN when none is. Confusions: see :attr:`EvaluationResult.code_confusions`."""
+    compared = [(_code_text(s), _code_text(r)) for s, r in zip(sign_codes, reference_codes)
+                if _code_text(r)]
+    right = sum(s == r for s, r in compared)
+    no_code = sum(s == "" for s, _ in compared)
+    counts = Counter((r, s) for s, r in compared if s != r)
+    confusions = sorted(((r, s, n) for (r, s), n in counts.items()),
+                        key=lambda item: (-item[2], item[0], item[1]))
+    return len(compared), _ratio(right, len(compared)), no_code, confusions
 
 
 def evaluate(signs: SignSet, reference: SignSet, match_radius_m: float) -> EvaluationResult:
@@ -350,24 +444,36 @@ def evaluate(signs: SignSet, reference: SignSet, match_radius_m: float) -> Evalu
         median_azimuth_error_deg=_median(azimuth_error),
         matching=matching)
 
+    result.code_note = _code_note(signs, reference)
+    result.codes_scored = result.code_note is None
+    sign_codes = list(signs.codes) if signs.codes is not None else [""] * len(signs)
+    reference_codes = list(reference.codes) if reference.codes is not None else [""] * len(reference)
+    if result.codes_scored:
+        (result.code_compared, result.code_accuracy, result.no_code,
+         result.code_confusions) = score_codes([sign_codes[i] for i in s],
+                                               [reference_codes[j] for j in r])
+
     match_of_reference = {int(j): k for k, j in enumerate(r)}
     for j in range(len(reference)):
         k = match_of_reference.get(j)
         if k is None:
             result.rows.append(ReportRow(MISSED, reference_id=reference.ids[j],
-                                         reference_class=reference.classes[j]))
+                                         reference_class=reference.classes[j],
+                                         reference_code=reference_codes[j]))
             continue
         i = int(s[k])
         result.rows.append(ReportRow(
             MATCHED, sign_id=signs.ids[i], sign_class=signs.classes[i],
             reference_id=reference.ids[j], reference_class=reference.classes[j],
-            image=sign_images[i], distance_m=float(distance[k]),
+            image=sign_images[i], sign_code=sign_codes[i], reference_code=reference_codes[j],
+            code_compared=result.codes_scored and bool(reference_codes[j]),
+            distance_m=float(distance[k]),
             horizontal_m=float(horizontal[k]), dz_m=float(delta[k, 2]),
             height_error_m=float(height_error[k]),
             azimuth_error_deg=float(azimuth_error[k])))
     for i in matching.unmatched_signs:
         result.rows.append(ReportRow(FALSE, sign_id=signs.ids[i], sign_class=signs.classes[i],
-                                     image=sign_images[i]))
+                                     image=sign_images[i], sign_code=sign_codes[i]))
     return result
 
 
@@ -383,7 +489,7 @@ td.num { text-align: right; font-variant-numeric: tabular-nums; }
 tr.matched td.status { color: #176117; }
 tr.missed td.status { color: #a05a00; }
 tr.false td.status { color: #b01c1c; }
-td.wrongclass { background: #fde4e4; }
+td.wrongclass, td.wrongcode { background: #fde4e4; }
 p.note { color: #555; font-size: 0.9em; }
 """
 
@@ -420,6 +526,12 @@ def _summary_html(result: EvaluationResult) -> str:
         ("Median height error (|dh above ground|)", _number(result.median_height_error_m, "m")),
         ("Median azimuth error", _number(result.median_azimuth_error_deg, "\u00b0", 1)),
     ]
+    if result.codes_scored:
+        rows += [
+            ("Code accuracy (of matches with a reference code)", _number(result.code_accuracy)),
+            ("Codes compared", str(result.code_compared)),
+            ("Compared signs without a code", str(result.no_code)),
+        ]
     body = "\n".join(f"<tr><th>{html.escape(name)}</th>{_cell(value, 'num')}</tr>"
                      for name, value in rows)
     return f'<table class="summary">\n{body}\n</table>'
@@ -428,12 +540,21 @@ def _summary_html(result: EvaluationResult) -> str:
 _ROW_HEADERS = ("Status", "Sign id", "Sign class", "Reference id", "Reference class",
                 "3D distance", "Horizontal", "dz (sign \u2212 ref.)",
                 "Height error (sign \u2212 ref.)", "Azimuth error", "Image")
+#: the columns added after the classes when codes are scored
+_CODE_HEADERS = ("Sign code", "Reference code")
 
 
-def _row_html(row: ReportRow) -> str:
+def _code_cells(row: ReportRow) -> List[str]:
+    code_css = "wrongcode" if row.code_agrees is False else ""
+    sign_code = row.sign_code or (NO_CODE_TEXT if row.code_compared else "")
+    return [_cell(sign_code, code_css), _cell(row.reference_code, code_css)]
+
+
+def _row_html(row: ReportRow, codes: bool = False) -> str:
     class_css = "wrongclass" if row.class_agrees is False else ""
     cells = [_cell(row.status, "status"), _cell(row.sign_id), _cell(row.sign_class, class_css),
              _cell(row.reference_id), _cell(row.reference_class, class_css),
+             *(_code_cells(row) if codes else []),
              _cell(_number(row.distance_m, "m"), "num"),
              _cell(_number(row.horizontal_m, "m"), "num"),
              _cell(_number(row.dz_m, "m", signed=True), "num"),
@@ -441,6 +562,22 @@ def _row_html(row: ReportRow) -> str:
              _cell(_number(row.azimuth_error_deg, "\u00b0", 1), "num"),
              _cell(row.image)]
     return f'<tr class="{row.status}">{"".join(cells)}</tr>'
+
+
+def _codes_html(result: EvaluationResult) -> List[str]:
+    """The code confusions section, or the one line saying why codes were not scored."""
+    if not result.codes_scored:
+        return [f'<p class="note">{html.escape(str(result.code_note))}</p>']
+    if not result.code_confusions:
+        return ["<h2>Code confusions</h2>",
+                "<p>None: every compared sign has its reference code.</p>" if result.code_compared
+                else "<p>No match has a reference code.</p>"]
+    header = "".join(f"<th>{html.escape(name)}</th>" for name in ("Reference code", "Sign code", "Count"))
+    body = "\n".join(f"<tr>{_cell(reference)}{_cell(predicted or NO_CODE_TEXT)}{_cell(str(count), 'num')}</tr>"
+                     for reference, predicted, count in result.code_confusions)
+    return ["<h2>Code confusions</h2>",
+            f'<table class="confusions">\n<thead><tr>{header}</tr></thead>\n<tbody>\n{body}\n'
+            "</tbody>\n</table>"]
 
 
 def render_html_report(result: EvaluationResult, title: str = "Road sign evaluation",
@@ -451,8 +588,10 @@ def render_html_report(result: EvaluationResult, title: str = "Road sign evaluat
         sources.append(f"<p>Signs: {html.escape(sign_label)}</p>")
     if reference_label:
         sources.append(f"<p>Reference: {html.escape(reference_label)}</p>")
-    header = "".join(f"<th>{html.escape(name)}</th>" for name in _ROW_HEADERS)
-    rows = "\n".join(_row_html(row) for row in result.rows)
+    codes = result.codes_scored
+    names = (_ROW_HEADERS[:5] + _CODE_HEADERS + _ROW_HEADERS[5:]) if codes else _ROW_HEADERS
+    header = "".join(f"<th>{html.escape(name)}</th>" for name in names)
+    rows = "\n".join(_row_html(row, codes) for row in result.rows)
     note = ("Signs and reference panels are matched one-to-one by optimal assignment on the "
             "3D distance between panel centres within the match radius, ignoring class. "
             "Errors are sign minus reference; summary errors are absolute values; the azimuth "
@@ -470,6 +609,7 @@ def render_html_report(result: EvaluationResult, title: str = "Road sign evaluat
         *sources,
         "<h2>Summary</h2>",
         _summary_html(result),
+        *_codes_html(result),
         "<h2>Signs and reference panels</h2>",
         f"<table class=\"signs\">\n<thead><tr>{header}</tr></thead>\n<tbody>\n{rows}\n"
         "</tbody>\n</table>",

@@ -17,6 +17,7 @@ import numpy as np
 import pyproj
 
 from . import roadsigns_geometry
+from . import textures as tx
 from .layout import CLASS_CODES, REFLECTANCE, build_scene
 from .lidar import LazWriter, ScannerMount, scan
 from .presets import get_preset
@@ -176,11 +177,14 @@ def generate_scene(preset="tiny", seed=1, out_dir="scene", crs="projected", pano
         c = s.panel.centre + frames.origin
         az = float(g.azimuth_deg_of_enu(s.panel.normal))
         ref_rows.append([s.sign_id, s.cls, "%.4f" % c[0], "%.4f" % c[1], "%.4f" % c[2], "%.4f" % s.height_above_ground,
-                         "%.3f" % s.panel.width, "%.3f" % s.panel.height, "%.3f" % az, int(s.faded)])
+                         "%.3f" % s.panel.width, "%.3f" % s.panel.height, "%.3f" % az, int(s.faded),
+                         tx.VARIANT_CODES.get((s.cls, s.variant), "")])
     with open(paths["reference"], "w", newline="") as fh:
         w = csv.writer(fh, lineterminator="\n")
-        # ``faded`` (1: the face lost its retroreflective sheeting) is last: older readers ignore it
-        w.writerow(["sign_id", "class", "x", "y", "z", "height", "width", "panel_height", "azimuth", "faded"])
+        # ``faded`` (1: the face lost its retroreflective sheeting) and ``code`` (the sign's
+        # OpenStreetMap traffic_sign code) come last: older readers ignore them
+        w.writerow(["sign_id", "class", "x", "y", "z", "height", "width", "panel_height", "azimuth", "faded",
+                    "code"])
         w.writerows(ref_rows)
 
     # --- reference poles ---------------------------------------------------------------------

@@ -31,6 +31,22 @@ VARIANTS = {
     "stop": ["stop"],
     "yield": ["yield"],
 }
+#: OpenStreetMap ``traffic_sign`` code (Germany) of each drawn variant, as in
+#: ``models/sign-codes-de.csv``; written to ``reference_signs.csv`` (column ``code``).
+VARIANT_CODES = {
+    ("warning", "exclamation"): "DE:101", ("warning", "curve"): "DE:103-10",
+    ("warning", "crossroads"): "DE:102", ("warning", "children"): "DE:136-10",
+    ("prohibitory", "30"): "DE:274[30]", ("prohibitory", "40"): "DE:274[40]",
+    ("prohibitory", "50"): "DE:274[50]", ("prohibitory", "70"): "DE:274[70]",
+    ("prohibitory", "100"): "DE:274[100]", ("prohibitory", "no_overtaking"): "DE:276",
+    ("prohibitory", "no_entry_trucks"): "DE:253",
+    ("mandatory", "ahead"): "DE:209-30", ("mandatory", "right"): "DE:209", ("mandatory", "left"): "DE:209-10",
+    ("mandatory", "keep_right"): "DE:222", ("mandatory", "roundabout"): "DE:215",
+    ("information", "parking"): "DE:314", ("information", "crossing"): "DE:350-10",
+    ("information", "one_way"): "DE:220-20", ("information", "dead_end"): "DE:357",
+    ("information", "direction"): "DE:434", ("information", "gantry"): "DE:434",
+    ("stop", "stop"): "DE:206", ("yield", "yield"): "DE:205",
+}
 
 
 def _canvas(w, h):

@@ -10,7 +10,7 @@ from html.parser import HTMLParser
 import numpy as np
 import pytest
 
-from roadsigns.core.errors import InputError
+from roadsigns.core.errors import InputError, Message
 from roadsigns.core.evaluate import (
     FALSE,
     MATCHED,
@@ -18,6 +18,7 @@ from roadsigns.core.evaluate import (
     OUTPUT_NAMES,
     SignSet,
     azimuth_difference_deg,
+    confusions_text,
     evaluate,
     match_signs,
     read_reference_csv,
@@ -29,7 +30,7 @@ from roadsigns.core.evaluate import (
 E0, N0, H0 = 500000.0, 5300000.0, 200.0
 
 
-def make_set(prefix, offsets, classes=None, height=None, azimuth=None, images=None):
+def make_set(prefix, offsets, classes=None, height=None, azimuth=None, images=None, codes=None):
     offsets = np.asarray(offsets, dtype=float).reshape(-1, 3)
     n = len(offsets)
     return SignSet(ids=[f"{prefix}{k + 1}" for k in range(n)],
@@ -37,7 +38,7 @@ def make_set(prefix, offsets, classes=None, height=None, azimuth=None, images=No
                    xyz=offsets + [E0, N0, H0],
                    height=height if height is not None else np.full(n, 2.0),
                    azimuth_deg=azimuth if azimuth is not None else np.zeros(n),
-                   images=images)
+                   images=images, codes=codes)
 
 
 def pairs(matching, signs, reference):
@@ -436,3 +437,117 @@ def test_reference_empty_file_and_header_only(tmp_path):
         read_reference_csv(write(tmp_path, ""))
     with pytest.raises(InputError, match="no data rows"):
         read_reference_csv(write(tmp_path, HEADER + "\n", name="h.csv"))
+
+
+# --------------------------------------------------------------------------- sign codes
+
+LINE = [[10.0 * k, 0, 0] for k in range(8)]
+
+
+def test_code_accuracy_no_code_and_confusions_by_hand():
+    # R1..R8 on a line, one sign on each; reference codes and sign codes:
+    #   R1 DE:206       S1 DE:206       right
+    #   R2 DE:274[50]   S2 DE:274[30]   wrong
+    #   R3 DE:274[50]   S3 DE:274[30]   wrong (same confusion: count 2)
+    #   R4 DE:274[50]   S4 ""           wrong, no code
+    #   R5 DE:205       S5 None         wrong, no code (None is no code)
+    #   R6 ""           S6 DE:206       not compared: no reference code
+    #   R7 " DE:123 "   S7 DE:123       right (blanks removed)
+    #   R8 DE:101       S8 DE:102       wrong
+    # compared 7, right 2 -> 2/7; no code 2
+    reference = make_set("R", LINE, codes=["DE:206", "DE:274[50]", "DE:274[50]", "DE:274[50]",
+                                          "DE:205", "", " DE:123 ", "DE:101"])
+    signs = make_set("S", LINE, codes=["DE:206", "DE:274[30]", "DE:274[30]", "", None,
+                                       "DE:206", "DE:123", "DE:102"])
+    result = evaluate(signs, reference, 1.0)
+    assert result.codes_scored and result.code_note is None
+    assert result.code_compared == 7
+    assert result.code_accuracy == pytest.approx(2 / 7)
+    assert result.no_code == 2
+    # most frequent first; ties by reference code, then sign code ("" before any code)
+    assert result.code_confusions == [("DE:274[50]", "DE:274[30]", 2), ("DE:101", "DE:102", 1),
+                                      ("DE:205", "", 1), ("DE:274[50]", "", 1)]
+    assert confusions_text(result.code_confusions) == (
+        "DE:274[50] -> DE:274[30]: 2; DE:101 -> DE:102: 1; DE:205 -> (none): 1; "
+        "DE:274[50] -> (none): 1")
+    outputs = result.as_outputs()
+    assert tuple(outputs) == OUTPUT_NAMES
+    assert outputs["CODE_ACCURACY"] == pytest.approx(2 / 7)
+    assert (outputs["CODE_COMPARED"], outputs["NO_CODE"]) == (7, 2)
+    assert [row.code_agrees for row in result.rows] == [True, False, False, False, False, None,
+                                                        True, False]
+    assert (result.rows[3].sign_code, result.rows[3].reference_code) == ("", "DE:274[50]")
+
+
+def test_codes_only_of_matches_count():
+    # S2 is false (no reference near it), R2 is missed: neither is compared, whatever its code.
+    reference = make_set("R", [[0, 0, 0], [10, 0, 0]], codes=["DE:206", "DE:205"])
+    signs = make_set("S", [[0, 0, 0], [50, 0, 0]], codes=["DE:206", "DE:999"])
+    result = evaluate(signs, reference, 1.0)
+    assert (result.tp, result.code_compared, result.code_accuracy) == (1, 1, 1.0)
+    assert result.code_confusions == [] and confusions_text(result.code_confusions) == ""
+    assert [row.code_agrees for row in result.rows] == [True, None, None]
+
+
+def test_code_accuracy_is_undefined_without_reference_codes():
+    result = evaluate(make_set("S", [[0, 0, 0]], codes=["DE:206"]),
+                      make_set("R", [[0, 0, 0]], codes=[""]), 1.0)
+    assert result.codes_scored and result.code_compared == 0 and result.no_code == 0
+    assert math.isnan(result.code_accuracy)
+    assert result.as_outputs()["CODE_COMPARED"] == 0
+
+
+@pytest.mark.parametrize("sign_codes, reference_codes, why", [
+    (["DE:206"], None, "the reference has no 'code' column"),
+    (None, ["DE:206"], "the signs have no 'code' field"),
+    (None, None, "neither the signs nor the reference"),
+])
+def test_codes_missing_on_either_side_are_not_scored(sign_codes, reference_codes, why):
+    reference = make_set("R", [[0, 0, 0], [10, 0, 0]], classes=["stop", "yield"],
+                         codes=None if reference_codes is None else reference_codes * 2)
+    signs = make_set("S", [[0, 0, 0], [10, 0, 0]], classes=["stop", "stop"],
+                     codes=None if sign_codes is None else ["DE:101"] * 2)
+    result = evaluate(signs, reference, 1.0)
+    assert (result.tp, result.class_accuracy) == (2, 0.5)  # the rest as before
+    assert not result.codes_scored
+    assert isinstance(result.code_note, Message) and why in result.code_note
+    assert result.code_note.startswith("Code accuracy not computed")
+    outputs = result.as_outputs()
+    assert all(math.isnan(outputs[name]) for name in ("CODE_ACCURACY", "CODE_COMPARED", "NO_CODE"))
+    assert result.code_confusions == [] and all(row.code_agrees is None for row in result.rows)
+    checker = _parse(render_html_report(result))
+    text = "".join(checker.text)
+    assert str(result.code_note) in text
+    assert "Code accuracy (of" not in text and "Code confusions" not in text
+    assert "Sign code" not in text and "Reference code" not in text
+
+
+def test_html_report_shows_codes_and_confusions():
+    reference = make_set("R", [[0, 0, 0], [10, 0, 0], [20, 0, 0], [30, 0, 0]],
+                         codes=["DE:206", "DE:274[50]", "DE:205", "DE:<1>"])
+    signs = make_set("S", [[0, 0, 0], [10, 0, 0], [20, 0, 0], [30, 0, 0]],
+                     codes=["DE:206", "DE:274[30]", "", "DE:<1>"])
+    result = evaluate(signs, reference, 1.0)
+    document = render_html_report(result)
+    checker = _parse(document)
+    text = "".join(checker.text)
+    assert "Code accuracy (of matches with a reference code)0.500" in text
+    assert "Codes compared4" in text and "Compared signs without a code1" in text
+    # the confusions table: reference code, sign code, count
+    assert "Code confusions" in text
+    assert "DE:205(none)1" in text and "DE:274[50]DE:274[30]1" in text
+    assert "DE:<1>" in text and "DE:<1>" not in document  # escaped
+    # the per-sign table has the code columns after the classes, wrong codes marked
+    assert "Sign classReference idReference classSign codeReference code3D distance" in text
+    wrong = [attrs for tag, attrs in checker.tags if tag == "td" and attrs.get("class") == "wrongcode"]
+    assert len(wrong) == 4  # two rows, two cells each
+
+
+def test_read_reference_csv_code_column(tmp_path):
+    path = write(tmp_path, HEADER + ",faded,code\n"
+                 "r1,stop,1,2,3,2,0.6,0.6,90,0,DE:206\n"
+                 "r2,information,5,2,3,2,0.6,0.6,90,0,\n"
+                 "r3,prohibitory,9,2,3,2,0.6,0.6,90,1,DE:274[50]\n")
+    assert read_reference_csv(path).codes == ["DE:206", "", "DE:274[50]"]
+    without = write(tmp_path, HEADER + "\nr1,stop,1,2,3,2,0.6,0.6,90\n", name="old.csv")
+    assert read_reference_csv(without).codes is None
