@@ -1,0 +1,447 @@
+"""Sign codes: what each sign says (``DE:274[50]``, speed limit 50), read by a small ONNX
+classifier from a crop of the panorama around each detection, then voted across the views
+of one sign.
+
+Three pieces, used by the chain in this order:
+
+* the **codes table** (:func:`read_codes_table`): the codes a classifier may answer, each
+  with an English name and one of the six sign classes (:data:`SIGN_CLASSES`);
+  ``models/sign-codes-de.csv`` is the bundled one. Format: semicolon-separated UTF-8 text
+  (a byte-order mark is fine), lines starting with ``#`` are comments, the header
+  ``code;name;class``, then one row per code.
+* the **classifier** (:class:`CodeClassifier`): an ONNX model taking square RGB crops;
+  the format is in ``models/README.md`` ("Sign-code classifier: the format"). Its answer
+  :data:`OTHER_CODE` means "no code it knows" (or no sign at all).
+* the **crops** (:func:`cut_crop`) and the **vote** (:func:`vote`).
+
+Conventions: panoramas are ``H x W x 3`` uint8 **BGR** arrays (OpenCV's order, as
+:func:`core.panorama.read_panorama` returns them); crops handed to and returned by this
+module are ``h x w x 3`` uint8 **RGB** arrays. Boxes are panorama pixels in the detections
+layer's form (``docs/formats.md`` 2.6: ``u0`` in ``[0, W)``, ``u1`` past ``W`` across the
++-180 deg seam). Angles are degrees unless the name says otherwise.
+"""
+from __future__ import annotations
+
+import csv
+import math
+import os
+from dataclasses import dataclass
+from typing import Dict, Iterator, List, Sequence, Tuple
+
+import numpy as np
+
+from . import geometry
+from .detector import open_session, parse_names
+from .errors import InputError
+from .panorama import PerspectiveView
+from .schema import fields
+
+#: The six sign classes (``docs/formats.md`` section 7), the ``class`` column of a codes table.
+SIGN_CLASSES = ("warning", "prohibitory", "mandatory", "information", "stop", "yield")
+
+#: The classifier's name for "no code of the table" (or no sign at all); never in a table.
+OTHER_CODE = "other"
+
+#: Fraction of the box's longer angular side added on each side of a crop.
+DEFAULT_CROP_MARGIN = 0.15
+
+#: Crops per run of a classifier whose batch is dynamic.
+DEFAULT_MAX_BATCH = 64
+
+#: Output kinds of the metadata ``output``: the model's own softmax, or raw scores.
+OUTPUT_KINDS = ("probabilities", "logits")
+
+#: The header of a codes table.
+TABLE_HEADER = ("code", "name", "class")
+
+#: Detection-level fields: the code the classifier read in that one view and its
+#: probability (0..1); ``other`` when it knows none.
+CODE_FIELDS = fields(("code", str), ("code_score", float))
+
+#: Sign-level fields: the code voted across the sign's views (:func:`vote`), its name from
+#: the codes table, its share of the weighted vote (0..1), the number of views that read
+#: it, and ``code_check``: why an analyst should check the code by eye (empty when there
+#: is no reason), set by the chain.
+SIGN_CODE_FIELDS = fields(("code", str), ("code_name", str), ("code_score", float),
+                          ("code_views", int), ("code_check", str))
+
+
+# --- the codes table ----------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class SignCode:
+    """One row of a codes table: ``code`` (e.g. ``DE:274[50]``), its English ``name`` and
+    its ``class_name``, one of :data:`SIGN_CLASSES`."""
+
+    code: str
+    name: str
+    class_name: str
+
+
+class CodesTable:
+    """The codes a classifier may answer, in file order (see :func:`read_codes_table`)."""
+
+    def __init__(self, entries: Sequence[SignCode], path: str = ""):
+        self.path = path
+        self._entries: Dict[str, SignCode] = {e.code: e for e in entries}
+        self.codes: Tuple[str, ...] = tuple(e.code for e in entries)
+
+    def entry(self, code: str) -> SignCode:
+        """The row of ``code``; :class:`KeyError` when the table has none."""
+        return self._entries[code]
+
+    def __contains__(self, code: object) -> bool:
+        return code in self._entries
+
+    def __len__(self) -> int:
+        return len(self.codes)
+
+    def __iter__(self) -> Iterator[SignCode]:
+        return (self._entries[c] for c in self.codes)
+
+
+def read_codes_table(path: str) -> CodesTable:
+    """Read a codes table (format in the module doc).
+
+    :class:`InputError` naming the file, the line (1-based, comment and blank lines
+    counted) and what was expected, for: an unreadable or non-UTF-8 file, a missing or
+    other header, a row without exactly three fields, an empty code or name, the code
+    :data:`OTHER_CODE`, a code twice (both lines named), a class not in
+    :data:`SIGN_CLASSES`, and a table without rows. Blanks around fields are dropped and
+    classes are read case-insensitively; empty fields after the third (a semicolon at the
+    end of the line) are allowed.
+    """
+    try:
+        with open(path, "r", encoding="utf-8-sig", newline="") as f:
+            text = f.read()
+    except FileNotFoundError:
+        raise InputError("Sign codes table not found: {path}", path=path)
+    except UnicodeDecodeError as e:
+        raise InputError("Cannot read the sign codes table {path}: it is not UTF-8 text (byte "
+                         "{position}); save it as UTF-8", path=path, position=e.start + 1)
+    except OSError as e:
+        raise InputError("Cannot read the sign codes table {path}: {error}", path=path,
+                         error=e.strerror or str(e))
+
+    lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
+    header_seen = False
+    entries: List[SignCode] = []
+    line_of: Dict[str, int] = {}
+    for line_no, line in enumerate(lines, start=1):
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        try:
+            row = [f.strip() for f in next(csv.reader([line], delimiter=";"))]
+        except csv.Error as e:
+            raise InputError("Sign codes table {path}, line {line}: cannot split the line into "
+                             "fields ({error})", path=path, line=line_no, error=str(e))
+        while len(row) > len(TABLE_HEADER) and not row[-1]:
+            row.pop()
+        if not header_seen:
+            if [f.lower() for f in row] != list(TABLE_HEADER):
+                raise InputError("Sign codes table {path}, line {line}: expected the header "
+                                 "{expected}, found {found}", path=path, line=line_no,
+                                 expected=";".join(TABLE_HEADER), found=line.strip())
+            header_seen = True
+            continue
+        if len(row) != len(TABLE_HEADER):
+            raise InputError("Sign codes table {path}, line {line}: expected 3 fields separated "
+                             "by semicolons ({expected}), found {count}", path=path, line=line_no,
+                             expected=";".join(TABLE_HEADER), count=len(row))
+        code, name, class_name = row[0], row[1], row[2].lower()
+        if not code:
+            raise InputError("Sign codes table {path}, line {line}: the code is empty",
+                             path=path, line=line_no)
+        if code.lower() == OTHER_CODE:
+            raise InputError("Sign codes table {path}, line {line}: the code {code} is reserved "
+                             "for signs the classifier cannot read and must not be in the table",
+                             path=path, line=line_no, code=code)
+        if not name:
+            raise InputError("Sign codes table {path}, line {line}: the name of {code} is empty",
+                             path=path, line=line_no, code=code)
+        if code in line_of:
+            raise InputError("Sign codes table {path}, lines {first} and {line}: the code {code} "
+                             "is there twice", path=path, first=line_of[code], line=line_no, code=code)
+        if class_name not in SIGN_CLASSES:
+            raise InputError("Sign codes table {path}, line {line}: unknown class {found} for "
+                             "{code}; expected one of {classes}", path=path, line=line_no,
+                             found=row[2], code=code, classes=", ".join(SIGN_CLASSES))
+        line_of[code] = line_no
+        entries.append(SignCode(code, name, class_name))
+    if not header_seen:
+        raise InputError("Sign codes table {path} is empty: expected the header {expected} and "
+                         "one row per code", path=path, expected=";".join(TABLE_HEADER))
+    if not entries:
+        raise InputError("Sign codes table {path} holds no codes: expected one row per code "
+                         "after the header {expected}", path=path, expected=";".join(TABLE_HEADER))
+    return CodesTable(entries, path)
+
+
+# --- the classifier ---------------------------------------------------------------------
+
+def _is_dim(value) -> bool:
+    return isinstance(value, int) and value > 0
+
+
+def softmax(x: np.ndarray) -> np.ndarray:
+    """Softmax over the last axis (stable)."""
+    z = np.asarray(x, np.float64)
+    z = np.exp(z - z.max(axis=-1, keepdims=True))
+    return z / z.sum(axis=-1, keepdims=True)
+
+
+class CodeClassifier:
+    """A sign-code classifier (ONNX, format in ``models/README.md``) in an onnxruntime session.
+
+    ``table``: the codes its names must come from (besides :data:`OTHER_CODE`); ``threads``:
+    onnxruntime intra-op threads (0 = its default). Attributes: ``names`` (output order),
+    ``input_px`` (the crop side S), ``crop_margin`` (metadata, else
+    :data:`DEFAULT_CROP_MARGIN`), ``max_batch`` (:data:`DEFAULT_MAX_BATCH` when the batch is
+    dynamic, else the fixed N), ``output_kind`` (``probabilities`` or ``logits``).
+    :class:`InputError` for a missing or non-ONNX file, a model of another task, missing or
+    unknown names, an input or output shape it does not support, or bad metadata.
+    """
+
+    def __init__(self, model_path: str, table: CodesTable, threads: int = 0):
+        self.model_path = model_path
+        self.table = table
+        self.session = open_session(model_path, threads)
+        meta = self.session.get_modelmeta().custom_metadata_map or {}
+        task = meta.get("task")
+        if task and task != "classify":
+            raise InputError("The model {path} is a {task} model; reading sign codes needs a "
+                             "classify model (metadata task = classify)", path=model_path, task=task)
+        self.names: Tuple[str, ...] = self._read_names(meta)
+        self.output_kind = self._read_output_kind(meta)
+        self.crop_margin = self._read_crop_margin(meta)
+
+        inp = self.session.get_inputs()[0]
+        shape = list(inp.shape)
+        if (len(shape) != 4 or shape[1] != 3 or not _is_dim(shape[2]) or shape[2] != shape[3]
+                or inp.type not in ("tensor(float)", "tensor(float16)")):
+            raise InputError("The model {path} takes an input {name} of shape {shape} and type "
+                             "{type}; supported: float [batch, 3, S, S] (RGB crops S x S pixels, "
+                             "values 0..1)", path=model_path, name=inp.name, shape=shape,
+                             type=inp.type)
+        self.input_name = inp.name
+        self.input_dtype = np.float16 if inp.type == "tensor(float16)" else np.float32
+        self.input_px = int(shape[2])
+        self._fixed_batch = int(shape[0]) if _is_dim(shape[0]) else 0
+        self.max_batch = self._fixed_batch or DEFAULT_MAX_BATCH
+
+        # The declared output shape may be symbolic: run a blank batch to see the real one.
+        blank = np.zeros((self._fixed_batch or 1, 3, self.input_px, self.input_px), self.input_dtype)
+        try:
+            out = np.asarray(self.session.run(None, {self.input_name: blank})[0])
+        except Exception as e:  # onnxruntime raises its own pybind types
+            raise InputError("The model {path} failed on a blank {side} x {side} crop: {error}",
+                             path=model_path, side=self.input_px, error=str(e))
+        if out.ndim != 2 or out.shape[1] != len(self.names) or out.shape[0] != blank.shape[0]:
+            raise InputError("The model {path} has an output of shape {shape} for a batch of "
+                             "{batch}; supported: [batch, C] with C = {count}, its number of names",
+                             path=model_path, shape=list(out.shape), batch=blank.shape[0],
+                             count=len(self.names))
+
+    def _read_names(self, meta) -> Tuple[str, ...]:
+        names = parse_names(meta["names"]) if "names" in meta else None
+        if not names:
+            raise InputError("The model {path} names no codes: its metadata needs 'names', a JSON "
+                             "list of the sign codes in output order (such as [\"DE:206\", "
+                             "\"other\"])", path=self.model_path)
+        names = [n.strip() for n in names]
+        twice = sorted({n for n in names if names.count(n) > 1})
+        if twice:
+            raise InputError("The model {path} names {names} more than once in its metadata "
+                             "'names'", path=self.model_path, names=", ".join(twice))
+        unknown = [n for n in names if n != OTHER_CODE and n not in self.table]
+        if unknown:
+            shown = ", ".join(unknown[:5]) + (" and {} more".format(len(unknown) - 5)
+                                              if len(unknown) > 5 else "")
+            raise InputError("The model {path} answers codes that are not in the sign codes table "
+                             "{table}: {names}", path=self.model_path, table=self.table.path,
+                             names=shown)
+        return tuple(names)
+
+    def _read_output_kind(self, meta) -> str:
+        kind = meta.get("output", OUTPUT_KINDS[0]).strip().lower()
+        if kind not in OUTPUT_KINDS:
+            raise InputError("The model {path} has the metadata output = {found}; expected "
+                             "{expected}", path=self.model_path, found=meta.get("output"),
+                             expected=" or ".join(OUTPUT_KINDS))
+        return kind
+
+    def _read_crop_margin(self, meta) -> float:
+        if "crop_margin" not in meta:
+            return DEFAULT_CROP_MARGIN
+        try:
+            margin = float(meta["crop_margin"])
+        except ValueError:
+            margin = float("nan")
+        if not (0.0 <= margin <= 2.0):
+            raise InputError("The model {path} has the metadata crop_margin = {found}; expected a "
+                             "number from 0 to 2 (the fraction of the box's longer side added on "
+                             "each side)", path=self.model_path, found=meta["crop_margin"])
+        return margin
+
+    def _blob(self, crops_rgb: Sequence[np.ndarray]) -> np.ndarray:
+        import cv2
+
+        s = self.input_px
+        blob = np.zeros((len(crops_rgb), 3, s, s), np.float32)
+        for k, crop in enumerate(crops_rgb):
+            crop = np.asarray(crop)
+            if crop.ndim != 3 or crop.shape[2] != 3 or crop.shape[0] < 1 or crop.shape[1] < 1:
+                raise ValueError("crop {}: expected an h x w x 3 RGB array, got shape {}".format(
+                    k, crop.shape))
+            if crop.dtype != np.uint8:
+                crop = np.clip(crop, 0, 255).astype(np.uint8)
+            h, w = crop.shape[:2]
+            if (h, w) != (s, s):
+                shrinking = h >= s and w >= s
+                crop = cv2.resize(crop, (s, s), interpolation=cv2.INTER_AREA if shrinking
+                                  else cv2.INTER_LINEAR)
+            blob[k] = crop.transpose(2, 0, 1).astype(np.float32) / 255.0
+        return blob
+
+    def probabilities(self, crops_rgb: Sequence[np.ndarray]) -> np.ndarray:
+        """``(n, C)`` probabilities of each name for each crop (RGB uint8, any size)."""
+        if len(crops_rgb) == 0:
+            return np.zeros((0, len(self.names)))
+        rows = []
+        for start in range(0, len(crops_rgb), self.max_batch):
+            blob = self._blob(crops_rgb[start:start + self.max_batch])
+            n = len(blob)
+            if self._fixed_batch and n < self._fixed_batch:  # pad a fixed batch with blanks
+                blob = np.concatenate([blob, np.zeros((self._fixed_batch - n,) + blob.shape[1:],
+                                                      blob.dtype)])
+            out = self.session.run(None, {self.input_name: blob.astype(self.input_dtype)})[0]
+            rows.append(np.asarray(out, np.float64)[:n])
+        scores = np.concatenate(rows)
+        return softmax(scores) if self.output_kind == "logits" else scores
+
+    def classify(self, crops_rgb: Sequence[np.ndarray]) -> Tuple[List[str], np.ndarray]:
+        """The best name for each crop (``h x w x 3`` uint8 **RGB**, any size: resized to S x S,
+        ``INTER_AREA`` when both sides shrink, else ``INTER_LINEAR``) and its probability, in
+        batches of ``max_batch``. An empty input gives ``([], empty array)``."""
+        probs = self.probabilities(crops_rgb)
+        best = probs.argmax(axis=1) if len(probs) else np.zeros(0, np.int64)
+        return [self.names[i] for i in best], probs[np.arange(len(best)), best].astype(float)
+
+    def describe(self) -> str:
+        """One line for the log: file, number of codes, input size, output kind, providers."""
+        n_codes = sum(1 for n in self.names if n != OTHER_CODE)
+        return ("{}: {} codes{}, input {} x {} px RGB crops (margin {:g}), {}, batch {}, "
+                "providers {}".format(os.path.basename(self.model_path), n_codes,
+                                      " and '{}'".format(OTHER_CODE) if OTHER_CODE in self.names else "",
+                                      self.input_px, self.input_px, self.crop_margin,
+                                      self.output_kind, self.max_batch,
+                                      ", ".join(self.session.get_providers())))
+
+
+# --- crops ------------------------------------------------------------------------------
+
+#: The widest crop cut, in degrees (a pinhole view cannot show half the sphere).
+MAX_CROP_FOV_DEG = 120.0
+#: Supersampling limit when a crop is cut smaller than its native size (anti-aliasing).
+MAX_SUPERSAMPLE = 4
+
+
+def crop_view(box_px, width_px: int, height_px: int, margin: float = DEFAULT_CROP_MARGIN,
+              max_side_px: int = 256) -> Tuple[PerspectiveView, int]:
+    """The square view :func:`cut_crop` cuts for a panorama box, and the box's native side.
+
+    The view looks along the ray of the box centre (no roll); its field of view is the
+    box's larger angular side (width ``(u1 - u0) / W x 360 x cos(elevation)``, height
+    ``(v1 - v0) / H x 180``) times ``1 + 2 margin``, at most :data:`MAX_CROP_FOV_DEG`. The
+    native side is that field of view in panorama pixels (``fov / 360 x W``, the
+    panorama's sampling along a great circle); the view's side is it clamped to
+    ``[8, max_side_px]``.
+    """
+    u0, v0, u1, v1 = (float(x) for x in box_px)
+    if not all(math.isfinite(x) for x in (u0, v0, u1, v1)):
+        raise InputError("The box {box} is not four finite pixel coordinates u0, v0, u1, v1",
+                         box=[u0, v0, u1, v1])
+    u, v = geometry.box_centre_pixel(u0, v0, u1, v1, width_px)
+    yaw_rad, pitch_rad = geometry.pixel_to_angles_rad(u, v, width_px, height_px)
+    box_w_deg = max(u1 - u0, 0.0) / width_px * 360.0 * math.cos(float(pitch_rad))
+    box_h_deg = max(v1 - v0, 0.0) / height_px * 180.0
+    fov_deg = max(box_w_deg, box_h_deg) * (1.0 + 2.0 * max(float(margin), 0.0))
+    fov_deg = min(max(fov_deg, 360.0 / width_px), MAX_CROP_FOV_DEG)  # at least one pixel
+    native_px = fov_deg / 360.0 * width_px
+    side = int(min(max(round(native_px), 8), max(int(max_side_px), 8)))
+    view = PerspectiveView(float(np.degrees(yaw_rad)), float(np.degrees(pitch_rad)), fov_deg, side, side)
+    return view, int(round(native_px))
+
+
+def cut_crop(pano_bgr: np.ndarray, box_px, margin: float = DEFAULT_CROP_MARGIN,
+             max_side_px: int = 256) -> np.ndarray:
+    """A square **RGB** uint8 crop of the panorama (``H x W x 3`` **BGR**) around a box.
+
+    ``box_px``: ``(u0, v0, u1, v1)`` in panorama pixels, detections layer form (``u1`` past
+    ``W`` across the seam). The crop is a rectified perspective view centred on the box
+    centre's ray (:func:`crop_view`: field of view the box's larger angular side x
+    ``(1 + 2 margin)``, side in panorama pixels at the native density, clamped to
+    ``[8, max_side_px]``). Columns wrap across the +-180 deg seam. A crop cut smaller than
+    its native side is sampled up to :data:`MAX_SUPERSAMPLE` x finer and shrunk with
+    ``INTER_AREA``, so that fine print does not alias.
+    """
+    import cv2
+
+    pano = np.asarray(pano_bgr)
+    if pano.ndim != 3 or pano.shape[2] != 3:
+        raise ValueError("expected an H x W x 3 BGR panorama, got shape {}".format(pano.shape))
+    H, W = pano.shape[:2]
+    view, native = crop_view(box_px, W, H, margin, max_side_px)
+    side = view.width_px
+    factor = int(min(max(math.ceil(native / side), 1), MAX_SUPERSAMPLE))
+    n = side * factor
+    sample = PerspectiveView(view.yaw_deg, view.pitch_deg, view.hfov_deg, n, n)
+    ys, xs = np.mgrid[0:n, 0:n].astype(float) + 0.5
+    u, v = geometry.ray_to_pixel(sample.pixel_to_ray(xs, ys), W, H)
+    map_x = (u - 0.5).astype(np.float32)  # cv2 samples pixel centres at integer coordinates
+    map_y = np.clip(v - 0.5, 0.0, H - 1.0).astype(np.float32)
+    # BORDER_WRAP joins the columns across the seam; rows never leave the image (clamped).
+    crop = cv2.remap(pano, map_x, map_y, cv2.INTER_LINEAR, borderMode=cv2.BORDER_WRAP)
+    if factor > 1:
+        crop = cv2.resize(crop, (side, side), interpolation=cv2.INTER_AREA)
+    return np.ascontiguousarray(crop[:, :, ::-1])
+
+
+# --- the vote ---------------------------------------------------------------------------
+
+def vote(codes: Sequence[str], scores: Sequence[float],
+         weights: Sequence[float]) -> Tuple[str, float, int]:
+    """Weighted vote of the codes read in the views of one sign.
+
+    View ``i`` gives its code ``codes[i]`` the vote ``weights[i] x scores[i]`` (the caller
+    passes detection score x crop side as the weight; negative or NaN weights and scores
+    count as 0). Returns the code with the largest total, its share of all the votes
+    (0..1; 0 when every vote is 0) and the number of views that read it. Ties (equal
+    totals) go to the code with the largest single weight, then to the code read first.
+    :data:`OTHER_CODE` can win. No views: ``("", 0.0, 0)``.
+    """
+    if not (len(codes) == len(scores) == len(weights)):
+        raise ValueError("vote: codes, scores and weights differ in length ({}, {}, {})".format(
+            len(codes), len(scores), len(weights)))
+    if not len(codes):
+        return "", 0.0, 0
+
+    def positive(x) -> float:
+        x = float(x)
+        return x if x > 0.0 else 0.0  # NaN fails the comparison too
+
+    totals: Dict[str, float] = {}
+    top_weight: Dict[str, float] = {}
+    views: Dict[str, int] = {}
+    for code, score, weight in zip(codes, scores, weights):
+        w = positive(weight)
+        totals[code] = totals.get(code, 0.0) + w * positive(score)
+        top_weight[code] = max(top_weight.get(code, 0.0), w)
+        views[code] = views.get(code, 0) + 1
+    best_total = max(totals.values())
+    tied = [c for c, t in totals.items() if math.isclose(t, best_total, rel_tol=1e-9, abs_tol=1e-12)]
+    winner = max(tied, key=lambda c: top_weight[c])  # max keeps the first of equals: read first
+    grand = sum(totals.values())
+    share = totals[winner] / grand if grand > 0 else 0.0
+    return winner, float(min(max(share, 0.0), 1.0)), views[winner]
+
