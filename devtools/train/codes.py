@@ -57,7 +57,10 @@ TRAIN_SCENES = (os.path.join(REPO_ROOT, "bench", "out", "train", "scenes", "defa
 #: every this-many-th training track of each class (offset 1) is validation
 VAL_EVERY = 9
 #: share of each source in a batch
-MIX = {"gtsrb": 0.42, "drawn": 0.16, "pano": 0.12, "other": 0.30}
+MIX = {"gtsrb": 0.45, "drawn": 0.15, "pano": 0.15, "other": 0.25}
+#: composites (a drawn sign or a look-alike warped onto a street) are kept in a pool and
+#: re-cut with a new jitter; each draw replaces a pooled one with this probability
+POOL_SIZE, POOL_RENEW = 2000, 0.15
 
 
 # --- labels --------------------------------------------------------------------------------
@@ -279,6 +282,7 @@ class Sampler:
         self.names = list(names)
         self.other = self.names.index(OTHER)
         self.rng = np.random.default_rng(seed)
+        self.pools: dict = {}
         self.gtsrb = load_gtsrb("train", self.names)
         by_class = defaultdict(list)
         for k, item in enumerate(self.gtsrb):
@@ -341,6 +345,17 @@ class Sampler:
         bg[y0:y0 + out_h, x0:x0 + out_w] = (alpha * warped[..., :3] + (1 - alpha) * roi).astype(np.uint8)
         return bg, (x0, y0, x0 + out_w, y0 + out_h)
 
+    def pooled(self, kind: str, make):
+        """``make()`` -> (image, box, label), from a pool of recent ones (the warp is the slow part)."""
+        pool = self.pools.setdefault(kind, [])
+        if len(pool) < POOL_SIZE:
+            pool.append(make())
+            return pool[-1]
+        k = int(self.rng.integers(len(pool)))
+        if self.rng.random() < POOL_RENEW:
+            pool[k] = make()
+        return pool[k]
+
     def jitter(self):
         return dict(scale=self.rng.uniform(0.88, 1.15), shift=self.rng.uniform(-0.07, 0.07, 2),
                     angle_deg=self.rng.uniform(-7, 7))
@@ -351,10 +366,25 @@ class Sampler:
         image, box, label, _ = self.gtsrb[int(self.rng.choice(self.gtsrb_by_class[c]))]
         return far_camera(crop_square(image, box, **self.jitter()), self.rng), label
 
-    def from_drawn(self):
+    def _drawn_composite(self):
         tex, label = self.drawn[int(self.rng.integers(len(self.drawn)))]
         image, box = self.composite(tex, self.rng.uniform(14, 90))
         image = data.degrade(np.dstack([image, np.full(image.shape[:2], 255, np.uint8)]), self.rng)[..., :3]
+        return image, box, label
+
+    def _other_composite(self):
+        r = self.rng.random()
+        if r < 0.35:
+            patch, _ = data.hard_negative(self.rng, self.background(128))
+        elif r < 0.85:
+            patch = unknown_sign(self.rng)
+        else:
+            patch = cv2.cvtColor(self.tx.billboard_texture(self.rng, 256), cv2.COLOR_RGBA2BGRA)
+        image, box = self.composite(patch, self.rng.uniform(14, 100))
+        return image, box, self.other
+
+    def from_drawn(self):
+        image, box, label = self.pooled("drawn", self._drawn_composite)
         return far_camera(crop_square(image, box, **self.jitter()), self.rng, 0.7), label
 
     def from_pano(self):
@@ -368,16 +398,8 @@ class Sampler:
         r = self.rng.random()
         if r < 0.25:
             crop = resize_to(self.background(int(self.rng.integers(12, 160))))
-        elif r < 0.5:
-            patch, _ = data.hard_negative(self.rng, self.background(128))
-            image, box = self.composite(patch, self.rng.uniform(14, 90))
-            crop = crop_square(image, box, **self.jitter())
-        elif r < 0.8:
-            image, box = self.composite(unknown_sign(self.rng), self.rng.uniform(16, 90))
-            crop = crop_square(image, box, **self.jitter())
         elif r < 0.88:
-            patch = cv2.cvtColor(self.tx.billboard_texture(self.rng, 256), cv2.COLOR_RGBA2BGRA)
-            image, box = self.composite(patch, self.rng.uniform(20, 110))
+            image, box, _ = self.pooled("other", self._other_composite)
             crop = crop_square(image, box, **self.jitter())
         else:  # a box mostly off a real sign
             image, box, _, _ = self.gtsrb[int(self.rng.integers(len(self.gtsrb)))]
@@ -423,7 +445,7 @@ def heldout_pano(names, scene_dirs, cache_path: str):
 
 # --- model ---------------------------------------------------------------------------------
 
-def build_net(n_classes: int, widths=(24, 48, 80, 128)):
+def build_net(n_classes: int, widths=(32, 64, 96, 160)):
     import torch.nn as nn
 
     from .model import ConvBN
