@@ -163,9 +163,16 @@ class RoadSignsAlgorithm(Translatable, QgsProcessingAlgorithm):
                                                    fileFilter=file_filter), help_text, advanced)
 
     def add_las_file(self, name, label, help_text):
-        """A LAS/LAZ point cloud input file."""
-        return self.add_file(name, label, help_text, file_filter=self.tr(
-            "LAS/LAZ point clouds (*.las *.laz *.LAS *.LAZ);;All files (*.*)"))
+        """A point cloud input: a LAS/LAZ file (COPC too), a virtual point cloud (.vpc) or a
+        folder of LAS/LAZ tiles (a file parameter, so that the usual case is picked with the
+        file dialog; its "All files (*)" filter lets a typed folder path through, which
+        QGIS's folder parameters would not offer with a file dialog). The help says so."""
+        return self.add_file(name, label, "{} {}".format(help_text, self.tr(
+            "Accepted: one LAS/LAZ file (COPC too), a virtual point cloud (.vpc, e.g. from QGIS's Build "
+            "virtual point cloud) listing tiles, or a folder of LAS/LAZ tiles (type or paste the folder's "
+            "path). Tiles must share the point format and the CRS.")), file_filter=self.tr(
+            "Point clouds (*.las *.laz *.vpc *.LAS *.LAZ *.VPC);;LAS/LAZ (*.las *.laz *.LAS *.LAZ);;"
+            "Virtual point clouds (*.vpc *.VPC);;All files or a folder of tiles (*)"))
 
     def add_sink(self, name, label, geometry, help_text, optional=False):
         """A vector layer output of ``geometry``; an optional one is not created by default."""

@@ -5,7 +5,7 @@ from qgis.core import Qgis, QgsGeometry, QgsPoint, QgsProcessingOutputNumber
 from ..core.schema import select
 from ..core.trajectory import STATION_FIELDS
 from .base import RoadSignsAlgorithm
-from .layers import check_same_crs, qgs_fields, read_records, write_records
+from .layers import check_same_crs, qgs_fields, read_cloud_crs_wkt, read_records, write_records
 
 
 class FindSignsInCloud(RoadSignsAlgorithm):
@@ -76,7 +76,6 @@ class FindSignsInCloud(RoadSignsAlgorithm):
         self.check_dependencies()
         from ..core.cloudsigns import CLOUD_SIGN_FIELDS, CloudSignParams, find_signs_in_cloud
         from ..core.drivewindows import Track
-        from ..core.pointcloud import read_crs_wkt
         from ..core.poles import POLE_FIELDS
         from ..core.trajectory import Stations
 
@@ -84,7 +83,7 @@ class FindSignsInCloud(RoadSignsAlgorithm):
         cloud_path = self.parameterAsFile(parameters, self.POINT_CLOUD, context)
         rows = read_records(source, STATION_FIELDS, self.tr("Panorama stations"), feedback)
         with self.core_errors():
-            check_same_crs(source.sourceCrs(), read_crs_wkt(cloud_path), self.tr("The stations"), cloud_path)
+            check_same_crs(source.sourceCrs(), read_cloud_crs_wkt(cloud_path), self.tr("The stations"), cloud_path)
             stations = Stations.from_records(rows, self.tr("Panorama stations"))
             params = CloudSignParams(corridor_m=self.parameterAsDouble(parameters, self.CORRIDOR, context))
             result = find_signs_in_cloud(cloud_path, Track.from_stations(stations), params,

@@ -1,5 +1,7 @@
-"""roadsigns:groundfilter - crop a LAS/LAZ cloud and classify its ground (class 2) with
-PDAL's CSF or SMRF filter, or the built-in engine when PDAL is not there."""
+"""roadsigns:groundfilter - crop a point cloud (a LAS/LAZ file, a folder of tiles or a
+virtual point cloud) and classify its ground (class 2) with PDAL's CSF or SMRF filter, or
+the built-in engine when PDAL is not there; one output file, or one output tile per input
+tile and a virtual point cloud listing them."""
 import os
 from contextlib import contextmanager
 
@@ -44,6 +46,7 @@ class GroundFilter(RoadSignsAlgorithm):
     CELL_SIZE = "CELL_SIZE"
     CLOUD_CRS = "CLOUD_CRS"
     RESET_CLASSES = "RESET_CLASSES"
+    OUTPUT_TILES = "OUTPUT_TILES"
     OUTPUT = "OUTPUT"
     ENGINE_USED = "ENGINE_USED"
     POINTS_IN = "POINTS_IN"
@@ -72,7 +75,13 @@ class GroundFilter(RoadSignsAlgorithm):
             "(on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign "
             "inventory); the built-in engine runs the same filters in Python, tile by tile, so "
             "clouds larger than memory work. Auto uses PDAL when present and falls back to the "
-            "built-in engine if PDAL fails, saying so in the log.")
+            "built-in engine if PDAL fails, saying so in the log.<br><br><b>Tiles</b>: the input may be one "
+            "LAS/LAZ file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc); PDAL classifies a single "
+            "file, tiles go to the built-in engine. They are written to one file, or, with <i>Write one tile "
+            "per input tile</i>, each to a file of its own name in a folder named after the output (out/ground.laz "
+            "gives the folder out/ground), with a virtual point cloud listing them (out/ground/ground.vpc, the "
+            "output to give the next stages). Each tile is classified with its neighbours' points around it, so "
+            "the classes at tile edges are those of a run on the whole cloud.")
 
     def initAlgorithm(self, config=None):
         self.add_las_file(
@@ -113,9 +122,16 @@ class GroundFilter(RoadSignsAlgorithm):
             self.RESET_CLASSES, self.tr("Reset existing classes"), False,
             self.tr("Set every non-ground point to class 1 (unclassified) instead of keeping its class."),
             advanced=True)
+        self.add_boolean(
+            self.OUTPUT_TILES, self.tr("Write one tile per input tile"), False,
+            self.tr("Write each input tile to its own file (same name, same header) in a folder named after the "
+                    "output, with a virtual point cloud (.vpc) listing them, instead of one file. Uses the "
+                    "built-in engine."))
         self.add_file_destination(
             self.OUTPUT, self.tr("Ground-classified cloud"), self.tr("LAZ (*.laz);;LAS (*.las)"),
-            self.tr("The cropped cloud with ground as class 2; LAZ or LAS by the file extension."))
+            self.tr("The cropped cloud with ground as class 2; LAZ or LAS by the file extension. With one tile "
+                    "per input tile: the folder of this name without its extension gets the tiles and "
+                    "<name>.vpc, which is then this output."))
         self.addOutput(QgsProcessingOutputString(self.ENGINE_USED, self.tr("Engine that ran")))
         self.addOutput(QgsProcessingOutputNumber(self.POINTS_IN, self.tr("Points read")))
         self.addOutput(QgsProcessingOutputNumber(self.POINTS_OUT, self.tr("Points written")))
@@ -158,19 +174,21 @@ class GroundFilter(RoadSignsAlgorithm):
                 source.sourceName(), n_features))
         return geometries
 
-    def _check_crop_overlaps(self, crop, buffer_m, header, input_path):
-        """Error when the crop area (grown by the buffer) misses the cloud's bounds."""
+    def _check_crop_overlaps(self, crop, buffer_m, bounds_xy, input_path):
+        """Error when the crop area (grown by the buffer) misses the cloud's bounds
+        ``(xmin, ymin, xmax, ymax)``."""
         import shapely
 
         area = shapely.union_all([shapely.from_wkb(g) for g in crop])
         xmin, ymin, xmax, ymax = area.bounds
-        if not (xmin - buffer_m <= header.maxs[0] and xmax + buffer_m >= header.mins[0]
-                and ymin - buffer_m <= header.maxs[1] and ymax + buffer_m >= header.mins[1]):
+        cx0, cy0, cx1, cy1 = bounds_xy
+        if not (xmin - buffer_m <= cx1 and xmax + buffer_m >= cx0
+                and ymin - buffer_m <= cy1 and ymax + buffer_m >= cy0):
             raise QgsProcessingException(self.tr(
                 "The crop area (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}) does not overlap the point cloud "
                 "{} (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}): nothing would be kept").format(
                 xmin - buffer_m, xmax + buffer_m, ymin - buffer_m, ymax + buffer_m, input_path,
-                header.mins[0], header.maxs[0], header.mins[1], header.maxs[1]))
+                cx0, cx1, cy0, cy1))
 
     @contextmanager
     def _pdal_errors(self, pdal_error_type, feedback):
@@ -184,44 +202,55 @@ class GroundFilter(RoadSignsAlgorithm):
 
     def processAlgorithm(self, parameters, context, feedback):
         self.check_dependencies()
-        from ..core import pointcloud
-        from ..core.ground import CsfParams, PdalError, SmrfParams, run_ground_filter
+        from ..core.cloudsource import open_cloud
+        from ..core.ground import CsfParams, PdalError, SmrfParams, run_ground_filter, run_ground_filter_tiles
+        from ..core.ground.tiled import output_tile_names
 
         input_path = self.parameterAsFile(parameters, self.INPUT, context)
         output_path = self.parameterAsFileOutput(parameters, self.OUTPUT, context)
-        if os.path.splitext(output_path)[1].lower() not in (".las", ".laz"):
+        as_tiles = self.parameterAsBoolean(parameters, self.OUTPUT_TILES, context)
+        if not as_tiles and os.path.splitext(output_path)[1].lower() not in (".las", ".laz"):
             output_path = os.path.splitext(output_path)[0] + ".laz"
-        if os.path.exists(input_path) and os.path.exists(output_path) and os.path.samefile(input_path, output_path):
-            raise QgsProcessingException(self.tr("The output {} must not be the input file").format(output_path))
         user_crs = self.parameterAsCrs(parameters, self.CLOUD_CRS, context)
         buffer_m = self.parameterAsDouble(parameters, self.CROP_BUFFER, context)
         with self.core_errors():
-            header = pointcloud.read_header(input_path)
+            source = open_cloud(input_path)
             crs_wkt = user_crs.toWkt(Qgis.CrsWktVariant.Wkt2_2019Simplified) if user_crs.isValid() \
-                else pointcloud.crs_wkt_of_header(header)
+                else source.crs_wkt
+        for tile in source.tiles:
+            if os.path.exists(output_path) and os.path.samefile(tile.path, output_path):
+                raise QgsProcessingException(self.tr("The output {} must not be the input file").format(output_path))
         cloud_crs = QgsCoordinateReferenceSystem.fromWkt(crs_wkt) if crs_wkt else QgsCoordinateReferenceSystem()
         if crs_wkt:
             check_metric_crs(user_crs if user_crs.isValid() else cloud_crs, input_path)
             with self.core_errors():
-                check_cloud_extent(input_path, crs_wkt)
+                check_cloud_extent(source, crs_wkt)
         crop = self._crop_geometries(parameters, context, cloud_crs, buffer_m, feedback)
         if crop:
-            self._check_crop_overlaps(crop, buffer_m, header, input_path)
+            self._check_crop_overlaps(crop, buffer_m, source.bounds_xy, input_path)
         method = self.enum_name(parameters, self.METHOD, context)
         threshold_m = self.parameterAsDouble(parameters, self.THRESHOLD, context)
         cell_m = self.parameterAsDouble(parameters, self.CELL_SIZE, context)
         params = CsfParams(resolution=cell_m, threshold=threshold_m) if method == "csf" else \
             SmrfParams(cell=cell_m, threshold=threshold_m)
-        with self.core_errors(), self._pdal_errors(PdalError, feedback):
-            result = run_ground_filter(
-                input_path, self.output_file(output_path),
-                method=method, params=params,
-                engine=self.enum_name(parameters, self.ENGINE, context),
-                crop_polygons=crop, crop_buffer_m=buffer_m if crop else 0.0,
-                crs_wkt=crs_wkt if user_crs.isValid() else None,
-                reset_classes=self.parameterAsBoolean(parameters, self.RESET_CLASSES, context),
-                pdal_executable=configured_pdal_executable(),
-                progress=self.progress(feedback))
+        common = dict(method=method, params=params, engine=self.enum_name(parameters, self.ENGINE, context),
+                      crop_polygons=crop, crop_buffer_m=buffer_m if crop else 0.0,
+                      crs_wkt=crs_wkt if user_crs.isValid() else None,
+                      reset_classes=self.parameterAsBoolean(parameters, self.RESET_CLASSES, context),
+                      progress=self.progress(feedback))
+        if as_tiles:
+            folder = os.path.splitext(output_path)[0]
+            vpc_name = os.path.basename(folder) + ".vpc"
+            feedback.pushInfo(self.tr("Writing one tile per input tile to the folder {}, listed in {}").format(
+                folder, vpc_name))
+            with self.core_errors():
+                output_tile_names(source, folder)  # the folder is replaced whole: it must hold no input tile
+                result = run_ground_filter_tiles(source, self.output_folder(folder), vpc_name, **common)
+            output_path = os.path.join(folder, vpc_name)
+        else:
+            with self.core_errors(), self._pdal_errors(PdalError, feedback):
+                result = run_ground_filter(source, self.output_file(output_path),
+                                           pdal_executable=configured_pdal_executable(), **common)
         feedback.pushInfo(self.tr("Engine: {}; method: {}; {} points read, {} written, {} ground").format(
             result.engine, result.method.upper(), result.n_input, result.n_output, result.n_ground))
         return {self.OUTPUT: output_path, self.ENGINE_USED: result.engine,

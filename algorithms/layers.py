@@ -136,28 +136,36 @@ def check_layer_extent(source, label):
 
 
 def check_cloud_extent(cloud_path, crs_wkt):
-    """Error when the cloud's header bounds lie outside the area of use of ``crs_wkt``."""
+    """Error when the cloud's bounds (its tiles' headers; a LAS/LAZ file, a folder of tiles or
+    a .vpc) lie outside the area of use of ``crs_wkt``."""
+    from ..core.cloudsource import open_cloud
     from ..core.crs import check_extent
-    from ..core.pointcloud import read_header
 
-    header = read_header(cloud_path)
-    if header.point_count:
-        check_extent(crs_wkt, (header.mins[0], header.mins[1], header.maxs[0], header.maxs[1]), cloud_path)
+    source = open_cloud(cloud_path)
+    if source.point_count:
+        check_extent(crs_wkt, source.bounds_xy, source.path)
 
 
 def cloud_crs_wkt(user_crs: QgsCoordinateReferenceSystem, cloud_path):
-    """The cloud's CRS as WKT: the one the user gave (``CLOUD_CRS``), else the file's;
-    an error when there is neither (a CRS is never guessed)."""
-    from ..core.pointcloud import read_crs_wkt
-
+    """The cloud's CRS as WKT: the one the user gave (``CLOUD_CRS``), else the file's (the
+    tiles' of a folder or a .vpc, which must agree); an error when there is neither (a CRS
+    is never guessed)."""
     if user_crs.isValid():
         return user_crs.toWkt(Qgis.CrsWktVariant.Wkt2_2019Simplified)
-    wkt = read_crs_wkt(cloud_path)
+    wkt = read_cloud_crs_wkt(cloud_path)
     if not wkt:
         raise QgsProcessingException(
             tr("The point cloud {cloud} has no coordinate reference system: give it as Cloud CRS (an "
                "advanced parameter; a CRS is never guessed)").format(cloud=cloud_path))
     return wkt
+
+
+def read_cloud_crs_wkt(cloud_path):
+    """The CRS of a cloud (a LAS/LAZ file, a folder of tiles or a .vpc) as WKT, None when it
+    has none; core's InputError when its tiles disagree or cannot be read."""
+    from ..core.cloudsource import open_cloud
+
+    return open_cloud(cloud_path).crs_wkt
 
 
 def check_same_crs(layer_crs, cloud_crs_wkt, layer_label, cloud_path):

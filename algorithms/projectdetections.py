@@ -2,7 +2,7 @@
 cloud for the first dense planar surface: one candidate sign position per detection."""
 from qgis.core import Qgis, QgsCoordinateReferenceSystem, QgsGeometry, QgsPoint
 
-from ..core.detections import DETECTION_POSE_FIELDS
+from ..core.detections import DETECTION_POSE_FIELDS, REQUIRED_POSE_FIELDS
 from .base import RoadSignsAlgorithm
 from .layers import check_cloud_extent, check_same_crs, cloud_crs_wkt, qgs_fields, read_records, write_records
 
@@ -65,7 +65,8 @@ class ProjectDetections(RoadSignsAlgorithm):
             crs_wkt = cloud_crs_wkt(self.parameterAsCrs(parameters, self.CLOUD_CRS, context), cloud_path)
             check_same_crs(source.sourceCrs(), crs_wkt, self.tr("The detections"), cloud_path)
             check_cloud_extent(cloud_path, crs_wkt)
-        rows = read_records(source, DETECTION_POSE_FIELDS, self.tr("Detections"), feedback,
+        rows = read_records(source, DETECTION_POSE_FIELDS, self.tr("Detections"), feedback,  # code fields: optional
+                            required=REQUIRED_POSE_FIELDS,
                             allow_empty=True)  # no detections: a warning and an empty layer
         with self.core_errors():
             result = project_detections(

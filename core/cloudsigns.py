@@ -10,7 +10,9 @@ light poles by height).
 One streaming read of the cloud, then one pass over the windows; memory is bounded by a
 window's points at any drive length:
 
-1. **Read** (:func:`pointcloud.iter_chunks`): each point is located on the drive
+1. **Read** (:meth:`.cloudsource.CloudSource.iter_chunks`: one file, or of a folder of tiles
+   or a virtual point cloud only the tiles, or COPC nodes, that the corridor meets): each
+   point is located on the drive
    (:mod:`.drivewindows`); ground points (class 2) in the corridor are kept thinned to one
    per ``ground_cell_m`` cell and chunk, non-ground points within ``corridor_m`` of the
    track and in a height band around the sensor are kept; all are appended to files per
@@ -52,9 +54,10 @@ from scipy.spatial import cKDTree
 
 from . import geometry
 from .cloudpanels import PanelCandidate, PanelParams, WindowPoints, find_panels, local_features, panel_frame
+from .cloudsource import CloudSource, open_cloud
 from .drivewindows import DriveAxis, Track, Window, WindowSpool, as_track, make_windows
 from .errors import SILENT, InputError, Message, Progress
-from .pointcloud import DEFAULT_CHUNK_POINTS, GROUND_CLASS, crs_wkt_of_header, iter_chunks, read_header, xyz_of
+from .pointcloud import DEFAULT_CHUNK_POINTS, GROUND_CLASS, xyz_of
 from .poles import GANTRY, Pole, PoleParams, classify_pole, find_poles, promote_far_posts
 from .retroreflectivity import (
     GOOD_RATIO,
@@ -254,10 +257,10 @@ class GroundModel:
 # Input checks
 # --------------------------------------------------------------------------------------
 
-def _check_overlap(path: str, header, axis: DriveAxis, corridor_m: float) -> None:
-    """:class:`InputError` when the track's corridor misses the cloud's extent, saying by
-    how much."""
-    lo, hi = header.mins, header.maxs
+def _check_overlap(path: str, bounds_xy, axis: DriveAxis, corridor_m: float) -> None:
+    """:class:`InputError` when the track's corridor misses the cloud's extent
+    ``(xmin, ymin, xmax, ymax)``, saying by how much."""
+    lo, hi = bounds_xy[:2], bounds_xy[2:]
     cloud_box = shapely.box(float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
     track = shapely.linestrings(axis.xyz_world[:, :2])
     gap = float(cloud_box.distance(track))
@@ -297,13 +300,16 @@ def _thin_ground(xyz: np.ndarray, cell_m: float) -> np.ndarray:
     return np.sort(first)
 
 
-def _spool_cloud(path: str, axis: DriveAxis, spool: WindowSpool, hist: IntensityHistogram,
+def _spool_cloud(source: CloudSource, axis: DriveAxis, spool: WindowSpool, hist: IntensityHistogram,
                  has_time: bool, params: CloudSignParams, chunk_points: int, progress: Progress
                  ) -> Tuple[int, int, int, Tuple[float, float]]:
     n_read = n_cand = n_ground = 0
     t_min, t_max = math.inf, -math.inf
     lo_s, hi_s = -params.end_margin_m - params.margin_m, axis.length_m + params.end_margin_m + params.margin_m
-    for chunk in iter_chunks(path, chunk_points, progress):
+    # the tiles the corridor meets (the track lengthened at its ends is within it)
+    reach = params.corridor_m + params.end_margin_m + params.margin_m
+    corridor = shapely.linestrings(axis.xyz_world[:, :2]).buffer(reach, quad_segs=4)
+    for chunk in source.iter_chunks(chunk_points, progress, area=corridor):
         n_read += len(chunk)
         xyz = xyz_of(chunk)
         s, offset, idx = axis.locate(xyz)
@@ -526,12 +532,13 @@ def _process_window(window: Window, rows: np.ndarray, ground_rows: np.ndarray, a
 # The stage
 # --------------------------------------------------------------------------------------
 
-def find_signs_in_cloud(cloud_path: str, track: Union[Track, "Stations", np.ndarray],
+def find_signs_in_cloud(cloud_path: Union[str, CloudSource], track: Union[Track, "Stations", np.ndarray],
                         params: Optional[CloudSignParams] = None,
                         chunk_points: int = DEFAULT_CHUNK_POINTS, progress: Progress = SILENT,
                         work_folder: Optional[str] = None, diagnostics: Optional[list] = None
                         ) -> CloudSignResult:
-    """Sign panels and poles of a ground-classified LAS/LAZ cloud along ``track`` (a
+    """Sign panels and poles of a ground-classified cloud (a LAS/LAZ file, a folder of tiles,
+    a ``.vpc`` or a :class:`.cloudsource.CloudSource`) along ``track`` (a
     :class:`.drivewindows.Track`, panorama ``Stations`` or an ``(n, 3)`` trajectory line in the
     cloud's CRS).
 
@@ -543,11 +550,12 @@ def find_signs_in_cloud(cloud_path: str, track: Union[Track, "Stations", np.ndar
     """
     params = params or CloudSignParams()
     started = time.perf_counter()
-    cloud_path = os.fspath(cloud_path)
-    header = read_header(cloud_path)
+    source = open_cloud(cloud_path if isinstance(cloud_path, CloudSource) else os.fspath(cloud_path))
+    cloud_path = source.path
+    header = source.header
     has_time = _check_dimensions(cloud_path, header)
     axis = DriveAxis(as_track(track))
-    _check_overlap(cloud_path, header, axis, params.corridor_m)
+    _check_overlap(cloud_path, source.bounds_xy, axis, params.corridor_m)
     windows = make_windows(axis.length_m, params.window_m)
     hist = IntensityHistogram()
     messages: List[Message] = []
@@ -556,7 +564,7 @@ def find_signs_in_cloud(cloud_path: str, track: Union[Track, "Stations", np.ndar
     with WindowSpool(windows, params.margin_m, {"points": POINT_DTYPE, "ground": GROUND_DTYPE},
                      folder=work_folder) as spool:
         n_read, n_cand, n_ground, (t_min, t_max) = _spool_cloud(
-            cloud_path, axis, spool, hist, has_time, params, chunk_points, progress.sub(0.0, 0.5))
+            source, axis, spool, hist, has_time, params, chunk_points, progress.sub(0.0, 0.5))
         if n_cand == 0 and n_ground == 0:
             raise InputError("No point of {path} lies within {corridor} m of the stations' track "
                              "({n} points read)", path=cloud_path, corridor=params.corridor_m, n=n_read)
@@ -625,7 +633,7 @@ def find_signs_in_cloud(cloud_path: str, track: Union[Track, "Stations", np.ndar
                            reference_source=ref[1], n_points=n_read, n_candidates=n_cand,
                            n_windows=len(windows), max_window_points=max_window_points,
                            coverage_wkt=coverage.wkt,
-                           crs_wkt=crs_wkt_of_header(header), seconds=time.perf_counter() - started,
+                           crs_wkt=source.crs_wkt, seconds=time.perf_counter() - started,
                            messages=messages, warnings=warnings, rejected=rejected)
 
 

@@ -515,30 +515,44 @@ class TiledIndex:
                  dimensions: Sequence[str] = ("intensity", "classification", "gps_time"),
                  tile_size_m: float = 25.0, chunk_points: int = DEFAULT_CHUNK_POINTS,
                  progress: Progress = SILENT) -> "TiledIndex":
-        """Index the points of a LAS/LAZ file inside ``region`` (streaming read)."""
+        """Index the points of one LAS/LAZ file inside ``region`` (streaming read). Tiles and
+        virtual point clouds: :meth:`.cloudsource.CloudSource.index`."""
         header = read_header(path)
         names = set(header.point_format.dimension_names)
         missing = [d for d in dimensions if d not in names]
         if missing:
             raise InputError("{path} has no dimension {names} (point format {fmt})", path=path,
                              names=", ".join(missing), fmt=header.point_format.id)
+
+        def indexed() -> Iterator[Tuple[np.ndarray, laspy.ScaleAwarePointRecord]]:
+            offset = 0
+            for chunk in iter_chunks(path, chunk_points, progress):
+                yield np.arange(offset, offset + len(chunk), dtype=np.int64), chunk
+                offset += len(chunk)
+
+        return cls.from_chunks(indexed(), region, dimensions, tile_size_m, crs_wkt_of_header(header))
+
+    @classmethod
+    def from_chunks(cls, chunks: Iterable[Tuple[np.ndarray, laspy.ScaleAwarePointRecord]],
+                    region: Optional[CropRegion] = None,
+                    dimensions: Sequence[str] = ("intensity", "classification", "gps_time"),
+                    tile_size_m: float = 25.0, crs_wkt: Optional[str] = None) -> "TiledIndex":
+        """Index ``(point indices, points)`` chunks, keeping the points inside ``region``."""
         xyz_parts, index_parts = [], []
         attr_parts: Dict[str, List[np.ndarray]] = {d: [] for d in dimensions}
-        offset = 0
-        for chunk in iter_chunks(path, chunk_points, progress):
+        for index, chunk in chunks:
             keep = (np.ones(len(chunk), bool) if region is None
                     else region.mask(chunk.x, chunk.y))
             kept = chunk[keep] if region is not None else chunk
             xyz_parts.append(xyz_of(kept))
-            index_parts.append(offset + np.flatnonzero(keep))
+            index_parts.append(np.asarray(index, dtype=np.int64)[keep])
             for d in dimensions:
                 attr_parts[d].append(np.array(kept[d]))
-            offset += len(chunk)
         xyz = np.concatenate(xyz_parts) if xyz_parts else np.zeros((0, 3))
-        index = np.concatenate(index_parts) if index_parts else np.zeros(0, np.int64)
+        index_all = np.concatenate(index_parts) if index_parts else np.zeros(0, np.int64)
         attrs = {d: (np.concatenate(p) if p else np.zeros(0)) for d, p in attr_parts.items()}
         del xyz_parts, index_parts, attr_parts
-        return cls(xyz, index, attrs, tile_size_m, crs_wkt_of_header(header))
+        return cls(xyz, index_all, attrs, tile_size_m, crs_wkt)
 
     # -- introspection -----------------------------------------------------------------
 

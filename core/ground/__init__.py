@@ -12,6 +12,11 @@ calls), reads the input, crops it, classifies ground and writes LAS/LAZ:
   :class:`SmrfParams`);
 * engine ``"auto"``: PDAL when found, the built-in engine when PDAL is missing or fails.
 
+The input may be a LAS/LAZ file, a folder of tiles or a virtual point cloud
+(:mod:`..cloudsource`); PDAL classifies a single file only, tiles go to the built-in
+engine, into one output file or, with :func:`run_ground_filter_tiles` (:mod:`.tiled`), one
+output tile per input tile, each classified with a halo of its neighbours' points.
+
 Methods and engines are given by name (:data:`METHODS`, :data:`ENGINES`); anything else
 raises :class:`~..errors.InputError`.
 
@@ -28,8 +33,8 @@ are classified; the others keep their class.
 
 Modules: ``lattice`` (the world-aligned grid and tiles both built-in methods use),
 ``smrf`` and ``csf`` (the methods), ``params`` (method/engine names, parameter sets),
-``pdal`` (pipelines, finding and running PDAL, the PDAL engine) and ``engine`` (the
-built-in engine on files and the entry points).
+``pdal`` (pipelines, finding and running PDAL, the PDAL engine), ``engine`` (the
+built-in engine on files and the entry points) and ``tiled`` (one output tile per input tile).
 """
 from .csf import CSF_BUFFER_M, CSF_TILE_M, CsfGrid, CsfParams, run_csf_cloth
 from .engine import GroundResult, classify_ground, classify_ground_arrays, make_grid, returns_mask, run_ground_filter
@@ -45,12 +50,13 @@ from .pdal import (
     run_pdal_pipeline,
 )
 from .smrf import SMRF_TILE_M, SmrfGrid, SmrfParams, smrf_surface
+from .tiled import classify_ground_tiles, halo_m, run_ground_filter_tiles
 
 __all__ = [
     "CSF_BUFFER_M", "CSF_TILE_M", "ENGINES", "METHODS", "SMRF_TILE_M",
     "CsfGrid", "CsfParams", "GroundResult", "Lattice", "Params", "PdalError", "SmrfGrid", "SmrfParams",
-    "build_pdal_pipeline", "classify_ground", "classify_ground_arrays", "default_params", "engine_name",
-    "find_pdal_executable", "make_grid", "method_name", "pdal_extra_dims", "pdal_filter_stage",
-    "pdal_python_module", "returns_mask", "run_csf_cloth", "run_ground_filter", "run_pdal_pipeline",
-    "smrf_surface",
+    "build_pdal_pipeline", "classify_ground", "classify_ground_arrays", "classify_ground_tiles",
+    "default_params", "engine_name", "find_pdal_executable", "halo_m", "make_grid", "method_name",
+    "pdal_extra_dims", "pdal_filter_stage", "pdal_python_module", "returns_mask", "run_csf_cloth",
+    "run_ground_filter", "run_ground_filter_tiles", "run_pdal_pipeline", "smrf_surface",
 ]

@@ -3,7 +3,12 @@
 Conventions:
 
 * Methods and engines are names (:data:`~.params.METHODS`, :data:`~.params.ENGINES`).
-* The built-in engine streams the file twice (pass 1 into the method's grid, pass 2
+* The input is any cloud :func:`~..cloudsource.open_cloud` reads: a LAS/LAZ file, a folder
+  of tiles or a virtual point cloud. PDAL runs on a single file only; tiles go to the
+  built-in engine (under ``"auto"``; ``"pdal"`` refuses them), which reads them as one cloud
+  and writes one file with the first tile's header, scales and offsets
+  (:func:`~..cloudsource.conform`), or one file per tile (:mod:`.tiled`).
+* The built-in engine streams the cloud twice (pass 1 into the method's grid, pass 2
   classifying and writing) and never holds the cloud in memory; the output goes through
   :class:`~..pointcloud.CloudWriter` (a temporary file moved into place on success).
 * Ground is class 2 (:data:`~..pointcloud.GROUND_CLASS`); only the ``returns`` of the
@@ -14,11 +19,12 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass, field
-from typing import Any, Iterable, List, Optional, Tuple
+from typing import Any, Iterable, List, Optional, Tuple, Union
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..cloudsource import CloudSource, conform, open_cloud
 from ..errors import SILENT, InputError, Message, Progress
 from ..pointcloud import (
     DEFAULT_CHUNK_POINTS,
@@ -27,10 +33,7 @@ from ..pointcloud import (
     UNCLASSIFIED_CLASS,
     CloudWriter,
     CropRegion,
-    crs_wkt_of_header,
-    iter_chunks,
     output_header,
-    read_header,
 )
 from .csf import CSF_BUFFER_M, CSF_TILE_M, CsfGrid, CsfParams
 from .lattice import BoundsXY, GroundGrid, OutsideGridError
@@ -123,24 +126,48 @@ def _new_classes(classification: np.ndarray, eligible: np.ndarray, ground: np.nd
     return cls
 
 
-def _builtin_engine(input_path: str, output_path: str, params: Params,
+def grid_bounds(bounds_xy: BoundsXY, region: Optional[CropRegion]) -> Optional[BoundsXY]:
+    """The part of ``bounds_xy`` a grid must cover: within the crop region's bounds; None when
+    nothing is left."""
+    if region is None:
+        return bounds_xy
+    rb = region.bounds
+    if rb is None:  # an empty region
+        return None
+    xmin, ymin, xmax, ymax = bounds_xy
+    out = (max(xmin, rb[0]), max(ymin, rb[1]), min(xmax, rb[2]), min(ymax, rb[3]))
+    return None if out[0] > out[2] or out[1] > out[3] else out
+
+
+def eligible_xyz(pts: Any, params: Params) -> Tuple[np.ndarray, np.ndarray]:
+    """The returns the method classifies (a mask) and their ``(n, 3)`` coordinates."""
+    eligible = returns_mask(pts.return_number, pts.number_of_returns, params.returns)
+    xyz = np.column_stack([np.asarray(pts.x)[eligible], np.asarray(pts.y)[eligible],
+                           np.asarray(pts.z)[eligible]])
+    return eligible, xyz
+
+
+def classified(pts: Any, grid: GroundGrid, params: Params, reset_classes: bool,
+               classify: bool = True) -> Tuple[Any, int]:
+    """``pts`` with their new classes (ground from ``grid``), and their number of ground points."""
+    eligible, xyz = eligible_xyz(pts, params)
+    ground = np.zeros(len(pts), dtype=bool)
+    if classify and len(xyz):
+        ground[eligible] = grid.classify(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+    pts.classification = _new_classes(pts.classification, eligible, ground, reset_classes)
+    return pts, int(ground.sum())
+
+
+def _builtin_engine(source: CloudSource, output_path: str, params: Params,
                     region: Optional[CropRegion], header: Any, out_crs_wkt: Optional[str],
                     reset_classes: bool, chunk_points: int, tile_size_m: Optional[float],
                     tile_buffer_m: Optional[float], progress: Progress) -> Tuple[int, int, List[str]]:
     warnings: List[str] = []
-    xmin, ymin, xmax, ymax = header.mins[0], header.mins[1], header.maxs[0], header.maxs[1]
-    bounds: Optional[BoundsXY] = (xmin, ymin, xmax, ymax)
-    if region is not None:
-        rb = region.bounds
-        if rb is None:  # an empty region
-            bounds = None
-        else:
-            bounds = (max(xmin, rb[0]), max(ymin, rb[1]), min(xmax, rb[2]), min(ymax, rb[3]))
-            if bounds[0] > bounds[2] or bounds[1] > bounds[3]:
-                bounds = None
+    bounds = grid_bounds(source.bounds_xy, region)
+    area = None if region is None else region.geometry
     grid: Optional[GroundGrid] = None
-    if bounds is not None and header.point_count > 0:
-        grid = make_grid(params, bounds, float(header.mins[2]), tile_size_m, tile_buffer_m)
+    if bounds is not None and source.point_count > 0:
+        grid = make_grid(params, bounds, float(source.bounds[2]), tile_size_m, tile_buffer_m)
 
     def kept(chunk: Any, masks: List[np.ndarray], k: int) -> Any:
         if region is None:
@@ -153,41 +180,28 @@ def _builtin_engine(input_path: str, output_path: str, params: Params,
     n_eligible = 0
     try:
         if grid is not None:
-            for k, chunk in enumerate(iter_chunks(input_path, chunk_points,
-                                                  progress.sub(0.0, 0.45))):
-                pts = kept(chunk, masks, k)
-                eligible = returns_mask(pts.return_number, pts.number_of_returns,
-                                        params.returns)
-                n_eligible += int(eligible.sum())
-                grid.accumulate(np.asarray(pts.x)[eligible], np.asarray(pts.y)[eligible],
-                                np.asarray(pts.z)[eligible])
+            for k, chunk in enumerate(source.iter_chunks(chunk_points, progress.sub(0.0, 0.45), area=area)):
+                _, xyz = eligible_xyz(kept(chunk, masks, k), params)
+                n_eligible += len(xyz)
+                grid.accumulate(xyz[:, 0], xyz[:, 1], xyz[:, 2])
             grid.finish(progress.sub(0.45, 0.55))
     except OutsideGridError as e:
         raise InputError("Cannot read {path}: the file is corrupt ({detail})",
-                         path=input_path, detail=str(e))
+                         path=source.path, detail=str(e))
     n_out = n_ground = 0
     with CloudWriter(output_path, output_header(header, out_crs_wkt)) as writer:
         if grid is not None:
-            for k, chunk in enumerate(iter_chunks(input_path, chunk_points,
-                                                  progress.sub(0.55, 1.0))):
+            for k, chunk in enumerate(source.iter_chunks(chunk_points, progress.sub(0.55, 1.0), area=area)):
                 pts = kept(chunk, masks, k)
                 if len(pts) == 0:
                     continue
-                eligible = returns_mask(pts.return_number, pts.number_of_returns,
-                                        params.returns)
-                ground = np.zeros(len(pts), dtype=bool)
-                if n_eligible:
-                    ground[eligible] = grid.classify(np.asarray(pts.x)[eligible],
-                                                     np.asarray(pts.y)[eligible],
-                                                     np.asarray(pts.z)[eligible])
-                pts.classification = _new_classes(pts.classification, eligible, ground,
-                                                  reset_classes)
-                writer.write(pts)
-                n_ground += int(ground.sum())
+                pts, n = classified(pts, grid, params, reset_classes, classify=n_eligible > 0)
+                writer.write(conform(pts, writer.header))
+                n_ground += n
         n_out = writer.point_count
     if n_out and not n_eligible:
         warnings.append(Message("No point of {path} has the returns '{returns}': nothing was "
-                                "classified", path=input_path, returns=params.returns))
+                                "classified", path=source.path, returns=params.returns))
     return n_out, n_ground, warnings
 
 
@@ -195,7 +209,7 @@ def _builtin_engine(input_path: str, output_path: str, params: Params,
 # Entry points
 # --------------------------------------------------------------------------------------
 
-def classify_ground(input_path: str, output_path: str, method: str = "csf",
+def classify_ground(input_path: Union[str, CloudSource], output_path: str, method: str = "csf",
                     engine: str = "auto", params: Optional[Params] = None,
                     region: Optional[CropRegion] = None, crs_wkt: Optional[str] = None,
                     reset_classes: bool = False, pdal_executable: Optional[str] = None,
@@ -203,14 +217,16 @@ def classify_ground(input_path: str, output_path: str, method: str = "csf",
                     tile_size_m: Optional[float] = None,
                     tile_buffer_m: Optional[float] = None,
                     progress: Progress = SILENT) -> GroundResult:
-    """Crop ``input_path`` to ``region`` and write it to ``output_path`` with ground as
-    class 2, by ``engine`` ("auto", "pdal", "builtin").
+    """Crop the cloud ``input_path`` (a LAS/LAZ file, a folder of tiles or a ``.vpc``) to
+    ``region`` and write it to ``output_path`` with ground as class 2, by ``engine``
+    ("auto", "pdal", "builtin").
 
     ``crs_wkt`` replaces the file's CRS; without it the file must have one (an error
     otherwise: a CRS is never guessed). Under "auto" a failing PDAL is reported as a
     warning and the built-in engine runs; under "pdal" its :class:`PdalError` is raised.
+    PDAL classifies a single file only: tiles run on the built-in engine under "auto", and
+    are an error under "pdal".
     """
-    input_path = os.fspath(input_path)
     output_path = os.path.abspath(os.fspath(output_path))
     method = method_name(method)
     engine = engine_name(engine)
@@ -218,11 +234,13 @@ def classify_ground(input_path: str, output_path: str, method: str = "csf",
     if os.path.splitext(output_path)[1].lower() not in LAS_SUFFIXES:
         raise InputError("Cannot write {path}: the output must end in .las or .laz",
                          path=output_path)
-    if os.path.exists(input_path) and os.path.exists(output_path) and os.path.samefile(
-            input_path, output_path):
-        raise InputError("The output {path} must not be the input file", path=output_path)
-    header = read_header(input_path)
-    file_crs = crs_wkt_of_header(header)
+    source = open_cloud(input_path if isinstance(input_path, CloudSource) else os.fspath(input_path))
+    input_path = source.path
+    for tile in source.tiles:
+        if os.path.exists(output_path) and os.path.samefile(tile.path, output_path):
+            raise InputError("The output {path} must not be the input file", path=output_path)
+    header = source.header
+    file_crs = source.crs_wkt
     if crs_wkt:
         from ..crs import parse_crs
 
@@ -230,10 +248,17 @@ def classify_ground(input_path: str, output_path: str, method: str = "csf",
     elif not file_crs:
         raise InputError("{path} has no coordinate reference system: give the cloud's CRS "
                          "(it is never guessed)", path=input_path)
-    result = GroundResult(output_path, method, "builtin", int(header.point_count), 0, 0,
+    result = GroundResult(output_path, method, "builtin", int(source.point_count), 0, 0,
                           crs_wkt or file_crs)
 
-    if engine in ("auto", "pdal"):
+    if engine in ("auto", "pdal") and not source.is_single_file:
+        if engine == "pdal":
+            raise InputError("The PDAL engine classifies a single LAS/LAZ file, and {path} holds {n} "
+                             "tiles: choose the built-in engine (or Auto), which classifies tiles with the "
+                             "same filters", path=input_path, n=len(source.tiles))
+        progress.info("{path} holds {n} tiles: the built-in engine classifies them (PDAL is used for a "
+                      "single file only)", path=input_path, n=len(source.tiles))
+    elif engine in ("auto", "pdal"):
         runner = find_pdal_runner(pdal_executable)
         if runner is None:
             if engine == "pdal":
@@ -243,8 +268,8 @@ def classify_ground(input_path: str, output_path: str, method: str = "csf",
         else:
             try:
                 n_out, n_ground, pipeline, used = run_pdal_engine(
-                    input_path, output_path, method, params, region, header, crs_wkt,
-                    reset_classes, runner.executable, chunk_points, progress)
+                    source.tiles[0].path, output_path, method, params, region, source.tile_header(0),
+                    crs_wkt, reset_classes, runner.executable, chunk_points, progress)
                 result.n_output, result.n_ground, result.engine = n_out, n_ground, used
                 result.pipeline_json = pipeline
                 _warn_if_empty(result, input_path, progress)
@@ -256,7 +281,7 @@ def classify_ground(input_path: str, output_path: str, method: str = "csf",
                     "PDAL failed, the built-in engine was used instead: {error}", error=str(e)))
 
     n_out, n_ground, warnings = _builtin_engine(
-        input_path, output_path, params, region, header, crs_wkt, reset_classes,
+        source, output_path, params, region, header, crs_wkt, reset_classes,
         chunk_points, tile_size_m, tile_buffer_m, progress)
     result.n_output, result.n_ground, result.engine = n_out, n_ground, "builtin"
     for w in warnings:
@@ -273,7 +298,19 @@ def _warn_if_empty(result: GroundResult, input_path: str, progress: Progress) ->
             path=input_path, output=result.output_path))
 
 
-def run_ground_filter(input_path: str, output_path: str, method: str = "csf", engine: str = "auto",
+def crop_region(crop_polygons: Optional[Iterable[Any]], crop_buffer_m: float,
+                progress: Progress = SILENT) -> Optional[CropRegion]:
+    """The crop region of polygons (shapely, WKB or WKT) grown by ``crop_buffer_m``; None
+    without polygons."""
+    polygons = list(crop_polygons) if crop_polygons is not None else []
+    if polygons:
+        return CropRegion.from_polygons(polygons, crop_buffer_m)
+    if crop_buffer_m:
+        progress.info("No crop polygons: the crop buffer is ignored")
+    return None
+
+
+def run_ground_filter(input_path: Union[str, CloudSource], output_path: str, method: str = "csf", engine: str = "auto",
                       crop_polygons: Optional[Iterable[Any]] = None, crop_buffer_m: float = 0.0,
                       crs_wkt: Optional[str] = None, reset_classes: bool = False,
                       pdal_executable: Optional[str] = None, params: Optional[Params] = None,
@@ -286,12 +323,7 @@ def run_ground_filter(input_path: str, output_path: str, method: str = "csf", en
     :data:`ENGINES` ("auto", "pdal", "builtin"). Anything else (a list index included)
     raises :class:`InputError`.
     """
-    region = None
-    polygons = list(crop_polygons) if crop_polygons is not None else []
-    if polygons:
-        region = CropRegion.from_polygons(polygons, crop_buffer_m)
-    elif crop_buffer_m:
-        progress.info("No crop polygons: the crop buffer is ignored")
+    region = crop_region(crop_polygons, crop_buffer_m, progress)
     return classify_ground(input_path, output_path, method=method, engine=engine,
                            params=params, region=region, crs_wkt=crs_wkt,
                            reset_classes=reset_classes, pdal_executable=pdal_executable,

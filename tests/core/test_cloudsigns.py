@@ -409,7 +409,7 @@ def test_scene_poles_feet_kinds_and_signs(tiny):
 def test_scene_faded_signs_flagged(tiny):
     folder, res, _, _ = tiny
     ref = _read_csv(os.path.join(folder, "reference_signs.csv"))
-    assert list(ref[0])[-1] == "faded"
+    assert "faded" in ref[0]
     found = np.array([s.centre_world for s in res.signs])
     n_faded = 0
     for r in ref:

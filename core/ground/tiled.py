@@ -1,0 +1,313 @@
+"""Ground classification tile by tile: one output tile per input tile, and a virtual point
+cloud listing them (``roadsigns:groundfilter`` with ``OUTPUT_TILES``).
+
+Each input tile is classified with the built-in engine on a grid over the tile and a halo
+around it (:func:`tile_grid`), so that its points get the classes a run on the whole cloud
+gives them, and written alone, with its own header, scales and offsets, under its own file
+name:
+
+* SMRF: the tile grown by SMRF's halo (the morphology's reach; SMRF's result does not
+  depend on its tiling, so the classes are those of the whole cloud);
+* CSF: the cloth is simulated in squares of ``CSF_TILE_M`` with a buffer, on a lattice that
+  starts at the cloud's corner. The grid of a tile is cut from that same lattice, whole
+  squares of it: those holding the tile's points, and enough around them for their
+  buffers. Every square of the tile then sees the points it sees in a whole-cloud run and
+  gets the same cloth.
+
+Passes over the cloud, memory bounded by one tile and its halo:
+
+0. one read of the tiles that have neighbours: the eligible points (returns) of each within
+   the halo of another tile are spooled to that tile's file in a temporary folder;
+1. per tile: its own points and its spooled halo into the grid; the grid's ground surface;
+2. per tile: its points classified and written.
+
+The output folder appears whole or not at all: tiles and the ``.vpc`` are written into a
+temporary folder beside it, moved into place at the end (:class:`~..outputs.StagedOutputs`).
+Input tiles without a point inside the crop area give no output tile (the log says so).
+PDAL is not used here: it reads a single file (``engine="pdal"`` is an error).
+"""
+from __future__ import annotations
+
+import os
+import tempfile
+from typing import Any, Dict, Iterable, List, Optional, Tuple, Union
+
+import numpy as np
+
+from ..cloudsource import BBoxXY, CloudSource, Tile, open_cloud, template_header, vpc_text
+from ..errors import SILENT, InputError, Progress
+from ..outputs import StagedOutputs
+from ..pointcloud import DEFAULT_CHUNK_POINTS, CloudWriter, CropRegion, output_header, read_header
+from .csf import CsfGrid, CsfParams
+from .engine import GroundResult, classified, crop_region, eligible_xyz, grid_bounds, make_grid
+from .lattice import Lattice, OutsideGridError
+from .params import Params, engine_name, method_name, method_params
+from .smrf import SmrfGrid
+
+#: Spooled halo points: world coordinates only (the grids need nothing else).
+_HALO_DTYPE = np.dtype([("x", "f8"), ("y", "f8"), ("z", "f8")])
+
+
+def halo_m(params: Params, tile_buffer_m: Optional[float] = None) -> float:
+    """How far SMRF's grid reaches beyond the cells it classifies (its halo), or CSF's
+    buffer around a square of cloth, in metres."""
+    if isinstance(params, CsfParams):
+        grid: Any = CsfGrid((0.0, 0.0, 1.0, 1.0), 0.0, params,
+                            **({} if tile_buffer_m is None else {"tile_buffer_m": tile_buffer_m}))
+        return float(grid.halo_nodes * params.resolution)
+    grid = SmrfGrid((0.0, 0.0, 1.0, 1.0), params)
+    return float(grid.halo_cells * params.cell)
+
+
+def tile_grid(params: Params, cloud_bounds: BBoxXY, tile_box: BBoxXY,
+              tile_buffer_m: Optional[float] = None) -> Optional[BBoxXY]:
+    """The bounds to build tile ``tile_box``'s grid over (:func:`.engine.make_grid`), for a
+    cloud whose whole-cloud grid covers ``cloud_bounds`` (the cloud's bounds within the crop);
+    None when the tile is outside them. See the module doc."""
+    x0, y0, x1, y1 = cloud_bounds
+    box = (max(tile_box[0], x0), max(tile_box[1], y0), min(tile_box[2], x1), min(tile_box[3], y1))
+    if box[0] > box[2] or box[1] > box[3]:
+        return None
+    if not isinstance(params, CsfParams):
+        h = halo_m(params)
+        return (max(box[0] - h, x0), max(box[1] - h, y0), min(box[2] + h, x1), min(box[3] + h, y1))
+    whole = Lattice.covering(cloud_bounds, params.resolution)
+    probe: Any = CsfGrid((0.0, 0.0, 1.0, 1.0), 0.0, params,
+                         **({} if tile_buffer_m is None else {"tile_buffer_m": tile_buffer_m}))
+    core, reach = probe.tile_nodes, -(-probe.halo_nodes // probe.tile_nodes)  # squares of buffer
+    step = whole.step
+
+    def span(lo: float, hi: float, origin: float, n: int) -> Tuple[int, int]:
+        first = min(max(int(np.floor((lo - origin) / step + 0.5)), 0), n - 1)
+        last = min(max(int(np.floor((hi - origin) / step + 0.5)), 0), n - 1)
+        return max(0, (first // core - reach) * core), min(n, (last // core + 1 + reach) * core)
+
+    c0, c1 = span(box[0], box[2], whole.x0, whole.nx)
+    r0, r1 = span(box[1], box[3], whole.y0, whole.ny)
+    # bounds that Lattice.covering (2 nodes of padding) turns into exactly these nodes
+    return (whole.x0 + (c0 + 2.5) * step, whole.y0 + (r0 + 2.5) * step,
+            whole.x0 + (c1 - 2.5) * step, whole.y0 + (r1 - 2.5) * step)
+
+
+def _grown(box: BBoxXY, by: float) -> BBoxXY:
+    return (box[0] - by, box[1] - by, box[2] + by, box[3] + by)
+
+
+def _meets(a: BBoxXY, b: BBoxXY) -> bool:
+    return a[0] <= b[2] and a[2] >= b[0] and a[1] <= b[3] and a[3] >= b[1]
+
+
+def _inside(x: np.ndarray, y: np.ndarray, box: BBoxXY) -> np.ndarray:
+    return (x >= box[0]) & (x <= box[2]) & (y >= box[1]) & (y <= box[3])
+
+
+def _kept(chunk: Any, region: Optional[CropRegion]) -> Any:
+    return chunk if region is None else chunk[region.mask(chunk.x, chunk.y)]
+
+
+def output_tile_names(source: CloudSource, folder: str) -> List[str]:
+    """One output file per tile, named as it; :class:`InputError` when two tiles share a name
+    or the output folder holds an input tile (it is replaced as a whole)."""
+    names: Dict[str, str] = {}
+    folder = os.path.abspath(folder)
+    for tile in source.tiles:
+        if os.path.commonpath([os.path.abspath(tile.path), folder]) == folder:
+            raise InputError("The output folder {folder} holds the input tile {tile}: choose another folder "
+                             "(the output folder is replaced as a whole)", folder=folder, tile=tile.path)
+        if tile.name.lower() in names:
+            raise InputError("Two tiles of {path} have the same file name, {name} ({first} and {second}): the "
+                             "output tiles are named as the input tiles, so their names must differ",
+                             path=source.path, name=tile.name, first=names[tile.name.lower()], second=tile.path)
+        names[tile.name.lower()] = tile.path
+    return [t.name for t in source.tiles]
+
+
+def classify_ground_tiles(input_path: Union[str, CloudSource], output_folder: str, vpc_name: str,
+                          method: str = "csf", engine: str = "builtin", params: Optional[Params] = None,
+                          region: Optional[CropRegion] = None, crs_wkt: Optional[str] = None,
+                          reset_classes: bool = False, chunk_points: int = DEFAULT_CHUNK_POINTS,
+                          tile_buffer_m: Optional[float] = None, progress: Progress = SILENT) -> GroundResult:
+    """Classify the ground of every tile of ``input_path`` (a file, a folder of tiles or a
+    ``.vpc``) into ``output_folder`` (created or replaced whole): one tile per input tile,
+    same name, and ``vpc_name`` listing them. ``GroundResult.output_path`` is the ``.vpc``.
+
+    ``engine``: "auto" or "builtin" (the built-in engine runs); "pdal" raises
+    :class:`InputError` (PDAL reads one file). ``crs_wkt`` replaces the tiles' CRS; without
+    it the cloud must have one.
+    """
+    method = method_name(method)
+    engine = engine_name(engine)
+    params = method_params(method, params)
+    if engine == "pdal":
+        raise InputError("The PDAL engine writes one file: to write one tile per input tile choose the "
+                         "built-in engine (or Auto)")
+    if not vpc_name.lower().endswith(".vpc") or os.sep in vpc_name:
+        raise InputError("The virtual point cloud's name {name} must be a file name ending in .vpc",
+                         name=vpc_name)
+    source = open_cloud(input_path if isinstance(input_path, CloudSource) else os.fspath(input_path))
+    output_folder = os.path.abspath(os.fspath(output_folder))
+    names = output_tile_names(source, output_folder)
+    if crs_wkt:
+        from ..crs import parse_crs
+
+        parse_crs(crs_wkt, "point cloud CRS")
+    elif not source.crs_wkt:
+        raise InputError("{path} has no coordinate reference system: give the cloud's CRS "
+                         "(it is never guessed)", path=source.path)
+    out_crs = crs_wkt or source.crs_wkt
+    if engine == "auto":
+        progress.info("Writing one tile per input tile: the built-in engine classifies them (PDAL is used for "
+                      "one output file only)")
+    area = None if region is None else region.geometry
+    met = {t.path for t in source.tiles_in(area=area)}
+    whole = grid_bounds(source.bounds_xy, region)
+    grown: Dict[int, BBoxXY] = {}
+    for k, t in enumerate(source.tiles):
+        bounds = tile_grid(params, whole, t.bounds_xy, tile_buffer_m) if whole is not None else None
+        if t.point_count and t.path in met and bounds is not None:
+            grown[k] = bounds
+    work = sorted(grown)
+    skipped = [t.path for k, t in enumerate(source.tiles) if k not in grown]
+    result = GroundResult(os.path.join(output_folder, vpc_name), method, "builtin", source.point_count, 0, 0,
+                          out_crs)
+    staged = StagedOutputs()
+    temporary = staged.folder(output_folder)
+    written: List[Tuple[str, Any]] = []
+    try:
+        with tempfile.TemporaryDirectory(prefix=".roadsigns-halo-") as spool_dir:
+            spools = _spool_halos(source, work, grown, region, params, spool_dir, chunk_points,
+                                  progress.sub(0.0, 0.3))
+            total = max(sum(source.tiles[k].point_count for k in work), 1)
+            done = 0
+            for k in work:
+                tile = source.tiles[k]
+                share = progress.sub(0.3 + 0.7 * done / total, 0.3 + 0.7 * (done + tile.point_count) / total)
+                done += tile.point_count
+                path = os.path.join(temporary, names[k])
+                n_out, n_ground = _classify_tile(source, k, grown[k], spools.get(k), path, region, params,
+                                                 out_crs if crs_wkt else None, reset_classes, chunk_points,
+                                                 tile_buffer_m, share)
+                result.n_output += n_out
+                result.n_ground += n_ground
+                if n_out:
+                    written.append((os.path.join(output_folder, names[k]), read_header(path)))
+                else:
+                    skipped.append(tile.path)
+        for path in skipped:
+            result.warnings.append(progress.info("No point of the tile {tile} lies inside the crop area: no "
+                                                 "output tile for it", tile=path))
+        headers = [(os.path.join(temporary, os.path.basename(p)), h) for p, h in written]
+        with open(os.path.join(temporary, vpc_name), "w", encoding="utf-8", newline="\n") as f:
+            f.write(vpc_text(headers, out_crs, temporary))
+        progress.report(1.0)
+        staged.commit()
+    except BaseException:
+        staged.rollback()
+        raise
+    if result.n_output == 0:
+        result.warnings.append(progress.warning(
+            "No point of {path} is left after the crop: {output} lists no tile", path=source.path,
+            output=result.output_path))
+    progress.info("{n} tiles written to {folder}, listed in {vpc}", n=len(written), folder=output_folder,
+                  vpc=vpc_name)
+    return result
+
+
+def _spool_halos(source: CloudSource, work: List[int], grown: Dict[int, BBoxXY],
+                 region: Optional[CropRegion], params: Params, folder: str, chunk_points: int,
+                 progress: Progress) -> Dict[int, str]:
+    """Pass 0: the eligible points of each tile near another tile's grid (``grown``, a few
+    cells more), appended to that tile's file in ``folder``; {tile number: file}."""
+    step = params.resolution if isinstance(params, CsfParams) else params.cell
+    grown = {k: _grown(b, 3.0 * step) for k, b in grown.items()}
+    neighbours: Dict[int, List[int]] = {}
+    for s in work:
+        box = source.tiles[s].bounds_xy
+        neighbours[s] = [t for t in work if t != s and _meets(box, grown[t])]
+    readers = [s for s in work if neighbours[s]]
+    spools: Dict[int, str] = {}
+    if not readers:
+        progress.report(1.0)
+        return spools
+    for index, chunk in source.iter_indexed_chunks(chunk_points, progress, tiles=[source.tiles[s] for s in readers]):
+        s = int(source.tile_of_index(index[:1])[0])
+        pts = _kept(chunk, region)
+        _, xyz = eligible_xyz(pts, params)
+        for t in neighbours[s]:
+            near = _inside(xyz[:, 0], xyz[:, 1], grown[t])
+            if near.any():
+                rows = np.zeros(int(near.sum()), _HALO_DTYPE)
+                rows["x"], rows["y"], rows["z"] = xyz[near, 0], xyz[near, 1], xyz[near, 2]
+                path = spools.setdefault(t, os.path.join(folder, f"halo_{t}.bin"))
+                with open(path, "ab") as f:
+                    rows.tofile(f)
+    return spools
+
+
+def _classify_tile(source: CloudSource, k: int, bounds: BBoxXY, spool: Optional[str], path: str,
+                   region: Optional[CropRegion], params: Params, crs_wkt: Optional[str], reset_classes: bool,
+                   chunk_points: int, tile_buffer_m: Optional[float], progress: Progress) -> Tuple[int, int]:
+    """Passes 1 and 2 of one tile into ``path``; ``(points written, ground points)``; no file
+    when no point is kept."""
+    tile: Tile = source.tiles[k]
+    n_ground = 0
+    grid = make_grid(params, bounds, float(source.bounds[2]), None, tile_buffer_m)
+    n_eligible = 0
+    try:
+        for chunk in _tile_chunks(source, tile, chunk_points, progress.sub(0.0, 0.45)):
+            _, xyz = eligible_xyz(_kept(chunk, region), params)
+            n_eligible += len(xyz)
+            grid.accumulate(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+        if spool is not None:
+            halo = np.fromfile(spool, dtype=_HALO_DTYPE)
+            on = _on_grid(grid, halo["x"], halo["y"], isinstance(params, CsfParams))
+            grid.accumulate(halo["x"][on], halo["y"][on], halo["z"][on])
+            del halo
+        grid.finish(progress.sub(0.45, 0.55))
+    except OutsideGridError as e:
+        raise InputError("Cannot read {path}: the file is corrupt ({detail})", path=tile.path, detail=str(e))
+    header = output_header(template_header(source.tile_header(k)), crs_wkt)
+    writer = CloudWriter(path, header)
+    try:
+        for chunk in _tile_chunks(source, tile, chunk_points, progress.sub(0.55, 1.0)):
+            pts = _kept(chunk, region)
+            if len(pts):
+                pts, n = classified(pts, grid, params, reset_classes, classify=n_eligible > 0)
+                writer.write(pts)
+                n_ground += n
+    except BaseException:
+        writer.abort()
+        raise
+    n_out = writer.point_count
+    if n_out:
+        writer.commit()
+    else:
+        writer.abort()
+    return n_out, n_ground
+
+
+def _on_grid(grid: Any, x: np.ndarray, y: np.ndarray, nodes: bool) -> np.ndarray:
+    """Which points fall on ``grid``'s lattice: at a node (CSF, nearest node) or in a cell."""
+    lat: Lattice = grid.lattice
+    u, v = lat.local(x, y)
+    shift = 0.5 if nodes else 0.0
+    col, row = np.floor(u + shift), np.floor(v + shift)
+    return (col >= 0) & (col < lat.nx) & (row >= 0) & (row < lat.ny)
+
+
+def _tile_chunks(source: CloudSource, tile: Tile, chunk_points: int, progress: Progress) -> Iterable[Any]:
+    for _, chunk in source.iter_indexed_chunks(chunk_points, progress, tiles=[tile]):
+        yield chunk
+
+
+def run_ground_filter_tiles(input_path: Union[str, CloudSource], output_folder: str, vpc_name: str,
+                            method: str = "csf", engine: str = "auto",
+                            crop_polygons: Optional[Iterable[Any]] = None, crop_buffer_m: float = 0.0,
+                            crs_wkt: Optional[str] = None, reset_classes: bool = False,
+                            params: Optional[Params] = None, chunk_points: int = DEFAULT_CHUNK_POINTS,
+                            progress: Progress = SILENT) -> GroundResult:
+    """:func:`classify_ground_tiles` with the crop of :func:`.engine.run_ground_filter`."""
+    region = crop_region(crop_polygons, crop_buffer_m, progress)
+    return classify_ground_tiles(input_path, output_folder, vpc_name, method=method, engine=engine,
+                                 params=params, region=region, crs_wkt=crs_wkt, reset_classes=reset_classes,
+                                 chunk_points=chunk_points, progress=progress)

@@ -1,0 +1,177 @@
+"""The ground filter on a cloud of tiles (core/ground/tiled.py, and engine.py on a folder or a
+.vpc): one tile per input tile, each classified with its neighbours' points around it, gives
+the classes of a run on the whole cloud; one merged file from tiles too; nothing half
+written when cancelled; PDAL only for a single file."""
+import json
+import os
+import shutil
+
+import laspy
+import numpy as np
+import pytest
+import shapely
+from helpers import cloudgen
+from helpers.cloudtiles import split_into_tiles, write_vpc
+
+from roadsigns.core import cloudsource as cs
+from roadsigns.core import ground
+from roadsigns.core import pointcloud as pc
+from roadsigns.core.errors import Cancelled, InputError, Progress
+
+#: The brief's bar for tiles against one file; the built-in engine reaches 100 %.
+MIN_AGREEMENT = 0.999
+
+
+@pytest.fixture(scope="module")
+def hilly(tmp_path_factory):
+    """A 120 m street on a 3 % slope, one LAZ, and the same split into 25 m tiles (whose
+    edges do not fall on CSF's 32 m squares)."""
+    folder = tmp_path_factory.mktemp("hilly")
+    scene = cloudgen.road_scene(length_m=120.0, slope=0.03, density_per_m2=60.0, seed=4)
+    single = str(folder / "street.laz")
+    cloudgen.write_scene(single, scene)
+    tiles = split_into_tiles(single, str(folder / "tiles"), size_m=25.0)
+    return dict(single=single, folder=str(folder / "tiles"), tiles=tiles, scene=scene)
+
+
+def classes_by_point(paths):
+    """{(x, y, z) in mm: class} of the points of ``paths`` as sorted arrays."""
+    keys, classes = [], []
+    for p in paths:
+        las = laspy.read(p)
+        keys.append(np.round(np.column_stack([las.x, las.y, las.z]) * 1000).astype(np.int64))
+        classes.append(np.asarray(las.classification))
+    k, c = np.concatenate(keys), np.concatenate(classes)
+    order = np.lexsort(k.T[::-1])
+    return k[order], c[order]
+
+
+def agreement(single_out, tile_outs):
+    k1, c1 = classes_by_point([single_out])
+    k2, c2 = classes_by_point(tile_outs)
+    np.testing.assert_array_equal(k1, k2)  # the same points
+    return float((c1 == c2).mean())
+
+
+@pytest.mark.parametrize("method, params, crop", [
+    ("csf", None, False),
+    ("smrf", None, False),
+    ("csf", ground.CsfParams(resolution=0.3, threshold=0.2), True),  # a step that is no binary fraction
+])
+def test_tiles_get_the_classes_of_one_file(hilly, tmp_path, method, params, crop):
+    crop_polygons = None
+    if crop:  # a corridor that leaves two tiles out and cuts through the others
+        x0, y0, _, x1, _, _ = cs.open_cloud(hilly["single"]).bounds
+        crop_polygons = [shapely.box(x0 + 3, y0 + 6, x0 + 80, y0 + 24)]
+    one = str(tmp_path / "one.laz")
+    ground.run_ground_filter(hilly["single"], one, method, "builtin", params=params, crop_polygons=crop_polygons)
+    out = tmp_path / "ground"
+    res = ground.run_ground_filter_tiles(hilly["folder"], str(out), "ground.vpc", method, "builtin",
+                                         params=params, crop_polygons=crop_polygons, chunk_points=20_000)
+    written = sorted(p for p in out.iterdir() if p.suffix == ".laz")
+    input_names = sorted(os.path.basename(t) for t in hilly["tiles"])
+    if crop:
+        assert 0 < len(written) < len(input_names)
+        assert any("no output tile" in w for w in res.warnings)
+    else:
+        assert [p.name for p in written] == input_names
+    share = agreement(one, [str(p) for p in written])
+    print(f"\n{method} {params} crop={crop}: {share * 100:.3f} % of the points classed as in one file")
+    assert share >= MIN_AGREEMENT
+    assert res.n_output == pc.read_header(one).point_count
+    assert res.output_path == str(out / "ground.vpc")
+    # the .vpc lists the written tiles and reads back as the same cloud
+    vpc = cs.open_cloud(res.output_path)
+    assert [t.path for t in vpc.tiles] == [str(p) for p in written]
+    assert vpc.point_count == res.n_output and cs.same_crs(vpc.crs_wkt, cs.open_cloud(hilly["single"]).crs_wkt)
+
+
+def test_tiles_keep_their_own_headers(hilly, tmp_path):
+    folder = tmp_path / "mixed"
+    split_into_tiles(hilly["single"], str(folder), size_m=40.0, scales=[0.01, 0.01, 0.01],
+                     offsets_shift=np.array([10.0, 20.0, 0.0]))
+    out = tmp_path / "ground"
+    ground.run_ground_filter_tiles(str(folder), str(out), "g.vpc", "smrf", "auto")
+    for tile in sorted(folder.iterdir()):
+        a, b = pc.read_header(str(tile)), pc.read_header(str(out / tile.name))
+        assert np.array_equal(a.scales, b.scales) and np.array_equal(a.offsets, b.offsets)
+        assert a.point_count == b.point_count and a.point_format.id == b.point_format.id
+
+
+def test_one_file_from_tiles_and_from_a_vpc(hilly, tmp_path):
+    one = str(tmp_path / "one.laz")
+    ground.run_ground_filter(hilly["single"], one, "csf", "builtin")
+    merged = str(tmp_path / "merged.laz")
+    res = ground.run_ground_filter(hilly["folder"], merged, "csf", "auto")
+    assert res.engine == "builtin" and res.n_output == res.n_input == len(hilly["scene"])
+    assert agreement(one, [merged]) >= MIN_AGREEMENT
+    vpc = write_vpc(str(tmp_path / "tiles.vpc"), hilly["tiles"])
+    via_vpc = str(tmp_path / "via_vpc.laz")
+    ground.run_ground_filter(vpc, via_vpc, "csf", "builtin")
+    assert agreement(one, [via_vpc]) >= MIN_AGREEMENT
+
+
+def test_pdal_takes_a_single_file_only(hilly, tmp_path):
+    with pytest.raises(InputError, match="single LAS/LAZ file"):
+        ground.run_ground_filter(hilly["folder"], str(tmp_path / "o.laz"), "csf", "pdal")
+    with pytest.raises(InputError, match="PDAL engine writes one file"):
+        ground.run_ground_filter_tiles(hilly["folder"], str(tmp_path / "o"), "o.vpc", "csf", "pdal")
+    infos = []
+    res = ground.run_ground_filter(hilly["folder"], str(tmp_path / "o.laz"), "smrf", "auto",
+                                   progress=Progress(on_info=infos.append))
+    assert res.engine == "builtin" and any("tiles: the built-in engine" in m for m in infos)
+    assert not (tmp_path / "o").exists()
+
+
+def test_cancelled_tiles_leave_nothing(hilly, tmp_path):
+    calls = []
+
+    def cancelled():
+        calls.append(1)
+        return len(calls) > 25  # after some tiles are written
+
+    out = tmp_path / "ground"
+    with pytest.raises(Cancelled):
+        ground.run_ground_filter_tiles(hilly["folder"], str(out), "g.vpc", "smrf", "builtin", chunk_points=5000,
+                                       progress=Progress(is_cancelled=cancelled))
+    assert len(calls) > 25
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_output_folder_replaced_whole_but_never_the_input(hilly, tmp_path):
+    out = tmp_path / "ground"
+    out.mkdir()
+    (out / "old.laz").write_text("an earlier run")
+    ground.run_ground_filter_tiles(hilly["folder"], str(out), "g.vpc", "smrf", "builtin")
+    assert not (out / "old.laz").exists() and (out / "g.vpc").exists()
+    inside = tmp_path / "tiles"
+    shutil.copytree(hilly["folder"], inside)
+    with pytest.raises(InputError, match="holds the input tile"):
+        ground.run_ground_filter_tiles(str(inside), str(tmp_path), "g.vpc", "smrf", "builtin")
+    assert sorted(os.listdir(inside)) == sorted(os.path.basename(t) for t in hilly["tiles"])
+
+
+def test_tiles_of_the_same_name_are_refused(hilly, tmp_path):
+    a, b = tmp_path / "a", tmp_path / "b"
+    a.mkdir()
+    b.mkdir()
+    shutil.copy(hilly["tiles"][0], a / "t.laz")
+    shutil.copy(hilly["tiles"][1], b / "t.laz")
+    vpc = write_vpc(str(tmp_path / "two.vpc"), [str(a / "t.laz"), str(b / "t.laz")])
+    with pytest.raises(InputError, match="same file name"):
+        ground.run_ground_filter_tiles(vpc, str(tmp_path / "out"), "o.vpc", "smrf", "builtin")
+
+
+def test_written_vpc_is_what_qgis_reads(hilly, tmp_path):
+    """The members QGIS's and pdal_wrench's VPC readers use (vpc.cpp read(): type, features,
+    stac_version 1.0.0, assets, properties with pc:count, proj:wkt2, proj:bbox, proj:geometry)."""
+    ground.run_ground_filter_tiles(hilly["folder"], str(tmp_path / "g"), "g.vpc", "smrf", "builtin")
+    data = json.loads((tmp_path / "g" / "g.vpc").read_text())
+    assert data["type"] == "FeatureCollection" and len(data["features"]) == len(hilly["tiles"])
+    for feature in data["features"]:
+        assert feature["type"] == "Feature" and feature["stac_version"] == "1.0.0"
+        props = feature["properties"]
+        assert {"pc:count", "proj:wkt2", "proj:bbox", "proj:geometry", "pc:schemas", "datetime"} <= set(props)
+        href = feature["assets"]["data"]["href"]
+        assert href.startswith("./") and (tmp_path / "g" / href[2:]).exists()
+        assert props["pc:count"] == pc.read_header(str(tmp_path / "g" / href[2:])).point_count
