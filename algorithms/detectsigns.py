@@ -1,6 +1,7 @@
 """roadsigns:detectsigns - run an ONNX sign detector on every station's panorama and write
 one ray per detection (LineStringZ from the panorama centre through the box centre)."""
 import os
+from functools import partial
 
 from qgis.core import (
     Qgis,
@@ -13,10 +14,11 @@ from qgis.core import (
 
 from ..core.detections import DETECTION_FIELDS, drive_detections
 from ..core.detector import DEFAULT_MIN_BOX_PX
+from ..core.signcodes import OTHER_CODE
 from ..core.trajectory import STATION_FIELDS, Stations
 from .base import RoadSignsAlgorithm
 from .layers import check_layer_extent, check_metric_crs, qgs_fields, read_records, write_records
-from .paths import BUNDLED_MODEL
+from .paths import BUNDLED_CLASSIFIER, BUNDLED_CODES_TABLE, BUNDLED_MODEL
 
 
 class DetectSigns(RoadSignsAlgorithm):
@@ -30,6 +32,9 @@ class DetectSigns(RoadSignsAlgorithm):
     MAX_RANGE = "MAX_RANGE"
     UPWARD_VIEWS = "UPWARD_VIEWS"
     THREADS = "THREADS"
+    READ_CODES = "READ_CODES"
+    CLASSIFIER = "CLASSIFIER"
+    CODES_TABLE = "CODES_TABLE"
     OUTPUT = "OUTPUT"
     DETECTIONS = "DETECTIONS"
     SKIPPED_IMAGES = "SKIPPED_IMAGES"
@@ -52,7 +57,13 @@ class DetectSigns(RoadSignsAlgorithm):
             "detection from the panorama centre along the ray through the box centre, "
             "<i>Ray length</i> long, with the box (u0, v0, u1, v1 in panorama pixels; across the "
             "±180° seam u1 exceeds the width) and the station's pose. A panorama that cannot be "
-            "read is skipped with a warning and counted.")
+            "read is skipped with a warning and counted.<br><br><b>Sign codes</b>: a second, small ONNX "
+            "model (the bundled sign-code classifier, or your own) reads what each detected sign says, "
+            "from a rectified crop of the panorama around its box at the panorama's own resolution: "
+            "<i>code</i> (such as DE:274[50], speed limit 50, from the codes table; <i>other</i> when it "
+            "knows none) and <i>code_score</i> (its probability). Refine signs votes them across the "
+            "views of each sign. The classifier's format is in models/README.md (section <i>Sign-code "
+            "classifier: the format</i>).")
 
     def initAlgorithm(self, config=None):
         self.add_source(
@@ -88,15 +99,34 @@ class DetectSigns(RoadSignsAlgorithm):
             self.THREADS, self.tr("CPU threads (0: all)"), 0,
             self.tr("Threads onnxruntime may use on the CPU; 0 lets it use every core."),
             minimum=0, integer=True, advanced=True)
+        self.add_boolean(
+            self.READ_CODES, self.tr("Read the sign codes"), True,
+            self.tr("Reads what each detected sign says (its code, such as DE:206 for stop) with the sign-code "
+                    "classifier. Unchecked, the code fields stay empty. When the bundled classifier is "
+                    "missing, the log says so and the detections get no code."))
+        self.add_file(
+            self.CLASSIFIER, self.tr("Sign-code classifier (empty: the bundled one)"),
+            self.tr("An ONNX classifier of sign crops: float input [N, 3, S, S] (RGB, 0..1), output [N, C], "
+                    "the codes it answers in its metadata 'names' (each in the codes table, or 'other'). The "
+                    "format is in models/README.md (section <i>Sign-code classifier: the format</i>). Empty uses "
+                    "the classifier bundled with the plugin (models/signcodes.onnx)."),
+            file_filter=self.tr("ONNX models (*.onnx);;All files (*.*)"), optional=True, advanced=True)
+        self.add_file(
+            self.CODES_TABLE, self.tr("Sign codes table (empty: the bundled one)"),
+            self.tr("The codes the classifier may answer, with their names and classes: UTF-8 text, "
+                    "semicolon-separated, the header code;name;class (format in models/README.md). Empty uses "
+                    "the bundled table of German codes (models/sign-codes-de.csv)."),
+            file_filter=self.tr("CSV files (*.csv *.txt);;All files (*.*)"), optional=True, advanced=True)
         self.add_sink(
             self.OUTPUT, self.tr("Detections"), Qgis.ProcessingSourceType.VectorLine,
             self.tr("LineStringZ layer, one ray per detection, with det_id, station_id, image, class, "
-                    "score, u0, v0, u1, v1, n_views and the station's pose fields."))
+                    "score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields."))
         self.addOutput(QgsProcessingOutputNumber(self.DETECTIONS, self.tr("Number of detections")))
         self.addOutput(QgsProcessingOutputNumber(self.SKIPPED_IMAGES, self.tr("Panoramas skipped")))
 
     def processAlgorithm(self, parameters, context, feedback):
         self.check_dependencies()
+        from ..core.detections import read_codes
         from ..core.detector import Detector, detect_drive, read_labels_file
         from ..core.panorama import ViewSet
 
@@ -120,9 +150,11 @@ class DetectSigns(RoadSignsAlgorithm):
             views = ViewSet.default(size_px=detector.input_size,
                                     upward=self.parameterAsBoolean(parameters, self.UPWARD_VIEWS, context))
             feedback.pushInfo(self.tr("{} panoramas, {} views each").format(len(stations), len(views)))
+            classifier = self._classifier(parameters, context, feedback)
             found = detect_drive(detector, stations.path, views, confidence,
                                  min_box_px=self.parameterAsDouble(parameters, self.MIN_SIZE, context),
-                                 progress=progress.sub(0.0, 0.95))
+                                 progress=progress.sub(0.0, 0.95),
+                                 on_panorama=None if classifier is None else partial(read_codes, classifier))
         if found.skipped:
             feedback.pushWarning(self.tr("Skipped {} panorama(s) that could not be read.").format(
                 len(found.skipped)))
@@ -139,4 +171,30 @@ class DetectSigns(RoadSignsAlgorithm):
         feedback.setProgress(100)
         feedback.pushInfo(self.tr("{} detections in {} panoramas ({} skipped).").format(
             len(detections), len(stations) - len(found.skipped), len(found.skipped)))
+        if classifier is not None and len(detections):
+            coded = sum(1 for c in detections.code if c and c != OTHER_CODE)
+            feedback.pushInfo(self.tr("Sign codes read in {} of the {} detections (the others: other).").format(
+                coded, len(detections)))
         return {self.OUTPUT: dest_id, self.DETECTIONS: len(detections), self.SKIPPED_IMAGES: len(found.skipped)}
+
+    def _classifier(self, parameters, context, feedback):
+        """The sign-code classifier to run (None when codes are not read, or when the bundled
+        classifier is missing: a warning says so); core errors are raised as they are."""
+        from ..core.signcodes import CodeClassifier, read_codes_table
+
+        if not self.parameterAsBoolean(parameters, self.READ_CODES, context):
+            feedback.pushInfo(self.tr("Sign codes are not read (Read the sign codes is off)."))
+            return None
+        path = self.parameterAsFile(parameters, self.CLASSIFIER, context)
+        if not path:
+            path = BUNDLED_CLASSIFIER
+            if not os.path.isfile(path):
+                feedback.pushWarning(self.tr("The bundled sign-code classifier {} is missing: the detections get "
+                                             "no sign code.").format(path))
+                return None
+        elif not os.path.isfile(path):
+            raise QgsProcessingException(self.tr("Sign-code classifier not found: {}").format(path))
+        table = read_codes_table(self.parameterAsFile(parameters, self.CODES_TABLE, context) or BUNDLED_CODES_TABLE)
+        classifier = CodeClassifier(path, table, threads=self.parameterAsInt(parameters, self.THREADS, context))
+        feedback.pushInfo(self.tr("Sign codes: {}").format(classifier.describe()))
+        return classifier

@@ -89,10 +89,13 @@ class FuseSigns(RoadSignsAlgorithm):
         from ..core.cloudsigns import CLOUD_SIGN_FIELDS
         from ..core.fusion import FUSED_SIGN_FIELDS, SOURCE_LIDAR, FusionParams, fuse_signs
         from ..core.refine import SIGN_FIELDS
+        from ..core.signcodes import SIGN_CODE_FIELDS
 
         source = self.source(parameters, self.SIGNS, context)
         cloud_source = self.source(parameters, self.CLOUD_SIGNS, context)
-        signs = read_records(source, SIGN_FIELDS, self.tr("Signs (from the images)"), feedback, allow_empty=True)
+        code_fields = [f.name for f in SIGN_CODE_FIELDS]  # absent from sign layers made before codes were read
+        signs = read_records(source, SIGN_FIELDS, self.tr("Signs (from the images)"), feedback, allow_empty=True,
+                             required=[f.name for f in SIGN_FIELDS if f.name not in code_fields])
         panels = read_records(cloud_source, CLOUD_SIGN_FIELDS, self.tr("Sign panels found in the cloud"),
                               feedback, allow_empty=True)
         if source.sourceCrs().isValid() and cloud_source.sourceCrs().isValid() and \

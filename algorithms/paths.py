@@ -10,4 +10,9 @@ ICON_PATH = os.path.join(PLUGIN_DIR, "icons", "roadsigns.svg")
 MODELS_DIR = os.path.join(PLUGIN_DIR, "models")
 #: The detector shipped with the plugin (``roadsigns:detectsigns`` with an empty MODEL).
 BUNDLED_MODEL = os.path.join(MODELS_DIR, "roadsigns.onnx")
+#: The sign-code classifier shipped with the plugin (``roadsigns:detectsigns`` with an empty
+#: CLASSIFIER; format in models/README.md).
+BUNDLED_CLASSIFIER = os.path.join(MODELS_DIR, "signcodes.onnx")
+#: The codes table shipped with the plugin (empty CODES_TABLE of detectsigns and refinesigns).
+BUNDLED_CODES_TABLE = os.path.join(MODELS_DIR, "sign-codes-de.csv")
 I18N_DIR = os.path.join(PLUGIN_DIR, "i18n")

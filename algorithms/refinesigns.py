@@ -23,6 +23,7 @@ from .layers import (
     read_records,
     write_records,
 )
+from .paths import BUNDLED_CODES_TABLE
 from .style import SignLayerStyler, write_sign_style
 
 
@@ -32,6 +33,8 @@ class RefineSigns(RoadSignsAlgorithm):
     CANDIDATES = "CANDIDATES"
     POINT_CLOUD = "POINT_CLOUD"
     MERGE_RADIUS = "MERGE_RADIUS"
+    CODE_CONFIDENCE = "CODE_CONFIDENCE"
+    CODES_TABLE = "CODES_TABLE"
     IMAGES = "IMAGES"
     CLOUD_CRS = "CLOUD_CRS"
     OUTPUT = "OUTPUT"
@@ -63,7 +66,17 @@ class RefineSigns(RoadSignsAlgorithm):
             "panorama (its box with a margin, undistorted), written into a folder beside the sign "
             "layer and linked by the <i>chip</i> field (a relative path); the review report shows "
             "every sign's chip and attributes. The sign layer is styled with a symbol per class "
-            "and its height as label (a .qml file beside it).")
+            "and its height as label (a .qml file beside it).<br><br>"
+            "<b>Sign codes</b>: the codes Detect signs read in the views of a sign are put to a vote, each "
+            "view weighing its detection score x its crop size x the code's probability. The sign gets "
+            "<i>code</i> (empty when the vote says <i>other</i> or the support is below the minimum code "
+            "confidence), <i>code_name</i> (from the codes table), <i>code_score</i> (the support: the "
+            "code's share of the vote x its mean probability) and <i>code_views</i>. When the code's class "
+            "(codes table) is not the class vote's, the better supported one wins: the code's support "
+            "against the class's (its share of the score-weighted class vote x its views' mean detection "
+            "score); <i>code_check</i> says <i>class_from_code</i> (the class was taken from the code) or "
+            "<i>code_dropped</i> (the code was emptied). The label shows the code's name, or the figure "
+            "of a speed limit.")
 
     def initAlgorithm(self, config=None):
         self.add_source(
@@ -76,6 +89,18 @@ class RefineSigns(RoadSignsAlgorithm):
             self.MERGE_RADIUS, self.tr("Merge radius (m)"), 1.0,
             self.tr("Candidates of the same class closer than this (metres) with agreeing plane normals "
                     "are taken as one sign."), minimum=0.05)
+        self.add_number(
+            self.CODE_CONFIDENCE, self.tr("Minimum code confidence"), 0.5,  # core.refine.DEFAULT_CODE_CONFIDENCE
+            self.tr("A sign's voted code is kept when its support (its share of the views' weighted vote x "
+                    "the mean probability the classifier gave it, 0-1: the code_score field) is at least "
+                    "this; else the code field stays empty. 0 keeps every code but 'other'."),
+            minimum=0.0, maximum=1.0)
+        self.add_file(
+            self.CODES_TABLE, self.tr("Sign codes table (empty: the bundled one)"),
+            self.tr("The codes table the classifier of Detect signs was run with: it gives each code its name "
+                    "(code_name) and its class (for the class check). Format in models/README.md; empty uses "
+                    "the bundled table of German codes (models/sign-codes-de.csv)."),
+            file_filter=self.tr("CSV files (*.csv *.txt);;All files (*.*)"), optional=True, advanced=True)
         self.add_file(
             self.IMAGES, self.tr("Panorama folder (for review chips)"),
             self.tr("The folder of the panoramas (as for Import trajectory). When given, an image chip of "
@@ -102,8 +127,10 @@ class RefineSigns(RoadSignsAlgorithm):
 
     def processAlgorithm(self, parameters, context, feedback):
         self.check_dependencies()
+        from ..core.detections import OPTIONAL_FIELDS
         from ..core.projection import CANDIDATE_FIELDS, ProjectionResult
         from ..core.refine import OUTLINE_FIELDS, SIGN_FIELDS, refine_signs, write_sign_points
+        from ..core.signcodes import read_codes_table
 
         sign_layer_fields = SIGN_FIELDS + (CHIP_FIELD,)  # the sign fields and the review chip's path
 
@@ -114,6 +141,7 @@ class RefineSigns(RoadSignsAlgorithm):
             check_same_crs(source.sourceCrs(), crs_wkt, self.tr("The candidates"), cloud_path)
             check_cloud_extent(cloud_path, crs_wkt)
         rows = read_records(source, CANDIDATE_FIELDS, self.tr("Sign candidates"), feedback,
+                            required=[f.name for f in CANDIDATE_FIELDS if f.name not in OPTIONAL_FIELDS],
                             allow_empty=True)  # no candidates: a warning and an empty layer
         images_dir = self.parameterAsFile(parameters, self.IMAGES, context)
         if images_dir and not os.path.isdir(images_dir):
@@ -123,9 +151,12 @@ class RefineSigns(RoadSignsAlgorithm):
         progress = self.progress(feedback)
         with self.core_errors():
             candidates = ProjectionResult.from_records(rows)
+            codes_table = read_codes_table(
+                self.parameterAsFile(parameters, self.CODES_TABLE, context) or BUNDLED_CODES_TABLE)
             result = refine_signs(candidates, cloud_path,
                                   merge_radius_m=self.parameterAsDouble(parameters, self.MERGE_RADIUS, context),
-                                  progress=progress.sub(0.0, 0.85))
+                                  progress=progress.sub(0.0, 0.85), codes_table=codes_table,
+                                  code_confidence=self.parameterAsDouble(parameters, self.CODE_CONFIDENCE, context))
         records = result.records()
 
         # files first, under temporary names (moved into place when the run succeeds), then the layers

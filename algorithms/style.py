@@ -1,5 +1,6 @@
 """The sign layer's style: a symbol per class (shaped and coloured like the sign) and a
-label with the sign's height; written as a QML beside the output and applied when QGIS
+label with what the sign says (the figure of a speed limit, else the code's name; nothing
+without a code) over its height; written as a QML beside the output and applied when QGIS
 loads the output layer."""
 import os
 
@@ -28,6 +29,15 @@ CLASS_SYMBOLS = {
     "yield": ("triangle", WHITE, RED, 180.0),
 }
 HEIGHT_LABEL = "format_number(\"height\", 2) || ' m'"
+#: The label: the figure in brackets of a code (``DE:274[50]`` -> ``50``, speed limits),
+#: else ``code_name`` (else the code), on a line above the height. ``attribute()`` reads
+#: NULL for a field the layer lacks, so layers without code fields get the height alone.
+CODE_LABEL = (
+    "with_variable('code', coalesce(attribute(@feature, 'code'), ''), "
+    "CASE WHEN regexp_match(@code, '\\\\[[^\\\\]]+\\\\]') > 0 "
+    "THEN regexp_substr(@code, '\\\\[([^\\\\]]+)\\\\]') || '\\n' "
+    "WHEN @code <> '' THEN coalesce(nullif(attribute(@feature, 'code_name'), ''), @code) || '\\n' "
+    "ELSE '' END) || " + HEIGHT_LABEL)
 
 
 def _symbol(shape, fill, stroke, rotation_deg):
@@ -43,13 +53,14 @@ def class_labels():
 
 
 def style_sign_layer(layer):
-    """Categorised symbols by ``class`` (others grey) and a height label."""
+    """Categorised symbols by ``class`` (others grey) and a label: what the sign says over
+    its height (:data:`CODE_LABEL`)."""
     labels = class_labels()
     categories = [QgsRendererCategory(name, _symbol(*spec), labels[name]) for name, spec in CLASS_SYMBOLS.items()]
     categories.append(QgsRendererCategory("", _symbol("diamond", "154,154,154,255", DARK, 0.0), tr("other")))
     layer.setRenderer(QgsCategorizedSymbolRenderer("class", categories))
     settings = QgsPalLayerSettings()
-    settings.fieldName = HEIGHT_LABEL
+    settings.fieldName = CODE_LABEL
     settings.isExpression = True
     text = QgsTextFormat()
     text.setSize(8)

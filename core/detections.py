@@ -17,20 +17,28 @@ import numpy as np
 from . import geometry
 from .errors import InputError
 from .schema import Schema, fields, select
+from .signcodes import CODE_FIELDS, DEFAULT_CROP_MARGIN, cut_crop
 
 #: The detections layer (LineStringZ from the panorama centre along the box-centre ray).
+#: ``code`` and ``code_score`` (:data:`.signcodes.CODE_FIELDS`): the sign code read in the box.
 DETECTION_FIELDS: Schema = fields(
-    ("det_id", int), ("station_id", int), ("image", str), ("class", str), ("score", float),
+    ("det_id", int), ("station_id", int), ("image", str), ("class", str), ("score", float)) + CODE_FIELDS + fields(
     ("u0", float), ("v0", float), ("u1", float), ("v1", float), ("n_views", int),
     ("time", float), ("x", float), ("y", float), ("z", float),
     ("qw", float), ("qx", float), ("qy", float), ("qz", float),
     ("heading", float), ("width", int), ("height", int))
-#: The detection fields projection needs, and the candidates layer carries on.
+#: The detection fields projection needs, and the candidates layer carries on (``code`` and
+#: ``code_score``: the sign code read in this view, :data:`.signcodes.CODE_FIELDS`).
 DETECTION_POSE_FIELDS: Schema = select(DETECTION_FIELDS, (
-    "det_id", "station_id", "image", "class", "score", "u0", "v0", "u1", "v1", "width",
-    "height", "x", "y", "z", "qw", "qx", "qy", "qz"))
-#: Fields that may be NULL or absent (the candidates layer does not carry them).
-OPTIONAL_FIELDS = ("n_views", "time", "heading")
+    "det_id", "station_id", "image", "class", "score", "code", "code_score", "u0", "v0", "u1",
+    "v1", "width", "height", "x", "y", "z", "qw", "qx", "qy", "qz"))
+#: Fields that may be NULL or absent: the candidates layer does not carry the first three;
+#: layers written before codes were read (or by another tool) lack the code fields, which
+#: are then read as no code (empty ``code``, NaN ``code_score``).
+OPTIONAL_FIELDS = ("n_views", "time", "heading", "code", "code_score")
+#: The fields a detections (or candidates) layer must have.
+REQUIRED_POSE_FIELDS: Tuple[str, ...] = tuple(
+    f.name for f in DETECTION_POSE_FIELDS if f.name not in OPTIONAL_FIELDS)
 
 
 @dataclass
@@ -39,7 +47,9 @@ class Detections:
 
     ``box_px`` (n, 4): u0, v0, u1, v1; ``pano_size_px`` (n, 2): W, H; ``centre_world`` (n, 3):
     panorama centre; ``q_world_from_pano_wxyz`` (n, 4). ``n_views``: view detections merged
-    into the box; ``time_s`` and ``heading_deg``: the station's (NaN when unknown).
+    into the box; ``time_s`` and ``heading_deg``: the station's (NaN when unknown);
+    ``code`` and ``code_score``: the sign code the classifier read in this view and its
+    probability (``""`` and NaN when no code was read).
     """
 
     det_id: np.ndarray
@@ -54,9 +64,15 @@ class Detections:
     n_views: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
     time_s: np.ndarray = field(default_factory=lambda: np.zeros(0))
     heading_deg: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    code: List[str] = field(default_factory=list)
+    code_score: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     def __post_init__(self) -> None:
         n = len(self.det_id)
+        if len(self.code) != n:
+            self.code = [""] * n
+        if len(self.code_score) != n:
+            self.code_score = np.full(n, np.nan)
         if len(self.n_views) != n:
             self.n_views = np.ones(n, np.int64)
         if len(self.time_s) != n:
@@ -75,11 +91,11 @@ class Detections:
     @classmethod
     def from_records(cls, rows: Sequence[Dict]) -> "Detections":
         """From dicts with :data:`DETECTION_POSE_FIELDS` (a detections or candidates layer's
-        attributes); ``n_views``, ``time`` and ``heading`` are read when present."""
+        attributes); the :data:`OPTIONAL_FIELDS` are read when present."""
         rows = list(rows)
         if not rows:
             return cls.empty()
-        missing = [f.name for f in DETECTION_POSE_FIELDS if f.name not in rows[0]]
+        missing = [name for name in REQUIRED_POSE_FIELDS if name not in rows[0]]
         if missing:
             raise InputError("The detections lack the field(s) {fields}; expected the output of "
                              "Detect signs", fields=", ".join(missing))
@@ -112,7 +128,8 @@ class Detections:
                   np.column_stack([col(k) for k in ("x", "y", "z")]),
                   np.column_stack([col(k) for k in ("qw", "qx", "qy", "qz")]),
                   optional("n_views", 1).astype(np.int64), optional("time", np.nan),
-                  optional("heading", np.nan))
+                  optional("heading", np.nan),
+                  [str(r.get("code") or "").strip() for r in rows], optional("code_score", np.nan))
         det.validate()
         return det
 
@@ -141,7 +158,8 @@ class Detections:
                           [self.image[i] for i in index], [self.class_name[i] for i in index],
                           self.score[index], self.box_px[index], self.pano_size_px[index],
                           self.centre_world[index], self.q_world_from_pano_wxyz[index],
-                          self.n_views[index], self.time_s[index], self.heading_deg[index])
+                          self.n_views[index], self.time_s[index], self.heading_deg[index],
+                          [self.code[i] for i in index], self.code_score[index])
 
     def R_world_from_pano(self) -> np.ndarray:
         return geometry.matrix_from_quat_wxyz(self.q_world_from_pano_wxyz)
@@ -163,6 +181,7 @@ class Detections:
             record = {"det_id": int(self.det_id[k]), "station_id": int(self.station_id[k]),
                       "image": self.image[k], "class": self.class_name[k],
                       "score": float(self.score[k]), "n_views": int(self.n_views[k]),
+                      "code": self.code[k], "code_score": _finite_or_none(self.code_score[k]),
                       "time": _finite_or_none(self.time_s[k]),
                       "heading": _finite_or_none(self.heading_deg[k]),
                       "width": int(self.pano_size_px[k, 0]), "height": int(self.pano_size_px[k, 1])}
@@ -175,6 +194,27 @@ class Detections:
 
 def _finite_or_none(value: float):
     return None if not np.isfinite(value) else float(value)
+
+
+def read_codes(classifier, pano: np.ndarray, found):
+    """The sign code of each detection of ``found`` (a :class:`.detector.PanoramaDetections`
+    of the panorama ``pano``, ``H x W x 3`` BGR), read by ``classifier``.
+
+    ``classifier``: a :class:`.signcodes.CodeClassifier` (or any object with
+    ``classify(crops) -> (names, probabilities)`` and ``crop_margin``). One rectified crop
+    per box is cut at the panorama's native resolution (:func:`.signcodes.cut_crop`, with
+    the classifier's margin) and all are classified in batches; ``found.code`` and
+    ``found.code_score`` are set in place (``other`` when the classifier knows no code) and
+    ``found`` is returned. Use it as :func:`.detector.detect_drive`'s ``on_panorama``.
+    """
+    if len(found) == 0:
+        return found
+    margin = float(getattr(classifier, "crop_margin", DEFAULT_CROP_MARGIN))
+    crops = [cut_crop(pano, box, margin) for box in found.boxes()]
+    codes, probabilities = classifier.classify(crops)
+    found.code = [str(c) for c in codes]
+    found.code_score = np.asarray(probabilities, float).reshape(-1)
+    return found
 
 
 def drive_detections(stations, per_image: Sequence) -> Detections:
@@ -200,4 +240,5 @@ def drive_detections(stations, per_image: Sequence) -> Detections:
         np.column_stack([stations.width_px[k_station], stations.height_px[k_station]]).astype(float),
         stations.xyz_world[k_station], stations.q_world_from_pano_wxyz[k_station],
         per_row("n_views").astype(np.int64), stations.time_s[k_station],
-        stations.heading_deg[k_station])
+        stations.heading_deg[k_station], [per_image[k].code[j] for k, j in rows],
+        per_row("code_score").astype(float))

@@ -31,8 +31,8 @@ from __future__ import annotations
 import ast
 import json
 import os
-from dataclasses import dataclass
-from typing import List, Optional, Sequence, Tuple
+from dataclasses import dataclass, field
+from typing import Callable, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -436,7 +436,9 @@ class PanoramaDetections:
 
     ``u0, v0, u1, v1``: panorama pixels in the detections layer's form (u0 in [0, W), u1 > u0,
     past W across the +-180 deg seam). ``view_index``: the view the box comes from;
-    ``n_views``: how many view detections were merged into it.
+    ``n_views``: how many view detections were merged into it. ``code`` and ``code_score``:
+    the sign code a classifier read in the box and its probability
+    (:func:`.detections.read_codes`; ``""`` and NaN without a classifier).
     """
 
     class_id: np.ndarray
@@ -448,6 +450,15 @@ class PanoramaDetections:
     v1: np.ndarray
     view_index: np.ndarray
     n_views: np.ndarray
+    code: List[str] = field(default_factory=list)
+    code_score: np.ndarray = field(default_factory=lambda: np.zeros(0))
+
+    def __post_init__(self) -> None:
+        n = len(self.score)
+        if len(self.code) != n:
+            self.code = [""] * n
+        if len(self.code_score) != n:
+            self.code_score = np.full(n, np.nan)
 
     def __len__(self) -> int:
         return len(self.score)
@@ -609,11 +620,16 @@ class DriveDetections:
 
 def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidence: float = 0.25,
                  iou_threshold: float = 0.45, min_box_px: float = 0.0,
-                 progress: Progress = SILENT) -> DriveDetections:
+                 progress: Progress = SILENT,
+                 on_panorama: Optional[Callable[[np.ndarray, PanoramaDetections], object]] = None
+                 ) -> DriveDetections:
     """:func:`detect_panorama` on each panorama file; missing or corrupt files are skipped.
 
-    Progress advances per view; cancel stops between views. A skipped file adds
-    ``(path, reason)`` to ``skipped`` and a warning to ``progress``.
+    ``on_panorama(pano, found)`` is called after each panorama is detected, while it is in
+    memory (so that it is read once): reading the sign codes of its detections, say
+    (:func:`.detections.read_codes`). Progress advances per view; cancel stops between
+    views. A skipped file adds ``(path, reason)`` to ``skipped`` and a warning to
+    ``progress``.
     """
     from .panorama import read_panorama
 
@@ -629,7 +645,11 @@ def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidenc
             progress.warning(error.template, **error.fields)
             per_image.append(None)
             continue
-        per_image.append(detect_panorama(detector, pano, views, confidence, iou_threshold,
-                                         min_box_px=min_box_px, progress=progress.sub(k / n, (k + 1) / n)))
+        found = detect_panorama(detector, pano, views, confidence, iou_threshold,
+                                min_box_px=min_box_px, progress=progress.sub(k / n, (k + 1) / n))
+        if on_panorama is not None:
+            progress.check()
+            on_panorama(pano, found)
+        per_image.append(found)
     progress.report(1.0)
     return DriveDetections(per_image, skipped)

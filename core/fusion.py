@@ -13,6 +13,9 @@ azimuth difference.
 Result per sign (:data:`FUSED_SIGN_FIELDS`: the sign layer's fields, then ``source``,
 ``review``, ``image_sign_id``, ``cloud_sign_id``, ``retro_index``, ``condition``):
 
+Image signs keep their sign code (the code fields of :data:`.refine.SIGN_FIELDS`); signs
+found by the laser alone have none (empty ``code``).
+
 * **image+lidar**: the image sign, confirmed; its class and score are kept; a position
   triangulated from images only (``position_source = image``) is replaced by the panel's;
   the panel gives ``retro_index`` and ``condition``.
@@ -196,6 +199,7 @@ def fuse_signs(image_signs: Sequence[Dict[str, Any]], cloud_panels: Sequence[Any
         fused.update({k: panel.get(k) for k in ("x", "y", "z", "height", "bottom_height", "width",
                                                 "panel_height", "azimuth", "n_points")})
         fused.update({"class": UNKNOWN_CLASS, "score": lidar_score(panel), "n_views": 0,
+                      "code": "", "code_name": "", "code_score": None, "code_views": 0, "code_check": "",
                       "source_images": "", "best_image": "", "position_source": "lidar",
                       "mean_intensity": panel.get("intensity_median"), "source": SOURCE_LIDAR,
                       "review": 1, "image_sign_id": None, "cloud_sign_id": panel.get("sign_id"),

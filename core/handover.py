@@ -5,7 +5,9 @@
   for (default: accepted and corrected).
 * **Code, class, name**: after review (``reviewed_code`` / ``reviewed_class`` over ``code`` /
   ``class``); the code is empty when the layer has no ``code`` field and nobody gave one;
-  the name is the layer's ``name`` field, else the class.
+  the name is the layer's ``name`` field, else its ``code_name`` (the codes table's name of
+  ``code``, written by ``roadsigns:refinesigns``) when the code was not changed in review,
+  else the class (:func:`sign_name`).
 * **Position**: x, y, z in the sign layer's CRS, WGS 84 longitude and latitude (pyproj).
 * **Facing**: the sign's azimuth (the direction its face looks towards) as whole degrees,
   0-359, from grid north or from true north (true = grid + meridian convergence, see
@@ -52,6 +54,7 @@ from .crs import check_metric, horizontal_crs, parse_crs, world_transform
 from .errors import SILENT, InputError, Message, Progress
 from .outputs import TEMP_PREFIX
 from .reviewstate import (
+    CODE_FIELD,
     CONDITION_FIELD,
     DEFAULT_HANDOVER_STATES,
     NAME_FIELD,
@@ -78,6 +81,8 @@ HANDOVER_FIELDS = fields(
     ("first_seen_s", float), ("last_seen_s", float), ("n_views", int), ("source_images", str),
     ("best_image", str), ("score", float), ("position_source", str), ("review_status", str),
     ("reviewed_at", str))
+#: The sign layer's field with the name of its code (``roadsigns:refinesigns``).
+CODE_NAME_FIELD = "code_name"
 #: Sign layer fields the export needs (others are used when present).
 SIGN_REQUIRED = ("sign_id", "class", "height", "width", "panel_height", "azimuth", "source_images")
 #: Stations layer fields the export needs (``time`` is used when present).
@@ -327,6 +332,19 @@ def check_output_folder(folder: str) -> None:
                          "({error})", folder=folder, path=existing, error=error.strerror or str(error))
 
 
+def sign_name(sign: Dict, code: Optional[str], klass: Optional[str]) -> Optional[str]:
+    """The handover ``name`` of a sign whose code and class after review are ``code`` and
+    ``klass``: the layer's ``name`` field, else its ``code_name`` when ``code`` is still the
+    layer's ``code`` (a code changed in review has no name here), else the class."""
+    name = str(sign.get(NAME_FIELD) or "").strip()
+    if name:
+        return name
+    code_name = str(sign.get(CODE_NAME_FIELD) or "").strip()
+    if code_name and code and code == str(sign.get(CODE_FIELD) or "").strip():
+        return code_name
+    return klass
+
+
 def osm_sign_value(code: Optional[str], klass: Optional[str], country: str) -> Tuple[str, Optional[str]]:
     """``(traffic_sign value, fixme or None)`` of a sign: its code (prefixed ``COUNTRY:``
     unless it has a prefix), else the value of its class, else ``yes`` with a fixme."""
@@ -426,7 +444,7 @@ def build_handover(signs: Sequence[Dict], stations: Sequence[Dict], crs, roads: 
         pole = next((sign.get(name) for name in POLE_FIELDS if sign.get(name) not in (None, "")), None)
         record = {
             "sign_id": sign.get("sign_id"), "code": code or "", "class": klass,
-            "name": (str(sign.get(NAME_FIELD)).strip() if sign.get(NAME_FIELD) else None) or klass,
+            "name": sign_name(sign, code, klass),
             "x": xyz[k, 0], "y": xyz[k, 1], "z": sign.get("z") if sign.get("z") is not None else None,
             "lon": float(lon[k]), "lat": float(lat[k]),
             "height": sign.get("height"), "bottom_height": sign.get("bottom_height"), "width": sign.get("width"),

@@ -7,8 +7,10 @@ first dense planar surface along the box-centre ray: the sign, not the wall behi
 
 How the cloud is searched (cost ~ linear in points + detections):
 
-* one streaming read of the LAS/LAZ keeps only the non-ground points under the union of
-  the frusta's 2D footprints and spools them to disk by their arc length along the drive
+* one streaming read of the cloud (a LAS/LAZ file, a folder of tiles or a virtual point
+  cloud, :mod:`.cloudsource`: only the tiles, or COPC nodes, under some frustum are read)
+  keeps only the non-ground points under the union of the frusta's 2D footprints and spools
+  them to disk by their arc length along the drive
   (:func:`drive_blocks`, :mod:`.drivewindows`); the drive is then worked through in blocks
   of ``ProjectionParams.block_m`` metres, each held in a :class:`~.pointcloud.TiledIndex`
   of small tiles, so memory follows the block, not the drive;
@@ -35,10 +37,11 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 from . import geometry
+from .cloudsource import CloudSource, open_cloud
 from .detections import DETECTION_POSE_FIELDS, Detections
 from .drivewindows import DriveAxis, Track, WindowSpool, make_windows
 from .errors import SILENT, InputError, Progress
-from .pointcloud import GROUND_CLASS, CropRegion, TiledIndex, iter_chunks, xyz_of
+from .pointcloud import GROUND_CLASS, CropRegion, TiledIndex, xyz_of
 from .schema import Schema, fields
 
 #: Default search depth along the rays, metres (Balado et al. use 15 m).
@@ -263,8 +266,9 @@ class ProjectionResult:
 
     ``xyz_world`` / ``normal_world`` are NaN and ``range_m`` NaN unless ``status == "ok"``;
     ``n_points``: points of the candidate surface; ``point_index``: their positions in the
-    LAS file (or input arrays); ``quality`` in 0..1. ``tiles_visited`` / ``points_tested``:
-    work per detection; ``n_tiles`` / ``n_indexed``: size of the index.
+    cloud (in the file, or tile by tile, :mod:`.cloudsource`; or in the input arrays);
+    ``quality`` in 0..1. ``tiles_visited`` / ``points_tested``: work per detection;
+    ``n_tiles`` / ``n_indexed``: size of the index.
     """
 
     detections: Detections
@@ -358,20 +362,20 @@ def check_ground_classified(index: TiledIndex, source: str) -> None:
                          "another tool)", source=source)
 
 
-def build_index(cloud: Union[str, TiledIndex], region: Optional[CropRegion], tile_size_m: float,
+def build_index(cloud: Union[str, CloudSource, TiledIndex], region: Optional[CropRegion], tile_size_m: float,
                 progress: Progress = SILENT) -> Tuple[TiledIndex, str]:
-    """A :class:`TiledIndex` with intensity and classification (read from a LAS/LAZ path,
-    cropped to ``region``), or the given index after checking its attributes."""
+    """A :class:`TiledIndex` with intensity and classification (read from a cloud, any form
+    of :func:`.cloudsource.open_cloud`, cropped to ``region``: only the tiles it meets are
+    read), or the given index after checking its attributes."""
     if isinstance(cloud, TiledIndex):
         index, source = cloud, "The point cloud"
         missing = [d for d in ("intensity", "classification") if d not in index.attributes]
         if missing:
             raise InputError("The point index lacks {names}", names=", ".join(missing))
     else:
-        source = str(cloud)
-        index = TiledIndex.from_las(source, region=region,
-                                    dimensions=("intensity", "classification"),
-                                    tile_size_m=tile_size_m, progress=progress)
+        cloud_source = open_cloud(cloud)
+        source = cloud_source.path
+        index = cloud_source.index(region, ("intensity", "classification"), tile_size_m, progress=progress)
     check_ground_classified(index, source)
     return index, source
 
@@ -480,14 +484,15 @@ def find_surface(xyz: np.ndarray, centre: np.ndarray, ray: np.ndarray, a: np.nda
     return STATUS_NO_SURFACE, None
 
 
-def project_detections(detections: Detections, cloud: Union[str, TiledIndex],
+def project_detections(detections: Detections, cloud: Union[str, CloudSource, TiledIndex],
                        max_range_m: float = DEFAULT_MAX_RANGE_M,
                        params: ProjectionParams = ProjectionParams(),
                        progress: Progress = SILENT) -> ProjectionResult:
     """Candidate sign surface per detection (see the module doc).
 
-    ``cloud``: a LAS/LAZ path (ground-classified), read once and worked through block by
-    block along the drive (:func:`drive_blocks`), or a :class:`TiledIndex` holding
+    ``cloud``: a ground-classified cloud (a LAS/LAZ file, a folder of tiles, a ``.vpc``, or
+    a :class:`.cloudsource.CloudSource`), read once and worked through block by block along
+    the drive (:func:`drive_blocks`), or a :class:`TiledIndex` holding
     ``intensity`` and ``classification`` (one block). Empty detections give an empty result
     and a warning; a cloud without ground class raises :class:`InputError`.
     """
@@ -508,9 +513,10 @@ def project_detections(detections: Detections, cloud: Union[str, TiledIndex],
             [(np.arange(len(det)), _non_ground(index, params.tile_size_m))])
         searching = progress
     else:
-        source = str(cloud)
+        cloud_source = open_cloud(cloud)
+        source = cloud_source.path
         reading, searching = progress.sub(0.0, 0.5), progress.sub(0.5, 1.0)
-        blocks = drive_blocks(det, frusta, source, max_range_m, params, reading)
+        blocks = drive_blocks(det, frusta, cloud_source, max_range_m, params, reading)
     R, rays = det.R_world_from_pano(), det.centre_rays_world()  # once, not per block
     n_done = 0
     for rows, index in blocks:
@@ -547,12 +553,14 @@ def station_track(det: Detections) -> Optional[Track]:
     return Track(xyz[moving]) if moving.sum() >= 2 else None
 
 
-def drive_blocks(det: Detections, frusta: Frusta, path: str, max_range_m: float,
+def drive_blocks(det: Detections, frusta: Frusta, cloud: Union[str, CloudSource], max_range_m: float,
                  params: ProjectionParams, progress: Progress = SILENT
                  ) -> Iterator[Tuple[np.ndarray, TiledIndex]]:
     """``(detection rows, index of the points their frusta may hold)`` block by block.
 
-    One streaming read of the LAS/LAZ keeps the non-ground points in the cells of
+    One streaming read of the cloud (of the tiles, or COPC nodes, that some frustum's
+    footprint meets: a drive through a tiled city reads the tiles along it) keeps the
+    non-ground points in the cells of
     :data:`FRUSTUM_CELL_M` that a frustum's footprint touches (:func:`frustum_cells`; the
     exact frustum test comes later, per detection) and spools them to disk by their arc
     length along the drive (the track through the stations, :mod:`.drivewindows`), each
@@ -569,9 +577,9 @@ def drive_blocks(det: Detections, frusta: Frusta, path: str, max_range_m: float,
     windows = make_windows(length_m, params.block_m)
     owner_s = axis.locate(det.centre_world)[0] if axis is not None else np.zeros(len(det))
     n_ground = n_inside = 0
+    source = open_cloud(cloud)
     with WindowSpool(windows, 2.0 * max_range_m, {"points": SPOOL_DTYPE}) as spool:
-        offset = 0
-        for chunk in iter_chunks(path, progress=progress):
+        for point_index, chunk in source.iter_indexed_chunks(progress=progress, area=frusta.footprints):
             inside = np.isin(cell_keys(np.asarray(chunk.x), np.asarray(chunk.y), FRUSTUM_CELL_M), cells)
             classes = np.asarray(chunk.classification)[inside]
             ground = classes == GROUND_CLASS
@@ -580,15 +588,14 @@ def drive_blocks(det: Detections, frusta: Frusta, path: str, max_range_m: float,
             rows = np.empty(int((~ground).sum()), SPOOL_DTYPE)
             xyz = xyz_of(chunk[inside])[~ground]
             rows["x"], rows["y"], rows["z"] = xyz[:, 0], xyz[:, 1], xyz[:, 2]
-            rows["index"] = offset + np.flatnonzero(inside)[~ground]
-            offset += len(chunk)
+            rows["index"] = point_index[inside][~ground]
             s_m = axis.locate(xyz)[0] if axis is not None else np.zeros(len(rows))
             spool.add("points", s_m, rows)
         spool.flush()
         if n_inside and not n_ground:
             raise InputError("{source} has no ground points (class 2) where the signs are: run "
                              "roadsigns:groundfilter on it first (or classify the ground with "
-                             "another tool)", source=path)
+                             "another tool)", source=source.path)
         for window in windows:
             rows_k = np.flatnonzero(window.owns(owner_s))
             if rows_k.size == 0:

@@ -37,6 +37,12 @@
 
 Classes: score-weighted vote of the views; ``score``: ``1 - prod(1 - s)`` over the views of
 the winning class; ``best_image``: the view minimising range / cos(incidence).
+
+Codes (:func:`vote_code`): the sign codes read in the views (the candidates' ``code`` and
+``code_score``) are put to :func:`.signcodes.vote`, each view weighing its detection score
+x its crop side; the code is kept when it is not ``other`` and its support reaches
+``code_confidence``; when its class (codes table) is not the class vote's, the better
+supported of the two wins (``code_check``).
 """
 from __future__ import annotations
 
@@ -52,6 +58,7 @@ from scipy.spatial import cKDTree
 from scipy.spatial.distance import squareform
 
 from . import geometry
+from .cloudsource import CloudSource, conform, open_cloud
 from .detections import Detections
 from .errors import SILENT, InputError, Message, Progress
 from .pointcloud import (
@@ -60,9 +67,7 @@ from .pointcloud import (
     CropRegion,
     PointSet,
     TiledIndex,
-    iter_chunks,
     output_header,
-    read_header,
 )
 from .projection import (
     STATUS_NO_POINTS,
@@ -78,11 +83,26 @@ from .projection import (
     pca,
 )
 from .schema import Schema, fields, select
+from .signcodes import (
+    DEFAULT_CROP_MARGIN,
+    OTHER_CODE,
+    SIGN_CLASSES,
+    SIGN_CODE_FIELDS,
+    CodesTable,
+    crop_view,
+    vote,
+)
 
 DEFAULT_MERGE_RADIUS_M = 1.0
-#: The sign layer (PointZ at the panel centre), one field per :class:`SignRecord` attribute.
-SIGN_FIELDS: Schema = fields(
-    ("sign_id", int), ("class", str), ("score", float), ("height", float), ("bottom_height", float),
+#: Default of ``code_confidence`` (``roadsigns:refinesigns`` ``CODE_CONFIDENCE``): a voted
+#: code whose support (:func:`vote_code`) is below this is left empty.
+DEFAULT_CODE_CONFIDENCE = 0.5
+#: ``code_check`` values: the code's class replaced the class vote; the code was dropped.
+CLASS_FROM_CODE, CODE_DROPPED = "class_from_code", "code_dropped"
+#: The sign layer (PointZ at the panel centre), one field per :class:`SignRecord` attribute;
+#: the code fields (:data:`.signcodes.SIGN_CODE_FIELDS`) follow the score.
+SIGN_FIELDS: Schema = fields(("sign_id", int), ("class", str), ("score", float)) + SIGN_CODE_FIELDS + fields(
+    ("height", float), ("bottom_height", float),
     ("width", float), ("panel_height", float), ("azimuth", float), ("n_views", int),
     ("n_points", int), ("source_images", str), ("best_image", str), ("mean_intensity", float),
     ("planarity", float), ("position_source", str), ("x", float), ("y", float), ("z", float))
@@ -118,6 +138,11 @@ class SignRecord:
     x: float
     y: float
     z: float
+    code: str = ""
+    code_name: str = ""
+    code_score: float = math.nan
+    code_views: int = 0
+    code_check: str = ""
 
     def as_dict(self) -> Dict:
         d = asdict(self)
@@ -275,6 +300,97 @@ def vote_class(cand: ProjectionResult, rows: Rows) -> Tuple[str, float]:
     winner = max(sorted(weights), key=lambda c: weights[c])
     s = np.array([det.score[k] for k in rows if det.class_name[k] == winner])
     return winner, float(1.0 - np.prod(1.0 - np.clip(s, 0.0, 1.0)))
+
+
+@dataclass
+class CodeVote:
+    """A sign's code (:func:`vote_code`): the :data:`.signcodes.SIGN_CODE_FIELDS` values and
+    the sign's class after the check (``klass``)."""
+
+    code: str
+    name: str
+    score: float
+    views: int
+    check: str
+    klass: str
+
+    def fields(self) -> Dict[str, Any]:
+        return {"code": self.code, "code_name": self.name, "code_score": self.score,
+                "code_views": self.views, "code_check": self.check}
+
+
+def crop_side_px(det: Detections, rows: Rows) -> np.ndarray:
+    """Side (pixels) of the crop :func:`.signcodes.cut_crop` cuts for each view's box: the
+    box's larger angular side with the default margin, at the panorama's density, clamped to
+    8..256 px (the classifier's own margin scales every view of a sign alike)."""
+    return np.array([crop_view(det.box_px[k], int(det.pano_size_px[k, 0]),
+                               int(det.pano_size_px[k, 1]), DEFAULT_CROP_MARGIN)[0].width_px
+                     for k in rows], float)
+
+
+def class_support(cand: ProjectionResult, rows: Rows, klass: str) -> float:
+    """How well the views ``rows`` support the class ``klass``: its share of the
+    score-weighted class vote (its views' detection scores over all views' scores) x the
+    mean detection score of its views; 0..1."""
+    s = np.clip(np.nan_to_num(cand.detections.score[np.asarray(list(rows), np.int64)]), 0.0, 1.0)
+    mine = np.array([cand.detections.class_name[k] == klass for k in rows], bool)
+    if not np.any(mine) or s.sum() <= 0:
+        return 0.0
+    return float(s[mine].sum() / s.sum() * s[mine].mean())
+
+
+def vote_code(cand: ProjectionResult, rows: Rows, klass: str, table: Optional[CodesTable] = None,
+              confidence: float = DEFAULT_CODE_CONFIDENCE) -> CodeVote:
+    """The code of a sign whose views (candidate rows) are ``rows`` and whose class vote
+    (:func:`vote_class`) gave ``klass``.
+
+    **Vote.** The views that read a code (non-empty ``code``) vote with
+    :func:`.signcodes.vote`, view ``i`` weighing ``w_i = detection score x crop side``
+    (:func:`crop_side_px`) x its code probability ``p_i``. The winner's **support** is its
+    share of the vote x the ``w``-weighted mean ``p`` of the views that read it (0..1; a
+    code all views read with certainty has 1): ``code_score``. ``code_views``: the views
+    that read it. ``code`` and ``code_name`` (from ``table``) are left empty when the winner
+    is :data:`.signcodes.OTHER_CODE` or its support is below ``confidence``
+    (``code_score`` and ``code_views`` still describe the winner); no view with a code:
+    all empty, ``code_score`` NaN.
+
+    **Class check**, for a kept code whose class in ``table`` differs from ``klass`` (when
+    ``klass`` is one of the six :data:`.signcodes.SIGN_CLASSES`): the class's support is
+    :func:`class_support` (its share of the score-weighted class vote x the mean detection
+    score of its views). The better supported one wins: a code with a strictly larger
+    support gives the sign its class (``code_check = class_from_code``); else the code is
+    emptied (``code_check = code_dropped``; ``code_score`` and ``code_views`` stay those of
+    the dropped code). ``code_check`` is empty otherwise. Without a ``table`` the name is
+    empty and there is no check.
+
+    :class:`InputError` for a code that is not in ``table``.
+    """
+    det = cand.detections
+    read = [int(k) for k in rows if det.code[k]]
+    if not read:
+        return CodeVote("", "", math.nan, 0, "", klass)
+    codes = [det.code[k] for k in read]
+    p = np.clip(np.nan_to_num(det.code_score[read]), 0.0, 1.0)
+    w = np.clip(np.nan_to_num(det.score[read]), 0.0, None) * crop_side_px(det, read)
+    winner, share, n_views = vote(codes, p.tolist(), w.tolist())
+    theirs = np.array([c == winner for c in codes], bool)
+    mean_p = float((w[theirs] * p[theirs]).sum() / w[theirs].sum()) if w[theirs].sum() > 0 else 0.0
+    support = float(share * mean_p)
+    if winner == OTHER_CODE or support < confidence:
+        return CodeVote("", "", support, n_views, "", klass)
+    if table is None:
+        return CodeVote(winner, "", support, n_views, "", klass)
+    if winner not in table:
+        k = read[int(np.flatnonzero(theirs)[0])]
+        raise InputError("Detection {det_id} has the sign code {code}, which is not in the sign "
+                         "codes table {table}: give the codes table the classifier was run with",
+                         det_id=int(det.det_id[k]), code=winner, table=table.path)
+    entry = table.entry(winner)
+    if entry.class_name == klass or klass not in SIGN_CLASSES:
+        return CodeVote(winner, entry.name, support, n_views, "", klass)
+    if support > class_support(cand, rows, klass):
+        return CodeVote(winner, entry.name, support, n_views, CLASS_FROM_CODE, entry.class_name)
+    return CodeVote("", "", support, n_views, CODE_DROPPED, klass)
 
 
 # --------------------------------------------------------------------------------------
@@ -803,12 +919,14 @@ class Placement:
 def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, None],
                  merge_radius_m: float = DEFAULT_MERGE_RADIUS_M,
                  params: RefineParams = RefineParams(),
-                 progress: Progress = SILENT) -> RefineResult:
+                 progress: Progress = SILENT, codes_table: Optional[CodesTable] = None,
+                 code_confidence: float = DEFAULT_CODE_CONFIDENCE) -> RefineResult:
     """Signs from candidates (see the module doc).
 
     ``cloud``: the LAS/LAZ path (ground-classified; read only around the candidates) or a
     :class:`TiledIndex` with ``intensity`` and ``classification``. Empty candidates give an
-    empty result with a warning.
+    empty result with a warning. ``codes_table`` (names and classes of the codes) and
+    ``code_confidence``: the code vote, :func:`vote_code`.
     """
     if not merge_radius_m or merge_radius_m <= 0:
         raise InputError("The merge radius must be positive, got {value} m", value=merge_radius_m)
@@ -827,8 +945,9 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
     drafts += triangulate_image_only(candidates, unplaced, params)
     for draft in drafts:
         if not draft.absorbed:
-            add_sign(result, candidates, draft, index, params, progress)
+            add_sign(result, candidates, draft, index, params, progress, codes_table, code_confidence)
     warn_ground_fallbacks(result, params, progress)
+    log_codes(result, progress)
     n_img = sum(s.position_source == "image" for s in result.signs)
     progress.info("{signs} signs from {candidates} candidates ({from_images} placed from the "
                   "images alone)", signs=len(result.signs), candidates=len(candidates),
@@ -1029,15 +1148,18 @@ def plausible(cand: ProjectionResult, views: Sequence[int], klass: str, score: f
 
 
 def add_sign(result: RefineResult, cand: ProjectionResult, draft: SignDraft,
-             index: Optional[TiledIndex], params: RefineParams, progress: Progress = SILENT
-             ) -> None:
+             index: Optional[TiledIndex], params: RefineParams, progress: Progress = SILENT,
+             codes_table: Optional[CodesTable] = None,
+             code_confidence: float = DEFAULT_CODE_CONFIDENCE) -> None:
     """Append the record of a sign (numbered on from 1), its outline, points and ground
     source to ``result`` and point its views there in ``result.candidate_sign``, unless it is
     not :func:`plausible`. Heights are above the ground under the centre
-    (:func:`ground_with_fallbacks`)."""
+    (:func:`ground_with_fallbacks`); the code and the class check: :func:`vote_code`."""
     det = cand.detections
     views = draft.views
     klass, score = vote_class(cand, views)
+    code = vote_code(cand, views, klass, codes_table, code_confidence)
+    klass = code.klass
     place = placement(cand, draft)
     images = source_images(cand, views)
     if not plausible(cand, views, klass, score, place, len(images), params, progress):
@@ -1053,11 +1175,23 @@ def add_sign(result: RefineResult, cand: ProjectionResult, draft: SignDraft,
         best_image=det.image[best_view(cand, views, place.centre, place.normal)],
         mean_intensity=place.mean_intensity, planarity=place.planarity,
         position_source=place.source, x=float(place.centre[0]), y=float(place.centre[1]),
-        z=float(place.centre[2])))
+        z=float(place.centre[2]), code=code.code, code_name=code.name, code_score=code.score,
+        code_views=code.views, code_check=code.check))
     result.outlines_world.append(place.outline)
     result.point_index.append(place.point_index)
     result.ground_source.append(ground_source)
     result.candidate_sign[views] = n_sign
+
+
+def log_codes(result: RefineResult, progress: Progress) -> None:
+    """One line on the signs' codes: how many have one, and the class checks."""
+    if not any(s.code or s.code_check or s.code_views for s in result.signs):
+        return
+    progress.info("{coded} of {signs} signs have a sign code; {from_code} took their class from "
+                  "the code, {dropped} codes were dropped for the class vote (code_check)",
+                  coded=sum(bool(s.code) for s in result.signs), signs=len(result.signs),
+                  from_code=sum(s.code_check == CLASS_FROM_CODE for s in result.signs),
+                  dropped=sum(s.code_check == CODE_DROPPED for s in result.signs))
 
 
 def warn_ground_fallbacks(result: RefineResult, params: RefineParams, progress: Progress) -> None:
@@ -1098,18 +1232,21 @@ def _image_size_estimate(cand: ProjectionResult, rows: np.ndarray, x: np.ndarray
             r * (b[:, 3] - b[:, 1]) / H * np.pi)
 
 
-def write_sign_points(input_path: str, output_path: str, point_index: Sequence[np.ndarray],
+def write_sign_points(input_path: Union[str, CloudSource], output_path: str, point_index: Sequence[np.ndarray],
                       progress: Progress = SILENT) -> int:
-    """Copy the points ``point_index`` (positions in ``input_path``) to a LAS/LAZ file with
-    everything of the input kept; returns the number written."""
+    """Copy the points ``point_index`` (positions in the cloud ``input_path``: a LAS/LAZ file,
+    a folder of tiles or a ``.vpc``, :mod:`.cloudsource`) to a LAS/LAZ file with everything
+    of the input kept (of a cloud of tiles: the first tile's header, scales and offsets);
+    only the tiles holding them are read. Returns the number written."""
     wanted = np.unique(np.concatenate([np.asarray(p, np.int64) for p in point_index])
                        if len(point_index) else np.zeros(0, np.int64))
-    header = read_header(input_path)
-    offset = 0
+    source = open_cloud(input_path)
+    header = source.header
+    needed = set(source.tile_of_index(wanted).tolist())
+    tiles = [t for k, t in enumerate(source.tiles) if k in needed]
     with CloudWriter(output_path, output_header(header)) as writer:
-        for chunk in iter_chunks(input_path, progress=progress):
-            lo, hi = np.searchsorted(wanted, [offset, offset + len(chunk)])
+        for index, chunk in source.iter_indexed_chunks(progress=progress, tiles=tiles):
+            lo, hi = np.searchsorted(wanted, [index[0], index[-1] + 1]) if len(index) else (0, 0)
             if hi > lo:
-                writer.write(chunk[wanted[lo:hi] - offset])
-            offset += len(chunk)
+                writer.write(conform(chunk[wanted[lo:hi] - index[0]], header))
         return writer.point_count

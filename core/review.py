@@ -1,5 +1,6 @@
 """Review material for analysts: an image chip of each sign from its best panorama, and an
-HTML page with every sign's thumbnail and attributes.
+HTML page with every sign's thumbnail and attributes (its code and the code's name in the
+card's title).
 
 A chip is a perspective (undistorted) view centred on the ray through the centre of the
 sign's box in its best panorama, wide enough for the box plus ``margin_frac`` of its size
@@ -82,7 +83,8 @@ def write_chips(signs: Sequence[Dict], boxes: Sequence[Optional[Sequence[float]]
     return names
 
 
-REPORT_FIELDS = ("class", "score", "height", "bottom_height", "width", "panel_height", "azimuth",
+REPORT_FIELDS = ("class", "score", "code", "code_name", "code_score", "code_views", "code_check",
+                 "height", "bottom_height", "width", "panel_height", "azimuth",
                  "n_views", "n_points", "position_source", "best_image", "source_images",
                  "mean_intensity", "planarity", "x", "y", "z")
 UNITS = {"height": "m", "bottom_height": "m", "width": "m", "panel_height": "m", "azimuth": "°",
@@ -93,11 +95,22 @@ def _format(name: str, value) -> str:
     if value is None or (isinstance(value, float) and not np.isfinite(value)):
         return "–"
     if isinstance(value, float):
-        digits = 3 if name in ("x", "y", "z", "score", "planarity") else 2
+        digits = 3 if name in ("x", "y", "z", "score", "code_score", "planarity") else 2
         text = "{:.{}f}".format(value, digits)
     else:
         text = str(value)
     return html.escape(text + (" " + UNITS[name] if name in UNITS else ""))
+
+
+def _code_title(sign: Dict) -> str:
+    """``: DE:274[50] speed limit 50`` for a sign with a code (HTML-escaped); a check to
+    make (``code_check``) is added in brackets; empty without either."""
+    code = str(sign.get("code") or "").strip()
+    check = str(sign.get("code_check") or "").strip()
+    text = " ".join(t for t in (code, str(sign.get("code_name") or "").strip() if code else "") if t)
+    if check:
+        text += " ({})".format(check)
+    return html.escape(": " + text.strip()) if text.strip() else ""
 
 
 def write_review_report(signs: Sequence[Dict], chip_paths: Sequence[str], path: str,
@@ -110,8 +123,8 @@ def write_review_report(signs: Sequence[Dict], chip_paths: Sequence[str], path: 
             html.escape(chip), html.escape(str(sign["sign_id"])), CHIP_SIZE_PX // 2) if chip else "–")
         cells = "".join("<tr><th>{}</th><td>{}</td></tr>".format(html.escape(n), _format(n, sign.get(n)))
                         for n in REPORT_FIELDS)
-        rows.append('<div class="sign"><h2>Sign {}</h2>{}<table>{}</table></div>'.format(
-            html.escape(str(sign["sign_id"])), picture, cells))
+        rows.append('<div class="sign"><h2>Sign {}{}</h2>{}<table>{}</table></div>'.format(
+            html.escape(str(sign["sign_id"])), _code_title(sign), picture, cells))
     page = ("<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>{title}</title><style>"
             "body{{font-family:sans-serif;margin:1em}} .sign{{display:inline-block;vertical-align:top;"
             "border:1px solid #ccc;margin:.4em;padding:.4em;width:300px}} h2{{font-size:1em;margin:.2em 0}}"

@@ -59,9 +59,10 @@ TABLE_HEADER = ("code", "name", "class")
 CODE_FIELDS = fields(("code", str), ("code_score", float))
 
 #: Sign-level fields: the code voted across the sign's views (:func:`vote`), its name from
-#: the codes table, its share of the weighted vote (0..1), the number of views that read
-#: it, and ``code_check``: why an analyst should check the code by eye (empty when there
-#: is no reason), set by the chain.
+#: the codes table, its support (0..1: its share of the weighted vote x the mean code
+#: probability of the views that read it; ``refine.vote_code``), the number of views that
+#: read it, and ``code_check``: "" (code and class agree, or no code), ``class_from_code``
+#: or ``code_dropped`` (code and class disagreed; the better-supported one was kept).
 SIGN_CODE_FIELDS = fields(("code", str), ("code_name", str), ("code_score", float),
                           ("code_views", int), ("code_check", str))
 

@@ -17,6 +17,7 @@ shows its pictures and attributes, and writes the analyst's verdict to the layer
   QGIS's Undo, Ctrl+Z, does on the active layer). Saving the layer's edits (QGIS's Save, or
   the panel's button) writes them to the file.
 """
+import html
 import math
 import os
 
@@ -396,9 +397,13 @@ class ReviewPanel(Translatable, QDockWidget):
         self.values["class"].setText(str(klass) if not new_class else "{} &#8594; <b>{}</b>".format(klass, new_class))
         self.values["class"].setTextFormat(Qt.TextFormat.RichText)
         code, new_code = record.get(rs.CODE_FIELD), record.get(rs.REVIEWED_CODE.name)
-        self.values["code"].setText(
-            (str(code) if code is not None else self.tr("(none)")) + (" &#8594; <b>{}</b>".format(new_code)
-                                                                     if new_code else ""))
+        code_text = html.escape(str(code)) if code else self.tr("(none)")
+        if code and record.get("code_name"):  # the codes table's name (refinesigns)
+            code_text += " ({})".format(html.escape(str(record["code_name"])))
+        if record.get("code_check"):  # class_from_code or code_dropped: look at it
+            code_text += " [{}]".format(html.escape(str(record["code_check"])))
+        self.values["code"].setText(code_text + (" &#8594; <b>{}</b>".format(html.escape(str(new_code)))
+                                                 if new_code else ""))
         self.values["code"].setTextFormat(Qt.TextFormat.RichText)
         score = record.get("score")
         self.values["score"].setText("{:.2f}".format(float(score)) if score is not None else "–")

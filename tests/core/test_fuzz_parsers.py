@@ -252,7 +252,7 @@ GOOD_STATION = {"station_id": 1, "image": "a.jpg", "path": "/x/a.jpg", "time": 1
                 "y": 5400000.0, "z": 100.0, "qw": 1.0, "qx": 0.0, "qy": 0.0, "qz": 0.0, "heading": 90.0,
                 "width": 64, "height": 32}
 GOOD_DETECTION = dict(GOOD_STATION, det_id=1, **{"class": "stop"}, score=0.9, u0=10.0, v0=5.0, u1=20.0,
-                      v1=15.0, n_views=1)
+                      v1=15.0, n_views=1, code="DE:206", code_score=0.95)
 GOOD_CANDIDATE = dict(GOOD_DETECTION, cand_x=500001.0, cand_y=5400001.0, cand_z=101.0, range_m=3.0,
                       n_points=40, normal_e=0.0, normal_n=-1.0, normal_u=0.0, quality=0.8, status="ok")
 

@@ -87,7 +87,8 @@ def test_sign_layer_meets_the_goals(qgis_process, chain):
                         OUTLINES=str(chain["work"] / "outlines.gpkg"), SIGN_POINTS=points,
                         IMAGES=os.path.join(chain["scene_dir"], "images"), REVIEW_REPORT=review)
     layer = rows(signs)
-    fields = ["sign_id", "class", "score", "height", "bottom_height", "width", "panel_height", "azimuth",
+    fields = ["sign_id", "class", "score", "code", "code_name", "code_score", "code_views", "code_check",
+              "height", "bottom_height", "width", "panel_height", "azimuth",
               "n_views", "n_points", "source_images", "best_image", "mean_intensity", "planarity",
               "position_source", "x", "y", "z", "chip"]
     assert list(k for k in layer[0] if not k.startswith("_")) == fields

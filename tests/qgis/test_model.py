@@ -7,7 +7,10 @@ import pytest
 from helpers.scenes import scene_inputs
 from osgeo import ogr
 
-SIGN_FIELDS = ["sign_id", "class", "score", "height", "bottom_height", "width", "panel_height",
+from devtools import REPO_ROOT
+
+SIGN_FIELDS = ["sign_id", "class", "score", "code", "code_name", "code_score", "code_views", "code_check",
+               "height", "bottom_height", "width", "panel_height",
                "azimuth", "n_views", "n_points", "source_images", "best_image", "mean_intensity",
                "planarity", "position_source", "x", "y", "z", "chip"]
 FUSED_FIELDS = SIGN_FIELDS[:-1] + ["source", "review", "image_sign_id", "cloud_sign_id", "retro_index",
@@ -67,3 +70,5 @@ def test_signs_match_the_reference(qgis_process, model_run, layer):
     assert r["PRECISION"] >= 0.97 and r["RECALL"] >= 0.95 and r["CLASS_ACCURACY"] >= 0.97, r
     assert r["MEDIAN_ERROR"] <= 0.05 and r["P95_ERROR"] <= 0.20, r
     assert r["MEDIAN_HEIGHT_ERROR"] <= 0.05 and r["MEDIAN_AZIMUTH_ERROR"] <= 5.0, r
+    if os.path.isfile(os.path.join(REPO_ROOT, "models", "signcodes.onnx")):  # else test_signcodes_bundled says so
+        assert r["CODE_COMPARED"] >= 7 and r["CODE_ACCURACY"] >= 0.85, r  # the codes read through the chain

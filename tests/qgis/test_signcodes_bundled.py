@@ -1,0 +1,96 @@
+"""The bundled sign-code classifier (models/signcodes.onnx) behind the bundled detector, through
+qgis_process with the default parameters: on the generated panoramas of a scene never
+trained on (preset tiny, seed 23: the classifier trains on seeds from 100 up), its speed
+limit 50 comes out as DE:274[50] and its stop sign as DE:206.
+
+Each sign's detections (its own class, IoU >= 0.5 with its visible or whole box in a
+panorama that sees its front) are put to the vote refine makes (core.signcodes.vote,
+weight = detection score x crop side), which the code must win, read in at least half of
+the views. Without the bundled classifier the test is skipped, and fails under CI=true.
+"""
+import os
+
+import pytest
+from helpers.scenes import scene_inputs
+from osgeo import ogr
+
+from devtools import REPO_ROOT
+
+BUNDLED_DETECTOR = os.path.join(REPO_ROOT, "models", "roadsigns.onnx")
+BUNDLED_CLASSIFIER = os.path.join(REPO_ROOT, "models", "signcodes.onnx")
+SEED = 23
+EXPECTED = {("prohibitory", "50"): "DE:274[50]", ("stop", "stop"): "DE:206"}
+
+
+def require_bundled():
+    for path in (BUNDLED_DETECTOR, BUNDLED_CLASSIFIER):
+        if not os.path.isfile(path):
+            reason = "no bundled model {}".format(path)
+            if os.environ.get("CI", "").lower() == "true":
+                pytest.fail("CI=true but {}: CI must test the bundled sign-code classifier".format(reason),
+                            pytrace=False)
+            pytest.skip(reason)
+
+
+def seam_iou(a, b, width):
+    best = 0.0
+    for shift in (-width, 0.0, width):
+        iw = min(a[2] + shift, b[2]) - max(a[0] + shift, b[0])
+        ih = min(a[3], b[3]) - max(a[1], b[1])
+        if iw > 0 and ih > 0:
+            inter = iw * ih
+            best = max(best, inter / ((a[2] - a[0]) * (a[3] - a[1]) + (b[2] - b[0]) * (b[3] - b[1]) - inter))
+    return best
+
+
+@pytest.fixture(scope="module")
+def run(qgis_process, tmp_path_factory):
+    """Scene tiny/23 (panoramas, no cloud), its stations, and detectsigns with every default."""
+    import json
+
+    from devtools.scenegen import generate_scene
+
+    require_bundled()
+    work = tmp_path_factory.mktemp("codes_bundled")
+    scene_dir = str(work / "scene")
+    generate_scene("tiny", seed=SEED, out_dir=scene_dir, lidar=False, masks=False)
+    with open(os.path.join(scene_dir, "scene.json")) as f:
+        scene = json.load(f)
+    stations = str(work / "stations.gpkg")
+    imported = qgis_process.run("roadsigns:importtrajectory", OUTPUT=stations, **scene_inputs(scene_dir, scene))
+    assert imported.returncode == 0, imported.text
+    out = str(work / "detections.gpkg")
+    detected = qgis_process.run("roadsigns:detectsigns", STATIONS=stations, OUTPUT=out)  # bundled models
+    assert detected.returncode == 0, detected.text
+    dataset = ogr.Open(out)
+    rows = [{k: f[k] for k in f.keys()} for f in dataset.GetLayer(0)]
+    dataset = None
+    return scene, rows, detected.text
+
+
+@pytest.mark.parametrize("variant", sorted(EXPECTED), ids=lambda v: v[0])
+def test_bundled_classifier_reads_the_generated_signs(run, variant):
+    from roadsigns.core.signcodes import crop_view, vote
+
+    scene, rows, text = run
+    assert "signcodes.onnx" in text
+    width = scene["image_width"]
+    signs = [s for s in scene["signs"] if (s["class"], s["variant"]) == variant]
+    assert signs, "the scene has no {} sign".format(variant)
+    views = []
+    for meta in scene["images"]:
+        for seen in meta["signs"]:
+            if seen["sign_id"] not in {s["sign_id"] for s in signs} or seen["facing"] != "front" \
+                    or not seen.get("visible_box"):
+                continue
+            for d in rows:
+                box = [d["u0"], d["v0"], d["u1"], d["v1"]]
+                if d["image"] == meta["image"] and d["class"] == variant[0] and max(
+                        seam_iou(box, seen["visible_box"], width), seam_iou(box, seen["box"], width)) >= 0.5:
+                    side = crop_view(box, d["width"], d["height"])[0].width_px
+                    views.append((d["code"], d["code_score"], d["score"] * side, meta["image"]))
+    assert views, "the bundled detector found no {} sign".format(variant)
+    code, share, n = vote([v[0] for v in views], [v[1] for v in views], [v[2] for v in views])
+    assert code == EXPECTED[variant], views
+    assert n >= len(views) / 2, views  # most views read it
+    print("\n{}: {} of {} views read {} (share {:.2f})".format(variant, n, len(views), code, share))
