@@ -9,7 +9,7 @@
         <translation>Inventario de señales viales</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="52" />
+        <location filename="../algorithms/evaluate.py" line="56" />
         <source>{layer}: no field 'class'; fields found: {found}</source>
         <translation>{layer}: no hay campo 'class'; campos encontrados: {found}</translation>
     </message>
@@ -19,52 +19,52 @@
         <translation>{layer}: falta(n) el/los campo(s) {missing}; campos encontrados: {found}</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="172" />
+        <location filename="../algorithms/layers.py" line="180" />
         <source>{layer} is in {layer_crs}, the point cloud {cloud} in {cloud_crs}: import the trajectory with the cloud's CRS as target CRS so that every stage works in one CRS</source>
         <translation>{layer} está en {layer_crs} y la nube de puntos {cloud} en {cloud_crs}: importe la trayectoria con el SRC de la nube como SRC de destino para que todas las etapas trabajen en un mismo SRC</translation>
     </message>
     <message>
-        <location filename="../algorithms/style.py" line="41" />
+        <location filename="../algorithms/style.py" line="51" />
         <source>warning</source>
         <translation>advertencia</translation>
     </message>
     <message>
-        <location filename="../algorithms/style.py" line="41" />
+        <location filename="../algorithms/style.py" line="51" />
         <source>prohibitory</source>
         <translation>prohibición</translation>
     </message>
     <message>
-        <location filename="../algorithms/style.py" line="41" />
+        <location filename="../algorithms/style.py" line="51" />
         <source>mandatory</source>
         <translation>obligación</translation>
     </message>
     <message>
-        <location filename="../algorithms/style.py" line="42" />
+        <location filename="../algorithms/style.py" line="52" />
         <source>information</source>
         <translation>información</translation>
     </message>
     <message>
-        <location filename="../algorithms/style.py" line="42" />
+        <location filename="../algorithms/style.py" line="52" />
         <source>stop</source>
         <translation>stop</translation>
     </message>
     <message>
-        <location filename="../algorithms/style.py" line="42" />
+        <location filename="../algorithms/style.py" line="52" />
         <source>yield</source>
         <translation>ceda el paso</translation>
     </message>
     <message>
-        <location filename="../algorithms/style.py" line="49" />
+        <location filename="../algorithms/style.py" line="60" />
         <source>other</source>
         <translation>otras</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="65" />
+        <location filename="../algorithms/evaluate.py" line="71" />
         <source>{layer}: cannot reproject feature {feature}: {error}</source>
         <translation>{layer}: no se puede reproyectar la entidad {feature}: {error}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="79" />
+        <location filename="../algorithms/evaluate.py" line="87" />
         <source>{layer}: sign '{sign_id}' has no valid x, y, z position (no point geometry, and no numbers in the fields x, y, z)</source>
         <translation>{layer}: la señal '{sign_id}' no tiene una posición x, y, z válida (ni geometría de punto ni números en los campos x, y, z)</translation>
     </message>
@@ -94,7 +94,7 @@
         <translation>La nube de puntos {cloud} no tiene sistema de referencia de coordenadas: indíquelo en SRC de la nube (un parámetro avanzado; el SRC nunca se adivina)</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="167" />
+        <location filename="../algorithms/layers.py" line="175" />
         <source>The point cloud {cloud} has no coordinate reference system: give it one with Ground filter (parameter Cloud CRS); a CRS is never guessed</source>
         <translation>La nube de puntos {cloud} no tiene sistema de referencia de coordenadas: asígnele uno con Filtro de suelo (parámetro SRC de la nube); el SRC nunca se adivina</translation>
     </message>
@@ -107,327 +107,432 @@
 <context>
     <name>DetectSigns</name>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="38" />
+        <location filename="../algorithms/detectsigns.py" line="44" />
         <source>Detect signs in panoramas</source>
         <translation>Detectar señales en panoramas</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="41" />
+        <location filename="../algorithms/detectsigns.py" line="47" />
         <source>Runs an ONNX sign detector on each panorama; one ray per detected sign.</source>
         <translation>Ejecuta un detector de señales ONNX en cada panorama; un rayo por señal detectada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="44" />
-        <source>Cuts each station's equirectangular panorama into overlapping perspective views (a horizon ring, and an upward ring for overhead signs), runs the ONNX detector on each view, maps the boxes back to panorama pixels and merges the same sign found in two views.&lt;br&gt;&lt;br&gt;The &lt;b&gt;model&lt;/b&gt; is the bundled one when left empty, or your own ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model with NMS built in ([1, N, 6]). Class names come from the model's metadata (Ultralytics &lt;i&gt;names&lt;/i&gt;) or a labels file (one name per line).&lt;br&gt;&lt;br&gt;Output: one line per detection from the panorama centre along the ray through the box centre, &lt;i&gt;Ray length&lt;/i&gt; long, with the box (u0, v0, u1, v1 in panorama pixels; across the ±180° seam u1 exceeds the width) and the station's pose. A panorama that cannot be read is skipped with a warning and counted.</source>
-        <translation>Corta el panorama equirrectangular de cada estación en vistas en perspectiva superpuestas (un anillo horizontal y un anillo hacia arriba para las señales elevadas), ejecuta el detector ONNX en cada vista, devuelve los recuadros a píxeles del panorama y fusiona la misma señal encontrada en dos vistas.&lt;br&gt;&lt;br&gt;El &lt;b&gt;modelo&lt;/b&gt; es el incluido si se deja vacío, o su propia exportación ONNX: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) o un modelo con NMS integrado ([1, N, 6]). Los nombres de clase provienen de los metadatos del modelo (&lt;i&gt;names&lt;/i&gt; de Ultralytics) o de un archivo de etiquetas (un nombre por línea).&lt;br&gt;&lt;br&gt;Salida: una línea por detección desde el centro del panorama a lo largo del rayo que pasa por el centro del recuadro, de &lt;i&gt;Longitud del rayo&lt;/i&gt; de largo, con el recuadro (u0, v0, u1, v1 en píxeles del panorama; a través de la costura de ±180°, u1 supera el ancho) y la pose de la estación. Un panorama que no se puede leer se omite con una advertencia y se contabiliza.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="115" />
+        <location filename="../algorithms/detectsigns.py" line="155" />
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="58" />
+        <location filename="../algorithms/detectsigns.py" line="70" />
         <source>The output of Import trajectory: one point per panorama with its pose and path.</source>
         <translation>La salida de «Importar trayectoria y panoramas»: un punto por panorama con su pose y su ruta.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="61" />
+        <location filename="../algorithms/detectsigns.py" line="73" />
         <source>ONNX model (empty: the bundled model)</source>
         <translation>Modelo ONNX (vacío: el modelo incluido)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="61" />
+        <location filename="../algorithms/detectsigns.py" line="73" />
         <source>A YOLO-family ONNX detector. Empty uses the model bundled with the plugin.</source>
         <translation>Un detector ONNX de la familia YOLO. Vacío usa el modelo incluido con el complemento.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="61" />
+        <location filename="../algorithms/detectsigns.py" line="117" />
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>Modelos ONNX (*.onnx);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="65" />
+        <location filename="../algorithms/detectsigns.py" line="77" />
         <source>Minimum confidence</source>
         <translation>Confianza mínima</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="65" />
+        <location filename="../algorithms/detectsigns.py" line="77" />
         <source>Detections scoring below this (0-1) are dropped.</source>
         <translation>Se descartan las detecciones con una puntuación inferior a este valor (0-1).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="68" />
+        <location filename="../algorithms/detectsigns.py" line="80" />
         <source>Smallest sign kept (panorama pixels)</source>
         <translation>Señal más pequeña conservada (píxeles de panorama)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="68" />
+        <location filename="../algorithms/detectsigns.py" line="80" />
         <source>Detections whose box is shorter than this on its shorter side are dropped: signs that small are boxed a few pixels off and their class is unsure, and the drive sees them again, larger, from the next stations. 0 keeps every detection.</source>
         <translation>Se descartan las detecciones cuyo recuadro tiene el lado menor por debajo de este valor: en señales tan pequeñas el recuadro se desvía unos píxeles y la clase es dudosa, y el recorrido las vuelve a ver, más grandes, desde las estaciones siguientes. 0 conserva todas las detecciones.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="74" />
+        <location filename="../algorithms/detectsigns.py" line="86" />
         <source>Class names file (optional)</source>
         <translation>Archivo de nombres de clase (opcional)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="74" />
+        <location filename="../algorithms/detectsigns.py" line="86" />
         <source>One class name per line, in the model's class order; needed when the model has no names in its metadata and no labels file beside it.</source>
         <translation>Un nombre de clase por línea, en el orden de clases del modelo; necesario cuando el modelo no tiene nombres en sus metadatos ni un archivo de etiquetas a su lado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="74" />
+        <location filename="../algorithms/detectsigns.py" line="86" />
         <source>Text files (*.txt);;All files (*.*)</source>
         <translation>Archivos de texto (*.txt);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="79" />
+        <location filename="../algorithms/detectsigns.py" line="91" />
         <source>Ray length (m)</source>
         <translation>Longitud del rayo (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="79" />
+        <location filename="../algorithms/detectsigns.py" line="91" />
         <source>Length of each detection ray from the panorama centre, in metres.</source>
         <translation>Longitud de cada rayo de detección desde el centro del panorama, en metros.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="83" />
+        <location filename="../algorithms/detectsigns.py" line="95" />
         <source>Also look upwards (overhead and gantry signs)</source>
         <translation>Mirar también hacia arriba (señales elevadas y de pórtico)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="83" />
+        <location filename="../algorithms/detectsigns.py" line="95" />
         <source>Adds a ring of views tilted 35° up; unchecked halves the work but misses signs high above the road close to the vehicle.</source>
         <translation>Añade un anillo de vistas inclinadas 35° hacia arriba; si se desmarca, el trabajo se reduce a la mitad, pero se pierden las señales situadas muy por encima de la calzada cerca del vehículo.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="87" />
+        <location filename="../algorithms/detectsigns.py" line="108" />
         <source>CPU threads (0: all)</source>
         <translation>Hilos de CPU (0: todos)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="87" />
+        <location filename="../algorithms/detectsigns.py" line="108" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>Hilos que onnxruntime puede usar en la CPU; 0 le permite usar todos los núcleos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="91" />
+        <location filename="../algorithms/detectsigns.py" line="130" />
         <source>Detections</source>
         <translation>Detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="91" />
-        <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
-        <translation>Capa LineStringZ, un rayo por detección, con det_id, station_id, image, class, score, u0, v0, u1, v1, n_views y los campos de pose de la estación.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="95" />
+        <location filename="../algorithms/detectsigns.py" line="134" />
         <source>Number of detections</source>
         <translation>Número de detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="96" />
+        <location filename="../algorithms/detectsigns.py" line="135" />
         <source>Panoramas skipped</source>
         <translation>Panoramas omitidos</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="108" />
+        <location filename="../algorithms/detectsigns.py" line="148" />
         <source>ONNX model not found: {}</source>
         <translation>No se encontró el modelo ONNX: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="122" />
+        <location filename="../algorithms/detectsigns.py" line="162" />
         <source>{} panoramas, {} views each</source>
         <translation>{} panoramas, {} vistas cada uno</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="127" />
+        <location filename="../algorithms/detectsigns.py" line="175" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>Se omitieron {} panorama(s) que no se pudieron leer.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="140" />
+        <location filename="../algorithms/detectsigns.py" line="191" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} detecciones en {} panoramas ({} omitidos).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="132" />
+        <location filename="../algorithms/detectsigns.py" line="183" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>No se detectó ninguna señal: la capa de detecciones está vacía.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="50" />
+        <source>Cuts each station's equirectangular panorama into overlapping perspective views (a horizon ring, and an upward ring for overhead signs), runs the ONNX detector on each view, maps the boxes back to panorama pixels and merges the same sign found in two views.&lt;br&gt;&lt;br&gt;The &lt;b&gt;model&lt;/b&gt; is the bundled one when left empty, or your own ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model with NMS built in ([1, N, 6]). Class names come from the model's metadata (Ultralytics &lt;i&gt;names&lt;/i&gt;) or a labels file (one name per line).&lt;br&gt;&lt;br&gt;Output: one line per detection from the panorama centre along the ray through the box centre, &lt;i&gt;Ray length&lt;/i&gt; long, with the box (u0, v0, u1, v1 in panorama pixels; across the ±180° seam u1 exceeds the width) and the station's pose. A panorama that cannot be read is skipped with a warning and counted.&lt;br&gt;&lt;br&gt;&lt;b&gt;Sign codes&lt;/b&gt;: a second, small ONNX model (the bundled sign-code classifier, or your own) reads what each detected sign says, from a rectified crop of the panorama around its box at the panorama's own resolution: &lt;i&gt;code&lt;/i&gt; (such as DE:274[50], speed limit 50, from the codes table; &lt;i&gt;other&lt;/i&gt; when it knows none) and &lt;i&gt;code_score&lt;/i&gt; (its probability). Refine signs votes them across the views of each sign. The classifier's format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</source>
+        <translation>Corta el panorama equirrectangular de cada estación en vistas en perspectiva superpuestas (un anillo horizontal y un anillo hacia arriba para las señales elevadas), ejecuta el detector ONNX en cada vista, devuelve los recuadros a píxeles del panorama y fusiona la misma señal encontrada en dos vistas.&lt;br&gt;&lt;br&gt;El &lt;b&gt;modelo&lt;/b&gt; es el incluido si se deja vacío, o su propia exportación ONNX: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) o un modelo con NMS integrado ([1, N, 6]). Los nombres de clase provienen de los metadatos del modelo (&lt;i&gt;names&lt;/i&gt; de Ultralytics) o de un archivo de etiquetas (un nombre por línea).&lt;br&gt;&lt;br&gt;Salida: una línea por detección desde el centro del panorama a lo largo del rayo que pasa por el centro del recuadro, de &lt;i&gt;Longitud del rayo&lt;/i&gt; de largo, con el recuadro (u0, v0, u1, v1 en píxeles del panorama; a través de la costura de ±180°, u1 supera el ancho) y la pose de la estación. Un panorama que no se puede leer se omite con una advertencia y se contabiliza.&lt;br&gt;&lt;br&gt;&lt;b&gt;Códigos de señal&lt;/b&gt;: un segundo modelo ONNX, pequeño (el clasificador de códigos de señal incluido, o el suyo propio), lee lo que dice cada señal detectada a partir de un recorte rectificado del panorama alrededor de su recuadro, con la resolución propia del panorama: &lt;i&gt;code&lt;/i&gt; (como DE:274[50], límite de velocidad 50, de la tabla de códigos; &lt;i&gt;other&lt;/i&gt; cuando no conoce ninguno) y &lt;i&gt;code_score&lt;/i&gt; (su probabilidad). «Refinar y fusionar señales» los somete a votación entre las vistas de cada señal. El formato del clasificador está en models/README.md (sección &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="112" />
+        <source>Read the sign codes</source>
+        <translation>Leer los códigos de señal</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="112" />
+        <source>Reads what each detected sign says (its code, such as DE:206 for stop) with the sign-code classifier. Unchecked, the code fields stay empty. When the bundled classifier is missing, the log says so and the detections get no code.</source>
+        <translation>Lee lo que dice cada señal detectada (su código, como DE:206 para la señal de stop) con el clasificador de códigos de señal. Si se desmarca, los campos de código quedan vacíos. Cuando falta el clasificador incluido, el registro lo indica y las detecciones no reciben código.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="117" />
+        <source>Sign-code classifier (empty: the bundled one)</source>
+        <translation>Clasificador de códigos de señal (vacío: el incluido)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="117" />
+        <source>An ONNX classifier of sign crops: float input [N, 3, S, S] (RGB, 0..1), output [N, C], the codes it answers in its metadata 'names' (each in the codes table, or 'other'). The format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;). Empty uses the classifier bundled with the plugin (models/signcodes.onnx).</source>
+        <translation>Un clasificador ONNX de recortes de señales: entrada float [N, 3, S, S] (RGB, 0..1), salida [N, C], los códigos que puede responder en sus metadatos 'names' (cada uno en la tabla de códigos, o bien 'other'). El formato está en models/README.md (sección &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;). Vacío usa el clasificador incluido con el complemento (models/signcodes.onnx).</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="124" />
+        <source>Sign codes table (empty: the bundled one)</source>
+        <translation>Tabla de códigos de señal (vacío: la incluida)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="124" />
+        <source>The codes the classifier may answer, with their names and classes: UTF-8 text, semicolon-separated, the header code;name;class (format in models/README.md). Empty uses the bundled table of German codes (models/sign-codes-de.csv).</source>
+        <translation>Los códigos que el clasificador puede responder, con sus nombres y clases: texto UTF-8, separado por punto y coma, con la cabecera code;name;class (formato en models/README.md). Vacío usa la tabla incluida de códigos alemanes (models/sign-codes-de.csv).</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="124" />
+        <source>CSV files (*.csv *.txt);;All files (*.*)</source>
+        <translation>Archivos CSV (*.csv *.txt);;Todos los archivos (*.*)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="130" />
+        <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
+        <translation>Capa LineStringZ, un rayo por detección, con det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views y los campos de pose de la estación.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="195" />
+        <source>Sign codes read in {} of the {} detections (the others: other).</source>
+        <translation>Códigos de señal leídos en {} de las {} detecciones (las demás: other).</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="205" />
+        <source>Sign codes are not read (Read the sign codes is off).</source>
+        <translation>Los códigos de señal no se leen («Leer los códigos de señal» está desactivado).</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="211" />
+        <source>The bundled sign-code classifier {} is missing: the detections get no sign code.</source>
+        <translation>Falta el clasificador de códigos de señal incluido {}: las detecciones no reciben código de señal.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="215" />
+        <source>Sign-code classifier not found: {}</source>
+        <translation>No se encontró el clasificador de códigos de señal: {}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="218" />
+        <source>Sign codes: {}</source>
+        <translation>Códigos de señal: {}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="99" />
+        <source>Skip stations closer than (m)</source>
+        <translation>Omitir estaciones a menos de (m)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="99" />
+        <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so a few metres save detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. 0 detects in every panorama.</source>
+        <translation>Detecta solo en los panoramas cuya estación está al menos a esta distancia de la última estación en la que se detectó; las intermedias se omiten (no se leen, sin detecciones). Una señal permanece a la vista durante muchas estaciones, así que unos pocos metros ahorran tiempo de detección en proporción, pero cada señal se ve entonces desde menos estaciones: menos rayos para situarla, y una señal visible solo desde unas pocas estaciones (pequeña, u oculta tras árboles o vehículos) puede perderse. 0 detecta en todos los panoramas.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="167" />
+        <source>Detecting in {} of the {} panoramas: stations closer than {} m to the last one detected in are skipped.</source>
+        <translation>Detectando en {} de los {} panoramas: se omiten las estaciones a menos de {} m de la última en la que se detectó.</translation>
     </message>
 </context>
 <context>
     <name>Evaluate</name>
     <message>
-        <location filename="../algorithms/evaluate.py" line="97" />
+        <location filename="../algorithms/evaluate.py" line="106" />
         <source>Evaluate signs against reference</source>
         <translation>Evaluar señales frente a la referencia</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="100" />
+        <location filename="../algorithms/evaluate.py" line="109" />
         <source>Scores a sign layer against reference sign panels and writes an HTML report.</source>
         <translation>Puntúa una capa de señales frente a paneles de referencia y escribe un informe HTML.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="103" />
-        <source>Matches each sign to at most one reference panel by optimal assignment (Hungarian method) on the 3D distance between panel centres, within the match radius and ignoring class, then reports precision (matches / signs), recall (matches / reference panels), F1, the class accuracy of the matches, and the median and 95th percentile position error, the median height error and the median azimuth error.&lt;br&gt;&lt;br&gt;The &lt;b&gt;reference&lt;/b&gt; is a CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt; in the sign layer's CRS, or a point layer with those fields (reprojected to the sign layer's CRS).&lt;br&gt;&lt;br&gt;The HTML report has the summary and one row per sign: matched (with its errors), missed or false.</source>
-        <translation>Empareja cada señal con como máximo un panel de referencia mediante asignación óptima (método húngaro) según la distancia 3D entre los centros de los paneles, dentro del radio de emparejamiento y sin tener en cuenta la clase; después informa de la precisión (emparejamientos / señales), la exhaustividad (emparejamientos / paneles de referencia), F1, la exactitud de clase de los emparejamientos, la mediana y el percentil 95 del error de posición, la mediana del error de altura y la mediana del error de acimut.&lt;br&gt;&lt;br&gt;La &lt;b&gt;referencia&lt;/b&gt; es un CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt; en el SRC de la capa de señales, o una capa de puntos con esos campos (reproyectada al SRC de la capa de señales).&lt;br&gt;&lt;br&gt;El informe HTML contiene el resumen y una fila por señal: emparejada (con sus errores), no detectada o falsa.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/evaluate.py" line="117" />
+        <location filename="../algorithms/evaluate.py" line="132" />
         <source>True positives (matched signs)</source>
         <translation>Verdaderos positivos (señales emparejadas)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="117" />
+        <location filename="../algorithms/evaluate.py" line="132" />
         <source>False positives (unmatched signs)</source>
         <translation>Falsos positivos (señales sin pareja)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="118" />
+        <location filename="../algorithms/evaluate.py" line="133" />
         <source>False negatives (missed reference panels)</source>
         <translation>Falsos negativos (paneles de referencia no detectados)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="118" />
+        <location filename="../algorithms/evaluate.py" line="133" />
         <source>Precision</source>
         <translation>Precisión</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="119" />
+        <location filename="../algorithms/evaluate.py" line="134" />
         <source>Recall</source>
         <translation>Exhaustividad (recall)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="119" />
+        <location filename="../algorithms/evaluate.py" line="134" />
         <source>F1 score</source>
         <translation>Puntuación F1</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="120" />
+        <location filename="../algorithms/evaluate.py" line="135" />
         <source>Class accuracy of matches</source>
         <translation>Exactitud de clase de los emparejamientos</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="121" />
+        <location filename="../algorithms/evaluate.py" line="136" />
         <source>Median 3D position error (m)</source>
         <translation>Mediana del error de posición 3D (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="122" />
+        <location filename="../algorithms/evaluate.py" line="137" />
         <source>95th percentile 3D error (m)</source>
         <translation>Percentil 95 del error 3D (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="123" />
+        <location filename="../algorithms/evaluate.py" line="138" />
         <source>Median height error (m)</source>
         <translation>Mediana del error de altura (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="124" />
+        <location filename="../algorithms/evaluate.py" line="139" />
         <source>Median azimuth error (°)</source>
         <translation>Mediana del error de acimut (°)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="125" />
+        <location filename="../algorithms/evaluate.py" line="143" />
         <source>Median horizontal position error (m)</source>
         <translation>Mediana del error de posición horizontal (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="126" />
+        <location filename="../algorithms/evaluate.py" line="144" />
         <source>Median vertical position error (m)</source>
         <translation>Mediana del error de posición vertical (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="183" />
+        <location filename="../algorithms/evaluate.py" line="205" />
         <source>Sign layer</source>
         <translation>Capa de señales</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="130" />
-        <source>The sign layer to score (PointZ at the panel centres, e.g. the output of Refine signs), with the fields sign_id, class and optionally height, azimuth, best_image.</source>
-        <translation>La capa de señales que se puntúa (PointZ en los centros de los paneles, p. ej. la salida de «Refinar y fusionar señales»), con los campos sign_id, class y opcionalmente height, azimuth, best_image.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/evaluate.py" line="134" />
+        <location filename="../algorithms/evaluate.py" line="153" />
         <source>Reference signs (CSV or point layer)</source>
         <translation>Señales de referencia (CSV o capa de puntos)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="134" />
-        <source>Ground truth: a CSV sign_id,class,x,y,z,height,width,panel_height,azimuth in the sign layer's CRS, or a point layer with those fields (reprojected if its CRS differs).</source>
-        <translation>Verdad de terreno: un CSV sign_id,class,x,y,z,height,width,panel_height,azimuth en el SRC de la capa de señales, o una capa de puntos con esos campos (reproyectada si su SRC es distinto).</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/evaluate.py" line="134" />
+        <location filename="../algorithms/evaluate.py" line="153" />
         <source>Reference signs (*.csv *.txt *.gpkg *.shp *.geojson);;All files (*.*)</source>
         <translation>Señales de referencia (*.csv *.txt *.gpkg *.shp *.geojson);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="139" />
+        <location filename="../algorithms/evaluate.py" line="159" />
         <source>Match radius (m)</source>
         <translation>Radio de emparejamiento (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="139" />
+        <location filename="../algorithms/evaluate.py" line="159" />
         <source>A sign and a reference panel farther apart than this (3D distance between panel centres, metres) are never matched.</source>
         <translation>Una señal y un panel de referencia separados más que esto (distancia 3D entre los centros de los paneles, en metros) nunca se emparejan.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="143" />
+        <location filename="../algorithms/evaluate.py" line="163" />
         <source>Evaluation report</source>
         <translation>Informe de evaluación</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="143" />
+        <location filename="../algorithms/evaluate.py" line="163" />
         <source>HTML files (*.html)</source>
         <translation>Archivos HTML (*.html)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="143" />
+        <location filename="../algorithms/evaluate.py" line="163" />
         <source>HTML report: the summary and one row per sign and reference panel.</source>
         <translation>Informe HTML: el resumen y una fila por señal y por panel de referencia.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="152" />
+        <location filename="../algorithms/evaluate.py" line="174" />
         <source>Reference file not found: {}</source>
         <translation>No se encontró el archivo de referencia: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="154" />
+        <location filename="../algorithms/evaluate.py" line="176" />
         <source>Reference CSV {}: coordinates taken in the sign layer's CRS ({})</source>
         <translation>CSV de referencia {}: coordenadas tomadas en el SRC de la capa de señales ({})</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="165" />
+        <location filename="../algorithms/evaluate.py" line="187" />
         <source>Cannot read the reference {}: expected a CSV or a point layer</source>
         <translation>No se puede leer la referencia {}: se esperaba un CSV o una capa de puntos</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="169" />
+        <location filename="../algorithms/evaluate.py" line="191" />
         <source>Reprojecting the reference from {} to {}</source>
         <translation>Reproyectando la referencia de {} a {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="186" />
+        <location filename="../algorithms/evaluate.py" line="208" />
         <source>The sign layer is empty: nothing to evaluate.</source>
         <translation>La capa de señales está vacía: no hay nada que evaluar.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="190" />
+        <location filename="../algorithms/evaluate.py" line="212" />
         <source>The reference {} has no sign: nothing to evaluate against.</source>
         <translation>La referencia {} no tiene ninguna señal: no hay nada con qué comparar.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="196" />
+        <location filename="../algorithms/evaluate.py" line="218" />
         <source>Road sign evaluation</source>
         <translation>Evaluación de señales viales</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="203" />
+        <location filename="../algorithms/evaluate.py" line="225" />
         <source>{} signs, {} reference panels: TP {}, FP {}, FN {}; precision {}, recall {}, median error {} m</source>
         <translation>{} señales, {} paneles de referencia: TP {}, FP {}, FN {}; precisión {}, exhaustividad {}, mediana del error {} m</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="112" />
+        <source>Matches each sign to at most one reference panel by optimal assignment (Hungarian method) on the 3D distance between panel centres, within the match radius and ignoring class, then reports precision (matches / signs), recall (matches / reference panels), F1, the class accuracy of the matches, and the median and 95th percentile position error, the median height error and the median azimuth error.&lt;br&gt;&lt;br&gt;When the reference has a &lt;i&gt;code&lt;/i&gt; column and the sign layer a &lt;i&gt;code&lt;/i&gt; field (OpenStreetMap traffic_sign codes such as DE:274[50]), it also reports the code accuracy of the matches whose reference code is not empty (a sign without a code counts as wrong, and is counted as no code) and the code confusions, most frequent first.&lt;br&gt;&lt;br&gt;The &lt;b&gt;reference&lt;/b&gt; is a CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt; (and optionally &lt;i&gt;code&lt;/i&gt;) in the sign layer's CRS, or a point layer with those fields (reprojected to the sign layer's CRS).&lt;br&gt;&lt;br&gt;The HTML report has the summary and one row per sign: matched (with its errors), missed or false.</source>
+        <translation>Empareja cada señal con como máximo un panel de referencia mediante asignación óptima (método húngaro) según la distancia 3D entre los centros de los paneles, dentro del radio de emparejamiento y sin tener en cuenta la clase; después informa de la precisión (emparejamientos / señales), la exhaustividad (emparejamientos / paneles de referencia), F1, la exactitud de clase de los emparejamientos, la mediana y el percentil 95 del error de posición, la mediana del error de altura y la mediana del error de acimut.&lt;br&gt;&lt;br&gt;Cuando la referencia tiene una columna &lt;i&gt;code&lt;/i&gt; y la capa de señales un campo &lt;i&gt;code&lt;/i&gt; (códigos traffic_sign de OpenStreetMap como DE:274[50]), también informa de la exactitud de código de los emparejamientos cuyo código de referencia no está vacío (una señal sin código cuenta como errónea y se contabiliza como sin código) y de las confusiones de código, de la más frecuente a la menos frecuente.&lt;br&gt;&lt;br&gt;La &lt;b&gt;referencia&lt;/b&gt; es un CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt; (y opcionalmente &lt;i&gt;code&lt;/i&gt;) en el SRC de la capa de señales, o una capa de puntos con esos campos (reproyectada al SRC de la capa de señales).&lt;br&gt;&lt;br&gt;El informe HTML contiene el resumen y una fila por señal: emparejada (con sus errores), no detectada o falsa.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="140" />
+        <source>Code accuracy of matches with a reference code</source>
+        <translation>Exactitud de código de los emparejamientos con código de referencia</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="141" />
+        <source>Matches whose codes were compared</source>
+        <translation>Emparejamientos cuyos códigos se compararon</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="142" />
+        <source>Compared matches whose sign has no code</source>
+        <translation>Emparejamientos comparados cuya señal no tiene código</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="148" />
+        <source>The sign layer to score (PointZ at the panel centres, e.g. the output of Refine signs), with the fields sign_id, class and optionally height, azimuth, best_image, code.</source>
+        <translation>La capa de señales que se puntúa (PointZ en los centros de los paneles, p. ej. la salida de «Refinar y fusionar señales»), con los campos sign_id, class y opcionalmente height, azimuth, best_image, code.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="153" />
+        <source>Ground truth: a CSV sign_id,class,x,y,z,height,width,panel_height,azimuth (and optionally code) in the sign layer's CRS, or a point layer with those fields (reprojected if its CRS differs).</source>
+        <translation>Verdad de terreno: un CSV sign_id,class,x,y,z,height,width,panel_height,azimuth (y opcionalmente code) en el SRC de la capa de señales, o una capa de puntos con esos campos (reproyectada si su SRC es distinto).</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="169" />
+        <source>Code confusions (reference code -&gt; sign code: count)</source>
+        <translation>Confusiones de código (código de referencia -&gt; código de la señal: número)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="231" />
+        <source>Code accuracy {} of {} matches with a reference code ({} without a code); confusions: {}</source>
+        <translation>Exactitud de código {} en {} emparejamientos con código de referencia ({} sin código); confusiones: {}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="231" />
+        <source>none</source>
+        <translation>ninguna</translation>
     </message>
 </context>
 <context>
@@ -726,7 +831,7 @@
         <translation>La nube con el suelo como clase 2 (la salida de «Filtro de suelo y recorte de nube de puntos») y una dimensión de intensidad, en el SRC de las estaciones.</translation>
     </message>
     <message>
-        <location filename="../algorithms/findsignsincloud.py" line="88" />
+        <location filename="../algorithms/findsignsincloud.py" line="87" />
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
@@ -786,12 +891,12 @@
         <translation>Postes encontrados</translation>
     </message>
     <message>
-        <location filename="../algorithms/findsignsincloud.py" line="87" />
+        <location filename="../algorithms/findsignsincloud.py" line="86" />
         <source>The stations</source>
         <translation>La capa de estaciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/findsignsincloud.py" line="119" />
+        <location filename="../algorithms/findsignsincloud.py" line="118" />
         <source>{} sign panels and {} poles found in the cloud.</source>
         <translation>{} paneles de señal y {} postes encontrados en la nube.</translation>
     </message>
@@ -814,7 +919,7 @@
         <translation>Empareja cada señal de la cadena de imágenes («Refinar y fusionar señales») con como máximo un panel encontrado solo en la nube («Buscar señales en la nube de puntos (sin imágenes)») mediante asignación óptima: centros dentro del radio de emparejamiento y orientaciones a menos de 90°.&lt;br&gt;&lt;br&gt;Una señal emparejada conserva su clase y recibe el índice de retrorreflexión y el estado del panel (&lt;i&gt;source&lt;/i&gt; = image+lidar). Un panel que ninguna señal de imagen explica se convierte en una señal propia (&lt;i&gt;source&lt;/i&gt; = lidar): con las estaciones y la carpeta de panoramas, los panoramas situados frente a su cara se recortan en vistas centradas en él y el detector lee allí su clase; si en ninguna se reconoce, su clase es &lt;i&gt;unknown&lt;/i&gt; y se marca para revisión. Una señal de imagen en cuyo lugar de la nube no hay ningún panel retrorreflectante pierde confianza (su puntuación × 0,6) y se marca para revisión (&lt;i&gt;source&lt;/i&gt; = image).&lt;br&gt;&lt;br&gt;Salida: la capa de señales con los campos de «Refinar y fusionar señales» más source, review, image_sign_id, cloud_sign_id, retro_index y condition, con el mismo estilo que la capa de señales.</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="95" />
+        <location filename="../algorithms/fusesigns.py" line="97" />
         <source>Signs (from the images)</source>
         <translation>Señales (de las imágenes)</translation>
     </message>
@@ -824,7 +929,7 @@
         <translation>La salida de «Refinar y fusionar señales».</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="96" />
+        <location filename="../algorithms/fusesigns.py" line="99" />
         <source>Sign panels found in the cloud</source>
         <translation>Paneles de señal encontrados en la nube</translation>
     </message>
@@ -914,32 +1019,32 @@
         <translation>Señales encontradas solo en la nube</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="100" />
+        <location filename="../algorithms/fusesigns.py" line="103" />
         <source>The signs are in {}, the panels found in the cloud in {}: both must be in the cloud's CRS</source>
         <translation>Las señales están en {} y los paneles encontrados en la nube en {}: ambas capas deben estar en el SRC de la nube</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="111" />
+        <location filename="../algorithms/fusesigns.py" line="114" />
         <source>No stations given: the {} signs found in the cloud alone keep the class unknown.</source>
         <translation>No se indicaron estaciones: las {} señales encontradas solo en la nube conservan la clase unknown.</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="127" />
+        <location filename="../algorithms/fusesigns.py" line="130" />
         <source>{} signs: {} found by both, {} in the images only ({} of them where the cloud was searched: score lowered, to review), {} in the cloud only.</source>
         <translation>{} señales: {} encontradas por ambas fuentes, {} solo en las imágenes ({} de ellas donde se buscó en la nube: puntuación reducida, por revisar), {} solo en la nube.</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="140" />
+        <location filename="../algorithms/fusesigns.py" line="143" />
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="146" />
+        <location filename="../algorithms/fusesigns.py" line="149" />
         <source>ONNX model not found: {}</source>
         <translation>No se encontró el modelo ONNX: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="157" />
+        <location filename="../algorithms/fusesigns.py" line="160" />
         <source>{} of the {} signs found in the cloud alone were recognised in the panoramas; the others keep the class unknown and are to review.</source>
         <translation>{} de las {} señales encontradas solo en la nube se reconocieron en los panoramas; las demás conservan la clase unknown y quedan por revisar.</translation>
     </message>
@@ -947,219 +1052,234 @@
 <context>
     <name>GroundFilter</name>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="54" />
+        <location filename="../algorithms/groundfilter.py" line="57" />
         <source>Ground filter and crop point cloud</source>
         <translation>Filtro de suelo y recorte de nube de puntos</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="57" />
+        <location filename="../algorithms/groundfilter.py" line="60" />
         <source>Crops a LAS/LAZ cloud and classifies ground (class 2) with CSF or SMRF, PDAL or built-in.</source>
         <translation>Recorta una nube LAS/LAZ y clasifica el suelo (clase 2) con CSF o SMRF, mediante PDAL o el motor integrado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="61" />
-        <source>Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless &lt;i&gt;Reset existing classes&lt;/i&gt; is checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are written unchanged.&lt;br&gt;&lt;br&gt;&lt;b&gt;Crop&lt;/b&gt;: polygons (grown by the crop buffer), or points and lines such as the panorama stations or detection rays, buffered into a corridor. The crop layer is reprojected to the cloud's CRS.&lt;br&gt;&lt;br&gt;&lt;b&gt;Engine&lt;/b&gt;: PDAL runs filters.csf / filters.smrf through its Python bindings or the &lt;i&gt;pdal&lt;/i&gt; executable (on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign inventory); the built-in engine runs the same filters in Python, tile by tile, so clouds larger than memory work. Auto uses PDAL when present and falls back to the built-in engine if PDAL fails, saying so in the log.</source>
-        <translation>Lee la nube LAS/LAZ por bloques, conserva los puntos dentro del área de recorte y clasifica los puntos de suelo como clase 2 con el filtro de simulación de tela (CSF, Zhang et al. 2016) o el filtro morfológico simple (SMRF, Pingel et al. 2013), con los parámetros de PDAL (valores por defecto ajustados para nubes densas de cartografía móvil: umbral de 0,2 m, celdas de 0,5 m; los de PDAL son 0,5 m y 1 m). Las demás clases se conservan salvo que se marque &lt;i&gt;Restablecer las clases existentes&lt;/i&gt;. Todas las dimensiones, los bytes extra, los VLR, las escalas y desplazamientos y el SRC se escriben sin cambios.&lt;br&gt;&lt;br&gt;&lt;b&gt;Recorte&lt;/b&gt;: polígonos (ampliados con el búfer de recorte), o puntos y líneas como las estaciones de panorama o los rayos de detección, convertidos en un corredor mediante un búfer. La capa de recorte se reproyecta al SRC de la nube.&lt;br&gt;&lt;br&gt;&lt;b&gt;Motor&lt;/b&gt;: PDAL ejecuta filters.csf / filters.smrf mediante sus enlaces de Python o el ejecutable &lt;i&gt;pdal&lt;/i&gt; (en el PATH, en la carpeta bin de QGIS o configurado en Procesos ▸ Opciones ▸ Proveedores ▸ Inventario de señales viales); el motor integrado ejecuta los mismos filtros en Python, tesela a tesela, por lo que funciona con nubes más grandes que la memoria. Automático usa PDAL si está presente y recurre al motor integrado si PDAL falla, indicándolo en el registro.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/groundfilter.py" line="78" />
+        <location filename="../algorithms/groundfilter.py" line="87" />
         <source>Point cloud (LAS/LAZ)</source>
         <translation>Nube de puntos (LAS/LAZ)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="78" />
+        <location filename="../algorithms/groundfilter.py" line="87" />
         <source>The mobile-mapping cloud, LAS 1.2-1.4 or LAZ, any size (it is read in chunks).</source>
         <translation>La nube de cartografía móvil, LAS 1.2-1.4 o LAZ, de cualquier tamaño (se lee por bloques).</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="81" />
+        <location filename="../algorithms/groundfilter.py" line="90" />
         <source>Crop layer (optional)</source>
         <translation>Capa de recorte (opcional)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="81" />
+        <location filename="../algorithms/groundfilter.py" line="90" />
         <source>Keep only points inside these polygons, or within the crop buffer of these points or lines (e.g. the panorama stations). Empty keeps the whole cloud.</source>
         <translation>Conserva solo los puntos dentro de estos polígonos, o dentro del búfer de recorte de estos puntos o líneas (p. ej. las estaciones de panorama). Vacío conserva la nube entera.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="85" />
+        <location filename="../algorithms/groundfilter.py" line="94" />
         <source>Crop buffer (m)</source>
         <translation>Búfer de recorte (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="85" />
+        <location filename="../algorithms/groundfilter.py" line="94" />
         <source>Grow the crop geometries by this many metres; needed (&gt; 0) for a point or line layer.</source>
         <translation>Amplía las geometrías de recorte en estos metros; necesario (&gt; 0) para una capa de puntos o de líneas.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="89" />
+        <location filename="../algorithms/groundfilter.py" line="98" />
         <source>Ground method</source>
         <translation>Método de suelo</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="89" />
+        <location filename="../algorithms/groundfilter.py" line="98" />
         <source>CSF (cloth simulation)</source>
         <translation>CSF (simulación de tela)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="89" />
+        <location filename="../algorithms/groundfilter.py" line="98" />
         <source>SMRF (simple morphological filter)</source>
         <translation>SMRF (filtro morfológico simple)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="89" />
+        <location filename="../algorithms/groundfilter.py" line="98" />
         <source>CSF suits roads and gentle terrain; SMRF suits steeper or rougher terrain.</source>
         <translation>CSF es adecuado para calles y terreno suave; SMRF, para terreno más empinado o accidentado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="93" />
+        <location filename="../algorithms/groundfilter.py" line="102" />
         <source>Engine</source>
         <translation>Motor</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="93" />
+        <location filename="../algorithms/groundfilter.py" line="102" />
         <source>Auto (PDAL when available, else built-in)</source>
         <translation>Automático (PDAL si está disponible; si no, el integrado)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="93" />
+        <location filename="../algorithms/groundfilter.py" line="102" />
         <source>PDAL</source>
         <translation>PDAL</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="93" />
+        <location filename="../algorithms/groundfilter.py" line="102" />
         <source>Built-in</source>
         <translation>Integrado</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="93" />
+        <location filename="../algorithms/groundfilter.py" line="102" />
         <source>Auto: PDAL when QGIS has it (Python bindings or the pdal executable), else built-in.</source>
         <translation>Automático: PDAL cuando QGIS lo tiene (enlaces de Python o el ejecutable pdal); si no, el integrado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="98" />
+        <location filename="../algorithms/groundfilter.py" line="107" />
         <source>Ground distance threshold (m)</source>
         <translation>Umbral de distancia al suelo (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="98" />
+        <location filename="../algorithms/groundfilter.py" line="107" />
         <source>Points within this height of the ground surface are ground (PDAL's threshold option). PDAL's default is 0.5 m; 0.2 m suits dense mobile-mapping clouds, where it keeps the lowest parts of cars, walls and street furniture off the ground class.</source>
         <translation>Los puntos a menos de esta altura de la superficie del suelo son suelo (opción threshold de PDAL). El valor por defecto de PDAL es 0,5 m; 0,2 m es adecuado para nubes densas de cartografía móvil, en las que deja fuera de la clase suelo las partes más bajas de coches, muros y mobiliario urbano.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="104" />
+        <location filename="../algorithms/groundfilter.py" line="113" />
         <source>Cloth resolution / cell size (m)</source>
         <translation>Resolución de la tela / tamaño de celda (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="104" />
+        <location filename="../algorithms/groundfilter.py" line="113" />
         <source>CSF's cloth resolution or SMRF's cell size, in metres (PDAL's default: 1 m).</source>
         <translation>Resolución de la tela de CSF o tamaño de celda de SMRF, en metros (valor por defecto de PDAL: 1 m).</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="108" />
+        <location filename="../algorithms/groundfilter.py" line="117" />
         <source>Cloud CRS (when the file has none)</source>
         <translation>SRC de la nube (si el archivo no tiene)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="108" />
+        <location filename="../algorithms/groundfilter.py" line="117" />
         <source>The cloud's CRS if the file does not record one; a CRS in the file is replaced by it. The CRS is never guessed.</source>
         <translation>El SRC de la nube si el archivo no registra ninguno; un SRC presente en el archivo se sustituye por este. El SRC nunca se adivina.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="112" />
+        <location filename="../algorithms/groundfilter.py" line="121" />
         <source>Reset existing classes</source>
         <translation>Restablecer las clases existentes</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="112" />
+        <location filename="../algorithms/groundfilter.py" line="121" />
         <source>Set every non-ground point to class 1 (unclassified) instead of keeping its class.</source>
         <translation>Asigna la clase 1 (sin clasificar) a todos los puntos que no son suelo en lugar de conservar su clase.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="116" />
+        <location filename="../algorithms/groundfilter.py" line="130" />
         <source>Ground-classified cloud</source>
         <translation>Nube con suelo clasificado</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="116" />
+        <location filename="../algorithms/groundfilter.py" line="130" />
         <source>LAZ (*.laz);;LAS (*.las)</source>
         <translation>LAZ (*.laz);;LAS (*.las)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="116" />
-        <source>The cropped cloud with ground as class 2; LAZ or LAS by the file extension.</source>
-        <translation>La nube recortada con el suelo como clase 2; LAZ o LAS según la extensión del archivo.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/groundfilter.py" line="119" />
+        <location filename="../algorithms/groundfilter.py" line="135" />
         <source>Engine that ran</source>
         <translation>Motor utilizado</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="120" />
+        <location filename="../algorithms/groundfilter.py" line="136" />
         <source>Points read</source>
         <translation>Puntos leídos</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="121" />
+        <location filename="../algorithms/groundfilter.py" line="137" />
         <source>Points written</source>
         <translation>Puntos escritos</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="122" />
+        <location filename="../algorithms/groundfilter.py" line="138" />
         <source>Ground points</source>
         <translation>Puntos de suelo</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="132" />
+        <location filename="../algorithms/groundfilter.py" line="148" />
         <source>The crop layer holds points or lines: give a crop buffer in metres (&gt; 0) to make a corridor around them</source>
         <translation>La capa de recorte contiene puntos o líneas: indique un búfer de recorte en metros (&gt; 0) para formar un corredor a su alrededor</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="137" />
+        <location filename="../algorithms/groundfilter.py" line="153" />
         <source>Reprojecting the crop layer from {} to {}</source>
         <translation>Reproyectando la capa de recorte de {} a {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="225" />
+        <location filename="../algorithms/groundfilter.py" line="254" />
         <source>Engine: {}; method: {}; {} points read, {} written, {} ground</source>
         <translation>Motor: {}; método: {}; {} puntos leídos, {} escritos, {} de suelo</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="143" />
+        <location filename="../algorithms/groundfilter.py" line="159" />
         <source>Cancelled: nothing was written.</source>
         <translation>Cancelado: no se escribió nada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="152" />
+        <location filename="../algorithms/groundfilter.py" line="168" />
         <source>The crop layer {} has no feature: nothing to crop by. Leave the crop layer empty to process the whole cloud</source>
         <translation>La capa de recorte {} no tiene entidades: no hay nada con qué recortar. Deje vacía la capa de recorte para procesar toda la nube</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="156" />
+        <location filename="../algorithms/groundfilter.py" line="172" />
         <source>The crop layer {} has no geometry (its {} features are empty): nothing to crop by</source>
         <translation>La capa de recorte {} no tiene geometría (sus {} entidades están vacías): no hay nada con qué recortar</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="169" />
+        <location filename="../algorithms/groundfilter.py" line="187" />
         <source>The crop area (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}) does not overlap the point cloud {} (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}): nothing would be kept</source>
         <translation>El área de recorte (x {:.1f} a {:.1f}, y {:.1f} a {:.1f}) no se superpone con la nube de puntos {} (x {:.1f} a {:.1f}, y {:.1f} a {:.1f}): no se conservaría nada</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="182" />
+        <location filename="../algorithms/groundfilter.py" line="200" />
         <source>PDAL said: {}</source>
         <translation>PDAL dijo: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="183" />
+        <location filename="../algorithms/groundfilter.py" line="201" />
         <source>PDAL failed: {}</source>
         <translation>PDAL falló: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="195" />
+        <location filename="../algorithms/groundfilter.py" line="222" />
         <source>The output {} must not be the input file</source>
         <translation>La salida {} no debe ser el archivo de entrada</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="64" />
+        <source>Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless &lt;i&gt;Reset existing classes&lt;/i&gt; is checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are written unchanged.&lt;br&gt;&lt;br&gt;&lt;b&gt;Crop&lt;/b&gt;: polygons (grown by the crop buffer), or points and lines such as the panorama stations or detection rays, buffered into a corridor. The crop layer is reprojected to the cloud's CRS.&lt;br&gt;&lt;br&gt;&lt;b&gt;Engine&lt;/b&gt;: PDAL runs filters.csf / filters.smrf through its Python bindings or the &lt;i&gt;pdal&lt;/i&gt; executable (on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign inventory); the built-in engine runs the same filters in Python, tile by tile, so clouds larger than memory work. Auto uses PDAL when present and falls back to the built-in engine if PDAL fails, saying so in the log.&lt;br&gt;&lt;br&gt;&lt;b&gt;Tiles&lt;/b&gt;: the input may be one LAS/LAZ file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc); PDAL classifies a single file, tiles go to the built-in engine. They are written to one file, or, with &lt;i&gt;Write one tile per input tile&lt;/i&gt;, each to a file of its own name in a folder named after the output (out/ground.laz gives the folder out/ground), with a virtual point cloud listing them (out/ground/ground.vpc, the output to give the next stages). Each tile is classified with its neighbours' points around it, so the classes at tile edges are those of a run on the whole cloud.</source>
+        <translation>Lee la nube LAS/LAZ por bloques, conserva los puntos dentro del área de recorte y clasifica los puntos de suelo como clase 2 con el filtro de simulación de tela (CSF, Zhang et al. 2016) o el filtro morfológico simple (SMRF, Pingel et al. 2013), con los parámetros de PDAL (valores por defecto ajustados para nubes densas de cartografía móvil: umbral de 0,2 m, celdas de 0,5 m; los de PDAL son 0,5 m y 1 m). Las demás clases se conservan salvo que se marque &lt;i&gt;Restablecer las clases existentes&lt;/i&gt;. Todas las dimensiones, los bytes extra, los VLR, las escalas y desplazamientos y el SRC se escriben sin cambios.&lt;br&gt;&lt;br&gt;&lt;b&gt;Recorte&lt;/b&gt;: polígonos (ampliados con el búfer de recorte), o puntos y líneas como las estaciones de panorama o los rayos de detección, convertidos en un corredor mediante un búfer. La capa de recorte se reproyecta al SRC de la nube.&lt;br&gt;&lt;br&gt;&lt;b&gt;Motor&lt;/b&gt;: PDAL ejecuta filters.csf / filters.smrf mediante sus enlaces de Python o el ejecutable &lt;i&gt;pdal&lt;/i&gt; (en el PATH, en la carpeta bin de QGIS o configurado en Procesos ▸ Opciones ▸ Proveedores ▸ Inventario de señales viales); el motor integrado ejecuta los mismos filtros en Python, tesela a tesela, por lo que funciona con nubes más grandes que la memoria. Automático usa PDAL si está presente y recurre al motor integrado si PDAL falla, indicándolo en el registro.&lt;br&gt;&lt;br&gt;&lt;b&gt;Teselas&lt;/b&gt;: la entrada puede ser un archivo LAS/LAZ, una carpeta de teselas LAS/LAZ o una nube de puntos virtual (.vpc); PDAL clasifica un único archivo, las teselas van al motor integrado. Se escriben en un solo archivo o, con &lt;i&gt;Escribir una tesela por cada tesela de entrada&lt;/i&gt;, cada una en un archivo con su propio nombre dentro de una carpeta que lleva el nombre de la salida (out/ground.laz da la carpeta out/ground), con una nube de puntos virtual que las enumera (out/ground/ground.vpc, la salida que se da a las etapas siguientes). Cada tesela se clasifica con los puntos de sus vecinas a su alrededor, de modo que las clases en los bordes de las teselas son las de una ejecución sobre la nube entera.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="125" />
+        <source>Write one tile per input tile</source>
+        <translation>Escribir una tesela por cada tesela de entrada</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="125" />
+        <source>Write each input tile to its own file (same name, same header) in a folder named after the output, with a virtual point cloud (.vpc) listing them, instead of one file. Uses the built-in engine.</source>
+        <translation>Escribe cada tesela de entrada en su propio archivo (mismo nombre, misma cabecera) dentro de una carpeta que lleva el nombre de la salida, con una nube de puntos virtual (.vpc) que las enumera, en lugar de un solo archivo. Usa el motor integrado.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="130" />
+        <source>The cropped cloud with ground as class 2; LAZ or LAS by the file extension. With one tile per input tile: the folder of this name without its extension gets the tiles and &lt;name&gt;.vpc, which is then this output.</source>
+        <translation>La nube recortada con el suelo como clase 2; LAZ o LAS según la extensión del archivo. Con una tesela por cada tesela de entrada: la carpeta con este nombre sin su extensión recibe las teselas y &lt;name&gt;.vpc, que pasa a ser esta salida.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="244" />
+        <source>Writing one tile per input tile to the folder {}, listed in {}</source>
+        <translation>Escribiendo una tesela por cada tesela de entrada en la carpeta {}, enumeradas en {}</translation>
     </message>
 </context>
 <context>
@@ -1398,7 +1518,7 @@
         <translation>Las detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="84" />
+        <location filename="../algorithms/projectdetections.py" line="85" />
         <source>{} detections: {} with a surface in the cloud, {} without</source>
         <translation>{} detecciones: {} con superficie en la nube, {} sin ella</translation>
     </message>
@@ -1416,500 +1536,525 @@
 <context>
     <name>RefineSigns</name>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="43" />
+        <location filename="../algorithms/refinesigns.py" line="46" />
         <source>Refine and merge signs</source>
         <translation>Refinar y fusionar señales</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="46" />
+        <location filename="../algorithms/refinesigns.py" line="49" />
         <source>Merges the views of each sign and refines it in the cloud: the sign layer.</source>
         <translation>Fusiona las vistas de cada señal y la refina en la nube: la capa de señales.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="49" />
-        <source>Groups the candidates of different panoramas that are the same physical sign (same class, within the merge radius, plane normals agreeing; panels stacked on one pole stay apart), then refines each sign in the cloud: Euclidean clustering, an intensity filter whose threshold adapts to the cloud (Otsu), a near-vertical RANSAC plane and PCA dimensionality to keep the panel and drop the pole.&lt;br&gt;&lt;br&gt;Each sign gets its panel centre, width and panel height, the azimuth its face looks towards (clockwise from grid north), its height above the ground directly below (class-2 points near the sign; the log names any fallback), the bottom height, the number of views and points, the images it was seen in and the best of them (closest, most frontal), the mean intensity and planarity. A sign seen in two or more panoramas but with no cloud points is placed by triangulating its rays (position_source = image).&lt;br&gt;&lt;br&gt;Optional outputs: panel outlines (PolygonZ) and the sign points (LAS/LAZ).&lt;br&gt;&lt;br&gt;&lt;b&gt;Review&lt;/b&gt;: with the panorama folder, each sign gets an image chip from its best panorama (its box with a margin, undistorted), written into a folder beside the sign layer and linked by the &lt;i&gt;chip&lt;/i&gt; field (a relative path); the review report shows every sign's chip and attributes. The sign layer is styled with a symbol per class and its height as label (a .qml file beside it).</source>
-        <translation>Agrupa los candidatos de distintos panoramas que son la misma señal física (misma clase, dentro del radio de fusión, normales de plano concordantes; los paneles apilados en un mismo poste se mantienen separados) y después refina cada señal en la nube: agrupamiento euclidiano, un filtro de intensidad cuyo umbral se adapta a la nube (Otsu), un plano RANSAC casi vertical y la dimensionalidad PCA para conservar el panel y descartar el poste.&lt;br&gt;&lt;br&gt;Cada señal obtiene el centro de su panel, el ancho y el alto del panel, el acimut hacia el que mira su cara (en sentido horario desde el norte de cuadrícula), su altura sobre el suelo justo debajo (puntos de clase 2 cerca de la señal; el registro indica cualquier alternativa usada), la altura inferior, el número de vistas y de puntos, las imágenes en las que se vio y la mejor de ellas (la más cercana y frontal), la intensidad media y la planaridad. Una señal vista en dos o más panoramas pero sin puntos en la nube se sitúa triangulando sus rayos (position_source = image).&lt;br&gt;&lt;br&gt;Salidas opcionales: contornos de los paneles (PolygonZ) y los puntos de las señales (LAS/LAZ).&lt;br&gt;&lt;br&gt;&lt;b&gt;Revisión&lt;/b&gt;: con la carpeta de panoramas, cada señal obtiene una miniatura de su mejor panorama (su recuadro con un margen, sin distorsión), escrita en una carpeta junto a la capa de señales y enlazada por el campo &lt;i&gt;chip&lt;/i&gt; (una ruta relativa); el informe de revisión muestra la miniatura y los atributos de cada señal. La capa de señales se simboliza con un símbolo por clase y su altura como etiqueta (un archivo .qml a su lado).</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/refinesigns.py" line="116" />
+        <location filename="../algorithms/refinesigns.py" line="143" />
         <source>Sign candidates</source>
         <translation>Candidatos de señal</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="69" />
+        <location filename="../algorithms/refinesigns.py" line="82" />
         <source>The output of Project detections.</source>
         <translation>La salida de «Proyectar detecciones en la nube de puntos».</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="72" />
+        <location filename="../algorithms/refinesigns.py" line="85" />
         <source>Ground-classified point cloud (LAS/LAZ)</source>
         <translation>Nube de puntos con suelo clasificado (LAS/LAZ)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="72" />
+        <location filename="../algorithms/refinesigns.py" line="85" />
         <source>The same cloud as for Project detections (ground as class 2).</source>
         <translation>La misma nube que para «Proyectar detecciones en la nube de puntos» (suelo como clase 2).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="75" />
+        <location filename="../algorithms/refinesigns.py" line="88" />
         <source>Merge radius (m)</source>
         <translation>Radio de fusión (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="75" />
+        <location filename="../algorithms/refinesigns.py" line="88" />
         <source>Candidates of the same class closer than this (metres) with agreeing plane normals are taken as one sign.</source>
         <translation>Los candidatos de la misma clase más cercanos que esto (metros) y con normales de plano concordantes se toman como una sola señal.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="79" />
+        <location filename="../algorithms/refinesigns.py" line="104" />
         <source>Panorama folder (for review chips)</source>
         <translation>Carpeta de panoramas (para las miniaturas de revisión)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="79" />
+        <location filename="../algorithms/refinesigns.py" line="104" />
         <source>The folder of the panoramas (as for Import trajectory). When given, an image chip of each sign is cut from its best panorama for review.</source>
         <translation>La carpeta de los panoramas (como para «Importar trayectoria y panoramas»). Si se indica, se recorta una miniatura de cada señal de su mejor panorama para la revisión.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="87" />
+        <location filename="../algorithms/refinesigns.py" line="112" />
         <source>Signs</source>
         <translation>Señales</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="87" />
+        <location filename="../algorithms/refinesigns.py" line="112" />
         <source>PointZ sign layer at the panel centres (fields in docs/formats.md), and chip: the relative path of the sign's review picture.</source>
         <translation>Capa de señales PointZ en los centros de los paneles (campos en docs/formats.md), y chip: la ruta relativa de la imagen de revisión de la señal.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="91" />
+        <location filename="../algorithms/refinesigns.py" line="116" />
         <source>Panel outlines</source>
         <translation>Contornos de los paneles</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="91" />
+        <location filename="../algorithms/refinesigns.py" line="116" />
         <source>PolygonZ layer of each panel's rectangle in its plane (signs placed from the cloud).</source>
         <translation>Capa PolygonZ con el rectángulo de cada panel en su plano (señales situadas a partir de la nube).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="95" />
+        <location filename="../algorithms/refinesigns.py" line="120" />
         <source>Sign points</source>
         <translation>Puntos de las señales</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="95" />
+        <location filename="../algorithms/refinesigns.py" line="120" />
         <source>LAZ (*.laz);;LAS (*.las)</source>
         <translation>LAZ (*.laz);;LAS (*.las)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="95" />
+        <location filename="../algorithms/refinesigns.py" line="120" />
         <source>A LAS/LAZ file of the points of every sign panel, all dimensions kept.</source>
         <translation>Un archivo LAS/LAZ con los puntos de cada panel de señal, con todas las dimensiones.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="98" />
+        <location filename="../algorithms/refinesigns.py" line="123" />
         <source>Review report</source>
         <translation>Informe de revisión</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="98" />
+        <location filename="../algorithms/refinesigns.py" line="123" />
         <source>HTML files (*.html)</source>
         <translation>Archivos HTML (*.html)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="98" />
+        <location filename="../algorithms/refinesigns.py" line="123" />
         <source>An HTML page with every sign's chip and attributes, to confirm signs without opening panoramas (needs the panorama folder).</source>
         <translation>Una página HTML con la miniatura y los atributos de cada señal, para confirmar las señales sin abrir los panoramas (necesita la carpeta de panoramas).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="114" />
+        <location filename="../algorithms/refinesigns.py" line="141" />
         <source>The candidates</source>
         <translation>Los candidatos</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="141" />
+        <location filename="../algorithms/refinesigns.py" line="172" />
         <source>The review report needs the panorama folder: not written.</source>
         <translation>El informe de revisión necesita la carpeta de panoramas: no se escribió.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="147" />
+        <location filename="../algorithms/refinesigns.py" line="178" />
         <source>{} sign points written to {}</source>
         <translation>{} puntos de señales escritos en {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="172" />
+        <location filename="../algorithms/refinesigns.py" line="203" />
         <source>{} signs from {} candidates ({})</source>
         <translation>{} señales a partir de {} candidatos ({})</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="182" />
+        <location filename="../algorithms/refinesigns.py" line="213" />
         <source>Review chips need a sign layer written to a file: skipped.</source>
         <translation>Las miniaturas de revisión necesitan una capa de señales escrita en un archivo: se omiten.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="195" />
+        <location filename="../algorithms/refinesigns.py" line="226" />
         <source>Road signs for review</source>
         <translation>Señales viales para revisión</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="197" />
+        <location filename="../algorithms/refinesigns.py" line="228" />
         <source>{} review chips in {}</source>
         <translation>{} miniaturas de revisión en {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="83" />
+        <location filename="../algorithms/refinesigns.py" line="108" />
         <source>Cloud CRS (when the file has none)</source>
         <translation>SRC de la nube (si el archivo no tiene)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="83" />
+        <location filename="../algorithms/refinesigns.py" line="108" />
         <source>The cloud's CRS when the file records none (it must be the candidates' CRS); it overrides a CRS in the file. The CRS is never guessed.</source>
         <translation>El SRC de la nube cuando el archivo no registra ninguno (debe ser el SRC de los candidatos); sustituye al SRC del archivo. El SRC nunca se adivina.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="120" />
+        <location filename="../algorithms/refinesigns.py" line="148" />
         <source>Panorama folder not found: {}</source>
         <translation>No se encontró la carpeta de panoramas: {}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="52" />
+        <source>Groups the candidates of different panoramas that are the same physical sign (same class, within the merge radius, plane normals agreeing; panels stacked on one pole stay apart), then refines each sign in the cloud: Euclidean clustering, an intensity filter whose threshold adapts to the cloud (Otsu), a near-vertical RANSAC plane and PCA dimensionality to keep the panel and drop the pole.&lt;br&gt;&lt;br&gt;Each sign gets its panel centre, width and panel height, the azimuth its face looks towards (clockwise from grid north), its height above the ground directly below (class-2 points near the sign; the log names any fallback), the bottom height, the number of views and points, the images it was seen in and the best of them (closest, most frontal), the mean intensity and planarity. A sign seen in two or more panoramas but with no cloud points is placed by triangulating its rays (position_source = image).&lt;br&gt;&lt;br&gt;Optional outputs: panel outlines (PolygonZ) and the sign points (LAS/LAZ).&lt;br&gt;&lt;br&gt;&lt;b&gt;Review&lt;/b&gt;: with the panorama folder, each sign gets an image chip from its best panorama (its box with a margin, undistorted), written into a folder beside the sign layer and linked by the &lt;i&gt;chip&lt;/i&gt; field (a relative path); the review report shows every sign's chip and attributes. The sign layer is styled with a symbol per class and its height as label (a .qml file beside it).&lt;br&gt;&lt;br&gt;&lt;b&gt;Sign codes&lt;/b&gt;: the codes Detect signs read in the views of a sign are put to a vote, each view weighing its detection score x its crop size x the code's probability. The sign gets &lt;i&gt;code&lt;/i&gt; (empty when the vote says &lt;i&gt;other&lt;/i&gt; or the support is below the minimum code confidence), &lt;i&gt;code_name&lt;/i&gt; (from the codes table), &lt;i&gt;code_score&lt;/i&gt; (the support: the code's share of the vote x its mean probability) and &lt;i&gt;code_views&lt;/i&gt;. When the code's class (codes table) is not the class vote's, the better supported one wins: the code's support against the class's (its share of the score-weighted class vote x its views' mean detection score); &lt;i&gt;code_check&lt;/i&gt; says &lt;i&gt;class_from_code&lt;/i&gt; (the class was taken from the code) or &lt;i&gt;code_dropped&lt;/i&gt; (the code was emptied). The label shows the code's name, or the figure of a speed limit.</source>
+        <translation>Agrupa los candidatos de distintos panoramas que son la misma señal física (misma clase, dentro del radio de fusión, normales de plano concordantes; los paneles apilados en un mismo poste se mantienen separados) y después refina cada señal en la nube: agrupamiento euclidiano, un filtro de intensidad cuyo umbral se adapta a la nube (Otsu), un plano RANSAC casi vertical y la dimensionalidad PCA para conservar el panel y descartar el poste.&lt;br&gt;&lt;br&gt;Cada señal obtiene el centro de su panel, el ancho y el alto del panel, el acimut hacia el que mira su cara (en sentido horario desde el norte de cuadrícula), su altura sobre el suelo justo debajo (puntos de clase 2 cerca de la señal; el registro indica cualquier alternativa usada), la altura inferior, el número de vistas y de puntos, las imágenes en las que se vio y la mejor de ellas (la más cercana y frontal), la intensidad media y la planaridad. Una señal vista en dos o más panoramas pero sin puntos en la nube se sitúa triangulando sus rayos (position_source = image).&lt;br&gt;&lt;br&gt;Salidas opcionales: contornos de los paneles (PolygonZ) y los puntos de las señales (LAS/LAZ).&lt;br&gt;&lt;br&gt;&lt;b&gt;Revisión&lt;/b&gt;: con la carpeta de panoramas, cada señal obtiene una miniatura de su mejor panorama (su recuadro con un margen, sin distorsión), escrita en una carpeta junto a la capa de señales y enlazada por el campo &lt;i&gt;chip&lt;/i&gt; (una ruta relativa); el informe de revisión muestra la miniatura y los atributos de cada señal. La capa de señales se simboliza con un símbolo por clase y su altura como etiqueta (un archivo .qml a su lado).&lt;br&gt;&lt;br&gt;&lt;b&gt;Códigos de señal&lt;/b&gt;: los códigos que «Detectar señales en panoramas» leyó en las vistas de una señal se someten a votación, y cada vista pesa su puntuación de detección x el tamaño de su recorte x la probabilidad del código. La señal obtiene &lt;i&gt;code&lt;/i&gt; (vacío cuando la votación dice &lt;i&gt;other&lt;/i&gt; o el apoyo queda por debajo de la confianza mínima de código), &lt;i&gt;code_name&lt;/i&gt; (de la tabla de códigos), &lt;i&gt;code_score&lt;/i&gt; (el apoyo: la proporción del código en la votación x su probabilidad media) y &lt;i&gt;code_views&lt;/i&gt;. Cuando la clase del código (tabla de códigos) no es la de la votación de clase, gana la que tiene más apoyo: el apoyo del código frente al de la clase (su proporción en la votación de clase ponderada por la puntuación x la puntuación de detección media de sus vistas); &lt;i&gt;code_check&lt;/i&gt; indica &lt;i&gt;class_from_code&lt;/i&gt; (la clase se tomó del código) o &lt;i&gt;code_dropped&lt;/i&gt; (el código se vació). La etiqueta muestra el nombre del código, o la cifra de un límite de velocidad.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="92" />
+        <source>Minimum code confidence</source>
+        <translation>Confianza mínima de código</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="92" />
+        <source>A sign's voted code is kept when its support (its share of the views' weighted vote x the mean probability the classifier gave it, 0-1: the code_score field) is at least this; else the code field stays empty. 0 keeps every code but 'other'.</source>
+        <translation>El código votado de una señal se conserva cuando su apoyo (su proporción en la votación ponderada de las vistas x la probabilidad media que le dio el clasificador, 0-1: el campo code_score) es al menos este valor; si no, el campo code queda vacío. 0 conserva todos los códigos salvo 'other'.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="98" />
+        <source>Sign codes table (empty: the bundled one)</source>
+        <translation>Tabla de códigos de señal (vacío: la incluida)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="98" />
+        <source>The codes table the classifier of Detect signs was run with: it gives each code its name (code_name) and its class (for the class check). Format in models/README.md; empty uses the bundled table of German codes (models/sign-codes-de.csv).</source>
+        <translation>La tabla de códigos con la que se ejecutó el clasificador de «Detectar señales en panoramas»: da a cada código su nombre (code_name) y su clase (para la comprobación de clase). Formato en models/README.md; vacío usa la tabla incluida de códigos alemanes (models/sign-codes-de.csv).</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="98" />
+        <source>CSV files (*.csv *.txt);;All files (*.*)</source>
+        <translation>Archivos CSV (*.csv *.txt);;Todos los archivos (*.*)</translation>
     </message>
 </context>
 <context>
     <name>ReviewPanel</name>
     <message>
-        <location filename="../gui/reviewpanel.py" line="718" />
+        <location filename="../gui/reviewpanel.py" line="723" />
         <source>Sign review</source>
         <translation>Revisión de señales</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="144" />
+        <location filename="../gui/reviewpanel.py" line="145" />
         <source>The sign layer to review (the output of Refine and merge signs, or any point layer with the sign fields).</source>
         <translation>La capa de señales a revisar (la salida de Refinar y fusionar señales, o cualquier capa de puntos con los campos de señal).</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="146" />
+        <location filename="../gui/reviewpanel.py" line="147" />
         <source>Signs</source>
         <translation>Señales</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="150" />
+        <location filename="../gui/reviewpanel.py" line="151" />
         <source>The panorama stations of the drive: with them the panel cuts the sign from every panorama that saw it.</source>
         <translation>Las estaciones de panorama del recorrido: con ellas el panel recorta la señal de cada panorama que la vio.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="152" />
+        <location filename="../gui/reviewpanel.py" line="153" />
         <source>Stations</source>
         <translation>Estaciones</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="155" />
+        <location filename="../gui/reviewpanel.py" line="156" />
         <source>The panorama folder; empty: the path field of the stations layer.</source>
         <translation>La carpeta de panoramas; vacía: el campo path de la capa de estaciones.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="156" />
+        <location filename="../gui/reviewpanel.py" line="157" />
         <source>Panoramas</source>
         <translation>Panoramas</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="709" />
+        <location filename="../gui/reviewpanel.py" line="714" />
         <source>Sign</source>
         <translation>Señal</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="179" />
+        <location filename="../gui/reviewpanel.py" line="180" />
         <source>Class</source>
         <translation>Clase</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="179" />
+        <location filename="../gui/reviewpanel.py" line="180" />
         <source>Code</source>
         <translation>Código</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="179" />
+        <location filename="../gui/reviewpanel.py" line="180" />
         <source>Confidence</source>
         <translation>Confianza</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="179" />
+        <location filename="../gui/reviewpanel.py" line="180" />
         <source>Condition</source>
         <translation>Estado</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="179" />
+        <location filename="../gui/reviewpanel.py" line="180" />
         <source>Sources</source>
         <translation>Fuentes</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="179" />
+        <location filename="../gui/reviewpanel.py" line="180" />
         <source>Panel</source>
         <translation>Panel</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="179" />
+        <location filename="../gui/reviewpanel.py" line="180" />
         <source>Review</source>
         <translation>Revisión</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="193" />
+        <location filename="../gui/reviewpanel.py" line="194" />
         <source>The sign's class: pick or type another one, then Change.</source>
         <translation>La clase de la señal: elija o escriba otra y pulse Cambiar.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="195" />
+        <location filename="../gui/reviewpanel.py" line="196" />
         <source>code</source>
         <translation>código</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="196" />
+        <location filename="../gui/reviewpanel.py" line="197" />
         <source>The sign's code (e.g. 206): type it, then Enter or Change.</source>
         <translation>El código de la señal (p. ej. 206): escríbalo y pulse Intro o Cambiar.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="203" />
+        <location filename="../gui/reviewpanel.py" line="204" />
         <source>Accept (A)</source>
         <translation>Aceptar (A)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="203" />
+        <location filename="../gui/reviewpanel.py" line="204" />
         <source>A real sign, class and code right: next sign.</source>
         <translation>Una señal real, con clase y código correctos: siguiente señal.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="205" />
+        <location filename="../gui/reviewpanel.py" line="206" />
         <source>Reject (R)</source>
         <translation>Rechazar (R)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="205" />
+        <location filename="../gui/reviewpanel.py" line="206" />
         <source>Not a sign, or a duplicate: next sign.</source>
         <translation>No es una señal, o es un duplicado: siguiente señal.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="207" />
+        <location filename="../gui/reviewpanel.py" line="208" />
         <source>Change (C)</source>
         <translation>Cambiar (C)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="207" />
+        <location filename="../gui/reviewpanel.py" line="208" />
         <source>A real sign with the class and code above: next sign.</source>
         <translation>Una señal real con la clase y el código de arriba: siguiente señal.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="209" />
+        <location filename="../gui/reviewpanel.py" line="210" />
         <source>Look again (L)</source>
         <translation>Volver a mirar (L)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="209" />
+        <location filename="../gui/reviewpanel.py" line="210" />
         <source>Needs another look: next sign.</source>
         <translation>Hay que volver a mirarla: siguiente señal.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="211" />
+        <location filename="../gui/reviewpanel.py" line="212" />
         <source>Previous (P)</source>
         <translation>Anterior (P)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="211" />
+        <location filename="../gui/reviewpanel.py" line="212" />
         <source>The sign before this one.</source>
         <translation>La señal anterior a esta.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="213" />
+        <location filename="../gui/reviewpanel.py" line="214" />
         <source>Next unreviewed (N)</source>
         <translation>Siguiente sin revisar (N)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="213" />
+        <location filename="../gui/reviewpanel.py" line="214" />
         <source>The next sign without a verdict.</source>
         <translation>La siguiente señal sin veredicto.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="215" />
+        <location filename="../gui/reviewpanel.py" line="216" />
         <source>Panorama view (V)</source>
         <translation>Vista del panorama (V)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="215" />
+        <location filename="../gui/reviewpanel.py" line="216" />
         <source>The panorama around the sign, from its best panorama.</source>
         <translation>El panorama alrededor de la señal, desde su mejor panorama.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="217" />
+        <location filename="../gui/reviewpanel.py" line="218" />
         <source>Undo (U)</source>
         <translation>Deshacer (U)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="217" />
+        <location filename="../gui/reviewpanel.py" line="218" />
         <source>Undo the last verdict given here.</source>
         <translation>Deshace el último veredicto dado aquí.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="219" />
+        <location filename="../gui/reviewpanel.py" line="220" />
         <source>Save edits</source>
         <translation>Guardar ediciones</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="219" />
+        <location filename="../gui/reviewpanel.py" line="220" />
         <source>Write the verdicts to the layer's file.</source>
         <translation>Escribe los veredictos en el archivo de la capa.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="302" />
+        <location filename="../gui/reviewpanel.py" line="303" />
         <source>Choose a sign layer to review.</source>
         <translation>Elija una capa de señales para revisar.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="268" />
+        <location filename="../gui/reviewpanel.py" line="269" />
         <source>The layer {layer} lacks the field(s) {missing}. The review needs a sign layer with the fields {required} (the output of Refine and merge signs).</source>
         <translation>A la capa {layer} le faltan los campos {missing}. La revisión necesita una capa de señales con los campos {required} (la salida de Refinar y fusionar señales).</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="286" />
+        <location filename="../gui/reviewpanel.py" line="287" />
         <source>(point geometry)</source>
         <translation>(geometría de punto)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="380" />
+        <location filename="../gui/reviewpanel.py" line="381" />
         <source>The layer {} has no signs.</source>
         <translation>La capa {} no tiene señales.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="391" />
+        <location filename="../gui/reviewpanel.py" line="392" />
         <source>&lt;b&gt;Sign {sign}&lt;/b&gt; ({position} of {total}) &amp;#8212; {reviewed} of {total} reviewed</source>
         <translation>&lt;b&gt;Señal {sign}&lt;/b&gt; ({position} de {total}) &amp;#8212; {reviewed} de {total} revisadas</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="394" />
+        <location filename="../gui/reviewpanel.py" line="395" />
         <source>Sign {}</source>
         <translation>Señal {}</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="399" />
+        <location filename="../gui/reviewpanel.py" line="400" />
         <source>(none)</source>
         <translation>(ninguno)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="406" />
+        <location filename="../gui/reviewpanel.py" line="411" />
         <source>(no condition field)</source>
         <translation>(sin campo de estado)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="411" />
+        <location filename="../gui/reviewpanel.py" line="416" />
         <source>{source}; seen in {n} panorama(s): {images}</source>
         <translation>{source}; vista en {n} panorama(s): {images}</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="414" />
+        <location filename="../gui/reviewpanel.py" line="419" />
         <source>{width} × {height} m, {above} m above the ground, facing {azimuth}°</source>
         <translation>{width} × {height} m, a {above} m sobre el suelo, orientada a {azimuth}°</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="430" />
+        <location filename="../gui/reviewpanel.py" line="435" />
         <source>accepted</source>
         <translation>aceptada</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="430" />
+        <location filename="../gui/reviewpanel.py" line="435" />
         <source>corrected</source>
         <translation>corregida</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="431" />
+        <location filename="../gui/reviewpanel.py" line="436" />
         <source>rejected</source>
         <translation>rechazada</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="431" />
+        <location filename="../gui/reviewpanel.py" line="436" />
         <source>needs another look</source>
         <translation>hay que volver a mirarla</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="432" />
+        <location filename="../gui/reviewpanel.py" line="437" />
         <source>not reviewed</source>
         <translation>sin revisar</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="511" />
+        <location filename="../gui/reviewpanel.py" line="516" />
         <source>review chip</source>
         <translation>miniatura de revisión</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="522" />
+        <location filename="../gui/reviewpanel.py" line="527" />
         <source>no picture</source>
         <translation>sin imagen</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="522" />
+        <location filename="../gui/reviewpanel.py" line="527" />
         <source>Choose the stations layer (and the panorama folder) to see the sign in every panorama that saw it.</source>
         <translation>Elija la capa de estaciones (y la carpeta de panoramas) para ver la señal en cada panorama que la vio.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="548" />
+        <location filename="../gui/reviewpanel.py" line="553" />
         <source>best · </source>
         <translation>mejor · </translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="549" />
+        <location filename="../gui/reviewpanel.py" line="554" />
         <source>{} at {:.1f} m; click for the panorama view</source>
         <translation>{} a {:.1f} m; pulse para la vista del panorama</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="553" />
+        <location filename="../gui/reviewpanel.py" line="558" />
         <source>{} panorama(s) not found</source>
         <translation>{} panorama(s) no encontrado(s)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="553" />
+        <location filename="../gui/reviewpanel.py" line="558" />
         <source>Not found or unreadable: {}. Set the panorama folder.</source>
         <translation>No encontrados o ilegibles: {}. Indique la carpeta de panoramas.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="566" />
+        <location filename="../gui/reviewpanel.py" line="571" />
         <source>The panorama view needs the stations layer of the drive.</source>
         <translation>La vista del panorama necesita la capa de estaciones del recorrido.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="575" />
+        <location filename="../gui/reviewpanel.py" line="580" />
         <source>No panorama of the stations layer saw this sign.</source>
         <translation>Ningún panorama de la capa de estaciones vio esta señal.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="600" />
+        <location filename="../gui/reviewpanel.py" line="605" />
         <source>Panorama view: sign {}</source>
         <translation>Vista del panorama: señal {}</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="602" />
+        <location filename="../gui/reviewpanel.py" line="607" />
         <source>{} · {:.1f} m from the sign</source>
         <translation>{} · a {:.1f} m de la señal</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="629" />
+        <location filename="../gui/reviewpanel.py" line="634" />
         <source>The layer {} cannot be edited: its verdicts cannot be written.</source>
         <translation>La capa {} no se puede editar: no se pueden escribir sus veredictos.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="632" />
+        <location filename="../gui/reviewpanel.py" line="637" />
         <source>Sign review: {} sign {}</source>
         <translation>Revisión de señales: {} señal {}</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="637" />
+        <location filename="../gui/reviewpanel.py" line="642" />
         <source>Cannot add the field {} to the layer {}.</source>
         <translation>No se puede añadir el campo {} a la capa {}.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="658" />
+        <location filename="../gui/reviewpanel.py" line="663" />
         <source>Cannot save the edits of {}: {}</source>
         <translation>No se pueden guardar las ediciones de {}: {}</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="670" />
+        <location filename="../gui/reviewpanel.py" line="675" />
         <source>Every sign has a verdict.</source>
         <translation>Todas las señales tienen veredicto.</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="511" />
+        <location filename="../gui/reviewpanel.py" line="516" />
         <source>best · {} (review chip)</source>
         <translation>mejor · {} (miniatura de revisión)</translation>
     </message>
@@ -1917,76 +2062,214 @@
 <context>
     <name>RoadSigns</name>
     <message>
-        <location filename="../core/cloudsigns.py" line="265" />
+        <location filename="../core/cloudsigns.py" line="268" />
         <source>The stations do not overlap the cloud {path}: the track passes {gap:.1f} m from the cloud's extent ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}), more than the corridor of {corridor} m; are the cloud and the stations in the same CRS and of the same drive?</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Las estaciones no se solapan con la nube {path}: el trayecto pasa a {gap:.1f} m de la extensión de la nube ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}), más que el corredor de {corridor} m; ¿están la nube y las estaciones en el mismo SRC y son del mismo recorrido?</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="278" />
+        <location filename="../core/cloudsigns.py" line="281" />
         <source>{path} has no intensity dimension (point format {fmt}): signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene dimensión de intensidad (formato de punto {fmt}): sin imágenes no se pueden encontrar señales en ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="281" />
+        <location filename="../core/cloudsigns.py" line="284" />
         <source>{path} has no classification dimension: run roadsigns:groundfilter on it first</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene dimensión de clasificación: ejecute primero roadsigns:groundfilter sobre ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="618" />
+        <location filename="../core/cloudsigns.py" line="626" />
         <source>Found {signs} sign panels ({bright} retroreflective) and {poles} poles in {n} points ({cand} kept near the road, {windows} windows of {w} m); condition reference {ref:.3f} ({src})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se encontraron {signs} paneles de señal ({bright} retrorreflectantes) y {poles} postes en {n} puntos ({cand} conservados cerca de la vía, {windows} ventanas de {w} m); referencia de estado {ref:.3f} ({src})</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="561" />
+        <location filename="../core/cloudsigns.py" line="569" />
         <source>No point of {path} lies within {corridor} m of the stations' track ({n} points read)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} está a menos de {corridor} m del trayecto de las estaciones ({n} puntos leídos)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="564" />
+        <location filename="../core/cloudsigns.py" line="572" />
         <source>{path} has no ground points (class 2) along the track: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene puntos de suelo (clase 2) a lo largo del trayecto: ejecute primero roadsigns:groundfilter sobre ella (o clasifique el suelo con otra herramienta)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="568" />
+        <location filename="../core/cloudsigns.py" line="576" />
         <source>{path} has no intensity: all {n} points near the track have intensity 0; signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene intensidad: los {n} puntos cercanos al trayecto tienen intensidad 0; sin imágenes no se pueden encontrar señales en ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="579" />
+        <location filename="../core/cloudsigns.py" line="587" />
         <source>Intensity: range exponent {alpha:.2f} ({source}), bright threshold {thr:.3f} of full scale at 10 m ({method}; background level {bg:.3f}, bright mode {mode:.3f}; {n} non-ground points near the road)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Intensidad: exponente de distancia {alpha:.2f} ({source}), umbral de brillo {thr:.3f} del fondo de escala a 10 m ({method}; nivel de fondo {bg:.3f}, moda brillante {mode:.3f}; {n} puntos que no son de suelo cerca de la vía)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="687" />
+        <location filename="../core/cloudsigns.py" line="695" />
         <source>{n} gantry posts</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} postes de pórtico</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="571" />
+        <location filename="../core/cloudsigns.py" line="579" />
         <source>The cloud's GPS times [{t0:.1f}, {t1:.1f}] do not meet the stations' times: ranges are taken from the nearest track position instead (is one of them in GPS week seconds and the other in adjusted standard GPS time?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Los tiempos GPS de la nube [{t0:.1f}, {t1:.1f}] no coinciden con los de las estaciones: las distancias se toman en su lugar desde la posición más cercana del trayecto (¿está uno en segundos de la semana GPS y el otro en tiempo GPS estándar ajustado?)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="590" />
+        <location filename="../core/cloudsigns.py" line="598" />
         <source>{share:.0%} of the points near the road have intensity 0: the bright threshold {thr:.3f} of full scale may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El {share:.0%} de los puntos cercanos a la vía tiene intensidad 0: el umbral de brillo {thr:.3f} del fondo de escala puede carecer de sentido</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="595" />
+        <location filename="../core/cloudsigns.py" line="603" />
         <source>{share:.0%} of the points near the road have saturated intensity: the bright threshold {thr:.3f} of full scale and the condition of the signs may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El {share:.0%} de los puntos cercanos a la vía tiene la intensidad saturada: el umbral de brillo {thr:.3f} del fondo de escala y el estado de las señales pueden carecer de sentido</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="469" />
+        <location filename="../core/cloudsource.py" line="467" />
+        <source>expected a virtual point cloud: a JSON FeatureCollection (STAC ItemCollection) whose features each have assets.data.href (the tile's file, relative to the .vpc) and properties, as QGIS's Build virtual point cloud writes it</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>se esperaba una nube de puntos virtual: una FeatureCollection JSON (ItemCollection de STAC) cuyas entidades tengan cada una assets.data.href (el archivo de la tesela, relativo al .vpc) y properties, tal como la escribe «Construir nube de puntos virtual» de QGIS</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="153" />
+        <source>no CRS</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>sin SRC</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="428" />
+        <source>The folder {path} holds no LAS or LAZ file (*.las, *.laz); expected a point cloud file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>La carpeta {path} no contiene ningún archivo LAS ni LAZ (*.las, *.laz); se esperaba un archivo de nube de puntos, una carpeta de teselas LAS/LAZ o una nube de puntos virtual (.vpc)</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="471" />
+        <source>Cannot read {path}: the JSON is not an object; {expected}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer {path}: el JSON no es un objeto; {expected}</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="474" />
+        <source>Cannot read {path}: it is not a 'FeatureCollection' with a 'features' list; {expected}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer {path}: no es una 'FeatureCollection' con una lista 'features'; {expected}</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="477" />
+        <source>The virtual point cloud {path} lists no tile</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>La nube de puntos virtual {path} no enumera ninguna tesela</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="240" />
+        <location filename="../core/pointcloud.py" line="524" />
+        <source>{path} has no dimension {names} (point format {fmt})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{path} no tiene la dimensión {names} (formato de punto {fmt})</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="421" />
+        <source>Cannot read the folder {path}: {detail}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer la carpeta {path}: {detail}</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="460" />
+        <location filename="../core/pointcloud.py" line="65" />
+        <source>Cannot read {path}: the file does not exist</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer {path}: el archivo no existe</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="462" />
+        <location filename="../core/ground/pdal.py" line="286" />
+        <location filename="../core/pointcloud.py" line="67" />
+        <location filename="../core/pointcloud.py" line="110" />
+        <source>Cannot read {path}: {detail}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer {path}: {detail}</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="466" />
+        <source>Cannot read {path}: it is not valid JSON ({detail}); {expected}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer {path}: no es un JSON válido ({detail}); {expected}</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="484" />
+        <source>Cannot read {path}: feature {feature} has no 'assets' object; {expected}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer {path}: la entidad {feature} no tiene objeto 'assets'; {expected}</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="492" />
+        <source>Cannot read {path}: feature {feature} has no asset with an 'href' (assets.data.href); {expected}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer {path}: la entidad {feature} no tiene ningún asset con 'href' (assets.data.href); {expected}</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="496" />
+        <source>The virtual point cloud {path} lists the remote tile {href}: only local files are read; download the tiles and build the virtual point cloud again</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>La nube de puntos virtual {path} enumera la tesela remota {href}: solo se leen archivos locales; descargue las teselas y vuelva a construir la nube de puntos virtual</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="502" />
+        <source>The virtual point cloud {path} lists the tile {tile} twice (features {first} and {second})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>La nube de puntos virtual {path} enumera la tesela {tile} dos veces (entidades {first} y {second})</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="506" />
+        <source>The virtual point cloud {path} lists the tile {tile} (feature {feature}), which does not exist</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>La nube de puntos virtual {path} enumera la tesela {tile} (entidad {feature}), que no existe</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="521" />
+        <source>The tiles of {path} cannot be read as one cloud: {tile_a} has point format {fmt_a}, {tile_b} point format {fmt_b}; every tile needs the same point format (convert them to one, e.g. with PDAL's translate)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Las teselas de {path} no se pueden leer como una sola nube: {tile_a} tiene el formato de punto {fmt_a}, {tile_b} el formato de punto {fmt_b}; todas las teselas necesitan el mismo formato de punto (conviértalas a uno solo, p. ej. con translate de PDAL)</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="527" />
+        <source>The tiles of {path} are in different CRSs: {tile_a} in {crs_a}, {tile_b} in {crs_b}; every tile must be in the same CRS (reproject them to one first)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Las teselas de {path} están en SRC distintos: {tile_a} en {crs_a}, {tile_b} en {crs_b}; todas las teselas deben estar en el mismo SRC (reproyéctelas antes a uno solo)</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="556" />
+        <source>The points cannot be written with the first tile's scale {scale} and offset {offset} in {axis}: their coordinates are too far from it</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Los puntos no se pueden escribir con la escala {scale} y el desplazamiento {offset} de la primera tesela en {axis}: sus coordenadas están demasiado lejos de ellos</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="391" />
+        <location filename="../core/ground/pdal.py" line="290" />
+        <location filename="../core/ground/pdal.py" line="292" />
+        <location filename="../core/ground/pdal.py" line="288" />
+        <location filename="../core/ground/pdal.py" line="273" />
+        <location filename="../core/ground/pdal.py" line="282" />
+        <location filename="../core/pointcloud.py" line="112" />
+        <location filename="../core/pointcloud.py" line="127" />
+        <location filename="../core/pointcloud.py" line="185" />
+        <location filename="../core/pointcloud.py" line="88" />
+        <location filename="../core/pointcloud.py" line="91" />
+        <location filename="../core/pointcloud.py" line="107" />
+        <location filename="../core/pointcloud.py" line="178" />
+        <source>Cannot read {path}: the file is truncated or corrupt ({detail})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer {path}: el archivo está truncado o dañado ({detail})</translation>
     </message>
     <message>
         <location filename="../core/crs.py" line="19" />
@@ -2094,105 +2377,105 @@
         <translation>No se pueden transformar las posiciones de {source} a {target}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="84" />
+        <location filename="../core/detections.py" line="100" />
         <source>The detections lack the field(s) {fields}; expected the output of Detect signs</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>A las detecciones les faltan los campos {fields}; se esperaba la salida de «Detectar señales en panoramas»</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="126" />
+        <location filename="../core/detections.py" line="143" />
         <source>Detection {det_id}: the box ({u0}, {v0}, {u1}, {v1}) is not u0 &lt; u1, v0 &lt; v1 inside a {w} x {h} panorama</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}: el recuadro ({u0}, {v0}, {u1}, {v1}) no cumple u0 &lt; u1, v0 &lt; v1 dentro de un panorama de {w} x {h}</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="134" />
+        <location filename="../core/detections.py" line="151" />
         <source>Detection {det_id}: the station pose is invalid (quaternion norm {norm:.4f}, position {xyz})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}: la pose de la estación no es válida (norma del cuaternión {norm:.4f}, posición {xyz})</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="90" />
-        <location filename="../core/projection.py" line="335" />
+        <location filename="../core/detections.py" line="106" />
+        <location filename="../core/projection.py" line="339" />
         <source>Detection {det_id}: the field {field} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}: el campo {field} está vacío</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="98" />
-        <location filename="../core/projection.py" line="327" />
+        <location filename="../core/detections.py" line="114" />
+        <location filename="../core/projection.py" line="331" />
         <source>Detection {det_id}, field {field}: expected a number, found '{value}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}, campo {field}: se esperaba un número, se encontró '{value}'</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="129" />
+        <location filename="../core/detector.py" line="130" />
         <source>The labels file {path} holds no class names (one name per line)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El archivo de etiquetas {path} no contiene nombres de clase (uno por línea)</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="166" />
+        <location filename="../core/detector.py" line="167" />
         <source>The model {path} has an output of shape {shape}, which is no layout this plugin decodes for {n_classes} class names; supported: {supported}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} tiene una salida de forma {shape}, que no corresponde a ninguna disposición que este complemento decodifique para {n_classes} nombres de clase; admitidas: {supported}</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="179" />
+        <location filename="../core/detector.py" line="180" />
         <source>Unknown output layout {layout}: use one of {layouts}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Disposición de salida desconocida {layout}: use una de {layouts}</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="183" />
+        <location filename="../core/detector.py" line="184" />
         <source>The model {path} has an output of shape {shape}, which does not fit the layout {layout} with {n_classes} class names</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} tiene una salida de forma {shape}, que no encaja con la disposición {layout} con {n_classes} nombres de clase</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="277" />
+        <location filename="../core/detector.py" line="278" />
         <source>Model not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró el modelo: {path}</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="360" />
+        <location filename="../core/detector.py" line="361" />
         <source>The model {path} names no classes: its metadata has no readable 'names' and there is no labels file ({labels}, one class name per line)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} no nombra ninguna clase: sus metadatos no tienen 'names' legibles y no hay archivo de etiquetas ({labels}, un nombre de clase por línea)</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="127" />
+        <location filename="../core/detector.py" line="128" />
         <source>Cannot read the labels file {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer el archivo de etiquetas {path}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="287" />
+        <location filename="../core/detector.py" line="288" />
         <source>{path} is not an ONNX model onnxruntime can load: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no es un modelo ONNX que onnxruntime pueda cargar: {error}</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="313" />
+        <location filename="../core/detector.py" line="314" />
         <source>The model {path} is a {task} model; sign detection needs a detection model</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} es un modelo de {task}; la detección de señales necesita un modelo de detección</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="319" />
+        <location filename="../core/detector.py" line="320" />
         <source>The model {path} takes an input of shape {shape}; an image model takes [batch, 3, height, width]</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} recibe una entrada de forma {shape}; un modelo de imagen recibe [batch, 3, height, width]</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="325" />
+        <location filename="../core/detector.py" line="326" />
         <source>The model {path} has a fixed batch of {batch}; use a batch of 1 or a dynamic batch</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} tiene un lote fijo de {batch}; use un lote de 1 o un lote dinámico</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="341" />
+        <location filename="../core/detector.py" line="342" />
         <source>The model {path} failed on a blank {w} x {h} image: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} falló con una imagen en blanco de {w} x {h}: {error}</translation>
@@ -2216,61 +2499,79 @@
         <translation>El trayecto tiene {n} posiciones pero {m} tiempos</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="109" />
+        <location filename="../core/evaluate.py" line="142" />
         <source>reference signs</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>señales de referencia</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="141" />
+        <location filename="../core/evaluate.py" line="175" />
         <source>The signs ({signs}: x {sx0} to {sx1}, y {sy0} to {sy1}) and the reference {reference} (x {rx0} to {rx1}, y {ry0} to {ry1}) do not overlap: are both in the same CRS and the same area?</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Las señales ({signs}: x {sx0} a {sx1}, y {sy0} a {sy1}) y la referencia {reference} (x {rx0} a {rx1}, y {ry0} a {ry1}) no se superponen: ¿están ambas en el mismo SRC y en la misma zona?</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="166" />
+        <location filename="../core/evaluate.py" line="200" />
         <source>match radius {radius} m: expected a positive number of metres</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Radio de emparejamiento {radius} m: se esperaba un número positivo de metros</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="174" />
+        <location filename="../core/evaluate.py" line="208" />
         <source>{label}: sign '{sign_id}' has no valid x, y, z position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{label}: la señal '{sign_id}' no tiene una posición x, y, z válida</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="119" />
+        <location filename="../core/evaluate.py" line="390" />
+        <source>Code accuracy not computed: neither the signs nor the reference have a 'code' field or column.</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Exactitud de código no calculada: ni las señales ni la referencia tienen un campo o columna 'code'.</translation>
+    </message>
+    <message>
+        <location filename="../core/evaluate.py" line="393" />
+        <source>Code accuracy not computed: the reference has no 'code' column or field.</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Exactitud de código no calculada: la referencia no tiene columna ni campo 'code'.</translation>
+    </message>
+    <message>
+        <location filename="../core/evaluate.py" line="395" />
+        <source>Code accuracy not computed: the signs have no 'code' field.</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Exactitud de código no calculada: las señales no tienen campo 'code'.</translation>
+    </message>
+    <message>
+        <location filename="../core/evaluate.py" line="152" />
         <source>reference signs file {path}, line {line}: sign_id '{sign_id}' already used on line {first}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo de señales de referencia {path}, línea {line}: el sign_id '{sign_id}' ya se usó en la línea {first}</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="115" />
+        <location filename="../core/evaluate.py" line="148" />
         <source>reference signs file {path}, line {line}, field '{field}': empty value</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo de señales de referencia {path}, línea {line}, campo '{field}': valor vacío</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="174" />
+        <location filename="../core/fusion.py" line="161" />
         <source>Image sign</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>Señal de imagen</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="175" />
+        <location filename="../core/fusion.py" line="162" />
         <source>Cloud panel</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>Panel de la nube</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="118" />
+        <location filename="../core/fusion.py" line="105" />
         <source>{what} {index}: position is not finite</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what} {index}: la posición no es finita</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="115" />
+        <location filename="../core/fusion.py" line="102" />
         <source>{what} {index}: no position (x, y, z)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what} {index}: sin posición (x, y, z)</translation>
@@ -2282,74 +2583,89 @@
         <translation>El CSF integrado necesita el paquete de Python cloth-simulation-filter (módulo CSF): {detail}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="67" />
+        <location filename="../core/ground/engine.py" line="70" />
         <source>Unknown return type {kinds} in '{returns}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tipo de retorno desconocido {kinds} en '{returns}'</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="219" />
+        <location filename="../core/ground/engine.py" line="235" />
         <location filename="../core/pointcloud.py" line="244" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la salida debe terminar en .las o .laz</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="223" />
-        <source>The output {path} must not be the input file</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>La salida {path} no puede ser el archivo de entrada</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/engine.py" line="229" />
+        <location filename="../core/ground/engine.py" line="247" />
+        <location filename="../core/ground/tiled.py" line="153" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SRC de la nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="166" />
-        <source>Cannot read {path}: the file is corrupt ({detail})</source>
+        <location filename="../core/ground/engine.py" line="259" />
+        <source>{path} holds {n} tiles: the built-in engine classifies them (PDAL is used for a single file only)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No se puede leer {path}: el archivo está dañado ({detail})</translation>
+        <translation>{path} contiene {n} teselas: las clasifica el motor integrado (PDAL solo se usa para un único archivo)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="189" />
-        <source>No point of {path} has the returns '{returns}': nothing was classified</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>Ningún punto de {path} tiene los retornos '{returns}': no se clasificó nada</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/engine.py" line="231" />
-        <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>{path} no tiene sistema de referencia de coordenadas: indique el SRC de la nube (nunca se adivina)</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/engine.py" line="242" />
-        <source>PDAL not found: using the built-in engine</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No se encontró PDAL: se usa el motor integrado</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/engine.py" line="271" />
-        <source>No point of {path} is left after the crop: {output} has no points</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No queda ningún punto de {path} tras el recorte: {output} no tiene puntos</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/engine.py" line="294" />
+        <location filename="../core/ground/engine.py" line="309" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay polígonos de recorte: se ignora el búfer de recorte</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="240" />
+        <location filename="../core/ground/engine.py" line="189" />
+        <location filename="../core/ground/tiled.py" line="268" />
+        <source>Cannot read {path}: the file is corrupt ({detail})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer {path}: el archivo está dañado ({detail})</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="203" />
+        <source>No point of {path} has the returns '{returns}': nothing was classified</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Ningún punto de {path} tiene los retornos '{returns}': no se clasificó nada</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="241" />
+        <source>The output {path} must not be the input file</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>La salida {path} no puede ser el archivo de entrada</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="249" />
+        <location filename="../core/ground/tiled.py" line="155" />
+        <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{path} no tiene sistema de referencia de coordenadas: indique el SRC de la nube (nunca se adivina)</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="256" />
+        <source>The PDAL engine classifies a single LAS/LAZ file, and {path} holds {n} tiles: choose the built-in engine (or Auto), which classifies tiles with the same filters</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>El motor PDAL clasifica un único archivo LAS/LAZ, y {path} contiene {n} teselas: elija el motor integrado (o Automático), que clasifica teselas con los mismos filtros</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="296" />
+        <source>No point of {path} is left after the crop: {output} has no points</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No queda ningún punto de {path} tras el recorte: {output} no tiene puntos</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="267" />
+        <source>PDAL not found: using the built-in engine</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se encontró PDAL: se usa el motor integrado</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="265" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se pidió PDAL, pero no se encontró ni el módulo de Python pdal ni un ejecutable pdal (PATH, carpeta bin de QGIS)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="255" />
+        <location filename="../core/ground/engine.py" line="280" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>PDAL falló; se usó el motor integrado en su lugar: {error}</translation>
@@ -2391,92 +2707,115 @@
         <translation>El ejecutable de PDAL {path} no existe o no es ejecutable</translation>
     </message>
     <message>
-        <location filename="../core/ground/pdal.py" line="290" />
-        <location filename="../core/ground/pdal.py" line="292" />
-        <location filename="../core/ground/pdal.py" line="288" />
-        <location filename="../core/ground/pdal.py" line="273" />
-        <location filename="../core/ground/pdal.py" line="282" />
-        <location filename="../core/pointcloud.py" line="112" />
-        <location filename="../core/pointcloud.py" line="127" />
-        <location filename="../core/pointcloud.py" line="185" />
-        <location filename="../core/pointcloud.py" line="88" />
-        <location filename="../core/pointcloud.py" line="91" />
-        <location filename="../core/pointcloud.py" line="107" />
-        <location filename="../core/pointcloud.py" line="178" />
-        <source>Cannot read {path}: the file is truncated or corrupt ({detail})</source>
+        <location filename="../core/ground/tiled.py" line="211" />
+        <source>{n} tiles written to {folder}, listed in {vpc}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No se puede leer {path}: el archivo está truncado o dañado ({detail})</translation>
+        <translation>{n} teselas escritas en {folder}, enumeradas en {vpc}</translation>
     </message>
     <message>
-        <location filename="../core/ground/pdal.py" line="286" />
-        <location filename="../core/pointcloud.py" line="67" />
-        <location filename="../core/pointcloud.py" line="110" />
-        <source>Cannot read {path}: {detail}</source>
+        <location filename="../core/ground/tiled.py" line="142" />
+        <source>The PDAL engine writes one file: to write one tile per input tile choose the built-in engine (or Auto)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No se puede leer {path}: {detail}</translation>
+        <translation>El motor PDAL escribe un solo archivo: para escribir una tesela por cada tesela de entrada, elija el motor integrado (o Automático)</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="299" />
+        <location filename="../core/ground/tiled.py" line="145" />
+        <source>The virtual point cloud's name {name} must be a file name ending in .vpc</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>El nombre de la nube de puntos virtual {name} debe ser un nombre de archivo terminado en .vpc</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/tiled.py" line="159" />
+        <source>Writing one tile per input tile: the built-in engine classifies them (PDAL is used for one output file only)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Escritura de una tesela por cada tesela de entrada: las clasifica el motor integrado (PDAL solo se usa para un único archivo de salida)</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/tiled.py" line="115" />
+        <source>The output folder {folder} holds the input tile {tile}: choose another folder (the output folder is replaced as a whole)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>La carpeta de salida {folder} contiene la tesela de entrada {tile}: elija otra carpeta (la carpeta de salida se reemplaza por completo)</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/tiled.py" line="118" />
+        <source>Two tiles of {path} have the same file name, {name} ({first} and {second}): the output tiles are named as the input tiles, so their names must differ</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Dos teselas de {path} tienen el mismo nombre de archivo, {name} ({first} y {second}): las teselas de salida se nombran como las de entrada, por lo que sus nombres deben ser distintos</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/tiled.py" line="208" />
+        <source>No point of {path} is left after the crop: {output} lists no tile</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No queda ningún punto de {path} tras el recorte: {output} no enumera ninguna tesela</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/tiled.py" line="197" />
+        <source>No point of the tile {tile} lies inside the crop area: no output tile for it</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Ningún punto de la tesela {tile} está dentro del área de recorte: no hay tesela de salida para ella</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="304" />
         <source>Unknown time base {base}: expected one of {bases}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Base de tiempo desconocida {base}: se esperaba una de {bases}</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="376" />
+        <location filename="../core/handover.py" line="394" />
         <source>sign layer CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SRC de la capa de señales</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="313" />
+        <location filename="../core/handover.py" line="318" />
         <source>No output folder given for the handover package</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se indicó carpeta de salida para el paquete de entrega</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="319" />
+        <location filename="../core/handover.py" line="324" />
         <source>Cannot write the handover package to {folder}: {path} is a file, not a folder</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir el paquete de entrega en {folder}: {path} es un archivo, no una carpeta</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="372" />
+        <location filename="../core/handover.py" line="390" />
         <source>Unknown review state(s) {states}: expected some of {known}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Estado(s) de revisión desconocido(s) {states}: se esperaba alguno de {known}</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="375" />
+        <location filename="../core/handover.py" line="393" />
         <source>Unknown north {north}: expected grid or true</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Norte desconocido {north}: se esperaba grid o true</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="389" />
+        <location filename="../core/handover.py" line="407" />
         <source>No sign has the review state(s) {states} ({counts}): review the signs with the review panel, or choose other states</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ninguna señal tiene el estado o estados de revisión {states} ({counts}): revise las señales con el panel de revisión o elija otros estados</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="460" />
+        <location filename="../core/handover.py" line="478" />
         <source>{n} of {total} signs handed over (review states {states}); left out: {left}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} de {total} señales entregadas (estados de revisión {states}); excluidas: {left}</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="163" />
+        <location filename="../core/handover.py" line="168" />
         <source>The stations layer has fewer than two stations at different places: the export needs the drive's track (chainage, side and offset of each sign)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La capa de estaciones tiene menos de dos estaciones en lugares distintos: la exportación necesita el trayecto del recorrido (PK, lado y desplazamiento de cada señal)</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="326" />
+        <location filename="../core/handover.py" line="331" />
         <source>Cannot write the handover package to {folder}: the folder {path} is not writable ({error})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir el paquete de entrega en {folder}: en la carpeta {path} no se puede escribir ({error})</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="393" />
+        <location filename="../core/handover.py" line="411" />
         <source>The station times are GPS seconds of the week: give the survey date to get first and last seen as dates and times (first_seen_s and last_seen_s are written)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Los tiempos de las estaciones son segundos GPS de la semana: indique la fecha del levantamiento para obtener la primera y la última vez que se vio como fechas y horas (se escriben first_seen_s y last_seen_s)</translation>
@@ -2566,12 +2905,6 @@
         <translation>{path} no tiene sistema de referencia de coordenadas y no se indicó ninguno</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="65" />
-        <source>Cannot read {path}: the file does not exist</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No se puede leer {path}: el archivo no existe</translation>
-    </message>
-    <message>
         <location filename="../core/pointcloud.py" line="248" />
         <source>Cannot write {path}: the folder does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -2602,167 +2935,311 @@
         <translation>Ningún punto de {path} está dentro del área de recorte; {output} está vacío</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="523" />
-        <source>{path} has no dimension {names} (point format {fmt})</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>{path} no tiene la dimensión {names} (formato de punto {fmt})</translation>
-    </message>
-    <message>
-        <location filename="../core/projection.py" line="527" />
+        <location filename="../core/projection.py" line="534" />
         <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{ok} de {count} detecciones encontraron una superficie en la nube ({no_points} sin puntos, {no_surface} sin superficie plana)</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="356" />
-        <location filename="../core/projection.py" line="588" />
+        <location filename="../core/projection.py" line="360" />
+        <location filename="../core/projection.py" line="596" />
         <source>{source} has no ground points (class 2) where the signs are: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{source} no tiene puntos de suelo (clase 2) donde están las señales: ejecute primero roadsigns:groundfilter sobre ella (o clasifique el suelo con otra herramienta)</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="495" />
+        <location filename="../core/projection.py" line="500" />
         <source>The maximum range must exceed {min} m, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El alcance máximo debe superar {min} m; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="320" />
+        <location filename="../core/projection.py" line="324" />
         <source>The candidates lack the field(s) {fields}; expected the output of Project detections</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>A los candidatos les faltan los campos {fields}; se esperaba la salida de «Proyectar detecciones en la nube de puntos»</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="345" />
+        <location filename="../core/projection.py" line="349" />
         <source>Unknown candidate status {status!r}; expected ok, no_points or no_surface</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Estado de candidato desconocido {status!r}; se esperaba ok, no_points o no_surface</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="349" />
+        <location filename="../core/projection.py" line="353" />
         <source>A candidate with status ok has no position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un candidato con estado ok no tiene posición</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="369" />
+        <location filename="../core/projection.py" line="374" />
         <source>The point index lacks {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Al índice de puntos le falta {names}</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="500" />
+        <location filename="../core/projection.py" line="505" />
         <source>No detections to project; the candidates are empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay detecciones que proyectar; los candidatos están vacíos</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="523" />
+        <location filename="../core/projection.py" line="530" />
         <source>{path} has no point inside the detections' frusta; no candidate found</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene puntos dentro de los troncos de visión de las detecciones; no se encontró ningún candidato</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="94" />
+        <location filename="../core/refine.py" line="118" />
         <source>curved surface (a convex mirror?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>superficie curva (¿un espejo convexo?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="95" />
+        <location filename="../core/refine.py" line="119" />
         <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>parte de una superficie plana mayor (¿una imagen en una valla publicitaria o una pared?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="833" />
+        <location filename="../core/refine.py" line="979" />
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} señales a partir de {candidates} candidatos ({from_images} situadas solo a partir de las imágenes)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1065" />
+        <location filename="../core/refine.py" line="1426" />
+        <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{coded} de {signs} señales tienen código de señal; {from_code} tomaron su clase del código, {dropped} códigos se descartaron por la votación de clase (code_check)</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="1435" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>la altura de las estaciones menos {height} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="814" />
+        <location filename="../core/refine.py" line="389" />
+        <source>Detection {det_id} has the sign code {code}, which is not in the sign codes table {table}: give the codes table the classifier was run with</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>La detección {det_id} tiene el código de señal {code}, que no está en la tabla de códigos de señal {table}: indique la tabla de códigos con la que se ejecutó el clasificador</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="958" />
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El radio de fusión debe ser positivo; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="817" />
+        <location filename="../core/refine.py" line="961" />
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay candidatos que refinar; la capa de señales está vacía</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1020" />
-        <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>Candidatos {ids} descartados: un panel de {width:.2f} x {height:.2f} m es demasiado grande para una señal {sign_class} (¿una valla publicitaria?)</translation>
-    </message>
-    <message>
-        <location filename="../core/refine.py" line="1025" />
-        <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>Candidatos {ids} descartados: vistos en una sola panorámica, con una puntuación de {score:.2f}</translation>
-    </message>
-    <message>
-        <location filename="../core/refine.py" line="369" />
-        <source>too few points</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>muy pocos puntos</translation>
-    </message>
-    <message>
-        <location filename="../core/refine.py" line="372" />
-        <source>too few points in the boxes</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>muy pocos puntos en los recuadros</translation>
-    </message>
-    <message>
-        <location filename="../core/refine.py" line="378" />
-        <source>no near-vertical plane</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>ningún plano casi vertical</translation>
-    </message>
-    <message>
-        <location filename="../core/refine.py" line="382" />
-        <source>too few planar points</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>muy pocos puntos planos</translation>
-    </message>
-    <message>
-        <location filename="../core/refine.py" line="878" />
+        <location filename="../core/refine.py" line="1235" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids}: {reason}; situados en la mediana de los candidatos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1066" />
-        <source>the lowest points below the sign</source>
+        <location filename="../core/refine.py" line="1375" />
+        <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>los puntos más bajos bajo la señal</translation>
+        <translation>Candidatos {ids} descartados: un panel de {width:.2f} x {height:.2f} m es demasiado grande para una señal {sign_class} (¿una valla publicitaria?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1070" />
-        <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
+        <location filename="../core/refine.py" line="1380" />
+        <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>{count} señal(es) no tienen puntos de suelo (clase 2) a menos de {radius} m: su altura se mide desde {source}</translation>
+        <translation>Candidatos {ids} descartados: vistos en una sola panorámica, con una puntuación de {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="872" />
+        <location filename="../core/refine.py" line="489" />
+        <source>too few points</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>muy pocos puntos</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="492" />
+        <source>too few points in the boxes</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>muy pocos puntos en los recuadros</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="498" />
+        <source>no near-vertical plane</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>ningún plano casi vertical</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="502" />
+        <source>too few planar points</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>muy pocos puntos planos</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="1229" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>sin nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="875" />
+        <location filename="../core/refine.py" line="1232" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: {reason}</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="1436" />
+        <source>the lowest points below the sign</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>los puntos más bajos bajo la señal</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="1440" />
+        <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{count} señal(es) no tienen puntos de suelo (clase 2) a menos de {radius} m: su altura se mide desde {source}</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="173" />
+        <source>Sign codes table {path} is empty: expected the header {expected} and one row per code</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>La tabla de códigos de señal {path} está vacía: se esperaba la cabecera {expected} y una fila por código</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="176" />
+        <source>Sign codes table {path} holds no codes: expected one row per code after the header {expected}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>La tabla de códigos de señal {path} no contiene códigos: se esperaba una fila por código tras la cabecera {expected}</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="363" />
+        <source>The box {box} is not four finite pixel coordinates u0, v0, u1, v1</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>El recuadro {box} no son cuatro coordenadas de píxel finitas u0, v0, u1, v1</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="119" />
+        <source>Sign codes table not found: {path}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se encontró la tabla de códigos de señal: {path}</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="121" />
+        <source>Cannot read the sign codes table {path}: it is not UTF-8 text (byte {position}); save it as UTF-8</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer la tabla de códigos de señal {path}: no es texto UTF-8 (byte {position}); guárdela como UTF-8</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="124" />
+        <source>Cannot read the sign codes table {path}: {error}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer la tabla de códigos de señal {path}: {error}</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="149" />
+        <source>Sign codes table {path}, line {line}: expected 3 fields separated by semicolons ({expected}), found {count}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Tabla de códigos de señal {path}, línea {line}: se esperaban 3 campos separados por punto y coma ({expected}), se encontraron {count}</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="154" />
+        <source>Sign codes table {path}, line {line}: the code is empty</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Tabla de códigos de señal {path}, línea {line}: el código está vacío</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="157" />
+        <source>Sign codes table {path}, line {line}: the code {code} is reserved for signs the classifier cannot read and must not be in the table</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Tabla de códigos de señal {path}, línea {line}: el código {code} está reservado para las señales que el clasificador no puede leer y no debe figurar en la tabla</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="161" />
+        <source>Sign codes table {path}, line {line}: the name of {code} is empty</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Tabla de códigos de señal {path}, línea {line}: el nombre de {code} está vacío</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="164" />
+        <source>Sign codes table {path}, lines {first} and {line}: the code {code} is there twice</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Tabla de códigos de señal {path}, líneas {first} y {line}: el código {code} aparece dos veces</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="167" />
+        <source>Sign codes table {path}, line {line}: unknown class {found} for {code}; expected one of {classes}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Tabla de códigos de señal {path}, línea {line}: clase desconocida {found} para {code}; se esperaba una de {classes}</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="213" />
+        <source>The model {path} is a {task} model; reading sign codes needs a classify model (metadata task = classify)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>El modelo {path} es un modelo de {task}; la lectura de códigos de señal necesita un modelo de clasificación (metadatos task = classify)</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="223" />
+        <source>The model {path} takes an input {name} of shape {shape} and type {type}; supported: float [batch, 3, S, S] (RGB crops S x S pixels, values 0..1)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>El modelo {path} recibe una entrada {name} de forma {shape} y tipo {type}; admitido: float [batch, 3, S, S] (recortes RGB de S x S píxeles, valores 0..1)</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="241" />
+        <source>The model {path} has an output of shape {shape} for a batch of {batch}; supported: [batch, C] with C = {count}, its number of names</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>El modelo {path} tiene una salida de forma {shape} para un lote de {batch}; admitida: [batch, C] con C = {count}, su número de nombres</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="249" />
+        <source>The model {path} names no codes: its metadata needs 'names', a JSON list of the sign codes in output order (such as ["DE:206", "other"])</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>El modelo {path} no nombra ningún código: sus metadatos necesitan 'names', una lista JSON de los códigos de señal en el orden de salida (como ["DE:206", "other"])</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="255" />
+        <source>The model {path} names {names} more than once in its metadata 'names'</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>El modelo {path} nombra {names} más de una vez en sus metadatos 'names'</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="261" />
+        <source>The model {path} answers codes that are not in the sign codes table {table}: {names}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>El modelo {path} responde códigos que no están en la tabla de códigos de señal {table}: {names}</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="269" />
+        <source>The model {path} has the metadata output = {found}; expected {expected}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>El modelo {path} tiene en sus metadatos output = {found}; se esperaba {expected}</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="282" />
+        <source>The model {path} has the metadata crop_margin = {found}; expected a number from 0 to 2 (the fraction of the box's longer side added on each side)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>El modelo {path} tiene en sus metadatos crop_margin = {found}; se esperaba un número de 0 a 2 (la fracción del lado mayor del recuadro que se añade a cada lado)</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="137" />
+        <source>Sign codes table {path}, line {line}: cannot split the line into fields ({error})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Tabla de códigos de señal {path}, línea {line}: no se puede dividir la línea en campos ({error})</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="143" />
+        <source>Sign codes table {path}, line {line}: expected the header {expected}, found {found}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Tabla de códigos de señal {path}, línea {line}: se esperaba la cabecera {expected}, se encontró {found}</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="238" />
+        <source>The model {path} failed on a blank {side} x {side} crop: {error}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>El modelo {path} falló con un recorte en blanco de {side} x {side}: {error}</translation>
     </message>
     <message>
         <location filename="../core/tables.py" line="50" />
@@ -3154,34 +3631,39 @@
         <translation>Inventario de señales viales</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="167" />
-        <source>LAS/LAZ point clouds (*.las *.laz *.LAS *.LAZ);;All files (*.*)</source>
-        <translation>Nubes de puntos LAS/LAZ (*.las *.laz *.LAS *.LAZ);;Todos los archivos (*.*)</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/base.py" line="267" />
+        <location filename="../algorithms/base.py" line="274" />
         <source>Cancelled: nothing was written.</source>
         <translation>Cancelado: no se escribió nada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="273" />
+        <location filename="../algorithms/base.py" line="280" />
         <source>Out of memory: nothing was written. Crop the point cloud (Ground filter with a crop layer) or process the drive in parts.</source>
         <translation>Memoria insuficiente: no se escribió nada. Recorte la nube de puntos (Filtro de suelo con una capa de recorte) o procese el recorrido por partes.</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="276" />
+        <location filename="../algorithms/base.py" line="283" />
         <source>Cannot read or write {}: {}. Nothing was written.</source>
         <translation>No se puede leer o escribir {}: {}. No se escribió nada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="279" />
+        <location filename="../algorithms/base.py" line="286" />
         <source>Unexpected error ({}: {}); nothing was written. The details are in the QGIS message log (Road sign inventory); please report them.</source>
         <translation>Error inesperado ({}: {}); no se escribió nada. Los detalles están en el registro de mensajes de QGIS (Road sign inventory); por favor, notifíquelos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="284" />
+        <location filename="../algorithms/base.py" line="291" />
         <source>{} However, these partial outputs could not be removed: {}</source>
         <translation>{} Sin embargo, estas salidas parciales no se pudieron eliminar: {}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/base.py" line="170" />
+        <source>Accepted: one LAS/LAZ file (COPC too), a virtual point cloud (.vpc, e.g. from QGIS's Build virtual point cloud) listing tiles, or a folder of LAS/LAZ tiles (type or paste the folder's path). Tiles must share the point format and the CRS.</source>
+        <translation>Se admite: un archivo LAS/LAZ (también COPC), una nube de puntos virtual (.vpc, p. ej. de «Construir nube de puntos virtual» de QGIS) que enumera teselas, o una carpeta de teselas LAS/LAZ (escriba o pegue la ruta de la carpeta). Las teselas deben compartir el formato de punto y el SRC.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/base.py" line="170" />
+        <source>Point clouds (*.las *.laz *.vpc *.LAS *.LAZ *.VPC);;LAS/LAZ (*.las *.laz *.LAS *.LAZ);;Virtual point clouds (*.vpc *.VPC);;All files or a folder of tiles (*)</source>
+        <translation>Nubes de puntos (*.las *.laz *.vpc *.LAS *.LAZ *.VPC);;LAS/LAZ (*.las *.laz *.LAS *.LAZ);;Nubes de puntos virtuales (*.vpc *.VPC);;Todos los archivos o una carpeta de teselas (*)</translation>
     </message>
 </context>
 <context>

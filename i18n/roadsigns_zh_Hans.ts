@@ -9,7 +9,7 @@
         <translation>道路标志清查</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="52" />
+        <location filename="../algorithms/evaluate.py" line="56" />
         <source>{layer}: no field 'class'; fields found: {found}</source>
         <translation>{layer}：没有字段 'class'；找到的字段：{found}</translation>
     </message>
@@ -19,52 +19,52 @@
         <translation>{layer}：缺少字段 {missing}；找到的字段：{found}</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="172" />
+        <location filename="../algorithms/layers.py" line="180" />
         <source>{layer} is in {layer_crs}, the point cloud {cloud} in {cloud_crs}: import the trajectory with the cloud's CRS as target CRS so that every stage works in one CRS</source>
         <translation>{layer} 的坐标参考系为 {layer_crs}，点云 {cloud} 的为 {cloud_crs}：请以点云的坐标参考系作为目标坐标参考系导入轨迹，使每个步骤都在同一坐标参考系中工作</translation>
     </message>
     <message>
-        <location filename="../algorithms/style.py" line="41" />
+        <location filename="../algorithms/style.py" line="51" />
         <source>warning</source>
         <translation>警告标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/style.py" line="41" />
+        <location filename="../algorithms/style.py" line="51" />
         <source>prohibitory</source>
         <translation>禁令标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/style.py" line="41" />
+        <location filename="../algorithms/style.py" line="51" />
         <source>mandatory</source>
         <translation>指示标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/style.py" line="42" />
+        <location filename="../algorithms/style.py" line="52" />
         <source>information</source>
         <translation>信息标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/style.py" line="42" />
+        <location filename="../algorithms/style.py" line="52" />
         <source>stop</source>
         <translation>停车让行</translation>
     </message>
     <message>
-        <location filename="../algorithms/style.py" line="42" />
+        <location filename="../algorithms/style.py" line="52" />
         <source>yield</source>
         <translation>减速让行</translation>
     </message>
     <message>
-        <location filename="../algorithms/style.py" line="49" />
+        <location filename="../algorithms/style.py" line="60" />
         <source>other</source>
         <translation>其他</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="65" />
+        <location filename="../algorithms/evaluate.py" line="71" />
         <source>{layer}: cannot reproject feature {feature}: {error}</source>
         <translation>{layer}：无法重投影要素 {feature}：{error}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="79" />
+        <location filename="../algorithms/evaluate.py" line="87" />
         <source>{layer}: sign '{sign_id}' has no valid x, y, z position (no point geometry, and no numbers in the fields x, y, z)</source>
         <translation>{layer}：标志 '{sign_id}' 没有有效的 x、y、z 位置（既无点几何，字段 x、y、z 中也没有数字）</translation>
     </message>
@@ -94,7 +94,7 @@
         <translation>点云 {cloud} 没有坐标参考系：请在“点云坐标参考系”中指定（高级参数；坐标参考系从不猜测）</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="167" />
+        <location filename="../algorithms/layers.py" line="175" />
         <source>The point cloud {cloud} has no coordinate reference system: give it one with Ground filter (parameter Cloud CRS); a CRS is never guessed</source>
         <translation>点云 {cloud} 没有坐标参考系：请用地面滤波（参数“点云坐标参考系”）为其指定一个；坐标参考系从不猜测</translation>
     </message>
@@ -107,327 +107,432 @@
 <context>
     <name>DetectSigns</name>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="38" />
+        <location filename="../algorithms/detectsigns.py" line="44" />
         <source>Detect signs in panoramas</source>
         <translation>在全景图中检测标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="41" />
+        <location filename="../algorithms/detectsigns.py" line="47" />
         <source>Runs an ONNX sign detector on each panorama; one ray per detected sign.</source>
         <translation>在每张全景图上运行 ONNX 标志检测器；每个检测到的标志生成一条射线。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="44" />
-        <source>Cuts each station's equirectangular panorama into overlapping perspective views (a horizon ring, and an upward ring for overhead signs), runs the ONNX detector on each view, maps the boxes back to panorama pixels and merges the same sign found in two views.&lt;br&gt;&lt;br&gt;The &lt;b&gt;model&lt;/b&gt; is the bundled one when left empty, or your own ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model with NMS built in ([1, N, 6]). Class names come from the model's metadata (Ultralytics &lt;i&gt;names&lt;/i&gt;) or a labels file (one name per line).&lt;br&gt;&lt;br&gt;Output: one line per detection from the panorama centre along the ray through the box centre, &lt;i&gt;Ray length&lt;/i&gt; long, with the box (u0, v0, u1, v1 in panorama pixels; across the ±180° seam u1 exceeds the width) and the station's pose. A panorama that cannot be read is skipped with a warning and counted.</source>
-        <translation>将每个站点的等距柱状全景图切分为相互重叠的透视视图（一圈水平视图，以及一圈用于悬挂式标志的上视视图），在每个视图上运行 ONNX 检测器，将检测框映射回全景图像素，并合并在两个视图中找到的同一标志。&lt;br&gt;&lt;br&gt;&lt;b&gt;模型&lt;/b&gt;留空时使用内置模型，也可以是您自己导出的 ONNX 模型：Ultralytics YOLOv8/11（[1, 4+nc, N]）、YOLOv5/7（[1, N, 5+nc]）或内置 NMS 的模型（[1, N, 6]）。类别名称来自模型元数据（Ultralytics &lt;i&gt;names&lt;/i&gt;）或标签文件（每行一个名称）。&lt;br&gt;&lt;br&gt;输出：每个检测一条线，从全景图中心沿穿过检测框中心的射线延伸，长度为&lt;i&gt;射线长度&lt;/i&gt;，附带检测框（u0、v0、u1、v1，单位为全景图像素；跨越 ±180° 接缝时 u1 大于图像宽度）和站点位姿。无法读取的全景图将被跳过，并给出警告和计数。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="115" />
+        <location filename="../algorithms/detectsigns.py" line="155" />
         <source>Panorama stations</source>
         <translation>全景站点</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="58" />
+        <location filename="../algorithms/detectsigns.py" line="70" />
         <source>The output of Import trajectory: one point per panorama with its pose and path.</source>
         <translation>“导入轨迹和全景图”的输出：每张全景图一个点，带有其位姿和路径。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="61" />
+        <location filename="../algorithms/detectsigns.py" line="73" />
         <source>ONNX model (empty: the bundled model)</source>
         <translation>ONNX 模型（留空：使用内置模型）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="61" />
+        <location filename="../algorithms/detectsigns.py" line="73" />
         <source>A YOLO-family ONNX detector. Empty uses the model bundled with the plugin.</source>
         <translation>YOLO 系列 ONNX 检测器。留空则使用插件内置的模型。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="61" />
+        <location filename="../algorithms/detectsigns.py" line="117" />
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>ONNX 模型 (*.onnx);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="65" />
+        <location filename="../algorithms/detectsigns.py" line="77" />
         <source>Minimum confidence</source>
         <translation>最低置信度</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="65" />
+        <location filename="../algorithms/detectsigns.py" line="77" />
         <source>Detections scoring below this (0-1) are dropped.</source>
         <translation>得分低于此值（0-1）的检测将被丢弃。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="68" />
+        <location filename="../algorithms/detectsigns.py" line="80" />
         <source>Smallest sign kept (panorama pixels)</source>
         <translation>保留的最小标志（全景像素）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="68" />
+        <location filename="../algorithms/detectsigns.py" line="80" />
         <source>Detections whose box is shorter than this on its shorter side are dropped: signs that small are boxed a few pixels off and their class is unsure, and the drive sees them again, larger, from the next stations. 0 keeps every detection.</source>
         <translation>检测框短边小于此值的检测将被丢弃：这么小的标志框会偏差几个像素，类别也不可靠，而车辆在后续站点会以更大的尺寸再次看到它们。0 保留所有检测。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="74" />
+        <location filename="../algorithms/detectsigns.py" line="86" />
         <source>Class names file (optional)</source>
         <translation>类别名称文件（可选）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="74" />
+        <location filename="../algorithms/detectsigns.py" line="86" />
         <source>One class name per line, in the model's class order; needed when the model has no names in its metadata and no labels file beside it.</source>
         <translation>每行一个类别名称，按模型的类别顺序排列；当模型元数据中没有名称且旁边没有标签文件时需要提供。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="74" />
+        <location filename="../algorithms/detectsigns.py" line="86" />
         <source>Text files (*.txt);;All files (*.*)</source>
         <translation>文本文件 (*.txt);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="79" />
+        <location filename="../algorithms/detectsigns.py" line="91" />
         <source>Ray length (m)</source>
         <translation>射线长度 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="79" />
+        <location filename="../algorithms/detectsigns.py" line="91" />
         <source>Length of each detection ray from the panorama centre, in metres.</source>
         <translation>每条检测射线从全景图中心起算的长度，单位为米。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="83" />
+        <location filename="../algorithms/detectsigns.py" line="95" />
         <source>Also look upwards (overhead and gantry signs)</source>
         <translation>同时向上看（悬挂式和门架式标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="83" />
+        <location filename="../algorithms/detectsigns.py" line="95" />
         <source>Adds a ring of views tilted 35° up; unchecked halves the work but misses signs high above the road close to the vehicle.</source>
         <translation>增加一圈上仰 35° 的视图；不勾选可将工作量减半，但会漏掉车辆附近高悬于道路上方的标志。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="87" />
+        <location filename="../algorithms/detectsigns.py" line="108" />
         <source>CPU threads (0: all)</source>
         <translation>CPU 线程数（0：全部）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="87" />
+        <location filename="../algorithms/detectsigns.py" line="108" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>onnxruntime 在 CPU 上可使用的线程数；0 表示使用所有核心。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="91" />
+        <location filename="../algorithms/detectsigns.py" line="130" />
         <source>Detections</source>
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="91" />
-        <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
-        <translation>LineStringZ 图层，每个检测一条射线，包含字段 det_id、station_id、image、class、score、u0、v0、u1、v1、n_views 以及站点的位姿字段。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="95" />
+        <location filename="../algorithms/detectsigns.py" line="134" />
         <source>Number of detections</source>
         <translation>检测数量</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="96" />
+        <location filename="../algorithms/detectsigns.py" line="135" />
         <source>Panoramas skipped</source>
         <translation>跳过的全景图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="108" />
+        <location filename="../algorithms/detectsigns.py" line="148" />
         <source>ONNX model not found: {}</source>
         <translation>未找到 ONNX 模型：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="122" />
+        <location filename="../algorithms/detectsigns.py" line="162" />
         <source>{} panoramas, {} views each</source>
         <translation>{} 张全景图，每张 {} 个视图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="127" />
+        <location filename="../algorithms/detectsigns.py" line="175" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>跳过了 {} 张无法读取的全景图。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="140" />
+        <location filename="../algorithms/detectsigns.py" line="191" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} 个检测，来自 {} 张全景图（跳过 {} 张）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="132" />
+        <location filename="../algorithms/detectsigns.py" line="183" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>未检测到任何标志：检测图层为空。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="50" />
+        <source>Cuts each station's equirectangular panorama into overlapping perspective views (a horizon ring, and an upward ring for overhead signs), runs the ONNX detector on each view, maps the boxes back to panorama pixels and merges the same sign found in two views.&lt;br&gt;&lt;br&gt;The &lt;b&gt;model&lt;/b&gt; is the bundled one when left empty, or your own ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model with NMS built in ([1, N, 6]). Class names come from the model's metadata (Ultralytics &lt;i&gt;names&lt;/i&gt;) or a labels file (one name per line).&lt;br&gt;&lt;br&gt;Output: one line per detection from the panorama centre along the ray through the box centre, &lt;i&gt;Ray length&lt;/i&gt; long, with the box (u0, v0, u1, v1 in panorama pixels; across the ±180° seam u1 exceeds the width) and the station's pose. A panorama that cannot be read is skipped with a warning and counted.&lt;br&gt;&lt;br&gt;&lt;b&gt;Sign codes&lt;/b&gt;: a second, small ONNX model (the bundled sign-code classifier, or your own) reads what each detected sign says, from a rectified crop of the panorama around its box at the panorama's own resolution: &lt;i&gt;code&lt;/i&gt; (such as DE:274[50], speed limit 50, from the codes table; &lt;i&gt;other&lt;/i&gt; when it knows none) and &lt;i&gt;code_score&lt;/i&gt; (its probability). Refine signs votes them across the views of each sign. The classifier's format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</source>
+        <translation>将每个站点的等距柱状全景图切分为相互重叠的透视视图（一圈水平视图，以及一圈用于悬挂式标志的上视视图），在每个视图上运行 ONNX 检测器，将检测框映射回全景图像素，并合并在两个视图中找到的同一标志。&lt;br&gt;&lt;br&gt;&lt;b&gt;模型&lt;/b&gt;留空时使用内置模型，也可以是您自己导出的 ONNX 模型：Ultralytics YOLOv8/11（[1, 4+nc, N]）、YOLOv5/7（[1, N, 5+nc]）或内置 NMS 的模型（[1, N, 6]）。类别名称来自模型元数据（Ultralytics &lt;i&gt;names&lt;/i&gt;）或标签文件（每行一个名称）。&lt;br&gt;&lt;br&gt;输出：每个检测一条线，从全景图中心沿穿过检测框中心的射线延伸，长度为&lt;i&gt;射线长度&lt;/i&gt;，附带检测框（u0、v0、u1、v1，单位为全景图像素；跨越 ±180° 接缝时 u1 大于图像宽度）和站点位姿。无法读取的全景图将被跳过，并给出警告和计数。&lt;br&gt;&lt;br&gt;&lt;b&gt;标志代码&lt;/b&gt;：第二个小型 ONNX 模型（内置的标志代码分类器或您自己的分类器）从全景图中围绕检测框、按全景图原始分辨率截取的校正裁剪图像中读取每个检测到的标志的内容：&lt;i&gt;code&lt;/i&gt;（例如 DE:274[50]，即限速 50，取自代码表；不认识时为 &lt;i&gt;other&lt;/i&gt;）和 &lt;i&gt;code_score&lt;/i&gt;（其概率）。“精化与合并标志”在每个标志的各视图之间对其进行投票。分类器的格式见 models/README.md（&lt;i&gt;Sign-code classifier: the format&lt;/i&gt; 一节）。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="112" />
+        <source>Read the sign codes</source>
+        <translation>读取标志代码</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="112" />
+        <source>Reads what each detected sign says (its code, such as DE:206 for stop) with the sign-code classifier. Unchecked, the code fields stay empty. When the bundled classifier is missing, the log says so and the detections get no code.</source>
+        <translation>使用标志代码分类器读取每个检测到的标志的内容（其代码，例如 DE:206 表示停车让行）。不勾选时代码字段保持为空。内置分类器缺失时，日志会加以说明，检测结果不带代码。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="117" />
+        <source>Sign-code classifier (empty: the bundled one)</source>
+        <translation>标志代码分类器（留空：使用内置分类器）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="117" />
+        <source>An ONNX classifier of sign crops: float input [N, 3, S, S] (RGB, 0..1), output [N, C], the codes it answers in its metadata 'names' (each in the codes table, or 'other'). The format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;). Empty uses the classifier bundled with the plugin (models/signcodes.onnx).</source>
+        <translation>标志裁剪图像的 ONNX 分类器：float 输入 [N, 3, S, S]（RGB，0..1），输出 [N, C]，其可给出的代码写在元数据 'names' 中（每个代码都须在代码表中，或为 'other'）。格式见 models/README.md（&lt;i&gt;Sign-code classifier: the format&lt;/i&gt; 一节）。留空则使用插件内置的分类器（models/signcodes.onnx）。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="124" />
+        <source>Sign codes table (empty: the bundled one)</source>
+        <translation>标志代码表（留空：使用内置代码表）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="124" />
+        <source>The codes the classifier may answer, with their names and classes: UTF-8 text, semicolon-separated, the header code;name;class (format in models/README.md). Empty uses the bundled table of German codes (models/sign-codes-de.csv).</source>
+        <translation>分类器可给出的代码及其名称和类别：UTF-8 文本，以分号分隔，表头为 code;name;class（格式见 models/README.md）。留空则使用内置的德国代码表（models/sign-codes-de.csv）。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="124" />
+        <source>CSV files (*.csv *.txt);;All files (*.*)</source>
+        <translation>CSV 文件 (*.csv *.txt);;所有文件 (*.*)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="130" />
+        <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
+        <translation>LineStringZ 图层，每个检测一条射线，包含字段 det_id、station_id、image、class、score、code、code_score、u0、v0、u1、v1、n_views 以及站点的位姿字段。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="195" />
+        <source>Sign codes read in {} of the {} detections (the others: other).</source>
+        <translation>{} 个检测读出了标志代码（共 {} 个检测；其余为 other）。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="205" />
+        <source>Sign codes are not read (Read the sign codes is off).</source>
+        <translation>不读取标志代码（“读取标志代码”未勾选）。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="211" />
+        <source>The bundled sign-code classifier {} is missing: the detections get no sign code.</source>
+        <translation>内置标志代码分类器 {} 缺失：检测结果不带标志代码。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="215" />
+        <source>Sign-code classifier not found: {}</source>
+        <translation>未找到标志代码分类器：{}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="218" />
+        <source>Sign codes: {}</source>
+        <translation>标志代码：{}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="99" />
+        <source>Skip stations closer than (m)</source>
+        <translation>跳过间距小于此值的站点 (m)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="99" />
+        <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so a few metres save detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. 0 detects in every panorama.</source>
+        <translation>仅在其站点与上一个执行检测的站点相距至少此距离的全景图中进行检测；其间的全景图将被跳过（不读取，无检测结果）。一个标志会在许多站点中保持可见，因此几米的间距可按比例节省检测时间，但每个标志被看到的站点也随之减少：用于定位它的射线更少，而只在少数站点可见的标志（较小，或被树木、车辆遮挡）可能会漏检。0 表示在每张全景图中检测。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="167" />
+        <source>Detecting in {} of the {} panoramas: stations closer than {} m to the last one detected in are skipped.</source>
+        <translation>在 {} 张全景图（共 {} 张）中检测：距上一个检测站点不足 {} m 的站点将被跳过。</translation>
     </message>
 </context>
 <context>
     <name>Evaluate</name>
     <message>
-        <location filename="../algorithms/evaluate.py" line="97" />
+        <location filename="../algorithms/evaluate.py" line="106" />
         <source>Evaluate signs against reference</source>
         <translation>对照参考数据评估标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="100" />
+        <location filename="../algorithms/evaluate.py" line="109" />
         <source>Scores a sign layer against reference sign panels and writes an HTML report.</source>
         <translation>将标志图层与参考标志牌进行对比评分，并生成 HTML 报告。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="103" />
-        <source>Matches each sign to at most one reference panel by optimal assignment (Hungarian method) on the 3D distance between panel centres, within the match radius and ignoring class, then reports precision (matches / signs), recall (matches / reference panels), F1, the class accuracy of the matches, and the median and 95th percentile position error, the median height error and the median azimuth error.&lt;br&gt;&lt;br&gt;The &lt;b&gt;reference&lt;/b&gt; is a CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt; in the sign layer's CRS, or a point layer with those fields (reprojected to the sign layer's CRS).&lt;br&gt;&lt;br&gt;The HTML report has the summary and one row per sign: matched (with its errors), missed or false.</source>
-        <translation>通过最优分配（匈牙利算法），依据标志牌中心之间的三维距离，在匹配半径内且不考虑类别，将每个标志与至多一个参考标志牌匹配；然后报告精确率（匹配数 / 标志数）、召回率（匹配数 / 参考标志牌数）、F1、匹配的类别准确率，以及位置误差的中位数和第 95 百分位数、高度误差中位数和方位角误差中位数。&lt;br&gt;&lt;br&gt;&lt;b&gt;参考数据&lt;/b&gt;为位于标志图层坐标参考系中的 CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt;，或具有这些字段的点图层（重投影到标志图层的坐标参考系）。&lt;br&gt;&lt;br&gt;HTML 报告包含汇总信息，并为每个标志列出一行：已匹配（附其误差）、漏检或误检。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/evaluate.py" line="117" />
+        <location filename="../algorithms/evaluate.py" line="132" />
         <source>True positives (matched signs)</source>
         <translation>真正例（匹配的标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="117" />
+        <location filename="../algorithms/evaluate.py" line="132" />
         <source>False positives (unmatched signs)</source>
         <translation>假正例（未匹配的标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="118" />
+        <location filename="../algorithms/evaluate.py" line="133" />
         <source>False negatives (missed reference panels)</source>
         <translation>假反例（漏检的参考标志牌）</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="118" />
+        <location filename="../algorithms/evaluate.py" line="133" />
         <source>Precision</source>
         <translation>精确率</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="119" />
+        <location filename="../algorithms/evaluate.py" line="134" />
         <source>Recall</source>
         <translation>召回率</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="119" />
+        <location filename="../algorithms/evaluate.py" line="134" />
         <source>F1 score</source>
         <translation>F1 分数</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="120" />
+        <location filename="../algorithms/evaluate.py" line="135" />
         <source>Class accuracy of matches</source>
         <translation>匹配的类别准确率</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="121" />
+        <location filename="../algorithms/evaluate.py" line="136" />
         <source>Median 3D position error (m)</source>
         <translation>三维位置误差中位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="122" />
+        <location filename="../algorithms/evaluate.py" line="137" />
         <source>95th percentile 3D error (m)</source>
         <translation>三维误差第 95 百分位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="123" />
+        <location filename="../algorithms/evaluate.py" line="138" />
         <source>Median height error (m)</source>
         <translation>高度误差中位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="124" />
+        <location filename="../algorithms/evaluate.py" line="139" />
         <source>Median azimuth error (°)</source>
         <translation>方位角误差中位数 (°)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="125" />
+        <location filename="../algorithms/evaluate.py" line="143" />
         <source>Median horizontal position error (m)</source>
         <translation>水平位置误差中位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="126" />
+        <location filename="../algorithms/evaluate.py" line="144" />
         <source>Median vertical position error (m)</source>
         <translation>垂直位置误差中位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="183" />
+        <location filename="../algorithms/evaluate.py" line="205" />
         <source>Sign layer</source>
         <translation>标志图层</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="130" />
-        <source>The sign layer to score (PointZ at the panel centres, e.g. the output of Refine signs), with the fields sign_id, class and optionally height, azimuth, best_image.</source>
-        <translation>要评分的标志图层（位于标志牌中心的 PointZ，例如“精化与合并标志”的输出），包含字段 sign_id、class，以及可选的 height、azimuth、best_image。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/evaluate.py" line="134" />
+        <location filename="../algorithms/evaluate.py" line="153" />
         <source>Reference signs (CSV or point layer)</source>
         <translation>参考标志（CSV 或点图层）</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="134" />
-        <source>Ground truth: a CSV sign_id,class,x,y,z,height,width,panel_height,azimuth in the sign layer's CRS, or a point layer with those fields (reprojected if its CRS differs).</source>
-        <translation>真值数据：位于标志图层坐标参考系中的 CSV sign_id,class,x,y,z,height,width,panel_height,azimuth，或具有这些字段的点图层（若其坐标参考系不同则进行重投影）。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/evaluate.py" line="134" />
+        <location filename="../algorithms/evaluate.py" line="153" />
         <source>Reference signs (*.csv *.txt *.gpkg *.shp *.geojson);;All files (*.*)</source>
         <translation>参考标志 (*.csv *.txt *.gpkg *.shp *.geojson);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="139" />
+        <location filename="../algorithms/evaluate.py" line="159" />
         <source>Match radius (m)</source>
         <translation>匹配半径 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="139" />
+        <location filename="../algorithms/evaluate.py" line="159" />
         <source>A sign and a reference panel farther apart than this (3D distance between panel centres, metres) are never matched.</source>
         <translation>距离超过此值（标志牌中心之间的三维距离，单位为米）的标志与参考标志牌永远不会被匹配。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="143" />
+        <location filename="../algorithms/evaluate.py" line="163" />
         <source>Evaluation report</source>
         <translation>评估报告</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="143" />
+        <location filename="../algorithms/evaluate.py" line="163" />
         <source>HTML files (*.html)</source>
         <translation>HTML 文件 (*.html)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="143" />
+        <location filename="../algorithms/evaluate.py" line="163" />
         <source>HTML report: the summary and one row per sign and reference panel.</source>
         <translation>HTML 报告：汇总信息，以及每个标志和参考标志牌各一行。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="152" />
+        <location filename="../algorithms/evaluate.py" line="174" />
         <source>Reference file not found: {}</source>
         <translation>未找到参考文件：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="154" />
+        <location filename="../algorithms/evaluate.py" line="176" />
         <source>Reference CSV {}: coordinates taken in the sign layer's CRS ({})</source>
         <translation>参考 CSV {}：坐标按标志图层的坐标参考系（{}）解释</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="165" />
+        <location filename="../algorithms/evaluate.py" line="187" />
         <source>Cannot read the reference {}: expected a CSV or a point layer</source>
         <translation>无法读取参考数据 {}：应为 CSV 或点图层</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="169" />
+        <location filename="../algorithms/evaluate.py" line="191" />
         <source>Reprojecting the reference from {} to {}</source>
         <translation>正在将参考数据从 {} 重投影到 {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="186" />
+        <location filename="../algorithms/evaluate.py" line="208" />
         <source>The sign layer is empty: nothing to evaluate.</source>
         <translation>标志图层为空：没有可评估的内容。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="190" />
+        <location filename="../algorithms/evaluate.py" line="212" />
         <source>The reference {} has no sign: nothing to evaluate against.</source>
         <translation>参考数据 {} 中没有标志：无法进行评估。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="196" />
+        <location filename="../algorithms/evaluate.py" line="218" />
         <source>Road sign evaluation</source>
         <translation>道路标志评估</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="203" />
+        <location filename="../algorithms/evaluate.py" line="225" />
         <source>{} signs, {} reference panels: TP {}, FP {}, FN {}; precision {}, recall {}, median error {} m</source>
         <translation>{} 个标志，{} 个参考标志牌：TP {}，FP {}，FN {}；精确率 {}，召回率 {}，误差中位数 {} m</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="112" />
+        <source>Matches each sign to at most one reference panel by optimal assignment (Hungarian method) on the 3D distance between panel centres, within the match radius and ignoring class, then reports precision (matches / signs), recall (matches / reference panels), F1, the class accuracy of the matches, and the median and 95th percentile position error, the median height error and the median azimuth error.&lt;br&gt;&lt;br&gt;When the reference has a &lt;i&gt;code&lt;/i&gt; column and the sign layer a &lt;i&gt;code&lt;/i&gt; field (OpenStreetMap traffic_sign codes such as DE:274[50]), it also reports the code accuracy of the matches whose reference code is not empty (a sign without a code counts as wrong, and is counted as no code) and the code confusions, most frequent first.&lt;br&gt;&lt;br&gt;The &lt;b&gt;reference&lt;/b&gt; is a CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt; (and optionally &lt;i&gt;code&lt;/i&gt;) in the sign layer's CRS, or a point layer with those fields (reprojected to the sign layer's CRS).&lt;br&gt;&lt;br&gt;The HTML report has the summary and one row per sign: matched (with its errors), missed or false.</source>
+        <translation>通过最优分配（匈牙利算法），依据标志牌中心之间的三维距离，在匹配半径内且不考虑类别，将每个标志与至多一个参考标志牌匹配；然后报告精确率（匹配数 / 标志数）、召回率（匹配数 / 参考标志牌数）、F1、匹配的类别准确率，以及位置误差的中位数和第 95 百分位数、高度误差中位数和方位角误差中位数。&lt;br&gt;&lt;br&gt;当参考数据有 &lt;i&gt;code&lt;/i&gt; 列且标志图层有 &lt;i&gt;code&lt;/i&gt; 字段（OpenStreetMap traffic_sign 代码，例如 DE:274[50]）时，还会报告参考代码非空的匹配的代码准确率（没有代码的标志计为错误，并计入无代码数）以及代码混淆，按出现次数从多到少排列。&lt;br&gt;&lt;br&gt;&lt;b&gt;参考数据&lt;/b&gt;为位于标志图层坐标参考系中的 CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt;（以及可选的 &lt;i&gt;code&lt;/i&gt;），或具有这些字段的点图层（重投影到标志图层的坐标参考系）。&lt;br&gt;&lt;br&gt;HTML 报告包含汇总信息，并为每个标志列出一行：已匹配（附其误差）、漏检或误检。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="140" />
+        <source>Code accuracy of matches with a reference code</source>
+        <translation>有参考代码的匹配的代码准确率</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="141" />
+        <source>Matches whose codes were compared</source>
+        <translation>比较了代码的匹配数</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="142" />
+        <source>Compared matches whose sign has no code</source>
+        <translation>已比较的匹配中标志没有代码的数量</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="148" />
+        <source>The sign layer to score (PointZ at the panel centres, e.g. the output of Refine signs), with the fields sign_id, class and optionally height, azimuth, best_image, code.</source>
+        <translation>要评分的标志图层（位于标志牌中心的 PointZ，例如“精化与合并标志”的输出），包含字段 sign_id、class，以及可选的 height、azimuth、best_image、code。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="153" />
+        <source>Ground truth: a CSV sign_id,class,x,y,z,height,width,panel_height,azimuth (and optionally code) in the sign layer's CRS, or a point layer with those fields (reprojected if its CRS differs).</source>
+        <translation>真值数据：位于标志图层坐标参考系中的 CSV sign_id,class,x,y,z,height,width,panel_height,azimuth（以及可选的 code），或具有这些字段的点图层（若其坐标参考系不同则进行重投影）。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="169" />
+        <source>Code confusions (reference code -&gt; sign code: count)</source>
+        <translation>代码混淆（参考代码 -&gt; 标志代码：次数）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="231" />
+        <source>Code accuracy {} of {} matches with a reference code ({} without a code); confusions: {}</source>
+        <translation>代码准确率 {}，基于 {} 个有参考代码的匹配（{} 个没有代码）；混淆：{}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="231" />
+        <source>none</source>
+        <translation>无</translation>
     </message>
 </context>
 <context>
@@ -726,7 +831,7 @@
         <translation>地面为类别 2 的点云（“地面滤波与点云裁剪”的输出），带有强度维度，与全景站点位于同一坐标参考系。</translation>
     </message>
     <message>
-        <location filename="../algorithms/findsignsincloud.py" line="88" />
+        <location filename="../algorithms/findsignsincloud.py" line="87" />
         <source>Panorama stations</source>
         <translation>全景站点</translation>
     </message>
@@ -786,12 +891,12 @@
         <translation>找到的杆数</translation>
     </message>
     <message>
-        <location filename="../algorithms/findsignsincloud.py" line="87" />
+        <location filename="../algorithms/findsignsincloud.py" line="86" />
         <source>The stations</source>
         <translation>全景站点</translation>
     </message>
     <message>
-        <location filename="../algorithms/findsignsincloud.py" line="119" />
+        <location filename="../algorithms/findsignsincloud.py" line="118" />
         <source>{} sign panels and {} poles found in the cloud.</source>
         <translation>在点云中找到 {} 个标志牌和 {} 根杆。</translation>
     </message>
@@ -814,7 +919,7 @@
         <translation>通过最优分配，将图像流程（“精化与合并标志”）中的每个标志与最多一个仅在点云中找到的标志牌（“在点云中查找标志（无图像）”）进行匹配：中心位于匹配半径内，且朝向相差不超过 90°。&lt;br&gt;&lt;br&gt;匹配上的标志保留其类别，并获得该标志牌的逆反射指数和状态（&lt;i&gt;source&lt;/i&gt; = image+lidar）。没有任何图像标志与之对应的标志牌成为单独的标志（&lt;i&gt;source&lt;/i&gt; = lidar）：若提供全景站点和全景图文件夹，将从其牌面前方的全景图中截取以其为中心的视图，由检测器在其中识别其类别；若均未识别出，其类别为 &lt;i&gt;unknown&lt;/i&gt;，并标记为待审核。若某图像标志在点云中的位置没有逆反射标志牌，则降低其置信度（得分 × 0.6），并标记为待审核（&lt;i&gt;source&lt;/i&gt; = image）。&lt;br&gt;&lt;br&gt;输出：标志图层，包含“精化与合并标志”的字段以及 source、review、image_sign_id、cloud_sign_id、retro_index 和 condition，样式与标志图层相同。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="95" />
+        <location filename="../algorithms/fusesigns.py" line="97" />
         <source>Signs (from the images)</source>
         <translation>标志（来自图像）</translation>
     </message>
@@ -824,7 +929,7 @@
         <translation>“精化与合并标志”的输出。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="96" />
+        <location filename="../algorithms/fusesigns.py" line="99" />
         <source>Sign panels found in the cloud</source>
         <translation>点云中找到的标志牌</translation>
     </message>
@@ -914,32 +1019,32 @@
         <translation>仅在点云中找到的标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="100" />
+        <location filename="../algorithms/fusesigns.py" line="103" />
         <source>The signs are in {}, the panels found in the cloud in {}: both must be in the cloud's CRS</source>
         <translation>标志位于 {}，点云中找到的标志牌位于 {}：两者都必须位于点云的坐标参考系中</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="111" />
+        <location filename="../algorithms/fusesigns.py" line="114" />
         <source>No stations given: the {} signs found in the cloud alone keep the class unknown.</source>
         <translation>未提供全景站点：仅在点云中找到的 {} 个标志保留类别 unknown。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="127" />
+        <location filename="../algorithms/fusesigns.py" line="130" />
         <source>{} signs: {} found by both, {} in the images only ({} of them where the cloud was searched: score lowered, to review), {} in the cloud only.</source>
         <translation>{} 个标志：{} 个两者均找到，{} 个仅在图像中找到（其中 {} 个位于点云已搜索的范围内：得分已降低，待审核），{} 个仅在点云中找到。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="140" />
+        <location filename="../algorithms/fusesigns.py" line="143" />
         <source>Panorama stations</source>
         <translation>全景站点</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="146" />
+        <location filename="../algorithms/fusesigns.py" line="149" />
         <source>ONNX model not found: {}</source>
         <translation>未找到 ONNX 模型：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="157" />
+        <location filename="../algorithms/fusesigns.py" line="160" />
         <source>{} of the {} signs found in the cloud alone were recognised in the panoramas; the others keep the class unknown and are to review.</source>
         <translation>有 {} 个（共 {} 个仅在点云中找到的标志）在全景图中被识别；其余标志保留类别 unknown，待审核。</translation>
     </message>
@@ -947,219 +1052,234 @@
 <context>
     <name>GroundFilter</name>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="54" />
+        <location filename="../algorithms/groundfilter.py" line="57" />
         <source>Ground filter and crop point cloud</source>
         <translation>地面滤波与点云裁剪</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="57" />
+        <location filename="../algorithms/groundfilter.py" line="60" />
         <source>Crops a LAS/LAZ cloud and classifies ground (class 2) with CSF or SMRF, PDAL or built-in.</source>
         <translation>裁剪 LAS/LAZ 点云，并使用 CSF 或 SMRF（PDAL 或内置引擎）将地面分类为类别 2。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="61" />
-        <source>Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless &lt;i&gt;Reset existing classes&lt;/i&gt; is checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are written unchanged.&lt;br&gt;&lt;br&gt;&lt;b&gt;Crop&lt;/b&gt;: polygons (grown by the crop buffer), or points and lines such as the panorama stations or detection rays, buffered into a corridor. The crop layer is reprojected to the cloud's CRS.&lt;br&gt;&lt;br&gt;&lt;b&gt;Engine&lt;/b&gt;: PDAL runs filters.csf / filters.smrf through its Python bindings or the &lt;i&gt;pdal&lt;/i&gt; executable (on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign inventory); the built-in engine runs the same filters in Python, tile by tile, so clouds larger than memory work. Auto uses PDAL when present and falls back to the built-in engine if PDAL fails, saying so in the log.</source>
-        <translation>分块读取 LAS/LAZ 点云，保留裁剪范围内的点，并使用布料模拟滤波（CSF，Zhang 等，2016）或简单形态学滤波（SMRF，Pingel 等，2013）将地面点分类为类别 2，参数与 PDAL 相同（默认值针对密集的移动测量点云调整：阈值 0.2 m，格网 0.5 m；PDAL 自身的默认值为 0.5 m 和 1 m）。除非勾选&lt;i&gt;重置现有类别&lt;/i&gt;，其他类别将被保留。所有维度、额外字节、VLR、缩放与偏移以及坐标参考系均原样写出。&lt;br&gt;&lt;br&gt;&lt;b&gt;裁剪&lt;/b&gt;：多边形（按裁剪缓冲距离外扩），或点和线（例如全景站点或检测射线），缓冲为走廊。裁剪图层会被重投影到点云的坐标参考系。&lt;br&gt;&lt;br&gt;&lt;b&gt;引擎&lt;/b&gt;：PDAL 通过其 Python 绑定或 &lt;i&gt;pdal&lt;/i&gt; 可执行文件（位于 PATH、QGIS 的 bin 文件夹中，或在 处理 ▸ 选项 ▸ 提供者 ▸ 道路标志清查 中设置）运行 filters.csf / filters.smrf；内置引擎在 Python 中逐块运行相同的滤波器，因此可以处理大于内存的点云。“自动”在有 PDAL 时使用 PDAL，若 PDAL 失败则回退到内置引擎，并在日志中说明。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/groundfilter.py" line="78" />
+        <location filename="../algorithms/groundfilter.py" line="87" />
         <source>Point cloud (LAS/LAZ)</source>
         <translation>点云（LAS/LAZ）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="78" />
+        <location filename="../algorithms/groundfilter.py" line="87" />
         <source>The mobile-mapping cloud, LAS 1.2-1.4 or LAZ, any size (it is read in chunks).</source>
         <translation>移动测量点云，LAS 1.2-1.4 或 LAZ，大小不限（分块读取）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="81" />
+        <location filename="../algorithms/groundfilter.py" line="90" />
         <source>Crop layer (optional)</source>
         <translation>裁剪图层（可选）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="81" />
+        <location filename="../algorithms/groundfilter.py" line="90" />
         <source>Keep only points inside these polygons, or within the crop buffer of these points or lines (e.g. the panorama stations). Empty keeps the whole cloud.</source>
         <translation>仅保留这些多边形内的点，或这些点或线（例如全景站点）的裁剪缓冲距离内的点。留空则保留整个点云。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="85" />
+        <location filename="../algorithms/groundfilter.py" line="94" />
         <source>Crop buffer (m)</source>
         <translation>裁剪缓冲距离 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="85" />
+        <location filename="../algorithms/groundfilter.py" line="94" />
         <source>Grow the crop geometries by this many metres; needed (&gt; 0) for a point or line layer.</source>
         <translation>将裁剪几何外扩的米数；点或线图层必须大于 0。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="89" />
+        <location filename="../algorithms/groundfilter.py" line="98" />
         <source>Ground method</source>
         <translation>地面分类方法</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="89" />
+        <location filename="../algorithms/groundfilter.py" line="98" />
         <source>CSF (cloth simulation)</source>
         <translation>CSF（布料模拟）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="89" />
+        <location filename="../algorithms/groundfilter.py" line="98" />
         <source>SMRF (simple morphological filter)</source>
         <translation>SMRF（简单形态学滤波）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="89" />
+        <location filename="../algorithms/groundfilter.py" line="98" />
         <source>CSF suits roads and gentle terrain; SMRF suits steeper or rougher terrain.</source>
         <translation>CSF 适用于道路和平缓地形；SMRF 适用于较陡或较崎岖的地形。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="93" />
+        <location filename="../algorithms/groundfilter.py" line="102" />
         <source>Engine</source>
         <translation>引擎</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="93" />
+        <location filename="../algorithms/groundfilter.py" line="102" />
         <source>Auto (PDAL when available, else built-in)</source>
         <translation>自动（有 PDAL 时使用 PDAL，否则使用内置引擎）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="93" />
+        <location filename="../algorithms/groundfilter.py" line="102" />
         <source>PDAL</source>
         <translation>PDAL</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="93" />
+        <location filename="../algorithms/groundfilter.py" line="102" />
         <source>Built-in</source>
         <translation>内置</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="93" />
+        <location filename="../algorithms/groundfilter.py" line="102" />
         <source>Auto: PDAL when QGIS has it (Python bindings or the pdal executable), else built-in.</source>
         <translation>自动：QGIS 带有 PDAL 时（Python 绑定或 pdal 可执行文件）使用 PDAL，否则使用内置引擎。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="98" />
+        <location filename="../algorithms/groundfilter.py" line="107" />
         <source>Ground distance threshold (m)</source>
         <translation>地面距离阈值 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="98" />
+        <location filename="../algorithms/groundfilter.py" line="107" />
         <source>Points within this height of the ground surface are ground (PDAL's threshold option). PDAL's default is 0.5 m; 0.2 m suits dense mobile-mapping clouds, where it keeps the lowest parts of cars, walls and street furniture off the ground class.</source>
         <translation>距地面表面在此高度以内的点被视为地面（PDAL 的 threshold 选项）。PDAL 的默认值为 0.5 m；0.2 m 适用于密集的移动测量点云，可避免汽车、墙体和街道设施的最低部分被归入地面类别。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="104" />
+        <location filename="../algorithms/groundfilter.py" line="113" />
         <source>Cloth resolution / cell size (m)</source>
         <translation>布料分辨率 / 格网大小 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="104" />
+        <location filename="../algorithms/groundfilter.py" line="113" />
         <source>CSF's cloth resolution or SMRF's cell size, in metres (PDAL's default: 1 m).</source>
         <translation>CSF 的布料分辨率或 SMRF 的格网大小，单位为米（PDAL 默认值：1 m）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="108" />
+        <location filename="../algorithms/groundfilter.py" line="117" />
         <source>Cloud CRS (when the file has none)</source>
         <translation>点云坐标参考系（文件中没有时）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="108" />
+        <location filename="../algorithms/groundfilter.py" line="117" />
         <source>The cloud's CRS if the file does not record one; a CRS in the file is replaced by it. The CRS is never guessed.</source>
         <translation>当文件未记录坐标参考系时使用的点云坐标参考系；文件中已有的坐标参考系将被其替换。从不猜测坐标参考系。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="112" />
+        <location filename="../algorithms/groundfilter.py" line="121" />
         <source>Reset existing classes</source>
         <translation>重置现有类别</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="112" />
+        <location filename="../algorithms/groundfilter.py" line="121" />
         <source>Set every non-ground point to class 1 (unclassified) instead of keeping its class.</source>
         <translation>将所有非地面点设为类别 1（未分类），而不保留其原有类别。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="116" />
+        <location filename="../algorithms/groundfilter.py" line="130" />
         <source>Ground-classified cloud</source>
         <translation>已地面分类的点云</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="116" />
+        <location filename="../algorithms/groundfilter.py" line="130" />
         <source>LAZ (*.laz);;LAS (*.las)</source>
         <translation>LAZ (*.laz);;LAS (*.las)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="116" />
-        <source>The cropped cloud with ground as class 2; LAZ or LAS by the file extension.</source>
-        <translation>裁剪后的点云，地面为类别 2；按文件扩展名保存为 LAZ 或 LAS。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/groundfilter.py" line="119" />
+        <location filename="../algorithms/groundfilter.py" line="135" />
         <source>Engine that ran</source>
         <translation>实际运行的引擎</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="120" />
+        <location filename="../algorithms/groundfilter.py" line="136" />
         <source>Points read</source>
         <translation>读取的点数</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="121" />
+        <location filename="../algorithms/groundfilter.py" line="137" />
         <source>Points written</source>
         <translation>写入的点数</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="122" />
+        <location filename="../algorithms/groundfilter.py" line="138" />
         <source>Ground points</source>
         <translation>地面点数</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="132" />
+        <location filename="../algorithms/groundfilter.py" line="148" />
         <source>The crop layer holds points or lines: give a crop buffer in metres (&gt; 0) to make a corridor around them</source>
         <translation>裁剪图层包含点或线：请给出以米为单位的裁剪缓冲距离（&gt; 0），以便在其周围形成走廊</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="137" />
+        <location filename="../algorithms/groundfilter.py" line="153" />
         <source>Reprojecting the crop layer from {} to {}</source>
         <translation>正在将裁剪图层从 {} 重投影到 {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="225" />
+        <location filename="../algorithms/groundfilter.py" line="254" />
         <source>Engine: {}; method: {}; {} points read, {} written, {} ground</source>
         <translation>引擎：{}；方法：{}；读取 {} 个点，写入 {} 个，地面点 {} 个</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="143" />
+        <location filename="../algorithms/groundfilter.py" line="159" />
         <source>Cancelled: nothing was written.</source>
         <translation>已取消：未写入任何内容。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="152" />
+        <location filename="../algorithms/groundfilter.py" line="168" />
         <source>The crop layer {} has no feature: nothing to crop by. Leave the crop layer empty to process the whole cloud</source>
         <translation>裁剪图层 {} 没有要素：无可用于裁剪的内容。若要处理整个点云，请将裁剪图层留空</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="156" />
+        <location filename="../algorithms/groundfilter.py" line="172" />
         <source>The crop layer {} has no geometry (its {} features are empty): nothing to crop by</source>
         <translation>裁剪图层 {} 没有几何（其 {} 个要素均为空）：无可用于裁剪的内容</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="169" />
+        <location filename="../algorithms/groundfilter.py" line="187" />
         <source>The crop area (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}) does not overlap the point cloud {} (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}): nothing would be kept</source>
         <translation>裁剪区域（x {:.1f} 至 {:.1f}，y {:.1f} 至 {:.1f}）与点云 {}（x {:.1f} 至 {:.1f}，y {:.1f} 至 {:.1f}）不重叠：不会保留任何点</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="182" />
+        <location filename="../algorithms/groundfilter.py" line="200" />
         <source>PDAL said: {}</source>
         <translation>PDAL 输出：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="183" />
+        <location filename="../algorithms/groundfilter.py" line="201" />
         <source>PDAL failed: {}</source>
         <translation>PDAL 失败：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="195" />
+        <location filename="../algorithms/groundfilter.py" line="222" />
         <source>The output {} must not be the input file</source>
         <translation>输出 {} 不能是输入文件</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="64" />
+        <source>Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless &lt;i&gt;Reset existing classes&lt;/i&gt; is checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are written unchanged.&lt;br&gt;&lt;br&gt;&lt;b&gt;Crop&lt;/b&gt;: polygons (grown by the crop buffer), or points and lines such as the panorama stations or detection rays, buffered into a corridor. The crop layer is reprojected to the cloud's CRS.&lt;br&gt;&lt;br&gt;&lt;b&gt;Engine&lt;/b&gt;: PDAL runs filters.csf / filters.smrf through its Python bindings or the &lt;i&gt;pdal&lt;/i&gt; executable (on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign inventory); the built-in engine runs the same filters in Python, tile by tile, so clouds larger than memory work. Auto uses PDAL when present and falls back to the built-in engine if PDAL fails, saying so in the log.&lt;br&gt;&lt;br&gt;&lt;b&gt;Tiles&lt;/b&gt;: the input may be one LAS/LAZ file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc); PDAL classifies a single file, tiles go to the built-in engine. They are written to one file, or, with &lt;i&gt;Write one tile per input tile&lt;/i&gt;, each to a file of its own name in a folder named after the output (out/ground.laz gives the folder out/ground), with a virtual point cloud listing them (out/ground/ground.vpc, the output to give the next stages). Each tile is classified with its neighbours' points around it, so the classes at tile edges are those of a run on the whole cloud.</source>
+        <translation>分块读取 LAS/LAZ 点云，保留裁剪范围内的点，并使用布料模拟滤波（CSF，Zhang 等，2016）或简单形态学滤波（SMRF，Pingel 等，2013）将地面点分类为类别 2，参数与 PDAL 相同（默认值针对密集的移动测量点云调整：阈值 0.2 m，格网 0.5 m；PDAL 自身的默认值为 0.5 m 和 1 m）。除非勾选&lt;i&gt;重置现有类别&lt;/i&gt;，其他类别将被保留。所有维度、额外字节、VLR、缩放与偏移以及坐标参考系均原样写出。&lt;br&gt;&lt;br&gt;&lt;b&gt;裁剪&lt;/b&gt;：多边形（按裁剪缓冲距离外扩），或点和线（例如全景站点或检测射线），缓冲为走廊。裁剪图层会被重投影到点云的坐标参考系。&lt;br&gt;&lt;br&gt;&lt;b&gt;引擎&lt;/b&gt;：PDAL 通过其 Python 绑定或 &lt;i&gt;pdal&lt;/i&gt; 可执行文件（位于 PATH、QGIS 的 bin 文件夹中，或在 处理 ▸ 选项 ▸ 提供者 ▸ 道路标志清查 中设置）运行 filters.csf / filters.smrf；内置引擎在 Python 中逐块运行相同的滤波器，因此可以处理大于内存的点云。“自动”在有 PDAL 时使用 PDAL，若 PDAL 失败则回退到内置引擎，并在日志中说明。&lt;br&gt;&lt;br&gt;&lt;b&gt;分块&lt;/b&gt;：输入可以是单个 LAS/LAZ 文件、LAS/LAZ 分块文件夹或虚拟点云（.vpc）；PDAL 只分类单个文件，分块交由内置引擎处理。分块写入一个文件，或在勾选&lt;i&gt;每个输入分块写出一个分块&lt;/i&gt;时，各自写入以输出命名的文件夹中与原名相同的文件（out/ground.laz 对应文件夹 out/ground），并附带列出这些分块的虚拟点云（out/ground/ground.vpc，即交给后续步骤的输出）。每个分块在分类时会带上其周围相邻分块的点，因此分块边缘的类别与对整个点云运行所得的相同。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="125" />
+        <source>Write one tile per input tile</source>
+        <translation>每个输入分块写出一个分块</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="125" />
+        <source>Write each input tile to its own file (same name, same header) in a folder named after the output, with a virtual point cloud (.vpc) listing them, instead of one file. Uses the built-in engine.</source>
+        <translation>将每个输入分块写入各自的文件（同名、同文件头），放在以输出命名的文件夹中，并附带列出它们的虚拟点云（.vpc），而不是写成一个文件。使用内置引擎。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="130" />
+        <source>The cropped cloud with ground as class 2; LAZ or LAS by the file extension. With one tile per input tile: the folder of this name without its extension gets the tiles and &lt;name&gt;.vpc, which is then this output.</source>
+        <translation>裁剪后的点云，地面为类别 2；按文件扩展名保存为 LAZ 或 LAS。每个输入分块写出一个分块时：以此名称去掉扩展名的文件夹存放各分块和 &lt;name&gt;.vpc，后者即为此输出。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="244" />
+        <source>Writing one tile per input tile to the folder {}, listed in {}</source>
+        <translation>正在为每个输入分块写出一个分块到文件夹 {}，并列于 {} 中</translation>
     </message>
 </context>
 <context>
@@ -1398,7 +1518,7 @@
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="84" />
+        <location filename="../algorithms/projectdetections.py" line="85" />
         <source>{} detections: {} with a surface in the cloud, {} without</source>
         <translation>{} 个检测：{} 个在点云中找到表面，{} 个未找到</translation>
     </message>
@@ -1416,500 +1536,525 @@
 <context>
     <name>RefineSigns</name>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="43" />
+        <location filename="../algorithms/refinesigns.py" line="46" />
         <source>Refine and merge signs</source>
         <translation>精化与合并标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="46" />
+        <location filename="../algorithms/refinesigns.py" line="49" />
         <source>Merges the views of each sign and refines it in the cloud: the sign layer.</source>
         <translation>合并每个标志的多个视图，并在点云中对其精化：生成标志图层。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="49" />
-        <source>Groups the candidates of different panoramas that are the same physical sign (same class, within the merge radius, plane normals agreeing; panels stacked on one pole stay apart), then refines each sign in the cloud: Euclidean clustering, an intensity filter whose threshold adapts to the cloud (Otsu), a near-vertical RANSAC plane and PCA dimensionality to keep the panel and drop the pole.&lt;br&gt;&lt;br&gt;Each sign gets its panel centre, width and panel height, the azimuth its face looks towards (clockwise from grid north), its height above the ground directly below (class-2 points near the sign; the log names any fallback), the bottom height, the number of views and points, the images it was seen in and the best of them (closest, most frontal), the mean intensity and planarity. A sign seen in two or more panoramas but with no cloud points is placed by triangulating its rays (position_source = image).&lt;br&gt;&lt;br&gt;Optional outputs: panel outlines (PolygonZ) and the sign points (LAS/LAZ).&lt;br&gt;&lt;br&gt;&lt;b&gt;Review&lt;/b&gt;: with the panorama folder, each sign gets an image chip from its best panorama (its box with a margin, undistorted), written into a folder beside the sign layer and linked by the &lt;i&gt;chip&lt;/i&gt; field (a relative path); the review report shows every sign's chip and attributes. The sign layer is styled with a symbol per class and its height as label (a .qml file beside it).</source>
-        <translation>将来自不同全景图、属于同一实体标志的候选分为一组（类别相同、位于合并半径内、平面法向量一致；同一根杆上叠放的标志牌保持分开），然后在点云中精化每个标志：欧氏聚类、阈值随点云自适应的强度滤波（Otsu）、近似竖直的 RANSAC 平面以及 PCA 维度特征，以保留标志牌并去除杆体。&lt;br&gt;&lt;br&gt;每个标志将得到：标志牌中心、宽度和标志牌高度，牌面朝向的方位角（从坐标北起顺时针），其相对于正下方地面的高度（标志附近的类别 2 点；若使用了替代方法，日志会说明），底部高度，视图数和点数，看到它的图像及其中最佳的一张（最近、最正对），平均强度和平面度。在两张或更多全景图中看到但没有点云点的标志，通过其射线的三角测量定位（position_source = image）。&lt;br&gt;&lt;br&gt;可选输出：标志牌轮廓（PolygonZ）和标志点（LAS/LAZ）。&lt;br&gt;&lt;br&gt;&lt;b&gt;审核&lt;/b&gt;：提供全景图文件夹时，每个标志会从其最佳全景图中截取一张图像切片（其检测框加边距，已去畸变），写入标志图层旁的文件夹，并通过 &lt;i&gt;chip&lt;/i&gt; 字段（相对路径）关联；审核报告显示每个标志的切片和属性。标志图层按类别使用不同符号，并以高度作为标注（其旁的 .qml 文件）。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/refinesigns.py" line="116" />
+        <location filename="../algorithms/refinesigns.py" line="143" />
         <source>Sign candidates</source>
         <translation>标志候选</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="69" />
+        <location filename="../algorithms/refinesigns.py" line="82" />
         <source>The output of Project detections.</source>
         <translation>“将检测投影到点云”的输出。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="72" />
+        <location filename="../algorithms/refinesigns.py" line="85" />
         <source>Ground-classified point cloud (LAS/LAZ)</source>
         <translation>已地面分类的点云（LAS/LAZ）</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="72" />
+        <location filename="../algorithms/refinesigns.py" line="85" />
         <source>The same cloud as for Project detections (ground as class 2).</source>
         <translation>与“将检测投影到点云”相同的点云（地面为类别 2）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="75" />
+        <location filename="../algorithms/refinesigns.py" line="88" />
         <source>Merge radius (m)</source>
         <translation>合并半径 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="75" />
+        <location filename="../algorithms/refinesigns.py" line="88" />
         <source>Candidates of the same class closer than this (metres) with agreeing plane normals are taken as one sign.</source>
         <translation>类别相同、距离小于此值（米）且平面法向量一致的候选被视为同一个标志。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="79" />
+        <location filename="../algorithms/refinesigns.py" line="104" />
         <source>Panorama folder (for review chips)</source>
         <translation>全景图文件夹（用于审核切片）</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="79" />
+        <location filename="../algorithms/refinesigns.py" line="104" />
         <source>The folder of the panoramas (as for Import trajectory). When given, an image chip of each sign is cut from its best panorama for review.</source>
         <translation>全景图所在的文件夹（与“导入轨迹和全景图”相同）。提供时，将从每个标志的最佳全景图中截取一张图像切片用于审核。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="87" />
+        <location filename="../algorithms/refinesigns.py" line="112" />
         <source>Signs</source>
         <translation>标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="87" />
+        <location filename="../algorithms/refinesigns.py" line="112" />
         <source>PointZ sign layer at the panel centres (fields in docs/formats.md), and chip: the relative path of the sign's review picture.</source>
         <translation>位于标志牌中心的 PointZ 标志图层（字段见 docs/formats.md），以及 chip：标志审核图片的相对路径。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="91" />
+        <location filename="../algorithms/refinesigns.py" line="116" />
         <source>Panel outlines</source>
         <translation>标志牌轮廓</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="91" />
+        <location filename="../algorithms/refinesigns.py" line="116" />
         <source>PolygonZ layer of each panel's rectangle in its plane (signs placed from the cloud).</source>
         <translation>每个标志牌在其所在平面内的矩形的 PolygonZ 图层（由点云定位的标志）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="95" />
+        <location filename="../algorithms/refinesigns.py" line="120" />
         <source>Sign points</source>
         <translation>标志点</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="95" />
+        <location filename="../algorithms/refinesigns.py" line="120" />
         <source>LAZ (*.laz);;LAS (*.las)</source>
         <translation>LAZ (*.laz);;LAS (*.las)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="95" />
+        <location filename="../algorithms/refinesigns.py" line="120" />
         <source>A LAS/LAZ file of the points of every sign panel, all dimensions kept.</source>
         <translation>包含每个标志牌所有点的 LAS/LAZ 文件，保留全部维度。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="98" />
+        <location filename="../algorithms/refinesigns.py" line="123" />
         <source>Review report</source>
         <translation>审核报告</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="98" />
+        <location filename="../algorithms/refinesigns.py" line="123" />
         <source>HTML files (*.html)</source>
         <translation>HTML 文件 (*.html)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="98" />
+        <location filename="../algorithms/refinesigns.py" line="123" />
         <source>An HTML page with every sign's chip and attributes, to confirm signs without opening panoramas (needs the panorama folder).</source>
         <translation>一个 HTML 页面，列出每个标志的切片和属性，无需打开全景图即可确认标志（需要全景图文件夹）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="114" />
+        <location filename="../algorithms/refinesigns.py" line="141" />
         <source>The candidates</source>
         <translation>候选</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="141" />
+        <location filename="../algorithms/refinesigns.py" line="172" />
         <source>The review report needs the panorama folder: not written.</source>
         <translation>审核报告需要全景图文件夹：未写入。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="147" />
+        <location filename="../algorithms/refinesigns.py" line="178" />
         <source>{} sign points written to {}</source>
         <translation>已将 {} 个标志点写入 {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="172" />
+        <location filename="../algorithms/refinesigns.py" line="203" />
         <source>{} signs from {} candidates ({})</source>
         <translation>{} 个标志，来自 {} 个候选（{}）</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="182" />
+        <location filename="../algorithms/refinesigns.py" line="213" />
         <source>Review chips need a sign layer written to a file: skipped.</source>
         <translation>审核切片需要写入文件的标志图层：已跳过。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="195" />
+        <location filename="../algorithms/refinesigns.py" line="226" />
         <source>Road signs for review</source>
         <translation>待审核的道路标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="197" />
+        <location filename="../algorithms/refinesigns.py" line="228" />
         <source>{} review chips in {}</source>
         <translation>{} 张审核切片，位于 {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="83" />
+        <location filename="../algorithms/refinesigns.py" line="108" />
         <source>Cloud CRS (when the file has none)</source>
         <translation>点云坐标参考系（文件中没有时）</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="83" />
+        <location filename="../algorithms/refinesigns.py" line="108" />
         <source>The cloud's CRS when the file records none (it must be the candidates' CRS); it overrides a CRS in the file. The CRS is never guessed.</source>
         <translation>文件中没有记录坐标参考系时点云的坐标参考系（必须与候选的坐标参考系相同）；它会覆盖文件中的坐标参考系。坐标参考系从不猜测。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="120" />
+        <location filename="../algorithms/refinesigns.py" line="148" />
         <source>Panorama folder not found: {}</source>
         <translation>未找到全景图文件夹：{}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="52" />
+        <source>Groups the candidates of different panoramas that are the same physical sign (same class, within the merge radius, plane normals agreeing; panels stacked on one pole stay apart), then refines each sign in the cloud: Euclidean clustering, an intensity filter whose threshold adapts to the cloud (Otsu), a near-vertical RANSAC plane and PCA dimensionality to keep the panel and drop the pole.&lt;br&gt;&lt;br&gt;Each sign gets its panel centre, width and panel height, the azimuth its face looks towards (clockwise from grid north), its height above the ground directly below (class-2 points near the sign; the log names any fallback), the bottom height, the number of views and points, the images it was seen in and the best of them (closest, most frontal), the mean intensity and planarity. A sign seen in two or more panoramas but with no cloud points is placed by triangulating its rays (position_source = image).&lt;br&gt;&lt;br&gt;Optional outputs: panel outlines (PolygonZ) and the sign points (LAS/LAZ).&lt;br&gt;&lt;br&gt;&lt;b&gt;Review&lt;/b&gt;: with the panorama folder, each sign gets an image chip from its best panorama (its box with a margin, undistorted), written into a folder beside the sign layer and linked by the &lt;i&gt;chip&lt;/i&gt; field (a relative path); the review report shows every sign's chip and attributes. The sign layer is styled with a symbol per class and its height as label (a .qml file beside it).&lt;br&gt;&lt;br&gt;&lt;b&gt;Sign codes&lt;/b&gt;: the codes Detect signs read in the views of a sign are put to a vote, each view weighing its detection score x its crop size x the code's probability. The sign gets &lt;i&gt;code&lt;/i&gt; (empty when the vote says &lt;i&gt;other&lt;/i&gt; or the support is below the minimum code confidence), &lt;i&gt;code_name&lt;/i&gt; (from the codes table), &lt;i&gt;code_score&lt;/i&gt; (the support: the code's share of the vote x its mean probability) and &lt;i&gt;code_views&lt;/i&gt;. When the code's class (codes table) is not the class vote's, the better supported one wins: the code's support against the class's (its share of the score-weighted class vote x its views' mean detection score); &lt;i&gt;code_check&lt;/i&gt; says &lt;i&gt;class_from_code&lt;/i&gt; (the class was taken from the code) or &lt;i&gt;code_dropped&lt;/i&gt; (the code was emptied). The label shows the code's name, or the figure of a speed limit.</source>
+        <translation>将来自不同全景图、属于同一实体标志的候选分为一组（类别相同、位于合并半径内、平面法向量一致；同一根杆上叠放的标志牌保持分开），然后在点云中精化每个标志：欧氏聚类、阈值随点云自适应的强度滤波（Otsu）、近似竖直的 RANSAC 平面以及 PCA 维度特征，以保留标志牌并去除杆体。&lt;br&gt;&lt;br&gt;每个标志将得到：标志牌中心、宽度和标志牌高度，牌面朝向的方位角（从坐标北起顺时针），其相对于正下方地面的高度（标志附近的类别 2 点；若使用了替代方法，日志会说明），底部高度，视图数和点数，看到它的图像及其中最佳的一张（最近、最正对），平均强度和平面度。在两张或更多全景图中看到但没有点云点的标志，通过其射线的三角测量定位（position_source = image）。&lt;br&gt;&lt;br&gt;可选输出：标志牌轮廓（PolygonZ）和标志点（LAS/LAZ）。&lt;br&gt;&lt;br&gt;&lt;b&gt;审核&lt;/b&gt;：提供全景图文件夹时，每个标志会从其最佳全景图中截取一张图像切片（其检测框加边距，已去畸变），写入标志图层旁的文件夹，并通过 &lt;i&gt;chip&lt;/i&gt; 字段（相对路径）关联；审核报告显示每个标志的切片和属性。标志图层按类别使用不同符号，并以高度作为标注（其旁的 .qml 文件）。&lt;br&gt;&lt;br&gt;&lt;b&gt;标志代码&lt;/b&gt;：“在全景图中检测标志”在一个标志的各视图中读出的代码将进行投票，每个视图的权重为其检测得分 x 裁剪尺寸 x 该代码的概率。标志将得到 &lt;i&gt;code&lt;/i&gt;（投票结果为 &lt;i&gt;other&lt;/i&gt; 或支持度低于最低代码置信度时为空）、&lt;i&gt;code_name&lt;/i&gt;（取自代码表）、&lt;i&gt;code_score&lt;/i&gt;（支持度：该代码在投票中的占比 x 其平均概率）和 &lt;i&gt;code_views&lt;/i&gt;。当代码的类别（代码表）与类别投票的结果不一致时，支持度更高的一方胜出：比较代码的支持度与类别的支持度（该类别在按得分加权的类别投票中的占比 x 其视图的平均检测得分）；&lt;i&gt;code_check&lt;/i&gt; 注明 &lt;i&gt;class_from_code&lt;/i&gt;（类别取自代码）或 &lt;i&gt;code_dropped&lt;/i&gt;（代码被清空）。标注显示代码的名称，限速标志则显示限速数值。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="92" />
+        <source>Minimum code confidence</source>
+        <translation>最低代码置信度</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="92" />
+        <source>A sign's voted code is kept when its support (its share of the views' weighted vote x the mean probability the classifier gave it, 0-1: the code_score field) is at least this; else the code field stays empty. 0 keeps every code but 'other'.</source>
+        <translation>当标志投票得出的代码的支持度（其在各视图加权投票中的占比 x 分类器给出的平均概率，0-1：即 code_score 字段）不低于此值时保留该代码；否则 code 字段保持为空。0 保留除 'other' 以外的所有代码。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="98" />
+        <source>Sign codes table (empty: the bundled one)</source>
+        <translation>标志代码表（留空：使用内置代码表）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="98" />
+        <source>The codes table the classifier of Detect signs was run with: it gives each code its name (code_name) and its class (for the class check). Format in models/README.md; empty uses the bundled table of German codes (models/sign-codes-de.csv).</source>
+        <translation>运行“在全景图中检测标志”的分类器时所用的代码表：为每个代码提供名称（code_name）和类别（用于类别检查）。格式见 models/README.md；留空则使用内置的德国代码表（models/sign-codes-de.csv）。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="98" />
+        <source>CSV files (*.csv *.txt);;All files (*.*)</source>
+        <translation>CSV 文件 (*.csv *.txt);;所有文件 (*.*)</translation>
     </message>
 </context>
 <context>
     <name>ReviewPanel</name>
     <message>
-        <location filename="../gui/reviewpanel.py" line="718" />
+        <location filename="../gui/reviewpanel.py" line="723" />
         <source>Sign review</source>
         <translation>标志审核</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="144" />
+        <location filename="../gui/reviewpanel.py" line="145" />
         <source>The sign layer to review (the output of Refine and merge signs, or any point layer with the sign fields).</source>
         <translation>要审核的标志图层（“精化并合并标志”的输出，或任何具有标志字段的点图层）。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="146" />
+        <location filename="../gui/reviewpanel.py" line="147" />
         <source>Signs</source>
         <translation>标志</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="150" />
+        <location filename="../gui/reviewpanel.py" line="151" />
         <source>The panorama stations of the drive: with them the panel cuts the sign from every panorama that saw it.</source>
         <translation>行驶采集的全景站点：借助它们，面板从每张看到该标志的全景图中裁出标志。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="152" />
+        <location filename="../gui/reviewpanel.py" line="153" />
         <source>Stations</source>
         <translation>全景站点</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="155" />
+        <location filename="../gui/reviewpanel.py" line="156" />
         <source>The panorama folder; empty: the path field of the stations layer.</source>
         <translation>全景图文件夹；留空：使用全景站点图层的 path 字段。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="156" />
+        <location filename="../gui/reviewpanel.py" line="157" />
         <source>Panoramas</source>
         <translation>全景图</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="709" />
+        <location filename="../gui/reviewpanel.py" line="714" />
         <source>Sign</source>
         <translation>标志</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="179" />
+        <location filename="../gui/reviewpanel.py" line="180" />
         <source>Class</source>
         <translation>类别</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="179" />
+        <location filename="../gui/reviewpanel.py" line="180" />
         <source>Code</source>
         <translation>代码</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="179" />
+        <location filename="../gui/reviewpanel.py" line="180" />
         <source>Confidence</source>
         <translation>置信度</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="179" />
+        <location filename="../gui/reviewpanel.py" line="180" />
         <source>Condition</source>
         <translation>状况</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="179" />
+        <location filename="../gui/reviewpanel.py" line="180" />
         <source>Sources</source>
         <translation>来源</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="179" />
+        <location filename="../gui/reviewpanel.py" line="180" />
         <source>Panel</source>
         <translation>标志牌</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="179" />
+        <location filename="../gui/reviewpanel.py" line="180" />
         <source>Review</source>
         <translation>审核</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="193" />
+        <location filename="../gui/reviewpanel.py" line="194" />
         <source>The sign's class: pick or type another one, then Change.</source>
         <translation>标志的类别：选择或输入另一个类别，然后点击“更改”。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="195" />
+        <location filename="../gui/reviewpanel.py" line="196" />
         <source>code</source>
         <translation>代码</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="196" />
+        <location filename="../gui/reviewpanel.py" line="197" />
         <source>The sign's code (e.g. 206): type it, then Enter or Change.</source>
         <translation>标志的代码（例如 206）：输入后按回车或点击“更改”。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="203" />
+        <location filename="../gui/reviewpanel.py" line="204" />
         <source>Accept (A)</source>
         <translation>接受 (A)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="203" />
+        <location filename="../gui/reviewpanel.py" line="204" />
         <source>A real sign, class and code right: next sign.</source>
         <translation>真实的标志，类别和代码正确：下一个标志。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="205" />
+        <location filename="../gui/reviewpanel.py" line="206" />
         <source>Reject (R)</source>
         <translation>拒绝 (R)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="205" />
+        <location filename="../gui/reviewpanel.py" line="206" />
         <source>Not a sign, or a duplicate: next sign.</source>
         <translation>不是标志或是重复项：下一个标志。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="207" />
+        <location filename="../gui/reviewpanel.py" line="208" />
         <source>Change (C)</source>
         <translation>更改 (C)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="207" />
+        <location filename="../gui/reviewpanel.py" line="208" />
         <source>A real sign with the class and code above: next sign.</source>
         <translation>真实的标志，采用上面的类别和代码：下一个标志。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="209" />
+        <location filename="../gui/reviewpanel.py" line="210" />
         <source>Look again (L)</source>
         <translation>再看一次 (L)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="209" />
+        <location filename="../gui/reviewpanel.py" line="210" />
         <source>Needs another look: next sign.</source>
         <translation>需要再看一次：下一个标志。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="211" />
+        <location filename="../gui/reviewpanel.py" line="212" />
         <source>Previous (P)</source>
         <translation>上一个 (P)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="211" />
+        <location filename="../gui/reviewpanel.py" line="212" />
         <source>The sign before this one.</source>
         <translation>当前标志之前的标志。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="213" />
+        <location filename="../gui/reviewpanel.py" line="214" />
         <source>Next unreviewed (N)</source>
         <translation>下一个未审核 (N)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="213" />
+        <location filename="../gui/reviewpanel.py" line="214" />
         <source>The next sign without a verdict.</source>
         <translation>下一个尚无结论的标志。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="215" />
+        <location filename="../gui/reviewpanel.py" line="216" />
         <source>Panorama view (V)</source>
         <translation>全景视图 (V)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="215" />
+        <location filename="../gui/reviewpanel.py" line="216" />
         <source>The panorama around the sign, from its best panorama.</source>
         <translation>从最佳全景图看到的标志周围的全景。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="217" />
+        <location filename="../gui/reviewpanel.py" line="218" />
         <source>Undo (U)</source>
         <translation>撤销 (U)</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="217" />
+        <location filename="../gui/reviewpanel.py" line="218" />
         <source>Undo the last verdict given here.</source>
         <translation>撤销在此给出的最后一个结论。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="219" />
+        <location filename="../gui/reviewpanel.py" line="220" />
         <source>Save edits</source>
         <translation>保存编辑</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="219" />
+        <location filename="../gui/reviewpanel.py" line="220" />
         <source>Write the verdicts to the layer's file.</source>
         <translation>将结论写入图层文件。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="302" />
+        <location filename="../gui/reviewpanel.py" line="303" />
         <source>Choose a sign layer to review.</source>
         <translation>请选择要审核的标志图层。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="268" />
+        <location filename="../gui/reviewpanel.py" line="269" />
         <source>The layer {layer} lacks the field(s) {missing}. The review needs a sign layer with the fields {required} (the output of Refine and merge signs).</source>
         <translation>图层 {layer} 缺少字段 {missing}。审核需要具有字段 {required} 的标志图层（“精化并合并标志”的输出）。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="286" />
+        <location filename="../gui/reviewpanel.py" line="287" />
         <source>(point geometry)</source>
         <translation>（点几何）</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="380" />
+        <location filename="../gui/reviewpanel.py" line="381" />
         <source>The layer {} has no signs.</source>
         <translation>图层 {} 中没有标志。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="391" />
+        <location filename="../gui/reviewpanel.py" line="392" />
         <source>&lt;b&gt;Sign {sign}&lt;/b&gt; ({position} of {total}) &amp;#8212; {reviewed} of {total} reviewed</source>
         <translation>&lt;b&gt;标志 {sign}&lt;/b&gt;（第 {position} 个，共 {total} 个）&amp;#8212; 已审核 {reviewed} / {total}</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="394" />
+        <location filename="../gui/reviewpanel.py" line="395" />
         <source>Sign {}</source>
         <translation>标志 {}</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="399" />
+        <location filename="../gui/reviewpanel.py" line="400" />
         <source>(none)</source>
         <translation>（无）</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="406" />
+        <location filename="../gui/reviewpanel.py" line="411" />
         <source>(no condition field)</source>
         <translation>（无状况字段）</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="411" />
+        <location filename="../gui/reviewpanel.py" line="416" />
         <source>{source}; seen in {n} panorama(s): {images}</source>
         <translation>{source}；在 {n} 张全景图中看到：{images}</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="414" />
+        <location filename="../gui/reviewpanel.py" line="419" />
         <source>{width} × {height} m, {above} m above the ground, facing {azimuth}°</source>
         <translation>{width} × {height} 米，离地 {above} 米，朝向 {azimuth}°</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="430" />
+        <location filename="../gui/reviewpanel.py" line="435" />
         <source>accepted</source>
         <translation>已接受</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="430" />
+        <location filename="../gui/reviewpanel.py" line="435" />
         <source>corrected</source>
         <translation>已更正</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="431" />
+        <location filename="../gui/reviewpanel.py" line="436" />
         <source>rejected</source>
         <translation>已拒绝</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="431" />
+        <location filename="../gui/reviewpanel.py" line="436" />
         <source>needs another look</source>
         <translation>需要再看一次</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="432" />
+        <location filename="../gui/reviewpanel.py" line="437" />
         <source>not reviewed</source>
         <translation>未审核</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="511" />
+        <location filename="../gui/reviewpanel.py" line="516" />
         <source>review chip</source>
         <translation>审核切片</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="522" />
+        <location filename="../gui/reviewpanel.py" line="527" />
         <source>no picture</source>
         <translation>无图像</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="522" />
+        <location filename="../gui/reviewpanel.py" line="527" />
         <source>Choose the stations layer (and the panorama folder) to see the sign in every panorama that saw it.</source>
         <translation>选择全景站点图层（以及全景图文件夹），即可在每张看到该标志的全景图中查看它。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="548" />
+        <location filename="../gui/reviewpanel.py" line="553" />
         <source>best · </source>
         <translation>最佳 · </translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="549" />
+        <location filename="../gui/reviewpanel.py" line="554" />
         <source>{} at {:.1f} m; click for the panorama view</source>
         <translation>{}，距离 {:.1f} 米；点击查看全景视图</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="553" />
+        <location filename="../gui/reviewpanel.py" line="558" />
         <source>{} panorama(s) not found</source>
         <translation>{} 张全景图未找到</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="553" />
+        <location filename="../gui/reviewpanel.py" line="558" />
         <source>Not found or unreadable: {}. Set the panorama folder.</source>
         <translation>未找到或无法读取：{}。请设置全景图文件夹。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="566" />
+        <location filename="../gui/reviewpanel.py" line="571" />
         <source>The panorama view needs the stations layer of the drive.</source>
         <translation>全景视图需要行驶采集的全景站点图层。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="575" />
+        <location filename="../gui/reviewpanel.py" line="580" />
         <source>No panorama of the stations layer saw this sign.</source>
         <translation>全景站点图层中没有全景图看到此标志。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="600" />
+        <location filename="../gui/reviewpanel.py" line="605" />
         <source>Panorama view: sign {}</source>
         <translation>全景视图：标志 {}</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="602" />
+        <location filename="../gui/reviewpanel.py" line="607" />
         <source>{} · {:.1f} m from the sign</source>
         <translation>{} · 距标志 {:.1f} 米</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="629" />
+        <location filename="../gui/reviewpanel.py" line="634" />
         <source>The layer {} cannot be edited: its verdicts cannot be written.</source>
         <translation>图层 {} 无法编辑：无法写入其结论。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="632" />
+        <location filename="../gui/reviewpanel.py" line="637" />
         <source>Sign review: {} sign {}</source>
         <translation>标志审核：{} 标志 {}</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="637" />
+        <location filename="../gui/reviewpanel.py" line="642" />
         <source>Cannot add the field {} to the layer {}.</source>
         <translation>无法添加字段 {}（图层 {}）。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="658" />
+        <location filename="../gui/reviewpanel.py" line="663" />
         <source>Cannot save the edits of {}: {}</source>
         <translation>无法保存 {} 的编辑：{}</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="670" />
+        <location filename="../gui/reviewpanel.py" line="675" />
         <source>Every sign has a verdict.</source>
         <translation>所有标志都已有结论。</translation>
     </message>
     <message>
-        <location filename="../gui/reviewpanel.py" line="511" />
+        <location filename="../gui/reviewpanel.py" line="516" />
         <source>best · {} (review chip)</source>
         <translation>最佳 · {}（审核切片）</translation>
     </message>
@@ -1917,76 +2062,214 @@
 <context>
     <name>RoadSigns</name>
     <message>
-        <location filename="../core/cloudsigns.py" line="265" />
+        <location filename="../core/cloudsigns.py" line="268" />
         <source>The stations do not overlap the cloud {path}: the track passes {gap:.1f} m from the cloud's extent ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}), more than the corridor of {corridor} m; are the cloud and the stations in the same CRS and of the same drive?</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>全景站点与点云 {path} 不重叠：轨迹线距点云范围 ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}) {gap:.1f} m，超出 {corridor} m 的走廊；点云和全景站点是否在同一坐标参考系中、是否来自同一次行驶采集？</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="278" />
+        <location filename="../core/cloudsigns.py" line="281" />
         <source>{path} has no intensity dimension (point format {fmt}): signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有强度维度（点格式 {fmt}）：没有图像时无法在其中找到标志</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="281" />
+        <location filename="../core/cloudsigns.py" line="284" />
         <source>{path} has no classification dimension: run roadsigns:groundfilter on it first</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有分类维度：请先对其运行 roadsigns:groundfilter</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="618" />
+        <location filename="../core/cloudsigns.py" line="626" />
         <source>Found {signs} sign panels ({bright} retroreflective) and {poles} poles in {n} points ({cand} kept near the road, {windows} windows of {w} m); condition reference {ref:.3f} ({src})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>在 {n} 个点中找到 {signs} 个标志牌（其中 {bright} 个具有逆反射性）和 {poles} 根杆（道路附近保留 {cand} 个点，{windows} 个 {w} m 的窗口）；状态参考值 {ref:.3f}（{src}）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="561" />
+        <location filename="../core/cloudsigns.py" line="569" />
         <source>No point of {path} lies within {corridor} m of the stations' track ({n} points read)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中没有点位于全景站点轨迹线 {corridor} m 范围内（已读取 {n} 个点）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="564" />
+        <location filename="../core/cloudsigns.py" line="572" />
         <source>{path} has no ground points (class 2) along the track: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 沿轨迹线没有地面点（类别 2）：请先对其运行 roadsigns:groundfilter（或用其他工具对地面进行分类）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="568" />
+        <location filename="../core/cloudsigns.py" line="576" />
         <source>{path} has no intensity: all {n} points near the track have intensity 0; signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有强度：轨迹线附近的全部 {n} 个点强度均为 0；没有图像时无法在其中找到标志</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="579" />
+        <location filename="../core/cloudsigns.py" line="587" />
         <source>Intensity: range exponent {alpha:.2f} ({source}), bright threshold {thr:.3f} of full scale at 10 m ({method}; background level {bg:.3f}, bright mode {mode:.3f}; {n} non-ground points near the road)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>强度：距离指数 {alpha:.2f}（{source}），亮度阈值为 10 m 处满量程的 {thr:.3f}（{method}；背景水平 {bg:.3f}，亮峰 {mode:.3f}；道路附近 {n} 个非地面点）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="687" />
+        <location filename="../core/cloudsigns.py" line="695" />
         <source>{n} gantry posts</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} 根门架立柱</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="571" />
+        <location filename="../core/cloudsigns.py" line="579" />
         <source>The cloud's GPS times [{t0:.1f}, {t1:.1f}] do not meet the stations' times: ranges are taken from the nearest track position instead (is one of them in GPS week seconds and the other in adjusted standard GPS time?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点云的 GPS 时间 [{t0:.1f}, {t1:.1f}] 与全景站点的时间不重合：改为从最近的轨迹线位置计算距离（是否一个使用 GPS 周秒、另一个使用调整后的标准 GPS 时间？）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="590" />
+        <location filename="../core/cloudsigns.py" line="598" />
         <source>{share:.0%} of the points near the road have intensity 0: the bright threshold {thr:.3f} of full scale may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>道路附近 {share:.0%} 的点强度为 0：满量程的亮度阈值 {thr:.3f} 可能没有意义</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="595" />
+        <location filename="../core/cloudsigns.py" line="603" />
         <source>{share:.0%} of the points near the road have saturated intensity: the bright threshold {thr:.3f} of full scale and the condition of the signs may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>道路附近 {share:.0%} 的点强度饱和：满量程的亮度阈值 {thr:.3f} 以及标志的状态可能没有意义</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="469" />
+        <location filename="../core/cloudsource.py" line="467" />
+        <source>expected a virtual point cloud: a JSON FeatureCollection (STAC ItemCollection) whose features each have assets.data.href (the tile's file, relative to the .vpc) and properties, as QGIS's Build virtual point cloud writes it</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>应为虚拟点云：一个 JSON FeatureCollection（STAC ItemCollection），其每个要素都有 assets.data.href（分块文件，相对于 .vpc 的路径）和 properties，即 QGIS 的“构建虚拟点云”写出的格式</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="153" />
+        <source>no CRS</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无坐标参考系</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="428" />
+        <source>The folder {path} holds no LAS or LAZ file (*.las, *.laz); expected a point cloud file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>文件夹 {path} 中没有 LAS 或 LAZ 文件（*.las、*.laz）；应为点云文件、LAS/LAZ 分块文件夹或虚拟点云（.vpc）</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="471" />
+        <source>Cannot read {path}: the JSON is not an object; {expected}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取 {path}：该 JSON 不是对象；{expected}</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="474" />
+        <source>Cannot read {path}: it is not a 'FeatureCollection' with a 'features' list; {expected}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取 {path}：不是带有 'features' 列表的 'FeatureCollection'；{expected}</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="477" />
+        <source>The virtual point cloud {path} lists no tile</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>虚拟点云 {path} 未列出任何分块</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="240" />
+        <location filename="../core/pointcloud.py" line="524" />
+        <source>{path} has no dimension {names} (point format {fmt})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{path} 没有维度 {names}（点格式 {fmt}）</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="421" />
+        <source>Cannot read the folder {path}: {detail}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取文件夹 {path}：{detail}</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="460" />
+        <location filename="../core/pointcloud.py" line="65" />
+        <source>Cannot read {path}: the file does not exist</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取 {path}：文件不存在</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="462" />
+        <location filename="../core/ground/pdal.py" line="286" />
+        <location filename="../core/pointcloud.py" line="67" />
+        <location filename="../core/pointcloud.py" line="110" />
+        <source>Cannot read {path}: {detail}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取 {path}：{detail}</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="466" />
+        <source>Cannot read {path}: it is not valid JSON ({detail}); {expected}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取 {path}：不是有效的 JSON（{detail}）；{expected}</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="484" />
+        <source>Cannot read {path}: feature {feature} has no 'assets' object; {expected}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取 {path}：要素 {feature} 没有 'assets' 对象；{expected}</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="492" />
+        <source>Cannot read {path}: feature {feature} has no asset with an 'href' (assets.data.href); {expected}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取 {path}：要素 {feature} 没有带 'href' 的 asset（assets.data.href）；{expected}</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="496" />
+        <source>The virtual point cloud {path} lists the remote tile {href}: only local files are read; download the tiles and build the virtual point cloud again</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>虚拟点云 {path} 列出了远程分块 {href}：只读取本地文件；请下载这些分块并重新构建虚拟点云</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="502" />
+        <source>The virtual point cloud {path} lists the tile {tile} twice (features {first} and {second})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>虚拟点云 {path} 两次列出分块 {tile}（要素 {first} 和 {second}）</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="506" />
+        <source>The virtual point cloud {path} lists the tile {tile} (feature {feature}), which does not exist</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>虚拟点云 {path} 列出的分块 {tile}（要素 {feature}）不存在</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="521" />
+        <source>The tiles of {path} cannot be read as one cloud: {tile_a} has point format {fmt_a}, {tile_b} point format {fmt_b}; every tile needs the same point format (convert them to one, e.g. with PDAL's translate)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{path} 的分块无法作为一个点云读取：{tile_a} 的点格式为 {fmt_a}，{tile_b} 的点格式为 {fmt_b}；所有分块必须使用相同的点格式（请将其转换为同一格式，例如使用 PDAL 的 translate）</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="527" />
+        <source>The tiles of {path} are in different CRSs: {tile_a} in {crs_a}, {tile_b} in {crs_b}; every tile must be in the same CRS (reproject them to one first)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{path} 的分块位于不同的坐标参考系中：{tile_a} 为 {crs_a}，{tile_b} 为 {crs_b}；所有分块必须位于同一坐标参考系中（请先将其重投影到同一坐标参考系）</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="556" />
+        <source>The points cannot be written with the first tile's scale {scale} and offset {offset} in {axis}: their coordinates are too far from it</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法以第一个分块在 {axis} 方向的缩放 {scale} 和偏移 {offset} 写入这些点：其坐标离偏移太远</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="391" />
+        <location filename="../core/ground/pdal.py" line="290" />
+        <location filename="../core/ground/pdal.py" line="292" />
+        <location filename="../core/ground/pdal.py" line="288" />
+        <location filename="../core/ground/pdal.py" line="273" />
+        <location filename="../core/ground/pdal.py" line="282" />
+        <location filename="../core/pointcloud.py" line="112" />
+        <location filename="../core/pointcloud.py" line="127" />
+        <location filename="../core/pointcloud.py" line="185" />
+        <location filename="../core/pointcloud.py" line="88" />
+        <location filename="../core/pointcloud.py" line="91" />
+        <location filename="../core/pointcloud.py" line="107" />
+        <location filename="../core/pointcloud.py" line="178" />
+        <source>Cannot read {path}: the file is truncated or corrupt ({detail})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取 {path}：文件被截断或已损坏（{detail}）</translation>
     </message>
     <message>
         <location filename="../core/crs.py" line="19" />
@@ -2094,105 +2377,105 @@
         <translation>无法将位置从 {source} 转换到 {target}：{error}</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="84" />
+        <location filename="../core/detections.py" line="100" />
         <source>The detections lack the field(s) {fields}; expected the output of Detect signs</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测结果缺少字段 {fields}；应为“在全景图中检测标志”的输出</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="126" />
+        <location filename="../core/detections.py" line="143" />
         <source>Detection {det_id}: the box ({u0}, {v0}, {u1}, {v1}) is not u0 &lt; u1, v0 &lt; v1 inside a {w} x {h} panorama</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}：检测框 ({u0}, {v0}, {u1}, {v1}) 不满足在 {w} x {h} 全景图内 u0 &lt; u1、v0 &lt; v1</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="134" />
+        <location filename="../core/detections.py" line="151" />
         <source>Detection {det_id}: the station pose is invalid (quaternion norm {norm:.4f}, position {xyz})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}：站点位姿无效（四元数范数 {norm:.4f}，位置 {xyz}）</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="90" />
-        <location filename="../core/projection.py" line="335" />
+        <location filename="../core/detections.py" line="106" />
+        <location filename="../core/projection.py" line="339" />
         <source>Detection {det_id}: the field {field} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}：字段 {field} 为空</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="98" />
-        <location filename="../core/projection.py" line="327" />
+        <location filename="../core/detections.py" line="114" />
+        <location filename="../core/projection.py" line="331" />
         <source>Detection {det_id}, field {field}: expected a number, found '{value}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}，字段 {field}：应为数字，实际为 '{value}'</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="129" />
+        <location filename="../core/detector.py" line="130" />
         <source>The labels file {path} holds no class names (one name per line)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标签文件 {path} 中没有类别名称（应每行一个名称）</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="166" />
+        <location filename="../core/detector.py" line="167" />
         <source>The model {path} has an output of shape {shape}, which is no layout this plugin decodes for {n_classes} class names; supported: {supported}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 的输出形状为 {shape}，不属于本插件能为 {n_classes} 个类别名称解码的任何布局；支持的布局：{supported}</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="179" />
+        <location filename="../core/detector.py" line="180" />
         <source>Unknown output layout {layout}: use one of {layouts}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未知的输出布局 {layout}：请使用以下之一：{layouts}</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="183" />
+        <location filename="../core/detector.py" line="184" />
         <source>The model {path} has an output of shape {shape}, which does not fit the layout {layout} with {n_classes} class names</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 的输出形状为 {shape}，与具有 {n_classes} 个类别名称的布局 {layout} 不符</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="277" />
+        <location filename="../core/detector.py" line="278" />
         <source>Model not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到模型：{path}</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="360" />
+        <location filename="../core/detector.py" line="361" />
         <source>The model {path} names no classes: its metadata has no readable 'names' and there is no labels file ({labels}, one class name per line)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 未给出类别名称：其元数据中没有可读的 'names'，也没有标签文件（{labels}，每行一个类别名称）</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="127" />
+        <location filename="../core/detector.py" line="128" />
         <source>Cannot read the labels file {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取标签文件 {path}：{error}</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="287" />
+        <location filename="../core/detector.py" line="288" />
         <source>{path} is not an ONNX model onnxruntime can load: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 不是 onnxruntime 可以加载的 ONNX 模型：{error}</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="313" />
+        <location filename="../core/detector.py" line="314" />
         <source>The model {path} is a {task} model; sign detection needs a detection model</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 是 {task} 模型；标志检测需要检测模型</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="319" />
+        <location filename="../core/detector.py" line="320" />
         <source>The model {path} takes an input of shape {shape}; an image model takes [batch, 3, height, width]</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 的输入形状为 {shape}；图像模型的输入应为 [batch, 3, height, width]</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="325" />
+        <location filename="../core/detector.py" line="326" />
         <source>The model {path} has a fixed batch of {batch}; use a batch of 1 or a dynamic batch</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 的批大小固定为 {batch}；请使用批大小 1 或动态批大小</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="341" />
+        <location filename="../core/detector.py" line="342" />
         <source>The model {path} failed on a blank {w} x {h} image: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 在一张 {w} x {h} 的空白图像上运行失败：{error}</translation>
@@ -2216,61 +2499,79 @@
         <translation>轨迹线有 {n} 个位置，但有 {m} 个时间</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="109" />
+        <location filename="../core/evaluate.py" line="142" />
         <source>reference signs</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>参考标志</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="141" />
+        <location filename="../core/evaluate.py" line="175" />
         <source>The signs ({signs}: x {sx0} to {sx1}, y {sy0} to {sy1}) and the reference {reference} (x {rx0} to {rx1}, y {ry0} to {ry1}) do not overlap: are both in the same CRS and the same area?</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志（{signs}：x {sx0} 至 {sx1}，y {sy0} 至 {sy1}）与参考 {reference}（x {rx0} 至 {rx1}，y {ry0} 至 {ry1}）不重叠：两者是否位于同一坐标参考系和同一区域？</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="166" />
+        <location filename="../core/evaluate.py" line="200" />
         <source>match radius {radius} m: expected a positive number of metres</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>匹配半径 {radius} m：应为以米为单位的正数</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="174" />
+        <location filename="../core/evaluate.py" line="208" />
         <source>{label}: sign '{sign_id}' has no valid x, y, z position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{label}：标志 '{sign_id}' 没有有效的 x、y、z 位置</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="119" />
+        <location filename="../core/evaluate.py" line="390" />
+        <source>Code accuracy not computed: neither the signs nor the reference have a 'code' field or column.</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>未计算代码准确率：标志和参考数据都没有 'code' 字段或列。</translation>
+    </message>
+    <message>
+        <location filename="../core/evaluate.py" line="393" />
+        <source>Code accuracy not computed: the reference has no 'code' column or field.</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>未计算代码准确率：参考数据没有 'code' 列或字段。</translation>
+    </message>
+    <message>
+        <location filename="../core/evaluate.py" line="395" />
+        <source>Code accuracy not computed: the signs have no 'code' field.</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>未计算代码准确率：标志没有 'code' 字段。</translation>
+    </message>
+    <message>
+        <location filename="../core/evaluate.py" line="152" />
         <source>reference signs file {path}, line {line}: sign_id '{sign_id}' already used on line {first}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>参考标志文件 {path}，第 {line} 行：sign_id '{sign_id}' 已在第 {first} 行使用</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="115" />
+        <location filename="../core/evaluate.py" line="148" />
         <source>reference signs file {path}, line {line}, field '{field}': empty value</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>参考标志文件 {path}，第 {line} 行，字段 '{field}'：值为空</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="174" />
+        <location filename="../core/fusion.py" line="161" />
         <source>Image sign</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>图像标志</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="175" />
+        <location filename="../core/fusion.py" line="162" />
         <source>Cloud panel</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>点云标志牌</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="118" />
+        <location filename="../core/fusion.py" line="105" />
         <source>{what} {index}: position is not finite</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what} {index}：位置不是有限值</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="115" />
+        <location filename="../core/fusion.py" line="102" />
         <source>{what} {index}: no position (x, y, z)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what} {index}：没有位置（x, y, z）</translation>
@@ -2282,74 +2583,89 @@
         <translation>内置 CSF 需要 Python 包 cloth-simulation-filter（模块 CSF）：{detail}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="67" />
+        <location filename="../core/ground/engine.py" line="70" />
         <source>Unknown return type {kinds} in '{returns}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>'{returns}' 中有未知的回波类型 {kinds}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="219" />
+        <location filename="../core/ground/engine.py" line="235" />
         <location filename="../core/pointcloud.py" line="244" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：输出文件必须以 .las 或 .laz 结尾</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="223" />
-        <source>The output {path} must not be the input file</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>输出 {path} 不能是输入文件</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/engine.py" line="229" />
+        <location filename="../core/ground/engine.py" line="247" />
+        <location filename="../core/ground/tiled.py" line="153" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>点云坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="166" />
-        <source>Cannot read {path}: the file is corrupt ({detail})</source>
+        <location filename="../core/ground/engine.py" line="259" />
+        <source>{path} holds {n} tiles: the built-in engine classifies them (PDAL is used for a single file only)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>无法读取 {path}：文件已损坏（{detail}）</translation>
+        <translation>{path} 包含 {n} 个分块：由内置引擎进行分类（PDAL 只用于单个文件）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="189" />
-        <source>No point of {path} has the returns '{returns}': nothing was classified</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>{path} 中没有回波为 '{returns}' 的点：未分类任何点</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/engine.py" line="231" />
-        <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>{path} 没有坐标参考系：请给出点云的坐标参考系（从不猜测）</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/engine.py" line="242" />
-        <source>PDAL not found: using the built-in engine</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>未找到 PDAL：使用内置引擎</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/engine.py" line="271" />
-        <source>No point of {path} is left after the crop: {output} has no points</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>裁剪后 {path} 没有剩余的点：{output} 中没有点</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/engine.py" line="294" />
+        <location filename="../core/ground/engine.py" line="309" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有裁剪多边形：忽略裁剪缓冲区</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="240" />
+        <location filename="../core/ground/engine.py" line="189" />
+        <location filename="../core/ground/tiled.py" line="268" />
+        <source>Cannot read {path}: the file is corrupt ({detail})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取 {path}：文件已损坏（{detail}）</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="203" />
+        <source>No point of {path} has the returns '{returns}': nothing was classified</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{path} 中没有回波为 '{returns}' 的点：未分类任何点</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="241" />
+        <source>The output {path} must not be the input file</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>输出 {path} 不能是输入文件</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="249" />
+        <location filename="../core/ground/tiled.py" line="155" />
+        <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{path} 没有坐标参考系：请给出点云的坐标参考系（从不猜测）</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="256" />
+        <source>The PDAL engine classifies a single LAS/LAZ file, and {path} holds {n} tiles: choose the built-in engine (or Auto), which classifies tiles with the same filters</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>PDAL 引擎只分类单个 LAS/LAZ 文件，而 {path} 包含 {n} 个分块：请选择内置引擎（或“自动”），它以相同的滤波器对分块进行分类</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="296" />
+        <source>No point of {path} is left after the crop: {output} has no points</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>裁剪后 {path} 没有剩余的点：{output} 中没有点</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="267" />
+        <source>PDAL not found: using the built-in engine</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>未找到 PDAL：使用内置引擎</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="265" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>要求使用 PDAL，但既没有找到 pdal Python 模块，也没有找到 pdal 可执行文件（PATH、QGIS 的 bin 文件夹）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="255" />
+        <location filename="../core/ground/engine.py" line="280" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>PDAL 运行失败，已改用内置引擎：{error}</translation>
@@ -2391,92 +2707,115 @@
         <translation>PDAL 可执行文件 {path} 不存在或不可执行</translation>
     </message>
     <message>
-        <location filename="../core/ground/pdal.py" line="290" />
-        <location filename="../core/ground/pdal.py" line="292" />
-        <location filename="../core/ground/pdal.py" line="288" />
-        <location filename="../core/ground/pdal.py" line="273" />
-        <location filename="../core/ground/pdal.py" line="282" />
-        <location filename="../core/pointcloud.py" line="112" />
-        <location filename="../core/pointcloud.py" line="127" />
-        <location filename="../core/pointcloud.py" line="185" />
-        <location filename="../core/pointcloud.py" line="88" />
-        <location filename="../core/pointcloud.py" line="91" />
-        <location filename="../core/pointcloud.py" line="107" />
-        <location filename="../core/pointcloud.py" line="178" />
-        <source>Cannot read {path}: the file is truncated or corrupt ({detail})</source>
+        <location filename="../core/ground/tiled.py" line="211" />
+        <source>{n} tiles written to {folder}, listed in {vpc}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>无法读取 {path}：文件被截断或已损坏（{detail}）</translation>
+        <translation>已将 {n} 个分块写入 {folder}，并列于 {vpc} 中</translation>
     </message>
     <message>
-        <location filename="../core/ground/pdal.py" line="286" />
-        <location filename="../core/pointcloud.py" line="67" />
-        <location filename="../core/pointcloud.py" line="110" />
-        <source>Cannot read {path}: {detail}</source>
+        <location filename="../core/ground/tiled.py" line="142" />
+        <source>The PDAL engine writes one file: to write one tile per input tile choose the built-in engine (or Auto)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>无法读取 {path}：{detail}</translation>
+        <translation>PDAL 引擎只写出一个文件：若要为每个输入分块写出一个分块，请选择内置引擎（或“自动”）</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="299" />
+        <location filename="../core/ground/tiled.py" line="145" />
+        <source>The virtual point cloud's name {name} must be a file name ending in .vpc</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>虚拟点云的名称 {name} 必须是以 .vpc 结尾的文件名</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/tiled.py" line="159" />
+        <source>Writing one tile per input tile: the built-in engine classifies them (PDAL is used for one output file only)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>为每个输入分块写出一个分块：由内置引擎进行分类（PDAL 只用于单个输出文件）</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/tiled.py" line="115" />
+        <source>The output folder {folder} holds the input tile {tile}: choose another folder (the output folder is replaced as a whole)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>输出文件夹 {folder} 中包含输入分块 {tile}：请选择其他文件夹（输出文件夹会被整体替换）</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/tiled.py" line="118" />
+        <source>Two tiles of {path} have the same file name, {name} ({first} and {second}): the output tiles are named as the input tiles, so their names must differ</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{path} 中有两个分块的文件名相同，均为 {name}（{first} 和 {second}）：输出分块与输入分块同名，因此它们的名称必须不同</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/tiled.py" line="208" />
+        <source>No point of {path} is left after the crop: {output} lists no tile</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>裁剪后 {path} 中没有剩余的点：{output} 未列出任何分块</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/tiled.py" line="197" />
+        <source>No point of the tile {tile} lies inside the crop area: no output tile for it</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>分块 {tile} 中没有点位于裁剪区域内：不为其生成输出分块</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="304" />
         <source>Unknown time base {base}: expected one of {bases}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未知的时间基准 {base}：应为 {bases} 之一</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="376" />
+        <location filename="../core/handover.py" line="394" />
         <source>sign layer CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>标志图层坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="313" />
+        <location filename="../core/handover.py" line="318" />
         <source>No output folder given for the handover package</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未指定交付包的输出文件夹</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="319" />
+        <location filename="../core/handover.py" line="324" />
         <source>Cannot write the handover package to {folder}: {path} is a file, not a folder</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法将交付包写入 {folder}：{path} 是文件而不是文件夹</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="372" />
+        <location filename="../core/handover.py" line="390" />
         <source>Unknown review state(s) {states}: expected some of {known}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未知的审核状态 {states}：应为 {known} 中的若干项</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="375" />
+        <location filename="../core/handover.py" line="393" />
         <source>Unknown north {north}: expected grid or true</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未知的北方向 {north}：应为 grid 或 true</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="389" />
+        <location filename="../core/handover.py" line="407" />
         <source>No sign has the review state(s) {states} ({counts}): review the signs with the review panel, or choose other states</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有标志具有审核状态 {states}（{counts}）：请用审核面板审核标志，或选择其他状态</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="460" />
+        <location filename="../core/handover.py" line="478" />
         <source>{n} of {total} signs handed over (review states {states}); left out: {left}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已交付 {n} / {total} 个标志（审核状态 {states}）；未包含：{left}</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="163" />
+        <location filename="../core/handover.py" line="168" />
         <source>The stations layer has fewer than two stations at different places: the export needs the drive's track (chainage, side and offset of each sign)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>全景站点图层中位于不同位置的全景站点少于两个：导出需要行驶采集的轨迹线（用于每个标志的里程、侧别和偏移）</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="326" />
+        <location filename="../core/handover.py" line="331" />
         <source>Cannot write the handover package to {folder}: the folder {path} is not writable ({error})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法将交付包写入 {folder}：文件夹 {path} 不可写（{error}）</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="393" />
+        <location filename="../core/handover.py" line="411" />
         <source>The station times are GPS seconds of the week: give the survey date to get first and last seen as dates and times (first_seen_s and last_seen_s are written)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>全景站点时间为 GPS 周内秒：请提供采集日期，以将首次和最后一次看到的时间换算为日期和时间（仍会写出 first_seen_s 和 last_seen_s）</translation>
@@ -2566,12 +2905,6 @@
         <translation>{path} 没有坐标参考系，也未提供坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="65" />
-        <source>Cannot read {path}: the file does not exist</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>无法读取 {path}：文件不存在</translation>
-    </message>
-    <message>
         <location filename="../core/pointcloud.py" line="248" />
         <source>Cannot write {path}: the folder does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -2602,167 +2935,311 @@
         <translation>{path} 中没有点位于裁剪区域内；{output} 为空</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="523" />
-        <source>{path} has no dimension {names} (point format {fmt})</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>{path} 没有维度 {names}（点格式 {fmt}）</translation>
-    </message>
-    <message>
-        <location filename="../core/projection.py" line="527" />
+        <location filename="../core/projection.py" line="534" />
         <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 个检测结果中有 {ok} 个在点云中找到了表面（{no_points} 个没有点，{no_surface} 个没有平面）</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="356" />
-        <location filename="../core/projection.py" line="588" />
+        <location filename="../core/projection.py" line="360" />
+        <location filename="../core/projection.py" line="596" />
         <source>{source} has no ground points (class 2) where the signs are: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{source} 在标志所在区域没有地面点（类别 2）：请先对其运行 roadsigns:groundfilter（或用其他工具进行地面分类）</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="495" />
+        <location filename="../core/projection.py" line="500" />
         <source>The maximum range must exceed {min} m, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>最大距离必须大于 {min} m，实际为 {value} m</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="320" />
+        <location filename="../core/projection.py" line="324" />
         <source>The candidates lack the field(s) {fields}; expected the output of Project detections</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>候选缺少字段 {fields}；应为“将检测投影到点云”的输出</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="345" />
+        <location filename="../core/projection.py" line="349" />
         <source>Unknown candidate status {status!r}; expected ok, no_points or no_surface</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未知的候选状态 {status!r}；应为 ok、no_points 或 no_surface</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="349" />
+        <location filename="../core/projection.py" line="353" />
         <source>A candidate with status ok has no position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>状态为 ok 的候选没有位置</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="369" />
+        <location filename="../core/projection.py" line="374" />
         <source>The point index lacks {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点索引缺少 {names}</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="500" />
+        <location filename="../core/projection.py" line="505" />
         <source>No detections to project; the candidates are empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有要投影的检测结果；候选为空</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="523" />
+        <location filename="../core/projection.py" line="530" />
         <source>{path} has no point inside the detections' frusta; no candidate found</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 在检测结果的视锥内没有点；未找到候选</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="94" />
+        <location filename="../core/refine.py" line="118" />
         <source>curved surface (a convex mirror?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>曲面（凸面镜？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="95" />
+        <location filename="../core/refine.py" line="119" />
         <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>较大平面的一部分（广告牌或墙上的图案？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="833" />
+        <location filename="../core/refine.py" line="979" />
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>从 {candidates} 个候选得到 {signs} 个标志（{from_images} 个仅由图像定位）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1065" />
+        <location filename="../core/refine.py" line="1426" />
+        <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{signs} 个标志中有 {coded} 个带有标志代码；{from_code} 个的类别取自代码，{dropped} 个代码因类别投票被舍弃（code_check）</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="1435" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>站点高度减去 {height} 米</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="814" />
+        <location filename="../core/refine.py" line="389" />
+        <source>Detection {det_id} has the sign code {code}, which is not in the sign codes table {table}: give the codes table the classifier was run with</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>检测 {det_id} 的标志代码 {code} 不在标志代码表 {table} 中：请提供运行分类器时所用的代码表</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="958" />
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>合并半径必须为正数，实际为 {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="817" />
+        <location filename="../core/refine.py" line="961" />
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有要精化的候选；标志图层为空</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1020" />
-        <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>已丢弃候选 {ids}：{width:.2f} x {height:.2f} 米的面板对 {sign_class} 标志来说太大（广告牌？）</translation>
-    </message>
-    <message>
-        <location filename="../core/refine.py" line="1025" />
-        <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>已丢弃候选 {ids}：只在一张全景图中出现，得分为 {score:.2f}</translation>
-    </message>
-    <message>
-        <location filename="../core/refine.py" line="369" />
-        <source>too few points</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>点太少</translation>
-    </message>
-    <message>
-        <location filename="../core/refine.py" line="372" />
-        <source>too few points in the boxes</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>框内的点太少</translation>
-    </message>
-    <message>
-        <location filename="../core/refine.py" line="378" />
-        <source>no near-vertical plane</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>没有近似竖直的平面</translation>
-    </message>
-    <message>
-        <location filename="../core/refine.py" line="382" />
-        <source>too few planar points</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>平面点太少</translation>
-    </message>
-    <message>
-        <location filename="../core/refine.py" line="878" />
+        <location filename="../core/refine.py" line="1235" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>候选 {ids}：{reason}；位置取候选的中位数</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1066" />
-        <source>the lowest points below the sign</source>
+        <location filename="../core/refine.py" line="1375" />
+        <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>标志下方的最低点</translation>
+        <translation>已丢弃候选 {ids}：{width:.2f} x {height:.2f} 米的面板对 {sign_class} 标志来说太大（广告牌？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1070" />
-        <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
+        <location filename="../core/refine.py" line="1380" />
+        <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>{count} 个标志在 {radius} 米内没有地面点（类别 2）：其高度从{source}起算</translation>
+        <translation>已丢弃候选 {ids}：只在一张全景图中出现，得分为 {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="872" />
+        <location filename="../core/refine.py" line="489" />
+        <source>too few points</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>点太少</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="492" />
+        <source>too few points in the boxes</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>框内的点太少</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="498" />
+        <source>no near-vertical plane</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>没有近似竖直的平面</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="502" />
+        <source>too few planar points</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>平面点太少</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="1229" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有点云</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="875" />
+        <location filename="../core/refine.py" line="1232" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{reason}</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="1436" />
+        <source>the lowest points below the sign</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>标志下方的最低点</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="1440" />
+        <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{count} 个标志在 {radius} 米内没有地面点（类别 2）：其高度从{source}起算</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="173" />
+        <source>Sign codes table {path} is empty: expected the header {expected} and one row per code</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>标志代码表 {path} 为空：应有表头 {expected}，且每个代码一行</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="176" />
+        <source>Sign codes table {path} holds no codes: expected one row per code after the header {expected}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>标志代码表 {path} 中没有代码：表头 {expected} 之后应每个代码一行</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="363" />
+        <source>The box {box} is not four finite pixel coordinates u0, v0, u1, v1</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>检测框 {box} 不是四个有限的像素坐标 u0、v0、u1、v1</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="119" />
+        <source>Sign codes table not found: {path}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>未找到标志代码表：{path}</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="121" />
+        <source>Cannot read the sign codes table {path}: it is not UTF-8 text (byte {position}); save it as UTF-8</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取标志代码表 {path}：不是 UTF-8 文本（第 {position} 字节）；请另存为 UTF-8</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="124" />
+        <source>Cannot read the sign codes table {path}: {error}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取标志代码表 {path}：{error}</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="149" />
+        <source>Sign codes table {path}, line {line}: expected 3 fields separated by semicolons ({expected}), found {count}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>标志代码表 {path}，第 {line} 行：应有 3 个以分号分隔的字段（{expected}），实际为 {count} 个</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="154" />
+        <source>Sign codes table {path}, line {line}: the code is empty</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>标志代码表 {path}，第 {line} 行：代码为空</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="157" />
+        <source>Sign codes table {path}, line {line}: the code {code} is reserved for signs the classifier cannot read and must not be in the table</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>标志代码表 {path}，第 {line} 行：代码 {code} 保留给分类器无法识别的标志，不得出现在表中</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="161" />
+        <source>Sign codes table {path}, line {line}: the name of {code} is empty</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>标志代码表 {path}，第 {line} 行：{code} 的名称为空</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="164" />
+        <source>Sign codes table {path}, lines {first} and {line}: the code {code} is there twice</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>标志代码表 {path}，第 {first} 行和第 {line} 行：代码 {code} 出现了两次</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="167" />
+        <source>Sign codes table {path}, line {line}: unknown class {found} for {code}; expected one of {classes}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>标志代码表 {path}，第 {line} 行：{code} 的类别 {found} 未知；应为以下之一：{classes}</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="213" />
+        <source>The model {path} is a {task} model; reading sign codes needs a classify model (metadata task = classify)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>模型 {path} 是 {task} 模型；读取标志代码需要分类模型（元数据 task = classify）</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="223" />
+        <source>The model {path} takes an input {name} of shape {shape} and type {type}; supported: float [batch, 3, S, S] (RGB crops S x S pixels, values 0..1)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>模型 {path} 的输入 {name} 形状为 {shape}，类型为 {type}；支持：float [batch, 3, S, S]（S x S 像素的 RGB 裁剪图像，值为 0..1）</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="241" />
+        <source>The model {path} has an output of shape {shape} for a batch of {batch}; supported: [batch, C] with C = {count}, its number of names</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>模型 {path} 在批大小为 {batch} 时的输出形状为 {shape}；支持：[batch, C]，其中 C = {count}，即其名称数量</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="249" />
+        <source>The model {path} names no codes: its metadata needs 'names', a JSON list of the sign codes in output order (such as ["DE:206", "other"])</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>模型 {path} 未给出任何代码：其元数据需要 'names'，即按输出顺序排列的标志代码 JSON 列表（例如 ["DE:206", "other"]）</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="255" />
+        <source>The model {path} names {names} more than once in its metadata 'names'</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>模型 {path} 在其元数据 'names' 中多次给出 {names}</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="261" />
+        <source>The model {path} answers codes that are not in the sign codes table {table}: {names}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>模型 {path} 给出的代码不在标志代码表 {table} 中：{names}</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="269" />
+        <source>The model {path} has the metadata output = {found}; expected {expected}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>模型 {path} 的元数据 output = {found}；应为 {expected}</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="282" />
+        <source>The model {path} has the metadata crop_margin = {found}; expected a number from 0 to 2 (the fraction of the box's longer side added on each side)</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>模型 {path} 的元数据 crop_margin = {found}；应为 0 到 2 之间的数字（在每一侧添加的边距占检测框长边的比例）</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="137" />
+        <source>Sign codes table {path}, line {line}: cannot split the line into fields ({error})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>标志代码表 {path}，第 {line} 行：无法将该行拆分为字段（{error}）</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="143" />
+        <source>Sign codes table {path}, line {line}: expected the header {expected}, found {found}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>标志代码表 {path}，第 {line} 行：应为表头 {expected}，实际为 {found}</translation>
+    </message>
+    <message>
+        <location filename="../core/signcodes.py" line="238" />
+        <source>The model {path} failed on a blank {side} x {side} crop: {error}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>模型 {path} 在一张 {side} x {side} 的空白裁剪图像上运行失败：{error}</translation>
     </message>
     <message>
         <location filename="../core/tables.py" line="50" />
@@ -3154,34 +3631,39 @@
         <translation>道路标志清查</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="167" />
-        <source>LAS/LAZ point clouds (*.las *.laz *.LAS *.LAZ);;All files (*.*)</source>
-        <translation>LAS/LAZ 点云 (*.las *.laz *.LAS *.LAZ);;所有文件 (*.*)</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/base.py" line="267" />
+        <location filename="../algorithms/base.py" line="274" />
         <source>Cancelled: nothing was written.</source>
         <translation>已取消：未写入任何内容。</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="273" />
+        <location filename="../algorithms/base.py" line="280" />
         <source>Out of memory: nothing was written. Crop the point cloud (Ground filter with a crop layer) or process the drive in parts.</source>
         <translation>内存不足：未写入任何内容。请裁剪点云（使用带裁剪图层的地面滤波），或分段处理行驶采集数据。</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="276" />
+        <location filename="../algorithms/base.py" line="283" />
         <source>Cannot read or write {}: {}. Nothing was written.</source>
         <translation>无法读取或写入 {}：{}。未写入任何内容。</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="279" />
+        <location filename="../algorithms/base.py" line="286" />
         <source>Unexpected error ({}: {}); nothing was written. The details are in the QGIS message log (Road sign inventory); please report them.</source>
         <translation>意外错误（{}：{}）；未写入任何内容。详细信息见 QGIS 消息日志（Road sign inventory）；请报告。</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="284" />
+        <location filename="../algorithms/base.py" line="291" />
         <source>{} However, these partial outputs could not be removed: {}</source>
         <translation>{} 但是，以下部分输出无法删除：{}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/base.py" line="170" />
+        <source>Accepted: one LAS/LAZ file (COPC too), a virtual point cloud (.vpc, e.g. from QGIS's Build virtual point cloud) listing tiles, or a folder of LAS/LAZ tiles (type or paste the folder's path). Tiles must share the point format and the CRS.</source>
+        <translation>可接受：一个 LAS/LAZ 文件（也支持 COPC）、列出分块的虚拟点云（.vpc，例如由 QGIS 的“构建虚拟点云”生成），或 LAS/LAZ 分块所在的文件夹（输入或粘贴文件夹路径）。各分块的点格式和坐标参考系必须相同。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/base.py" line="170" />
+        <source>Point clouds (*.las *.laz *.vpc *.LAS *.LAZ *.VPC);;LAS/LAZ (*.las *.laz *.LAS *.LAZ);;Virtual point clouds (*.vpc *.VPC);;All files or a folder of tiles (*)</source>
+        <translation>点云 (*.las *.laz *.vpc *.LAS *.LAZ *.VPC);;LAS/LAZ (*.las *.laz *.LAS *.LAZ);;虚拟点云 (*.vpc *.VPC);;所有文件或分块文件夹 (*)</translation>
     </message>
 </context>
 <context>
