@@ -35,6 +35,10 @@
    along the rays is certain to ``max_depth_sigma_m`` (nearly parallel rays, as of a
    distant sign straight ahead, are not); ``position_source = image``.
 
+Memory (:class:`CloudBlocks`): the cloud is read and refined in blocks of ``block_m`` (150 m)
+along the drive, each merged group in the block holding its centre, each block holding only
+the points within reach of its groups; the signs do not depend on the block length.
+
 Classes: score-weighted vote of the views; ``score``: ``1 - prod(1 - s)`` over the views of
 the winning class; ``best_image``: the view minimising range / cos(incidence).
 
@@ -60,6 +64,7 @@ from scipy.spatial.distance import squareform
 from . import geometry
 from .cloudsource import CloudSource, conform, open_cloud
 from .detections import Detections
+from .drivewindows import DriveAxis, Track, make_windows
 from .errors import SILENT, InputError, Message, Progress
 from .pointcloud import (
     GROUND_CLASS,
@@ -76,6 +81,7 @@ from .projection import (
     ProjectionResult,
     box_coordinates,
     build_index,
+    check_ground_classified,
     convex_radius_m,
     euclidean_clusters,
     fit_plane_ransac,
@@ -94,6 +100,8 @@ from .signcodes import (
 )
 
 DEFAULT_MERGE_RADIUS_M = 1.0
+#: Default length (m along the drive) of the blocks the cloud is refined in (:class:`CloudBlocks`).
+DEFAULT_BLOCK_M = 150.0
 #: Default of ``code_confidence`` (``roadsigns:refinesigns`` ``CODE_CONFIDENCE``): a voted
 #: code whose support (:func:`vote_code`) is below this is left empty.
 DEFAULT_CODE_CONFIDENCE = 0.5
@@ -766,9 +774,15 @@ def ground_height(index: TiledIndex, xy, radii_m: Sequence[float], min_points: i
     return math.nan
 
 
-def ground_with_fallbacks(index: Optional[TiledIndex], centre: np.ndarray, bottom_z: float,
-                          station_z: np.ndarray, params: RefineParams) -> Tuple[float, str]:
-    """Ground height below ``centre`` and how it was found (see the module doc)."""
+#: :func:`ground_from_cloud` found nothing: the camera-height fallback applies.
+NO_CLOUD_GROUND: Tuple[float, str] = (math.nan, "")
+
+
+def ground_from_cloud(index: Optional[TiledIndex], centre: np.ndarray, bottom_z: float,
+                      params: RefineParams) -> Tuple[float, str]:
+    """Ground height below ``centre`` from the cloud (ground points, else the lowest points;
+    the module doc) and how it was found; :data:`NO_CLOUD_GROUND` when neither applies. Reads
+    points within ``max(ground_radii_m)`` (horizontally, a square) of ``centre``."""
     if index is not None and len(index):
         z = ground_height(index, centre[:2], params.ground_radii_m, params.min_ground_points)
         if np.isfinite(z):
@@ -779,6 +793,17 @@ def ground_with_fallbacks(index: Optional[TiledIndex], centre: np.ndarray, botto
             low = float(np.percentile(pts.xyz_world[:, 2], 1))
             if low < bottom_z - 1.0:
                 return low, LOWEST_POINTS
+    return NO_CLOUD_GROUND
+
+
+def ground_with_fallbacks(index: Optional[TiledIndex], centre: np.ndarray, bottom_z: float,
+                          station_z: np.ndarray, params: RefineParams,
+                          from_cloud: Optional[Tuple[float, str]] = None) -> Tuple[float, str]:
+    """Ground height below ``centre`` and how it was found (see the module doc);
+    ``from_cloud``: :func:`ground_from_cloud`'s answer when already known (``index`` unused)."""
+    found = ground_from_cloud(index, centre, bottom_z, params) if from_cloud is None else from_cloud
+    if found[1]:
+        return found
     return float(np.median(station_z)) - params.camera_height_m, CAMERA_HEIGHT
 
 
@@ -889,6 +914,8 @@ class SignDraft:
     x_image: Optional[np.ndarray] = None
     joined: List[int] = field(default_factory=list)
     absorbed: bool = False
+    #: :func:`ground_from_cloud` at its placement, when found block by block (None: ask the index)
+    ground: Optional[Tuple[float, str]] = None
 
     @property
     def views(self) -> List[int]:
@@ -920,13 +947,16 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
                  merge_radius_m: float = DEFAULT_MERGE_RADIUS_M,
                  params: RefineParams = RefineParams(),
                  progress: Progress = SILENT, codes_table: Optional[CodesTable] = None,
-                 code_confidence: float = DEFAULT_CODE_CONFIDENCE) -> RefineResult:
+                 code_confidence: float = DEFAULT_CODE_CONFIDENCE,
+                 block_m: float = DEFAULT_BLOCK_M) -> RefineResult:
     """Signs from candidates (see the module doc).
 
     ``cloud``: the LAS/LAZ path (ground-classified; read only around the candidates) or a
     :class:`TiledIndex` with ``intensity`` and ``classification``. Empty candidates give an
     empty result with a warning. ``codes_table`` (names and classes of the codes) and
-    ``code_confidence``: the code vote, :func:`vote_code`.
+    ``code_confidence``: the code vote, :func:`vote_code`. ``block_m``: the cloud is read
+    and refined in blocks of this length along the drive (:class:`CloudBlocks`; ``inf``:
+    one block, the whole drive at once); the result does not depend on it.
     """
     if not merge_radius_m or merge_radius_m <= 0:
         raise InputError("The merge radius must be positive, got {value} m", value=merge_radius_m)
@@ -936,16 +966,17 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
         return result
     groups = merge_candidates(candidates, merge_radius_m, params)
     progress.report(0.05)
-    index = cloud_around_candidates(candidates, cloud, merge_radius_m, progress.sub(0.05, 0.4))
-    bright = bright_level(index) if index is not None else math.inf
-    drafts = extract_signs(candidates, groups, index, bright, params, progress.sub(0.4, 0.9))
+    blocks = CloudBlocks(candidates, groups, cloud, merge_radius_m, block_m, params)
+    drafts = blocks.extract_signs(params, progress.sub(0.05, 0.9))
     join_lone_views(candidates, drafts)
     join_signs_on_one_panel(candidates, drafts, params)
     unplaced = join_views_without_surface(candidates, drafts)
-    drafts += triangulate_image_only(candidates, unplaced, params)
+    image_only = triangulate_image_only(candidates, unplaced, params)
+    blocks.ground_of(image_only, params)
+    drafts += image_only
     for draft in drafts:
         if not draft.absorbed:
-            add_sign(result, candidates, draft, index, params, progress, codes_table, code_confidence)
+            add_sign(result, candidates, draft, None, params, progress, codes_table, code_confidence)
     warn_ground_fallbacks(result, params, progress)
     log_codes(result, progress)
     n_img = sum(s.position_source == "image" for s in result.signs)
@@ -977,6 +1008,206 @@ def cloud_around_candidates(cand: ProjectionResult, cloud: Union[str, TiledIndex
     return build_index(cloud, region, 5.0, progress)[0]
 
 
+def median_of_counts(values: np.ndarray, counts: np.ndarray) -> float:
+    """The median (as :func:`numpy.median`: the mean of the two middle ones for an even count)
+    of the multiset holding ``counts[k]`` times ``values[k]``; NaN when empty."""
+    order = np.argsort(values, kind="stable")
+    v, c = np.asarray(values, float)[order], np.asarray(counts, np.int64)[order]
+    n = int(c.sum())
+    if n == 0:
+        return math.nan
+    cum = np.cumsum(c)
+    lo = float(v[np.searchsorted(cum, (n - 1) // 2 + 1)])
+    hi = float(v[np.searchsorted(cum, n // 2 + 1)])
+    return 0.5 * (lo + hi)
+
+
+def bright_level_of_histogram(hist: np.ndarray) -> float:
+    """:func:`bright_level` of the non-ground intensities counted in ``hist`` (count per
+    integer intensity), exact over all of them (no sample)."""
+    values = np.arange(len(hist), dtype=float)
+    med = median_of_counts(values, hist)
+    if not np.isfinite(med):
+        return math.inf
+    return med + 4.0 * 1.4826 * median_of_counts(np.abs(values - med), hist)
+
+
+def drive_axis_of(cand: ProjectionResult) -> Optional[DriveAxis]:
+    """The drive as an axis through the candidates' stations (in time order when all have
+    times, else by station id); None when they do not span a drive (fewer than 2 places)."""
+    det = cand.detections
+    if not len(det.station_id):
+        return None
+    ids, first = np.unique(det.station_id, return_index=True)
+    xyz, t = det.centre_world[first], det.time_s[first]
+    order = np.argsort(t, kind="stable") if np.all(np.isfinite(t)) else np.arange(len(ids))
+    try:
+        return DriveAxis(Track(xyz[order]))
+    except InputError:
+        return None
+
+
+class CloudBlocks:
+    """The cloud around the candidates, read and refined block by block along the drive.
+
+    The merged groups (:func:`merge_candidates`, over the whole drive: candidates are few)
+    are put in blocks of ``block_m`` metres along the drive (:mod:`.drivewindows`: arc length
+    of the group's centre on the axis through the stations), each group in the one block
+    holding its centre, so a group straddling a block seam is refined once, with all its
+    points. A block's points are read (a spatial query: only the tiles it meets; a
+    :class:`TiledIndex` given is cut instead) within the reach of its groups (points near
+    the views, the surface around the panel and the ground under it: :meth:`reach_m`), and
+    kept only when the single-index read would hold them (``max(3.5, merge_radius_m + 2.5)``
+    m from an ``ok`` candidate), so every query a group makes sees exactly the points it saw
+    in one index: the result does not depend on ``block_m``. Only one block is held at a
+    time. The bright level (:func:`bright_level`) is cloud wide: from a first pass over the
+    blocks, a histogram of the non-ground intensities, each point counted in the block of
+    its nearest ``ok`` candidate (exact; the one-index read samples 200 000 points, so
+    above that size the level may differ slightly). A single block is read once. Image-only
+    signs take their ground from a last spatial query around them (:meth:`ground_of`).
+    """
+
+    def __init__(self, cand: ProjectionResult, groups: Sequence[np.ndarray],
+                 cloud: Union[str, CloudSource, TiledIndex, None], merge_radius_m: float,
+                 block_m: float, params: RefineParams):
+        self.cand, self.groups = cand, list(groups)
+        ok = np.array([s == STATUS_OK for s in cand.status], bool)
+        self.ok_xy = cand.xyz_world[ok, :2]
+        self.corridor_m = max(3.5, merge_radius_m + 2.5)
+        self.index: Optional[TiledIndex] = None
+        self.source: Optional[CloudSource] = None
+        self.corridor: Optional[CropRegion] = None
+        if isinstance(cloud, TiledIndex):
+            self.index = build_index(cloud, None, 5.0)[0]
+        elif cloud is not None and len(self.ok_xy):
+            self.source = open_cloud(cloud)
+            self.corridor = CropRegion.corridor(self.corridor_m, points_xy=self.ok_xy)
+        self.centres = np.array([np.median(cand.xyz_world[g], axis=0) for g in self.groups]
+                                ).reshape(-1, 3)
+        self.reach = np.array([self.reach_m(cand, g, params) for g in self.groups])
+        block_of_group = np.zeros(len(self.groups), np.int64)
+        axis = drive_axis_of(cand) if math.isfinite(block_m) and len(self.groups) else None
+        if axis is not None:
+            windows = make_windows(axis.length_m, block_m)
+            edges = np.array([w.s1_m for w in windows[:-1]])
+            block_of_group = np.searchsorted(edges, axis.locate(self.centres)[0], side="right")
+        self.blocks = [np.flatnonzero(block_of_group == b) for b in np.unique(block_of_group)]
+        self._cached: Optional[Tuple[int, TiledIndex]] = None
+        self.bright = self._bright_level()
+
+    @staticmethod
+    def reach_m(cand: ProjectionResult, rows: np.ndarray, params: RefineParams) -> float:
+        """How far (horizontally) from the group's centre refining it may look: the points
+        near the views (radius ``r``), the surface around a panel within ``r`` of it (at most
+        ``sqrt 2 (r + 0.1 + surround_band_m)``) and the ground under it."""
+        w_est, h_est = box_size_estimate_m(cand, rows)
+        r = 0.75 * float(max(w_est.max(), h_est.max())) + 0.3
+        around = math.sqrt(2) * (r + params.box_extent_allowance_m + params.surround_band_m)
+        ground = math.sqrt(2) * max(params.ground_radii_m)
+        return r + params.box_extent_allowance_m + max(around, ground) + 0.5
+
+    def _read(self, centres_xy: np.ndarray, radius_m: float,
+              progress: Progress = SILENT) -> TiledIndex:
+        """The points within ``radius_m`` of ``centres_xy`` that the one-index read holds."""
+        region = CropRegion.corridor(radius_m, points_xy=centres_xy)
+        if self.index is not None:
+            src = self.index
+            m = region.mask(src.xyz_world[:, 0], src.xyz_world[:, 1])
+            return TiledIndex(src.xyz_world[m], src.point_index[m],
+                              {k: v[m] for k, v in src.attributes.items()}, src.tile_size_m,
+                              src.crs_wkt)
+        assert self.source is not None and self.corridor is not None
+        idx = self.source.index(region, ("intensity", "classification"), 5.0, progress=progress)
+        m = self.corridor.mask(idx.xyz_world[:, 0], idx.xyz_world[:, 1])
+        if m.all():
+            return idx
+        out = TiledIndex(idx.xyz_world[m], idx.point_index[m],
+                         {k: v[m] for k, v in idx.attributes.items()}, 5.0, idx.crs_wkt)
+        del idx
+        return out
+
+    def _block(self, b: int, progress: Progress = SILENT) -> TiledIndex:
+        """The points of block ``b``: within the reach of its groups and, for the bright
+        level, within the corridor of its ``ok`` candidates."""
+        if self._cached is not None and self._cached[0] == b:
+            return self._cached[1]
+        gs = self.blocks[b]
+        rows = np.concatenate([self.groups[g] for g in gs])
+        xy = np.vstack([self.centres[gs, :2], self.cand.xyz_world[rows, :2]])
+        return self._read(xy, max(float(self.reach[gs].max()), self.corridor_m + 0.5), progress)
+
+    def _bright_level(self) -> float:
+        if self.index is not None:
+            return bright_level(self.index)
+        if self.source is None or not self.blocks:
+            return math.inf
+        ok_rows = np.flatnonzero(np.array([s == STATUS_OK for s in self.cand.status], bool))
+        block_of_row = np.full(len(self.cand), -1, np.int64)
+        for b, gs in enumerate(self.blocks):
+            for g in gs:
+                block_of_row[self.groups[g]] = b
+        block_of_ok = block_of_row[ok_rows]
+        tree = cKDTree(self.ok_xy)
+        hist = np.zeros(65536, np.int64)
+        n_points = n_ground = 0
+        for b in range(len(self.blocks)):
+            idx = self._block(b)
+            if len(self.blocks) == 1:
+                self._cached = (b, idx)
+            _, near = tree.query(idx.xyz_world[:, :2])
+            cls = idx.attributes["classification"]
+            mine = block_of_ok[near] == b
+            n_points += int(mine.sum())
+            n_ground += int(np.sum(mine & (cls == GROUND_CLASS)))
+            inten = idx.attributes["intensity"][mine & (cls != GROUND_CLASS)]
+            hist += np.bincount(np.asarray(inten, np.int64), minlength=65536)[:65536]
+            del idx
+        if n_points and not n_ground:   # the one-index read's error, for the whole drive
+            check_ground_classified(TiledIndex(np.zeros((1, 3)), np.zeros(1, np.int64),
+                                               {"classification": np.zeros(1)}), self.source.path)
+        return bright_level_of_histogram(hist)
+
+    def extract_signs(self, params: RefineParams, progress: Progress = SILENT) -> List[SignDraft]:
+        """:func:`extract_signs` block by block (drafts in the order of the groups), each
+        draft with the ground under its placement (:func:`ground_from_cloud`)."""
+        drafts: List[Optional[SignDraft]] = [None] * len(self.groups)
+        has_cloud = self.index is not None or self.source is not None
+        done = 0
+        for b, gs in enumerate(self.blocks):
+            index = self._block(b) if has_cloud else None
+            for g in gs:
+                draft = extract_draft(self.cand, self.groups[g], index, self.bright, params, progress)
+                if draft is not None:
+                    place = placement(self.cand, draft)
+                    draft.ground = ground_from_cloud(index, place.centre, place.bottom_z, params)
+                drafts[g] = draft
+                done += 1
+                progress.report(done / len(self.groups))
+            del index
+            self._cached = None
+        return [d for d in drafts if d is not None]
+
+    def ground_of(self, drafts: Sequence[SignDraft], params: RefineParams) -> None:
+        """Set the ground (:func:`ground_from_cloud`) of ``drafts`` (image-only signs) from
+        the points around them (one spatial query)."""
+        if not drafts:
+            return
+        places = [placement(self.cand, d) for d in drafts]
+        centres = np.array([p.centre for p in places]).reshape(-1, 3)
+        radius = math.sqrt(2) * max(params.ground_radii_m) + 0.5
+        near = np.ones(len(drafts), bool)
+        if self.index is None:
+            if self.source is None:
+                for d in drafts:
+                    d.ground = NO_CLOUD_GROUND
+                return
+            dist, _ = cKDTree(self.ok_xy).query(centres[:, :2])
+            near = dist <= self.corridor_m + radius
+        index = self._read(centres[near, :2], radius) if near.any() else None
+        for d, p, n in zip(drafts, places, near):
+            d.ground = ground_from_cloud(index, p.centre, p.bottom_z, params) if n else NO_CLOUD_GROUND
+
+
 def extract_signs(cand: ProjectionResult, groups: Sequence[np.ndarray], index: Optional[TiledIndex],
                   bright: float, params: RefineParams, progress: Progress = SILENT
                   ) -> List[SignDraft]:
@@ -984,21 +1215,30 @@ def extract_signs(cand: ProjectionResult, groups: Sequence[np.ndarray], index: O
     (:func:`extract_panel`). Groups whose panel is not a sign (:data:`NOT_A_SIGN`) are
     dropped; those whose panel could not be isolated (or without a cloud) keep no panel:
     the views agree on a surface, the sign is placed at their median. Both are logged."""
-    det = cand.detections
     drafts = []
     for g, rows in enumerate(groups):
-        panel, reason = (extract_panel(cand, rows, index, bright, params) if index is not None
-                         else (None, Message("no point cloud")))
-        if panel is None:
-            if reason in NOT_A_SIGN:
-                progress.info("Candidates {ids} dropped: {reason}", ids=det.det_id[rows].tolist(),
-                              reason=reason)
-                continue
-            progress.info("Candidates {ids}: {reason}; placed at the candidates' median",
-                          ids=det.det_id[rows].tolist(), reason=reason)
-        drafts.append(SignDraft(rows, panel))
+        draft = extract_draft(cand, rows, index, bright, params, progress)
+        if draft is not None:
+            drafts.append(draft)
         progress.report((g + 1) / max(1, len(groups)))
     return drafts
+
+
+def extract_draft(cand: ProjectionResult, rows: np.ndarray, index: Optional[TiledIndex],
+                  bright: float, params: RefineParams, progress: Progress = SILENT
+                  ) -> Optional[SignDraft]:
+    """The sign of one group of views (:func:`extract_signs`); None when it is not a sign."""
+    det = cand.detections
+    panel, reason = (extract_panel(cand, rows, index, bright, params) if index is not None
+                     else (None, Message("no point cloud")))
+    if panel is None:
+        if reason in NOT_A_SIGN:
+            progress.info("Candidates {ids} dropped: {reason}", ids=det.det_id[rows].tolist(),
+                          reason=reason)
+            return None
+        progress.info("Candidates {ids}: {reason}; placed at the candidates' median",
+                      ids=det.det_id[rows].tolist(), reason=reason)
+    return SignDraft(rows, panel)
 
 
 def sign_centres(cand: ProjectionResult, drafts: Sequence[SignDraft]) -> np.ndarray:
@@ -1165,7 +1405,7 @@ def add_sign(result: RefineResult, cand: ProjectionResult, draft: SignDraft,
     if not plausible(cand, views, klass, score, place, len(images), params, progress):
         return
     ground_z, ground_source = ground_with_fallbacks(index, place.centre, place.bottom_z,
-                                                    det.centre_world[views, 2], params)
+                                                    det.centre_world[views, 2], params, draft.ground)
     n_sign = len(result.signs)
     result.signs.append(SignRecord(
         sign_id=n_sign + 1, klass=klass, score=score, height=float(place.centre[2] - ground_z),

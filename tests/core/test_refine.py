@@ -743,3 +743,73 @@ def test_refine_params_are_frozen():
         params.min_panel_points = 3
     assert dataclasses.replace(params, min_panel_points=3).min_panel_points == 3
     assert params.min_panel_points == R.RefineParams().min_panel_points
+
+
+def _same_result(a, b):
+    """Block-wise and one-block results are the same: records, outlines, points, views."""
+    assert len(a.signs) == len(b.signs)
+    for s, t in zip(a.signs, b.signs):
+        ds, dt = s.as_dict(), t.as_dict()
+        assert {k: v for k, v in ds.items() if not isinstance(v, float)} == \
+            {k: v for k, v in dt.items() if not isinstance(v, float)}
+        floats = [k for k, v in ds.items() if isinstance(v, float)]
+        assert [ds[k] for k in floats] == pytest.approx([dt[k] for k in floats], nan_ok=True)
+    assert [s.klass for s in a.signs] == [s.klass for s in b.signs]
+    assert len(a.point_index) == len(b.point_index)
+    for p, q in zip(a.point_index, b.point_index):
+        assert np.array_equal(np.sort(p), np.sort(q))
+    assert np.array_equal(a.candidate_sign, b.candidate_sign)
+    assert a.ground_source == b.ground_source
+
+
+@pytest.mark.parametrize("block_m", [20.0, 7.0])
+def test_refining_block_by_block_gives_the_one_block_result(scene, candidates, index, block_m):
+    one = R.refine_signs(candidates, index, block_m=float("inf"))
+    blocks = R.CloudBlocks(candidates, R.merge_candidates(candidates, 1.0), index, 1.0, block_m,
+                           R.RefineParams())
+    assert len(blocks.blocks) >= 6      # the 160 m scene spans many blocks
+    _same_result(R.refine_signs(candidates, index, block_m=block_m), one)
+    assert len(one.signs) == len(scene.signs)
+
+
+def test_refining_a_las_file_block_by_block_gives_the_one_block_result(scene, candidates, tmp_path):
+    las = str(tmp_path / "cloud.las")
+    signscene.write_las(scene, las)
+    one = R.refine_signs(candidates, las, block_m=float("inf"))
+    _same_result(R.refine_signs(candidates, las, block_m=20.0), one)
+    # and the single index read the old way (all of the cloud near the candidates at once)
+    old = R.cloud_around_candidates(candidates, las, R.DEFAULT_MERGE_RADIUS_M)
+    assert R.CloudBlocks(candidates, R.merge_candidates(candidates, 1.0), las, 1.0, 20.0,
+                         R.RefineParams()).bright == pytest.approx(R.bright_level(old))
+    _same_result(R.refine_signs(candidates, old, block_m=float("inf")), one)
+
+
+def test_a_group_across_a_block_seam_is_refined_once_with_all_its_points(candidates, index,
+                                                                        monkeypatch):
+    from roadsigns.core.drivewindows import Window
+    groups = R.merge_candidates(candidates, 1.0)
+    axis = R.drive_axis_of(candidates)
+    s = axis.locate(np.array([np.median(candidates.xyz_world[g], axis=0) for g in groups]))[0]
+    one = R.refine_signs(candidates, index, block_m=float("inf"))
+    order = np.argsort(s)
+    for g in (order[1], order[len(groups) // 2], order[-2]):
+        for eps in (-0.05, 0.05):   # the seam runs through the group's panel, either side
+            edge = float(s[g] + eps)
+            monkeypatch.setattr(R, "make_windows", lambda length_m, block_m, edge=edge: [
+                Window(0, -np.inf, edge), Window(1, edge, np.inf)])
+            blocks = R.CloudBlocks(candidates, groups, index, 1.0, 10.0, R.RefineParams())
+            assert len(blocks.blocks) == 2
+            mine = next(b for b in blocks.blocks if g in b)
+            assert np.all((s[mine] < edge) == (eps > 0))
+            _same_result(R.refine_signs(candidates, index, block_m=10.0), one)
+
+
+def test_median_of_counts_is_numpys_median():
+    rng = np.random.default_rng(3)
+    for n in (1, 2, 7, 100):
+        v = rng.integers(0, 20, n)
+        hist = np.bincount(v, minlength=20)
+        assert R.median_of_counts(np.arange(20.0), hist) == np.median(v)
+        med = np.median(v)
+        assert R.median_of_counts(np.abs(np.arange(20.0) - med), hist) == np.median(np.abs(v - med))
+    assert np.isnan(R.median_of_counts(np.arange(3.0), np.zeros(3, np.int64)))
