@@ -13,7 +13,7 @@ from qgis.core import (
 )
 
 from ..core.detections import DETECTION_FIELDS, drive_detections
-from ..core.detector import DEFAULT_MIN_BOX_PX
+from ..core.detector import DEFAULT_MIN_BOX_PX, spaced_stations
 from ..core.signcodes import OTHER_CODE
 from ..core.trajectory import STATION_FIELDS, Stations
 from .base import RoadSignsAlgorithm
@@ -32,6 +32,7 @@ class DetectSigns(RoadSignsAlgorithm):
     MAX_RANGE = "MAX_RANGE"
     UPWARD_VIEWS = "UPWARD_VIEWS"
     THREADS = "THREADS"
+    MIN_STATION_SPACING = "MIN_STATION_SPACING_M"
     READ_CODES = "READ_CODES"
     CLASSIFIER = "CLASSIFIER"
     CODES_TABLE = "CODES_TABLE"
@@ -96,6 +97,15 @@ class DetectSigns(RoadSignsAlgorithm):
             self.tr("Adds a ring of views tilted 35° up; unchecked halves the work but misses signs "
                     "high above the road close to the vehicle."), advanced=True)
         self.add_number(
+            self.MIN_STATION_SPACING, self.tr("Skip stations closer than (m)"), 0.0,
+            self.tr("Detects only in panoramas whose station stands at least this far from the last station "
+                    "detected in; the ones between are skipped (not read, no detections). A sign stays in view "
+                    "over many stations, so a few metres save detection time in proportion, but each sign is "
+                    "then seen from fewer stations: fewer rays to place it, and a sign visible from only a "
+                    "few stations (small, or hidden behind trees or vehicles) may be missed. 0 detects in every "
+                    "panorama."),
+            minimum=0.0, advanced=True)
+        self.add_number(
             self.THREADS, self.tr("CPU threads (0: all)"), 0,
             self.tr("Threads onnxruntime may use on the CPU; 0 lets it use every core."),
             minimum=0, integer=True, advanced=True)
@@ -151,7 +161,13 @@ class DetectSigns(RoadSignsAlgorithm):
                                     upward=self.parameterAsBoolean(parameters, self.UPWARD_VIEWS, context))
             feedback.pushInfo(self.tr("{} panoramas, {} views each").format(len(stations), len(views)))
             classifier = self._classifier(parameters, context, feedback)
-            found = detect_drive(detector, stations.path, views, confidence,
+            spacing_m = self.parameterAsDouble(parameters, self.MIN_STATION_SPACING, context)
+            chosen = spaced_stations(stations.xyz_world, spacing_m)
+            if len(chosen) < len(stations):
+                feedback.pushInfo(self.tr("Detecting in {} of the {} panoramas: stations closer than {} m to "
+                                          "the last one detected in are skipped.").format(
+                                              len(chosen), len(stations), spacing_m))
+            found = detect_drive(detector, [stations.path[k] for k in chosen], views, confidence,
                                  min_box_px=self.parameterAsDouble(parameters, self.MIN_SIZE, context),
                                  progress=progress.sub(0.0, 0.95),
                                  on_panorama=None if classifier is None else partial(read_codes, classifier))
@@ -159,7 +175,10 @@ class DetectSigns(RoadSignsAlgorithm):
             feedback.pushWarning(self.tr("Skipped {} panorama(s) that could not be read.").format(
                 len(found.skipped)))
 
-        detections = drive_detections(stations, found.per_image)
+        per_image = [None] * len(stations)
+        for k, result in zip(chosen, found.per_image):
+            per_image[k] = result
+        detections = drive_detections(stations, per_image)
         if len(detections) == 0:
             feedback.pushWarning(self.tr("No sign was detected: the detections layer is empty."))
         ends = detections.ray_ends_world(ray_length_m) if len(detections) else []
@@ -170,7 +189,7 @@ class DetectSigns(RoadSignsAlgorithm):
         write_records(sink, DETECTION_FIELDS, detections.records(), rays, feedback, (95, 100))
         feedback.setProgress(100)
         feedback.pushInfo(self.tr("{} detections in {} panoramas ({} skipped).").format(
-            len(detections), len(stations) - len(found.skipped), len(found.skipped)))
+            len(detections), len(chosen) - len(found.skipped), len(found.skipped)))
         if classifier is not None and len(detections):
             coded = sum(1 for c in detections.code if c and c != OTHER_CODE)
             feedback.pushInfo(self.tr("Sign codes read in {} of the {} detections (the others: other).").format(

@@ -31,6 +31,7 @@ from __future__ import annotations
 import ast
 import json
 import os
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from typing import Callable, List, Optional, Sequence, Tuple
 
@@ -606,6 +607,23 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
 
 # --- a drive ------------------------------------------------------------------------------
 
+def spaced_stations(xyz_world, min_spacing_m: float) -> np.ndarray:
+    """Indices of the stations to detect in, in order: the first, then each station at least
+    ``min_spacing_m`` (3-D distance) from the last one kept. ``min_spacing_m`` <= 0 keeps all.
+
+    A sign stays in view over many stations: skipping the ones that stand close together
+    saves their detection time, at the price of fewer views (fewer rays) of each sign.
+    """
+    xyz = np.asarray(xyz_world, float).reshape(-1, 3)
+    if min_spacing_m <= 0 or len(xyz) == 0:
+        return np.arange(len(xyz), dtype=np.int64)
+    kept = [0]
+    for k in range(1, len(xyz)):
+        if np.linalg.norm(xyz[k] - xyz[kept[-1]]) >= min_spacing_m:
+            kept.append(k)
+    return np.array(kept, dtype=np.int64)
+
+
 @dataclass
 class DriveDetections:
     """Detections over many panoramas: ``per_image[k]`` belongs to ``image_paths[k]``
@@ -621,35 +639,53 @@ class DriveDetections:
 def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidence: float = 0.25,
                  iou_threshold: float = 0.45, min_box_px: float = 0.0,
                  progress: Progress = SILENT,
-                 on_panorama: Optional[Callable[[np.ndarray, PanoramaDetections], object]] = None
-                 ) -> DriveDetections:
+                 on_panorama: Optional[Callable[[np.ndarray, PanoramaDetections], object]] = None,
+                 prefetch: bool = True) -> DriveDetections:
     """:func:`detect_panorama` on each panorama file; missing or corrupt files are skipped.
 
     ``on_panorama(pano, found)`` is called after each panorama is detected, while it is in
     memory (so that it is read once): reading the sign codes of its detections, say
     (:func:`.detections.read_codes`). Progress advances per view; cancel stops between
     views. A skipped file adds ``(path, reason)`` to ``skipped`` and a warning to
-    ``progress``.
+    ``progress``. ``prefetch``: decode the next panorama in a background thread while this
+    one is detected (OpenCV's decoder releases the GIL; two panoramas are in memory at once);
+    results, order and warnings are the same either way.
     """
     from .panorama import read_panorama
+
+    def load(path: str):
+        try:
+            return read_panorama(path), None
+        except InputError as error:
+            return None, error
 
     per_image: List[Optional[PanoramaDetections]] = []
     skipped: List[Tuple[str, str]] = []
     n = max(len(image_paths), 1)
-    for k, path in enumerate(image_paths):
-        progress.report(k / n)
-        try:
-            pano = read_panorama(path)
-        except InputError as error:
-            skipped.append((path, str(error)))
-            progress.warning(error.template, **error.fields)
-            per_image.append(None)
-            continue
-        found = detect_panorama(detector, pano, views, confidence, iou_threshold,
-                                min_box_px=min_box_px, progress=progress.sub(k / n, (k + 1) / n))
-        if on_panorama is not None:
-            progress.check()
-            on_panorama(pano, found)
-        per_image.append(found)
+    reader = ThreadPoolExecutor(max_workers=1) if prefetch and len(image_paths) > 1 else None
+    try:
+        pending = reader.submit(load, image_paths[0]) if reader is not None else None
+        for k, path in enumerate(image_paths):
+            progress.report(k / n)
+            if reader is not None and pending is not None:
+                pano, error = pending.result()
+                pending = reader.submit(load, image_paths[k + 1]) if k + 1 < len(image_paths) else None
+            else:
+                pano, error = load(path)
+            if error is not None:
+                skipped.append((path, str(error)))
+                progress.warning(error.template, **error.fields)
+                per_image.append(None)
+                continue
+            found = detect_panorama(detector, pano, views, confidence, iou_threshold,
+                                    min_box_px=min_box_px, progress=progress.sub(k / n, (k + 1) / n))
+            if on_panorama is not None:
+                progress.check()
+                on_panorama(pano, found)
+            per_image.append(found)
+            del pano
+    finally:
+        if reader is not None:  # on cancel or an error: do not wait for a read in flight
+            reader.shutdown(wait=False, cancel_futures=True)
     progress.report(1.0)
     return DriveDetections(per_image, skipped)

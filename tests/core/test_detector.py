@@ -331,3 +331,100 @@ def test_int8_model_runs_like_the_float_one(tmp_path, fmt):
         a, b = f.detect(img, 0.0), i8.detect(img, 0.0)
         assert b.class_ids.tolist() == [1] and b.boxes_xyxy == pytest.approx(a.boxes_xyxy)
         assert b.scores[0] == pytest.approx(a.scores[0], rel=0.05, abs=0.02)
+
+
+# --- a drive: decoding the next panorama while this one is detected ----------------------
+
+class MeanGreyDetector:
+    """One box in the middle of each view, scored by the view's mean grey / 255: the score
+    says which panorama a result came from."""
+    class_names = ["sign"]
+
+    def detect(self, image, confidence, iou_threshold):
+        h, w = image.shape[:2]
+        return ImageDetections(np.array([[0.4 * w, 0.4 * h, 0.6 * w, 0.6 * h]]),
+                               np.array([image.mean() / 255.0]), np.zeros(1, np.int64))
+
+
+def _grey_panoramas(tmp_path, n=5, corrupt=()):
+    paths = []
+    for k in range(n):
+        path = tmp_path / f"p{k}.png"
+        if k in corrupt:
+            path.write_bytes(b"not an image at all")
+        else:
+            cv2.imwrite(str(path), np.full((64, 128, 3), 20 + 40 * k, np.uint8))
+        paths.append(str(path))
+    return paths
+
+
+@pytest.mark.parametrize("prefetch", [False, True])
+def test_detect_drive_keeps_the_order_and_skips_a_corrupt_panorama(tmp_path, monkeypatch, prefetch):
+    import time
+
+    from roadsigns.core import panorama
+    from roadsigns.core.errors import Progress
+
+    paths = _grey_panoramas(tmp_path, 5, corrupt=(2,))
+    original = panorama.read_panorama
+    delays = {paths[0]: 0.05, paths[1]: 0.0, paths[3]: 0.08}  # reads finishing out of turn
+
+    def slow_read(path):
+        time.sleep(delays.get(path, 0.0))
+        return original(path)
+
+    monkeypatch.setattr(panorama, "read_panorama", slow_read)
+    warnings, seen, fractions = [], [], []
+    views = ViewSet.ring(2, 0.0, 90.0, 32)
+    drive = det.detect_drive(MeanGreyDetector(), paths, views, 0.0,
+                             progress=Progress(fractions.append, on_warning=warnings.append),
+                             on_panorama=lambda pano, found: seen.append(int(pano[0, 0, 0])),
+                             prefetch=prefetch)
+    assert seen == [20, 60, 140, 180]  # each detected panorama handed on, in order
+    assert [None if d is None else round(float(d.score.max()) * 255) for d in drive.per_image] == \
+        [20, 60, None, 140, 180]
+    assert [p for p, _ in drive.skipped] == [paths[2]] and "corrupt" in drive.skipped[0][1]
+    assert len(warnings) == 1 and paths[2] in str(warnings[0])
+    assert fractions == sorted(fractions) and fractions[-1] == 100.0
+
+
+def test_detect_drive_prefetch_cancels_without_waiting_for_the_read_in_flight(tmp_path, monkeypatch):
+    import time
+
+    from roadsigns.core import panorama
+    from roadsigns.core.errors import Cancelled, Progress
+
+    paths = _grey_panoramas(tmp_path, 4)
+    original = panorama.read_panorama
+    started = []
+
+    def slow_read(path):
+        started.append(path)
+        if path != paths[0]:
+            time.sleep(1.5)
+        return original(path)
+
+    monkeypatch.setattr(panorama, "read_panorama", slow_read)
+    cancel_at = []  # set once the first panorama is detected and the second one's read began
+
+    def on_panorama(pano, found):
+        deadline = time.perf_counter() + 5.0
+        while len(started) < 2 and time.perf_counter() < deadline:
+            time.sleep(0.01)
+        cancel_at.append(time.perf_counter())
+
+    with pytest.raises(Cancelled):
+        det.detect_drive(MeanGreyDetector(), paths, ViewSet.ring(2, 0.0, 90.0, 32), 0.0,
+                         progress=Progress(is_cancelled=lambda: bool(cancel_at)),
+                         on_panorama=on_panorama, prefetch=True)
+    assert time.perf_counter() - cancel_at[0] < 0.5  # not held by the 1.5 s read of panorama 1
+    time.sleep(1.8)
+    assert started == paths[:2]  # nothing read after the cancel
+
+
+def test_spaced_stations_keeps_each_station_far_enough_from_the_last_kept():
+    xyz = np.array([[0, 0, 0], [1, 0, 0], [2.5, 0, 0], [3, 0, 0], [5, 0, 0], [5, 0, 3]], float)
+    assert det.spaced_stations(xyz, 0.0).tolist() == [0, 1, 2, 3, 4, 5]
+    assert det.spaced_stations(xyz, 2.0).tolist() == [0, 2, 4, 5]  # 2.5 m, then 2.5 m, then 3 m up
+    assert det.spaced_stations(xyz, 10.0).tolist() == [0]
+    assert det.spaced_stations(np.zeros((0, 3)), 2.0).tolist() == []
