@@ -2990,115 +2990,115 @@
         <translation>{path} no tiene puntos dentro de los troncos de visión de las detecciones; no se encontró ningún candidato</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="118" />
+        <location filename="../core/refine.py" line="122" />
         <source>curved surface (a convex mirror?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>superficie curva (¿un espejo convexo?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="119" />
+        <location filename="../core/refine.py" line="123" />
         <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>parte de una superficie plana mayor (¿una imagen en una valla publicitaria o una pared?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="979" />
+        <location filename="../core/refine.py" line="983" />
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} señales a partir de {candidates} candidatos ({from_images} situadas solo a partir de las imágenes)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1426" />
+        <location filename="../core/refine.py" line="1430" />
         <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{coded} de {signs} señales tienen código de señal; {from_code} tomaron su clase del código, {dropped} códigos se descartaron por la votación de clase (code_check)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1435" />
+        <location filename="../core/refine.py" line="1439" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>la altura de las estaciones menos {height} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="389" />
+        <location filename="../core/refine.py" line="393" />
         <source>Detection {det_id} has the sign code {code}, which is not in the sign codes table {table}: give the codes table the classifier was run with</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La detección {det_id} tiene el código de señal {code}, que no está en la tabla de códigos de señal {table}: indique la tabla de códigos con la que se ejecutó el clasificador</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="958" />
+        <location filename="../core/refine.py" line="962" />
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El radio de fusión debe ser positivo; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="961" />
+        <location filename="../core/refine.py" line="965" />
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay candidatos que refinar; la capa de señales está vacía</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1235" />
+        <location filename="../core/refine.py" line="1239" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids}: {reason}; situados en la mediana de los candidatos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1375" />
+        <location filename="../core/refine.py" line="1379" />
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: un panel de {width:.2f} x {height:.2f} m es demasiado grande para una señal {sign_class} (¿una valla publicitaria?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1380" />
+        <location filename="../core/refine.py" line="1384" />
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: vistos en una sola panorámica, con una puntuación de {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="489" />
+        <location filename="../core/refine.py" line="493" />
         <source>too few points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="492" />
+        <location filename="../core/refine.py" line="496" />
         <source>too few points in the boxes</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos en los recuadros</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="498" />
+        <location filename="../core/refine.py" line="502" />
         <source>no near-vertical plane</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>ningún plano casi vertical</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="502" />
+        <location filename="../core/refine.py" line="506" />
         <source>too few planar points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos planos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1229" />
+        <location filename="../core/refine.py" line="1233" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>sin nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1232" />
+        <location filename="../core/refine.py" line="1236" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: {reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1436" />
+        <location filename="../core/refine.py" line="1440" />
         <source>the lowest points below the sign</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>los puntos más bajos bajo la señal</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1440" />
+        <location filename="../core/refine.py" line="1444" />
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} señal(es) no tienen puntos de suelo (clase 2) a menos de {radius} m: su altura se mide desde {source}</translation>

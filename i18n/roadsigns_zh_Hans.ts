@@ -2990,115 +2990,115 @@
         <translation>{path} 在检测结果的视锥内没有点；未找到候选</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="118" />
+        <location filename="../core/refine.py" line="122" />
         <source>curved surface (a convex mirror?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>曲面（凸面镜？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="119" />
+        <location filename="../core/refine.py" line="123" />
         <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>较大平面的一部分（广告牌或墙上的图案？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="979" />
+        <location filename="../core/refine.py" line="983" />
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>从 {candidates} 个候选得到 {signs} 个标志（{from_images} 个仅由图像定位）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1426" />
+        <location filename="../core/refine.py" line="1430" />
         <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} 个标志中有 {coded} 个带有标志代码；{from_code} 个的类别取自代码，{dropped} 个代码因类别投票被舍弃（code_check）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1435" />
+        <location filename="../core/refine.py" line="1439" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>站点高度减去 {height} 米</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="389" />
+        <location filename="../core/refine.py" line="393" />
         <source>Detection {det_id} has the sign code {code}, which is not in the sign codes table {table}: give the codes table the classifier was run with</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id} 的标志代码 {code} 不在标志代码表 {table} 中：请提供运行分类器时所用的代码表</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="958" />
+        <location filename="../core/refine.py" line="962" />
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>合并半径必须为正数，实际为 {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="961" />
+        <location filename="../core/refine.py" line="965" />
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有要精化的候选；标志图层为空</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1235" />
+        <location filename="../core/refine.py" line="1239" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>候选 {ids}：{reason}；位置取候选的中位数</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1375" />
+        <location filename="../core/refine.py" line="1379" />
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{width:.2f} x {height:.2f} 米的面板对 {sign_class} 标志来说太大（广告牌？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1380" />
+        <location filename="../core/refine.py" line="1384" />
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：只在一张全景图中出现，得分为 {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="489" />
+        <location filename="../core/refine.py" line="493" />
         <source>too few points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="492" />
+        <location filename="../core/refine.py" line="496" />
         <source>too few points in the boxes</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>框内的点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="498" />
+        <location filename="../core/refine.py" line="502" />
         <source>no near-vertical plane</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有近似竖直的平面</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="502" />
+        <location filename="../core/refine.py" line="506" />
         <source>too few planar points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>平面点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1229" />
+        <location filename="../core/refine.py" line="1233" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有点云</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1232" />
+        <location filename="../core/refine.py" line="1236" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1436" />
+        <location filename="../core/refine.py" line="1440" />
         <source>the lowest points below the sign</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志下方的最低点</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1440" />
+        <location filename="../core/refine.py" line="1444" />
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 个标志在 {radius} 米内没有地面点（类别 2）：其高度从{source}起算</translation>
