@@ -8,6 +8,7 @@ import laspy
 import numpy as np
 import pytest
 
+from devtools.scenegen.textures import VARIANT_CODES
 from roadsigns.core.evaluate import read_reference_csv
 
 KINDS = {"sign_pole", "light_pole", "gantry", "other"}
@@ -77,10 +78,12 @@ def test_pole_feet_and_radii_match_the_cloud(scene):
     assert checked >= 5
 
 
-def test_faded_column_is_last_and_faded_faces_are_dull(scene):
+def test_faded_and_code_columns_last_and_faded_faces_are_dull(scene):
     _, paths, cloud, meta = scene
     rows = _rows(paths["reference"])
-    assert list(rows[0])[-1] == "faded" and {r["faded"] for r in rows} <= {"0", "1"}
+    assert list(rows[0])[-2:] == ["faded", "code"] and {r["faded"] for r in rows} <= {"0", "1"}
+    variant = {s["sign_id"]: (s["class"], s["variant"]) for s in meta["signs"]}
+    assert [r["code"] for r in rows] == [VARIANT_CODES[variant[int(r["sign_id"])]] for r in rows]
     assert len(read_reference_csv(paths["reference"]).ids) == len(rows)     # old readers still work
     faded = {int(r["sign_id"]) for r in rows if r["faded"] == "1"}
     assert faded == {s["sign_id"] for s in meta["signs"] if s["faded"]} and faded
