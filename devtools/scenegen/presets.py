@@ -30,6 +30,21 @@ PRESETS = {
                       sign_spacing_m=8.5, gantry_every_m=150.0),
     "large": Preset("large", road_length_m=2000.0, curvature_per_m=1 / 2500.0,
                     sign_spacing_m=9.0, gantry_every_m=300.0, speed_mps=8.0),
+    # Drives of the size of Balado et al. 2020's seed-004 (9.2 km, 350 M points, 7,392
+    # panoramas), for bench/bench_drive.py (devtools/scenegen/drive.py renders only a first
+    # stretch of their panoramas). One sign group every ~20 m (the test presets: ~9 m);
+    # 6.5 m/s with 250 lines of 1500 rays gives ~38,000 points per metre (~350 M on 9.2 km);
+    # one panorama every 1.2447 m gives 7,392 on 9.2 km.
+    "drive9k": Preset("drive9k", road_length_m=9200.0, curvature_per_m=1 / 6000.0,
+                      sign_spacing_m=20.0, gantry_every_m=1500.0, image_spacing_m=1.2447,
+                      speed_mps=6.5),
+    "drive1k": Preset("drive1k", road_length_m=1000.0, curvature_per_m=1 / 6000.0,
+                      sign_spacing_m=20.0, gantry_every_m=1500.0, image_spacing_m=1.2447,
+                      speed_mps=6.5),
+    # the smoke check of bench_drive.py: the same kind of drive, short, sparse panoramas
+    "drivesmoke": Preset("drivesmoke", road_length_m=150.0, curvature_per_m=1 / 6000.0,
+                         sign_spacing_m=20.0, gantry_every_m=1500.0, image_spacing_m=5.0,
+                         pano_width=2048, speed_mps=8.0, points_per_line=1000),
 }
 
 
