@@ -50,7 +50,7 @@ def read(classifier, crops_bgr):
     return classifier.classify([c[..., ::-1] for c in crops_bgr])
 
 
-def accuracy_report(codes, truth, names_of=None):
+def accuracy_report(codes, truth):
     codes, truth = np.asarray(codes), np.asarray(truth)
     right = codes == truth
     wrong = Counter((t, c) for t, c, ok in zip(truth, codes, right) if not ok)
@@ -93,9 +93,8 @@ def bench_gtsdb(classifiers, detector_path, confidence):
     det = detector_mod.Detector(detector_path, threads=2)
     crops, truth = [], []
     n_true, n_found = 0, 0
-    raw = {}
-    for path, _, _ in read_gtsdb(GTSDB_HELDOUT_IDS):
-        raw[path] = []
+    raw = {path: [] for path, _, _ in read_gtsdb(GTSDB_HELDOUT_IDS)}  # GTSRB ids come from gt.txt below
+    images = {}
     with open(os.path.join(train_codes.data.DATA_DIR, "gtsdb-train", "gt.txt")) as f:
         for line in f:
             p = line.strip().split(";")
@@ -117,9 +116,10 @@ def bench_gtsdb(classifiers, detector_path, confidence):
                 n_found += 1
                 crops.append(boxes[i])
                 truth.append((path, gtsrb_code[rows[j][4]]))
+                images[path] = image  # each photograph read once, cut once per classifier
     out = []
     for classifier in classifiers:
-        cut = [train_codes.crop_square(cv2.imread(p), b, margin=classifier.crop_margin,
+        cut = [train_codes.crop_square(images[p], b, margin=classifier.crop_margin,
                                        out_px=classifier.input_px) for (p, _), b in zip(truth, crops)]
         found, _ = read(classifier, cut)
         r = accuracy_report(found, [c for _, c in truth])

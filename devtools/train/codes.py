@@ -183,7 +183,7 @@ def drawn_codes(names):
             if code in index and (var in tx.VARIANTS.get(cls, ()) or var.isdigit())]
 
 
-def pano_crops(scene_dirs, names, cache_path: str, jitter_rng=None):
+def pano_crops(scene_dirs, names, cache_path: str):
     """Native-density crops (up to 96 px) of the front faces in generated panoramas, with the
     code of each sign from ``scene.json``: list of (crop BGR, label index). Cached."""
     if os.path.isfile(cache_path):
