@@ -10,12 +10,14 @@ calls), reads the input, crops it, classifies ground and writes LAS/LAZ:
   (PyPI ``cloth-simulation-filter``, module ``CSF``) and SMRF (Pingel et al. 2013) on
   numpy/scipy, both with PDAL's option names and defaults (:class:`CsfParams`,
   :class:`SmrfParams`);
-* engine ``"auto"``: PDAL when found, the built-in engine when PDAL is missing or fails.
+* engine ``"auto"``: the engine measured faster for the method (:data:`AUTO_ENGINES`: today
+  the built-in one for CSF and SMRF, bench/README.md), PDAL when the built-in engine cannot
+  run the method here (the CSF package missing).
 
 The input may be a LAS/LAZ file, a folder of tiles or a virtual point cloud
-(:mod:`..cloudsource`); PDAL classifies a single file only, tiles go to the built-in
-engine, into one output file or, with :func:`run_ground_filter_tiles` (:mod:`.tiled`), one
-output tile per input tile, each classified with a halo of its neighbours' points.
+(:mod:`..cloudsource`), written into one output file or, with :func:`run_ground_filter_tiles`
+(:mod:`.tiled`), one output tile per input tile; each tile is classified with a halo of its
+neighbours' points (PDAL: one pipeline per tile, :mod:`.pdal_tiles`).
 
 Methods and engines are given by name (:data:`METHODS`, :data:`ENGINES`); anything else
 raises :class:`~..errors.InputError`.
@@ -33,13 +35,14 @@ are classified; the others keep their class.
 
 Modules: ``lattice`` (the world-aligned grid and tiles both built-in methods use),
 ``smrf`` and ``csf`` (the methods), ``params`` (method/engine names, parameter sets),
-``pdal`` (pipelines, finding and running PDAL, the PDAL engine), ``engine`` (the
-built-in engine on files and the entry points) and ``tiled`` (one output tile per input tile).
+``pdal`` (pipelines, finding and running PDAL, the PDAL engine), ``pdal_tiles`` (PDAL on
+tiles, each with its halo), ``engine`` (the built-in engine on files, the engine choice and
+the entry points) and ``tiled`` (one output tile per input tile).
 """
 from .csf import CSF_BUFFER_M, CSF_TILE_M, CsfGrid, CsfParams, run_csf_cloth
 from .engine import GroundResult, classify_ground, classify_ground_arrays, make_grid, returns_mask, run_ground_filter
 from .lattice import Lattice
-from .params import ENGINES, METHODS, Params, default_params, engine_name, method_name
+from .params import AUTO_ENGINES, ENGINES, METHODS, Params, default_params, engine_name, method_name
 from .pdal import (
     PdalError,
     build_pdal_pipeline,
@@ -53,7 +56,7 @@ from .smrf import SMRF_TILE_M, SmrfGrid, SmrfParams, smrf_surface
 from .tiled import classify_ground_tiles, halo_m, run_ground_filter_tiles
 
 __all__ = [
-    "CSF_BUFFER_M", "CSF_TILE_M", "ENGINES", "METHODS", "SMRF_TILE_M",
+    "AUTO_ENGINES", "CSF_BUFFER_M", "CSF_TILE_M", "ENGINES", "METHODS", "SMRF_TILE_M",
     "CsfGrid", "CsfParams", "GroundResult", "Lattice", "Params", "PdalError", "SmrfGrid", "SmrfParams",
     "build_pdal_pipeline", "classify_ground", "classify_ground_arrays", "classify_ground_tiles",
     "default_params", "engine_name", "find_pdal_executable", "halo_m", "make_grid", "method_name",

@@ -4,10 +4,11 @@ Conventions:
 
 * Methods and engines are names (:data:`~.params.METHODS`, :data:`~.params.ENGINES`).
 * The input is any cloud :func:`~..cloudsource.open_cloud` reads: a LAS/LAZ file, a folder
-  of tiles or a virtual point cloud. PDAL runs on a single file only; tiles go to the
-  built-in engine (under ``"auto"``; ``"pdal"`` refuses them), which reads them as one cloud
-  and writes one file with the first tile's header, scales and offsets
-  (:func:`~..cloudsource.conform`), or one file per tile (:mod:`.tiled`).
+  of tiles or a virtual point cloud, written as one file with the first tile's header, scales
+  and offsets (:func:`~..cloudsource.conform`), or one file per tile (:mod:`.tiled`). PDAL
+  takes tiles one by one with a halo of their neighbours' points (:mod:`.pdal_tiles`).
+* Which engine runs: :func:`pdal_runner_for`; ``"auto"`` follows :data:`~.params.AUTO_ENGINES`
+  (the engine measured faster for the method: today the built-in one for both).
 * The built-in engine streams the cloud twice (pass 1 into the method's grid, pass 2
   classifying and writing) and never holds the cloud in memory; the output goes through
   :class:`~..pointcloud.CloudWriter` (a temporary file moved into place on success).
@@ -18,6 +19,7 @@ Conventions:
 from __future__ import annotations
 
 import os
+import tempfile
 from dataclasses import dataclass, field
 from typing import Any, Iterable, List, Optional, Tuple, Union
 
@@ -33,12 +35,13 @@ from ..pointcloud import (
     UNCLASSIFIED_CLASS,
     CloudWriter,
     CropRegion,
+    iter_chunks,
     output_header,
 )
 from .csf import CSF_BUFFER_M, CSF_TILE_M, CsfGrid, CsfParams
 from .lattice import BoundsXY, GroundGrid, OutsideGridError
-from .params import Params, engine_name, method_name, method_params
-from .pdal import PdalError, find_pdal_runner, run_pdal_engine
+from .params import AUTO_ENGINES, Params, engine_name, method_name, method_params
+from .pdal import PdalError, PdalRunner, find_pdal_runner, run_pdal_engine
 from .smrf import SMRF_TILE_M, SmrfGrid
 
 
@@ -222,10 +225,9 @@ def classify_ground(input_path: Union[str, CloudSource], output_path: str, metho
     ("auto", "pdal", "builtin").
 
     ``crs_wkt`` replaces the file's CRS; without it the file must have one (an error
-    otherwise: a CRS is never guessed). Under "auto" a failing PDAL is reported as a
-    warning and the built-in engine runs; under "pdal" its :class:`PdalError` is raised.
-    PDAL classifies a single file only: tiles run on the built-in engine under "auto", and
-    are an error under "pdal".
+    otherwise: a CRS is never guessed). Which engine runs: :func:`pdal_runner_for`. When
+    PDAL runs under "auto" and fails, the failure is a warning and the built-in engine runs
+    (if it can run the method); under "pdal" its :class:`PdalError` is raised.
     """
     output_path = os.path.abspath(os.fspath(output_path))
     method = method_name(method)
@@ -251,34 +253,26 @@ def classify_ground(input_path: Union[str, CloudSource], output_path: str, metho
     result = GroundResult(output_path, method, "builtin", int(source.point_count), 0, 0,
                           crs_wkt or file_crs)
 
-    if engine in ("auto", "pdal") and not source.is_single_file:
-        if engine == "pdal":
-            raise InputError("The PDAL engine classifies a single LAS/LAZ file, and {path} holds {n} "
-                             "tiles: choose the built-in engine (or Auto), which classifies tiles with the "
-                             "same filters", path=input_path, n=len(source.tiles))
-        progress.info("{path} holds {n} tiles: the built-in engine classifies them (PDAL is used for a "
-                      "single file only)", path=input_path, n=len(source.tiles))
-    elif engine in ("auto", "pdal"):
-        runner = find_pdal_runner(pdal_executable)
-        if runner is None:
-            if engine == "pdal":
-                raise InputError("PDAL was asked for, but neither the pdal Python module nor "
-                                 "a pdal executable was found (PATH, QGIS's bin folder)")
-            progress.info("PDAL not found: using the built-in engine")
-        else:
-            try:
+    runner = pdal_runner_for(engine, method, pdal_executable, progress)
+    if runner is not None:
+        try:
+            if source.is_single_file:
                 n_out, n_ground, pipeline, used = run_pdal_engine(
                     source.tiles[0].path, output_path, method, params, region, source.tile_header(0),
                     crs_wkt, reset_classes, runner.executable, chunk_points, progress)
-                result.n_output, result.n_ground, result.engine = n_out, n_ground, used
-                result.pipeline_json = pipeline
-                _warn_if_empty(result, input_path, progress)
-                return result
-            except PdalError as e:
-                if engine == "pdal":
-                    raise
-                result.warnings.append(progress.warning(
-                    "PDAL failed, the built-in engine was used instead: {error}", error=str(e)))
+            else:
+                n_out, n_ground, pipeline, used = _pdal_tiles_into_one(
+                    source, output_path, method, params, region, crs_wkt, reset_classes,
+                    runner.executable, chunk_points, progress)
+            result.n_output, result.n_ground, result.engine = n_out, n_ground, used
+            result.pipeline_json = pipeline
+            _warn_if_empty(result, input_path, progress)
+            return result
+        except PdalError as e:
+            if engine == "pdal" or not builtin_available(method):
+                raise
+            result.warnings.append(progress.warning(
+                "PDAL failed, the built-in engine was used instead: {error}", error=str(e)))
 
     n_out, n_ground, warnings = _builtin_engine(
         source, output_path, params, region, header, crs_wkt, reset_classes,
@@ -289,6 +283,83 @@ def classify_ground(input_path: Union[str, CloudSource], output_path: str, metho
         progress.warning(w)
     _warn_if_empty(result, input_path, progress)
     return result
+
+
+def builtin_available(method: str) -> bool:
+    """Whether the built-in engine can run ``method`` here: CSF needs the Python package
+    cloth-simulation-filter (module ``CSF``), SMRF nothing beyond numpy and scipy."""
+    if method_name(method) != "csf":
+        return True
+    from .csf import _csf_module
+
+    try:
+        _csf_module()
+    except InputError:
+        return False
+    return True
+
+
+def pdal_runner_for(engine: str, method: str, pdal_executable: Optional[str] = None,
+                    progress: Progress = SILENT) -> Optional[PdalRunner]:
+    """How to run PDAL for ``engine`` and ``method``, or ``None`` for the built-in engine.
+
+    * "pdal": PDAL; :class:`InputError` when neither the bindings nor a ``pdal`` application is found;
+    * "builtin": ``None``;
+    * "auto": the engine :data:`~.params.AUTO_ENGINES` names for the method (the measured faster
+      one); when that is the built-in engine but it cannot run the method here
+      (:func:`builtin_available`), PDAL if found; when it is PDAL but PDAL is not found, the
+      built-in engine. The log says which and why.
+    """
+    if engine == "builtin":
+        return None
+    if engine == "auto" and AUTO_ENGINES[method] == "builtin":
+        if builtin_available(method):
+            progress.info("Auto: the built-in engine, measured faster than PDAL for {method} (and it streams "
+                          "the cloud in bounded memory)", method=method.upper())
+            return None
+        runner = find_pdal_runner(pdal_executable)
+        if runner is not None:
+            progress.info("Auto: PDAL, as the built-in {method} needs the Python package "
+                          "cloth-simulation-filter, which is not installed", method=method.upper())
+        return runner  # None: the built-in engine then says what is missing
+    runner = find_pdal_runner(pdal_executable)
+    if runner is None:
+        if engine == "pdal":
+            raise InputError("PDAL was asked for, but neither the pdal Python module nor "
+                             "a pdal executable was found (PATH, QGIS's bin folder)")
+        progress.info("PDAL not found: using the built-in engine")
+    elif engine == "auto":
+        progress.info("Auto: PDAL, measured faster than the built-in engine for {method}", method=method.upper())
+    return runner
+
+
+def _pdal_tiles_into_one(source: CloudSource, output_path: str, method: str, params: Params,
+                         region: Optional[CropRegion], crs_wkt: Optional[str], reset_classes: bool,
+                         executable: Optional[str], chunk_points: int,
+                         progress: Progress) -> Tuple[int, int, str, str]:
+    """The tiles of ``source`` through PDAL one by one with their halos (:mod:`.pdal_tiles`),
+    gathered into ``output_path`` with the first tile's header, scales and offsets
+    (:func:`~..cloudsource.conform`); ``(points, ground points, pipeline JSON, engine)``."""
+    from .pdal_tiles import run_pdal_tiles
+
+    area = None if region is None else region.geometry
+    met = {t.path for t in source.tiles_in(area=area)}
+    work = [k for k, t in enumerate(source.tiles) if t.point_count and t.path in met]
+    n_ground = 0
+    with tempfile.TemporaryDirectory(prefix=".roadsigns-pdal-tiles-", dir=os.path.dirname(output_path)) as folder:
+        counts, pipeline, used = run_pdal_tiles(
+            source, work, lambda k: os.path.join(folder, f"tile_{k}.las"), method, params, region, crs_wkt,
+            reset_classes, executable, chunk_points, progress.sub(0.0, 0.8))
+        gather = progress.sub(0.8, 1.0)
+        with CloudWriter(output_path, output_header(source.header, crs_wkt)) as writer:
+            for i, k in enumerate(work):
+                gather.report(i / max(len(work), 1))
+                if counts[k][0]:
+                    for chunk in iter_chunks(os.path.join(folder, f"tile_{k}.las"), chunk_points):
+                        writer.write(conform(chunk, writer.header))
+                n_ground += counts[k][1]
+            n_out = writer.point_count
+    return n_out, n_ground, pipeline, used
 
 
 def _warn_if_empty(result: GroundResult, input_path: str, progress: Progress) -> None:

@@ -19,8 +19,13 @@ from .smrf import SmrfParams
 
 #: The ground methods (PDAL's ``filters.csf`` / ``filters.smrf``), declared once.
 METHODS = ("csf", "smrf")
-#: The engines: PDAL when found else the built-in one, PDAL only, built-in only.
+#: The engines: the one measured faster per method (:data:`AUTO_ENGINES`), PDAL only, built-in only.
 ENGINES = ("auto", "pdal", "builtin")
+
+#: The engine ``"auto"`` runs for each method: the faster one on bench/bench_ground.py's
+#: figures (bench/README.md, "Ground filter: built-in engine against PDAL"). PDAL is then
+#: used only when the built-in engine cannot run the method (:func:`.engine.pdal_runner_for`).
+AUTO_ENGINES = {"csf": "builtin", "smrf": "builtin"}
 
 Params = Union[CsfParams, SmrfParams]
 

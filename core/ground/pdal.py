@@ -40,6 +40,8 @@ from .params import Params, method_name, method_params
 
 #: Temporary PDAL dimension holding the classes from before the filter.
 _KEEP_CLASS_DIM = "RoadsignsClassBefore"
+#: Temporary PDAL dimension marking the points of a tile's halo (1; the tile's own: 0).
+HALO_DIM = "RoadsignsHalo"
 #: the message of a file cut short (as core/pointcloud.py words it)
 _CORRUPT = "Cannot read {path}: the file is truncated or corrupt ({detail})"
 
@@ -86,18 +88,34 @@ def pdal_filter_stage(method: str, params: Optional[Params] = None) -> Dict[str,
 def build_pdal_pipeline(input_path: str, output_path: str, method: str = "csf",
                         params: Optional[Params] = None, crop_wkt: Optional[str] = None,
                         crs_wkt: Optional[str] = None, reset_classes: bool = False,
-                        extra_dims: Sequence[str] = ()) -> str:
+                        extra_dims: Sequence[str] = (), halo_path: Optional[str] = None) -> str:
     """PDAL pipeline JSON: ``readers.las -> filters.crop -> filters.csf|smrf ->
     writers.las``, keeping classes (``filters.ferry`` + ``filters.assign``) unless
     ``reset_classes`` (then ``filters.assign`` sets every class to 1 first).
 
     The writer forwards the whole header, VLRs, scales and offsets (``forward: all``)
     and the input's extra bytes; ``crs_wkt`` overrides the reader's CRS and is written.
+
+    ``halo_path``: a LAS file of points around the input (a tile's neighbours, :mod:`.pdal_tiles`),
+    read beside it, marked (:data:`HALO_DIM` = 1 by ``filters.ferry`` + ``filters.assign``),
+    merged (``filters.merge``), classified with it and dropped before the writer
+    (``filters.range``).
     """
     reader: Dict[str, Any] = {"type": "readers.las", "filename": input_path}
     if crs_wkt:
         reader["override_srs"] = crs_wkt
     stages: List[Dict[str, Any]] = [reader]
+    if halo_path:
+        reader["tag"] = "tile"
+        halo: Dict[str, Any] = {"type": "readers.las", "filename": halo_path, "tag": "halo"}
+        if crs_wkt:
+            halo["override_srs"] = crs_wkt
+        stages += [halo,
+                   {"type": "filters.ferry", "dimensions": f"=> {HALO_DIM}", "inputs": ["halo"],
+                    "tag": "halo_dimension"},
+                   {"type": "filters.assign", "value": f"{HALO_DIM} = 1", "inputs": ["halo_dimension"],
+                    "tag": "halo_marked"},
+                   {"type": "filters.merge", "inputs": ["tile", "halo_marked"]}]
     if crop_wkt:
         stages.append({"type": "filters.crop", "polygon": crop_wkt})
     if reset_classes:
@@ -111,6 +129,8 @@ def build_pdal_pipeline(input_path: str, output_path: str, method: str = "csf",
         stages.append({"type": "filters.assign", "value": [
             f"Classification = {_KEEP_CLASS_DIM} WHERE Classification == "
             f"{UNCLASSIFIED_CLASS} && {_KEEP_CLASS_DIM} != {GROUND_CLASS}"]})
+    if halo_path:
+        stages.append({"type": "filters.range", "limits": f"{HALO_DIM}[0:0]"})
     writer: Dict[str, Any] = {"type": "writers.las", "filename": output_path, "forward": "all"}
     if extra_dims:
         writer["extra_dims"] = ",".join(extra_dims)
@@ -324,7 +344,7 @@ def _pdal_failure(error: PdalError, input_path: str, output_path: str, temp_path
 def run_pdal_engine(input_path: str, output_path: str, method: str, params: Params,
                     region: Optional[CropRegion], header: Any, crs_wkt: Optional[str],
                     reset_classes: bool, executable: Optional[str], chunk_points: int,
-                    progress: Progress) -> Tuple[int, int, str, str]:
+                    progress: Progress, halo_path: Optional[str] = None) -> Tuple[int, int, str, str]:
     """Crop and classify ``input_path`` into ``output_path`` with PDAL (``executable``, or
     the Python module when ``None``). Returns ``(points written, ground points, pipeline
     JSON, engine used: "pdal-cli" or "pdal-python")``; the JSON names ``output_path``.
@@ -332,7 +352,8 @@ def run_pdal_engine(input_path: str, output_path: str, method: str, params: Para
     Raises :class:`PdalError` naming both files when PDAL fails, :class:`InputError` when
     the input is cut short (:func:`check_complete`) or the output cannot be written, and
     :class:`~..errors.Cancelled` when cancelled; neither the output nor a temporary file
-    is left then."""
+    is left then. ``halo_path``: points around the input classified with it and not
+    written (:func:`build_pdal_pipeline`)."""
     input_path = os.path.abspath(os.fspath(input_path))
     output_path = os.path.abspath(os.fspath(output_path))
     check_complete(input_path, header)
@@ -342,7 +363,7 @@ def run_pdal_engine(input_path: str, output_path: str, method: str, params: Para
         return build_pdal_pipeline(input_path, path, method, params,
                                    crop_wkt=region.wkt if region is not None else None,
                                    crs_wkt=crs_wkt, reset_classes=reset_classes,
-                                   extra_dims=extra_dims)
+                                   extra_dims=extra_dims, halo_path=halo_path)
 
     temp_path = temp_path_beside(output_path)  # InputError naming output_path if unwritable
     try:

@@ -24,7 +24,8 @@ Passes over the cloud, memory bounded by one tile and its halo:
 The output folder appears whole or not at all: tiles and the ``.vpc`` are written into a
 temporary folder beside it, moved into place at the end (:class:`~..outputs.StagedOutputs`).
 Input tiles without a point inside the crop area give no output tile (the log says so).
-PDAL is not used here: it reads a single file (``engine="pdal"`` is an error).
+When PDAL runs (``engine="pdal"``, or Auto choosing it: :func:`.engine.pdal_runner_for`),
+each tile goes through PDAL alone with its neighbours' points around it (:mod:`.pdal_tiles`).
 """
 from __future__ import annotations
 
@@ -36,12 +37,13 @@ import numpy as np
 
 from ..cloudsource import BBoxXY, CloudSource, Tile, open_cloud, template_header, vpc_text
 from ..errors import SILENT, InputError, Progress
-from ..outputs import StagedOutputs
+from ..outputs import StagedOutputs, remove
 from ..pointcloud import DEFAULT_CHUNK_POINTS, CloudWriter, CropRegion, output_header, read_header
 from .csf import CsfGrid, CsfParams
-from .engine import GroundResult, classified, crop_region, eligible_xyz, grid_bounds, make_grid
+from .engine import GroundResult, classified, crop_region, eligible_xyz, grid_bounds, make_grid, pdal_runner_for
 from .lattice import Lattice, OutsideGridError
 from .params import Params, engine_name, method_name, method_params
+from .pdal import PdalError
 from .smrf import SmrfGrid
 
 #: Spooled halo points: world coordinates only (the grids need nothing else).
@@ -126,21 +128,19 @@ def classify_ground_tiles(input_path: Union[str, CloudSource], output_folder: st
                           method: str = "csf", engine: str = "builtin", params: Optional[Params] = None,
                           region: Optional[CropRegion] = None, crs_wkt: Optional[str] = None,
                           reset_classes: bool = False, chunk_points: int = DEFAULT_CHUNK_POINTS,
-                          tile_buffer_m: Optional[float] = None, progress: Progress = SILENT) -> GroundResult:
+                          tile_buffer_m: Optional[float] = None, pdal_executable: Optional[str] = None,
+                          progress: Progress = SILENT) -> GroundResult:
     """Classify the ground of every tile of ``input_path`` (a file, a folder of tiles or a
     ``.vpc``) into ``output_folder`` (created or replaced whole): one tile per input tile,
     same name, and ``vpc_name`` listing them. ``GroundResult.output_path`` is the ``.vpc``.
 
-    ``engine``: "auto" or "builtin" (the built-in engine runs); "pdal" raises
-    :class:`InputError` (PDAL reads one file). ``crs_wkt`` replaces the tiles' CRS; without
-    it the cloud must have one.
+    ``engine``: "auto", "pdal" or "builtin" (:func:`.engine.pdal_runner_for` says which runs;
+    PDAL runs tile by tile with a halo, :mod:`.pdal_tiles`). ``crs_wkt`` replaces the tiles'
+    CRS; without it the cloud must have one.
     """
     method = method_name(method)
     engine = engine_name(engine)
     params = method_params(method, params)
-    if engine == "pdal":
-        raise InputError("The PDAL engine writes one file: to write one tile per input tile choose the "
-                         "built-in engine (or Auto)")
     if not vpc_name.lower().endswith(".vpc") or os.sep in vpc_name:
         raise InputError("The virtual point cloud's name {name} must be a file name ending in .vpc",
                          name=vpc_name)
@@ -155,9 +155,6 @@ def classify_ground_tiles(input_path: Union[str, CloudSource], output_folder: st
         raise InputError("{path} has no coordinate reference system: give the cloud's CRS "
                          "(it is never guessed)", path=source.path)
     out_crs = crs_wkt or source.crs_wkt
-    if engine == "auto":
-        progress.info("Writing one tile per input tile: the built-in engine classifies them (PDAL is used for "
-                      "one output file only)")
     area = None if region is None else region.geometry
     met = {t.path for t in source.tiles_in(area=area)}
     whole = grid_bounds(source.bounds_xy, region)
@@ -168,31 +165,33 @@ def classify_ground_tiles(input_path: Union[str, CloudSource], output_folder: st
             grown[k] = bounds
     work = sorted(grown)
     skipped = [t.path for k, t in enumerate(source.tiles) if k not in grown]
+    initially_skipped = set(skipped)
     result = GroundResult(os.path.join(output_folder, vpc_name), method, "builtin", source.point_count, 0, 0,
                           out_crs)
     staged = StagedOutputs()
     temporary = staged.folder(output_folder)
     written: List[Tuple[str, Any]] = []
+    runner = pdal_runner_for(engine, method, pdal_executable, progress)
     try:
-        with tempfile.TemporaryDirectory(prefix=".roadsigns-halo-") as spool_dir:
-            spools = _spool_halos(source, work, grown, region, params, spool_dir, chunk_points,
-                                  progress.sub(0.0, 0.3))
-            total = max(sum(source.tiles[k].point_count for k in work), 1)
-            done = 0
-            for k in work:
-                tile = source.tiles[k]
-                share = progress.sub(0.3 + 0.7 * done / total, 0.3 + 0.7 * (done + tile.point_count) / total)
-                done += tile.point_count
-                path = os.path.join(temporary, names[k])
-                n_out, n_ground = _classify_tile(source, k, grown[k], spools.get(k), path, region, params,
-                                                 out_crs if crs_wkt else None, reset_classes, chunk_points,
-                                                 tile_buffer_m, share)
-                result.n_output += n_out
-                result.n_ground += n_ground
-                if n_out:
-                    written.append((os.path.join(output_folder, names[k]), read_header(path)))
-                else:
-                    skipped.append(tile.path)
+        if runner is not None:
+            try:
+                result.engine = _pdal_tiles(source, work, names, temporary, method, params, region, crs_wkt,
+                                            reset_classes, runner.executable, chunk_points, progress, result,
+                                            written, skipped)
+            except PdalError as e:
+                if engine == "pdal":
+                    raise
+                result.warnings.append(progress.warning(
+                    "PDAL failed, the built-in engine was used instead: {error}", error=str(e)))
+                for name in os.listdir(temporary):
+                    remove(os.path.join(temporary, name))
+                result.n_output = result.n_ground = 0
+                written.clear()
+                skipped[:] = [p for p in skipped if p in initially_skipped]
+                runner = None
+        if runner is None:
+            _builtin_tiles(source, work, grown, names, temporary, region, params, out_crs if crs_wkt else None,
+                           reset_classes, chunk_points, tile_buffer_m, progress, result, written, skipped)
         for path in skipped:
             result.warnings.append(progress.info("No point of the tile {tile} lies inside the crop area: no "
                                                  "output tile for it", tile=path))
@@ -211,6 +210,59 @@ def classify_ground_tiles(input_path: Union[str, CloudSource], output_folder: st
     progress.info("{n} tiles written to {folder}, listed in {vpc}", n=len(written), folder=output_folder,
                   vpc=vpc_name)
     return result
+
+
+def _builtin_tiles(source: CloudSource, work: List[int], grown: Dict[int, BBoxXY], names: List[str],
+                   folder: str, region: Optional[CropRegion], params: Params, crs_wkt: Optional[str],
+                   reset_classes: bool, chunk_points: int, tile_buffer_m: Optional[float], progress: Progress,
+                   result: GroundResult, written: List[Tuple[str, Any]], skipped: List[str]) -> None:
+    """The tiles ``work`` with the built-in engine into ``folder``; counts into ``result``,
+    ``(destination, header)`` of each tile written into ``written``, empty tiles into ``skipped``."""
+    output_folder = os.path.dirname(result.output_path)
+    with tempfile.TemporaryDirectory(prefix=".roadsigns-halo-") as spool_dir:
+        spools = _spool_halos(source, work, grown, region, params, spool_dir, chunk_points,
+                              progress.sub(0.0, 0.3))
+        total = max(sum(source.tiles[k].point_count for k in work), 1)
+        done = 0
+        for k in work:
+            tile = source.tiles[k]
+            share = progress.sub(0.3 + 0.7 * done / total, 0.3 + 0.7 * (done + tile.point_count) / total)
+            done += tile.point_count
+            path = os.path.join(folder, names[k])
+            n_out, n_ground = _classify_tile(source, k, grown[k], spools.get(k), path, region, params,
+                                             crs_wkt, reset_classes, chunk_points, tile_buffer_m, share)
+            result.n_output += n_out
+            result.n_ground += n_ground
+            if n_out:
+                written.append((os.path.join(output_folder, names[k]), read_header(path)))
+            else:
+                skipped.append(tile.path)
+
+
+def _pdal_tiles(source: CloudSource, work: List[int], names: List[str], folder: str, method: str,
+                params: Params, region: Optional[CropRegion], crs_wkt: Optional[str], reset_classes: bool,
+                executable: Optional[str], chunk_points: int, progress: Progress, result: GroundResult,
+                written: List[Tuple[str, Any]], skipped: List[str]) -> str:
+    """The tiles ``work`` through PDAL, each with its halo (:mod:`.pdal_tiles`), into
+    ``folder``; as :func:`_builtin_tiles`; returns the engine used."""
+    from .pdal_tiles import run_pdal_tiles
+
+    output_folder = os.path.dirname(result.output_path)
+    counts, pipeline, used = run_pdal_tiles(source, work, lambda k: os.path.join(folder, names[k]), method,
+                                            params, region, crs_wkt, reset_classes, executable, chunk_points,
+                                            progress)
+    result.pipeline_json = pipeline
+    for k in work:
+        n_out, n_ground = counts[k]
+        path = os.path.join(folder, names[k])
+        result.n_output += n_out
+        result.n_ground += n_ground
+        if n_out:
+            written.append((os.path.join(output_folder, names[k]), read_header(path)))
+        else:
+            os.remove(path)
+            skipped.append(source.tiles[k].path)
+    return used
 
 
 def _spool_halos(source: CloudSource, work: List[int], grown: Dict[int, BBoxXY],
@@ -305,9 +357,10 @@ def run_ground_filter_tiles(input_path: Union[str, CloudSource], output_folder: 
                             crop_polygons: Optional[Iterable[Any]] = None, crop_buffer_m: float = 0.0,
                             crs_wkt: Optional[str] = None, reset_classes: bool = False,
                             params: Optional[Params] = None, chunk_points: int = DEFAULT_CHUNK_POINTS,
-                            progress: Progress = SILENT) -> GroundResult:
+                            pdal_executable: Optional[str] = None, progress: Progress = SILENT) -> GroundResult:
     """:func:`classify_ground_tiles` with the crop of :func:`.engine.run_ground_filter`."""
     region = crop_region(crop_polygons, crop_buffer_m, progress)
     return classify_ground_tiles(input_path, output_folder, vpc_name, method=method, engine=engine,
                                  params=params, region=region, crs_wkt=crs_wkt, reset_classes=reset_classes,
-                                 chunk_points=chunk_points, progress=progress)
+                                 chunk_points=chunk_points, pdal_executable=pdal_executable,
+                                 progress=progress)

@@ -19,6 +19,8 @@ from roadsigns.core.errors import InputError, Progress
 from roadsigns.core.ground import lattice
 from roadsigns.core.ground import pdal as ground_pdal
 
+#: Options every stage takes (pdal.io "Pipeline": tag, inputs).
+PDAL_COMMON = {"tag", "inputs"}
 #: Options documented for each PDAL stage (pdal.io stage pages / doc/stages/*.rst).
 PDAL_DOCUMENTED = {
     "readers.las": {"filename", "extra_dims", "compression", "override_srs", "default_srs",
@@ -30,6 +32,8 @@ PDAL_DOCUMENTED = {
                      "slope", "threshold", "window"},
     "filters.assign": {"assignment", "condition", "value"},
     "filters.ferry": {"dimensions"},
+    "filters.merge": set(),
+    "filters.range": {"limits"},
     "writers.las": {"filename", "forward", "minor_version", "software_id", "creation_doy",
                     "creation_year", "dataformat_id", "system_id", "a_srs", "global_encoding",
                     "project_id", "compression", "scale_x", "scale_y", "scale_z", "offset_x",
@@ -245,6 +249,72 @@ def test_pdal_pipeline_uses_documented_names(method, reset):
         assert "filters.ferry" in types and types.count("filters.assign") == 1
 
 
+@pytest.mark.parametrize("method", ["csf", "smrf"])
+def test_pdal_pipeline_with_a_halo_drops_the_halo(method):
+    """A tile with its neighbours' points (core/ground/pdal_tiles.py): both read, the halo's
+    points marked, merged before the crop and the filter, and dropped before the writer."""
+    text = ground.build_pdal_pipeline("/data/tile.laz", "/data/out.laz", method, crop_wkt=box(0, 0, 9, 9).wkt,
+                                      crs_wkt="EPSG:25833", halo_path="/tmp/halo.las")
+    stages = json.loads(text)["pipeline"]
+    for stage in stages:
+        assert set(stage) - {"type"} <= PDAL_DOCUMENTED[stage["type"]] | PDAL_COMMON, stage
+    by_tag = {s["tag"]: s for s in stages if "tag" in s}
+    assert by_tag["tile"]["filename"] == "/data/tile.laz" and by_tag["halo"]["filename"] == "/tmp/halo.las"
+    assert by_tag["tile"]["override_srs"] == by_tag["halo"]["override_srs"] == "EPSG:25833"
+    assert by_tag["halo_dimension"] == {"type": "filters.ferry", "dimensions": f"=> {ground_pdal.HALO_DIM}",
+                                        "inputs": ["halo"], "tag": "halo_dimension"}
+    assert by_tag["halo_marked"]["value"] == f"{ground_pdal.HALO_DIM} = 1"
+    types = [s["type"] for s in stages]
+    merge = types.index("filters.merge")
+    assert stages[merge]["inputs"] == ["tile", "halo_marked"]
+    assert merge < types.index("filters.crop") < types.index(f"filters.{method}") < types.index("filters.range")
+    assert stages[types.index("filters.range")] == {"type": "filters.range",
+                                                    "limits": f"{ground_pdal.HALO_DIM}[0:0]"}
+    assert types[-1] == "writers.las" and ground_pdal.HALO_DIM not in stages[-1].get("extra_dims", "")
+
+
+def test_auto_follows_the_measured_engines(tmp_path, small_cloud, monkeypatch):
+    """ENGINE=auto runs the engine AUTO_ENGINES names for the method (the built-in one for
+    both: bench/README.md), saying why; PDAL when the built-in CSF's package is missing; and
+    when that PDAL fails there is no built-in engine to fall back on: the failure is the error."""
+    src, scene = small_cloud
+    ran = tmp_path / "ran"
+    exe = _fake_pdal(tmp_path, f"""
+        import json, sys, laspy
+        open({str(ran)!r}, "w").write("pdal ran")
+        stages = json.load(sys.stdin)["pipeline"]
+        las = laspy.read(stages[0]["filename"])
+        las.classification[:] = 2
+        las.write(stages[-1]["filename"])
+    """)
+    assert ground.AUTO_ENGINES == {"csf": "builtin", "smrf": "builtin"}
+    for method in ("csf", "smrf"):
+        infos = []
+        res = ground.run_ground_filter(src, str(tmp_path / f"{method}.laz"), method, "auto", pdal_executable=exe,
+                                       progress=Progress(on_info=infos.append))
+        assert res.engine == "builtin" and not ran.exists()
+        assert any(f"Auto: the built-in engine, measured faster than PDAL for {method.upper()}" in m
+                   for m in infos), infos
+    from roadsigns.core.ground import engine as ground_engine
+
+    monkeypatch.setattr(ground_engine, "builtin_available", lambda method: False)
+    infos = []
+    res = ground.run_ground_filter(src, str(tmp_path / "csf.laz"), "csf", "auto", pdal_executable=exe,
+                                   progress=Progress(on_info=infos.append))
+    assert res.engine == "pdal-cli" and ran.exists() and res.n_ground == len(scene)
+    assert any("needs the Python package cloth-simulation-filter" in m for m in infos), infos
+    (tmp_path / "failing").mkdir()
+    failing = _fake_pdal(tmp_path / "failing", """
+        import sys
+        sys.stdin.read()
+        sys.stderr.write("PDAL: filters.csf: refused\\n")
+        sys.exit(1)
+    """)
+    with pytest.raises(ground.PdalError, match="refused"):
+        ground.run_ground_filter(src, str(tmp_path / "failed.laz"), "csf", "auto", pdal_executable=failing)
+    assert not (tmp_path / "failed.laz").exists()
+
+
 def test_pdal_extra_dims_from_header(tmp_path):
     header = laspy.LasHeader(point_format=6, version="1.4")
     header.add_extra_dims([laspy.ExtraBytesParams("range_m", np.float32),
@@ -268,7 +338,7 @@ def small_cloud(tmp_path):
     return src, scene
 
 
-def test_failing_pdal_stderr_reaches_the_message(tmp_path, small_cloud):
+def test_failing_pdal_stderr_reaches_the_message(tmp_path, small_cloud, monkeypatch):
     """Our subprocess plumbing with a stand-in ``pdal`` (not PDAL itself): the pipeline
     goes to ``pdal pipeline --stdin`` and PDAL's stderr ends up in the error."""
     src, scene = small_cloud
@@ -293,7 +363,9 @@ def test_failing_pdal_stderr_reaches_the_message(tmp_path, small_cloud):
     assert not out.exists()
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".roadsigns")]
 
-    # ENGINE=auto: the failure becomes a warning and the built-in engine runs
+    # ENGINE=auto with PDAL as the measured engine of the method (AUTO_ENGINES): the
+    # failure becomes a warning and the built-in engine runs
+    monkeypatch.setitem(ground.AUTO_ENGINES, "csf", "pdal")
     warnings = []
     res = ground.run_ground_filter(src, str(out), "csf", "auto", pdal_executable=exe,
                                    progress=Progress(on_warning=warnings.append))

@@ -71,13 +71,13 @@ def no_pdal(qgis_process, tmp_path_factory, monkeypatch):
     return qgis_process
 
 
-def test_auto_without_pdal_says_so(no_pdal, road, tmp_path):
+def test_without_pdal_auto_runs_the_builtin_engine(no_pdal, road, tmp_path):
     qgis_process = no_pdal
     out = str(tmp_path / "g.laz")
     run = qgis_process.run(ALG, INPUT=road[0], OUTPUT=out)
     assert run.returncode == 0, run.text
     assert run.json["results"]["ENGINE_USED"] == "builtin"
-    assert any("PDAL not found" in line for line in run.json["log"]["info"])
+    assert any("Auto: the built-in engine" in line for line in run.json["log"]["info"])
 
 
 def test_crop_polygon_in_another_crs(qgis_process, road, tmp_path):
@@ -130,17 +130,22 @@ def fake_pdal(folder):
     return str(path)
 
 
-def test_failing_pdal_falls_back_only_under_auto(qgis_process, road, tmp_path, monkeypatch):
+def test_failing_pdal_is_the_error_under_pdal_and_not_run_under_auto(qgis_process, road, tmp_path, monkeypatch):
+    """ENGINE=pdal: PDAL's failure is the error; ENGINE=auto: the built-in engine, measured
+    faster for both methods (AUTO_ENGINES), runs without calling PDAL and the log says why."""
     monkeypatch.setitem(qgis_process.env, "ROADSIGNS_PDAL_EXECUTABLE", fake_pdal(tmp_path))
     out = tmp_path / "g.laz"
     run = qgis_process.run(ALG, INPUT=road[0], ENGINE=1, OUTPUT=str(out))
     assert run.returncode != 0
     assert "Invalid something in the fake" in run.text
     assert not out.exists()
-    run = qgis_process.run(ALG, INPUT=road[0], ENGINE=0, OUTPUT=str(out))
-    assert run.returncode == 0, run.text
-    assert run.json["results"]["ENGINE_USED"] == "builtin"
-    assert "PDAL failed, the built-in engine was used instead" in run.text
+    for method in (0, 1):
+        run = qgis_process.run(ALG, INPUT=road[0], METHOD=method, ENGINE=0, OUTPUT=str(out))
+        assert run.returncode == 0, run.text
+        assert run.json["results"]["ENGINE_USED"] == "builtin"
+        assert "Invalid something in the fake" not in run.text and "PDAL failed" not in run.text
+        assert any("Auto: the built-in engine, measured faster than PDAL" in line
+                   for line in run.json["log"]["info"]), run.text
 
 
 @pytest.mark.parametrize("case,message", [

@@ -31,6 +31,7 @@ from osgeo import ogr, osr
 from pyproj import Transformer
 
 from devtools.qgisrun import QgisProcess
+from roadsigns.core.cloudsource import open_cloud
 
 ALG = "roadsigns:groundfilter"
 METHOD = {"csf": 0, "smrf": 1}
@@ -315,19 +316,96 @@ def test_pdal_failure_is_named_and_nothing_written(engine_env, zero_returns, tmp
     assert os.listdir(tmp_path) == []
 
 
-def test_auto_falls_back_on_a_real_pdal_failure(engine_env, zero_returns, tmp_path):
-    """ENGINE=auto: the same refusal by the Python bindings is a warning naming the file,
-    and the built-in engine classifies the cloud (its CSF library then loads next to
-    libpdalcpp in the same QGIS process)."""
-    qgis = engine_env("pdal-python")
-    src, scene = zero_returns
+@pytest.fixture
+def no_builtin_csf(qgis_process, tmp_path, monkeypatch):
+    """The shared qgis_process as a QGIS whose Python lacks the built-in CSF's package
+    (cloth-simulation-filter): a ``CSF`` module that fails to import shadows it."""
+    stub = tmp_path / "no-csf"
+    stub.mkdir()
+    (stub / "CSF.py").write_text('raise ImportError("cloth-simulation-filter hidden by the tests")\n')
+    monkeypatch.setitem(qgis_process.env, "PYTHONPATH",
+                        os.pathsep.join(p for p in (str(stub), qgis_process.env.get("PYTHONPATH", "")) if p))
+    monkeypatch.delitem(qgis_process.env, realpdal.PDAL_SETTING, raising=False)
+    return qgis_process
+
+
+def test_auto_runs_pdal_when_the_builtin_csf_is_missing(no_builtin_csf, cloud, zero_returns, tmp_path):
+    """ENGINE=auto picks the built-in engine (AUTO_ENGINES), but without its CSF package it
+    runs PDAL (here the bindings), saying why; when PDAL then refuses a cloud there is no
+    engine to fall back on, and PDAL's refusal is the error, naming the file."""
+    qgis = no_builtin_csf
     out = tmp_path / "ground.laz"
-    run = qgis.run(ALG, INPUT=src, METHOD=METHOD["csf"], ENGINE=ENGINE["auto"], OUTPUT=str(out))
+    run = qgis.run(ALG, INPUT=cloud, METHOD=METHOD["csf"], ENGINE=ENGINE["auto"], OUTPUT=str(out))
     assert run.returncode == 0, run.text
-    assert run.json["results"]["ENGINE_USED"] == "builtin"
-    warnings = " ".join(run.json["log"].get("warning", []) or [run.text])
-    assert "PDAL failed, the built-in engine was used instead" in warnings, run.text
-    assert f"PDAL's Python bindings could not classify {src} into " in warnings, run.text
-    assert "NumberOfReturns" in warnings, run.text
-    assert np.mean((laspy.read(str(out)).classification == 2) == scene.is_ground) > 0.99
-    assert os.listdir(tmp_path) == ["ground.laz"]
+    assert run.json["results"]["ENGINE_USED"] == "pdal-python"
+    assert any("needs the Python package cloth-simulation-filter" in line for line in run.json["log"]["info"])
+    assert laspy.read(str(out)).header.point_count == run.json["results"]["POINTS_OUT"] > 100_000
+    run = qgis.run(ALG, INPUT=cloud, METHOD=METHOD["smrf"], ENGINE=ENGINE["auto"], OUTPUT=str(out))
+    assert run.returncode == 0 and run.json["results"]["ENGINE_USED"] == "builtin", run.text  # SMRF needs no CSF
+    src, _ = zero_returns
+    failed = tmp_path / "failed.laz"
+    run = qgis.run(ALG, INPUT=src, METHOD=METHOD["csf"], ENGINE=ENGINE["auto"], OUTPUT=str(failed))
+    assert run.returncode != 0
+    assert f"PDAL's Python bindings could not classify {src} into " in run.text, run.text
+    assert "NumberOfReturns" in run.text and "Traceback" not in run.text, run.text
+    assert sorted(os.listdir(tmp_path)) == ["ground.laz", "no-csf"]
+
+
+# ----------------------------------------------------------------------------- tiles, VPC, COPC
+
+@pytest.fixture(scope="module")
+def tiled_cloud(real_pdal, cloud, tmp_path_factory):
+    """The rich cloud as 20 m tiles with a .vpc listing them, and as COPC (PDAL's writers.copc)."""
+    import json
+
+    import pdal
+    from helpers.cloudtiles import split_into_tiles, write_vpc
+
+    folder = tmp_path_factory.mktemp("pdal-tiles")
+    tiles = split_into_tiles(cloud, str(folder / "tiles"), size_m=20.0)
+    vpc = write_vpc(str(folder / "street.vpc"), tiles)
+    copc = str(folder / "street.copc.laz")
+    pdal.Pipeline(json.dumps({"pipeline": [cloud, {"type": "writers.copc", "filename": copc}]})).execute()
+    return dict(tiles=tiles, vpc=vpc, copc=copc)
+
+
+def _ground_by_point(paths):
+    keys, ground = [], []
+    for p in paths:
+        las = laspy.read(p)
+        keys.append(np.round(np.column_stack([las.x, las.y, las.z]) * 1000).astype(np.int64))
+        ground.append(np.asarray(las.classification) == 2)
+    k, g = np.concatenate(keys), np.concatenate(ground)
+    order = np.lexsort(k.T[::-1])
+    return k[order], g[order]
+
+
+@pytest.mark.parametrize("kind, path, as_tiles", [
+    ("vpc", "pdal-cli", True),
+    ("vpc", "pdal-python", False),
+    ("copc", "pdal-python", False),
+])
+def test_tiles_vpc_and_copc_go_through_pdal(engine_env, tiled_cloud, tmp_path, kind, path, as_tiles):
+    """A .vpc of tiles (each tile through PDAL with its neighbours' points around it), into one
+    file or one file per tile, and a COPC file: ENGINE=pdal runs PDAL by the given path, and
+    its ground agrees with the built-in engine's on >= 99.5 % of the same points."""
+    qgis = engine_env(path)
+    src = tiled_cloud[kind]
+    outputs = {}
+    for engine in ("builtin", "pdal"):
+        out = str(tmp_path / f"{engine}.laz")
+        run = qgis.run(ALG, INPUT=src, METHOD=METHOD["csf"], ENGINE=ENGINE[engine], OUTPUT=out,
+                       OUTPUT_TILES=as_tiles and engine == "pdal", timeout=600)
+        assert run.returncode == 0, run.text
+        assert run.json["results"]["ENGINE_USED"] == (path if engine == "pdal" else "builtin")
+        result = run.json["results"]["OUTPUT"]
+        outputs[engine] = [t.path for t in open_cloud(result).tiles] if result.endswith(".vpc") else [result]
+    if as_tiles:
+        assert sorted(os.path.basename(p) for p in outputs["pdal"]) == sorted(
+            os.path.basename(t) for t in tiled_cloud["tiles"])
+    kb, gb = _ground_by_point(outputs["builtin"])
+    kp, gp = _ground_by_point(outputs["pdal"])
+    np.testing.assert_array_equal(kb, kp)
+    agreement = float(np.mean(gb == gp))
+    print(f"\n{kind} {path} tiles={as_tiles}: {agreement:.3%} of {len(gb)} points as the built-in engine")
+    assert agreement >= MIN_AGREEMENT and len(gb) > 100_000
