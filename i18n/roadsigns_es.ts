@@ -1062,224 +1062,224 @@
         <translation>Recorta una nube LAS/LAZ y clasifica el suelo (clase 2) con CSF o SMRF, mediante PDAL o el motor integrado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="87" />
+        <location filename="../algorithms/groundfilter.py" line="93" />
         <source>Point cloud (LAS/LAZ)</source>
         <translation>Nube de puntos (LAS/LAZ)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="87" />
+        <location filename="../algorithms/groundfilter.py" line="93" />
         <source>The mobile-mapping cloud, LAS 1.2-1.4 or LAZ, any size (it is read in chunks).</source>
         <translation>La nube de cartografía móvil, LAS 1.2-1.4 o LAZ, de cualquier tamaño (se lee por bloques).</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="90" />
+        <location filename="../algorithms/groundfilter.py" line="96" />
         <source>Crop layer (optional)</source>
         <translation>Capa de recorte (opcional)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="90" />
+        <location filename="../algorithms/groundfilter.py" line="96" />
         <source>Keep only points inside these polygons, or within the crop buffer of these points or lines (e.g. the panorama stations). Empty keeps the whole cloud.</source>
         <translation>Conserva solo los puntos dentro de estos polígonos, o dentro del búfer de recorte de estos puntos o líneas (p. ej. las estaciones de panorama). Vacío conserva la nube entera.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="94" />
+        <location filename="../algorithms/groundfilter.py" line="100" />
         <source>Crop buffer (m)</source>
         <translation>Búfer de recorte (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="94" />
+        <location filename="../algorithms/groundfilter.py" line="100" />
         <source>Grow the crop geometries by this many metres; needed (&gt; 0) for a point or line layer.</source>
         <translation>Amplía las geometrías de recorte en estos metros; necesario (&gt; 0) para una capa de puntos o de líneas.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="98" />
+        <location filename="../algorithms/groundfilter.py" line="104" />
         <source>Ground method</source>
         <translation>Método de suelo</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="98" />
+        <location filename="../algorithms/groundfilter.py" line="104" />
         <source>CSF (cloth simulation)</source>
         <translation>CSF (simulación de tela)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="98" />
+        <location filename="../algorithms/groundfilter.py" line="104" />
         <source>SMRF (simple morphological filter)</source>
         <translation>SMRF (filtro morfológico simple)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="98" />
+        <location filename="../algorithms/groundfilter.py" line="104" />
         <source>CSF suits roads and gentle terrain; SMRF suits steeper or rougher terrain.</source>
         <translation>CSF es adecuado para calles y terreno suave; SMRF, para terreno más empinado o accidentado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="102" />
+        <location filename="../algorithms/groundfilter.py" line="108" />
         <source>Engine</source>
         <translation>Motor</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="102" />
-        <source>Auto (PDAL when available, else built-in)</source>
-        <translation>Automático (PDAL si está disponible; si no, el integrado)</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/groundfilter.py" line="102" />
+        <location filename="../algorithms/groundfilter.py" line="108" />
         <source>PDAL</source>
         <translation>PDAL</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="102" />
+        <location filename="../algorithms/groundfilter.py" line="108" />
         <source>Built-in</source>
         <translation>Integrado</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="102" />
-        <source>Auto: PDAL when QGIS has it (Python bindings or the pdal executable), else built-in.</source>
-        <translation>Automático: PDAL cuando QGIS lo tiene (enlaces de Python o el ejecutable pdal); si no, el integrado.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/groundfilter.py" line="107" />
+        <location filename="../algorithms/groundfilter.py" line="115" />
         <source>Ground distance threshold (m)</source>
         <translation>Umbral de distancia al suelo (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="107" />
+        <location filename="../algorithms/groundfilter.py" line="115" />
         <source>Points within this height of the ground surface are ground (PDAL's threshold option). PDAL's default is 0.5 m; 0.2 m suits dense mobile-mapping clouds, where it keeps the lowest parts of cars, walls and street furniture off the ground class.</source>
         <translation>Los puntos a menos de esta altura de la superficie del suelo son suelo (opción threshold de PDAL). El valor por defecto de PDAL es 0,5 m; 0,2 m es adecuado para nubes densas de cartografía móvil, en las que deja fuera de la clase suelo las partes más bajas de coches, muros y mobiliario urbano.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="113" />
+        <location filename="../algorithms/groundfilter.py" line="121" />
         <source>Cloth resolution / cell size (m)</source>
         <translation>Resolución de la tela / tamaño de celda (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="113" />
+        <location filename="../algorithms/groundfilter.py" line="121" />
         <source>CSF's cloth resolution or SMRF's cell size, in metres (PDAL's default: 1 m).</source>
         <translation>Resolución de la tela de CSF o tamaño de celda de SMRF, en metros (valor por defecto de PDAL: 1 m).</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="117" />
+        <location filename="../algorithms/groundfilter.py" line="125" />
         <source>Cloud CRS (when the file has none)</source>
         <translation>SRC de la nube (si el archivo no tiene)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="117" />
+        <location filename="../algorithms/groundfilter.py" line="125" />
         <source>The cloud's CRS if the file does not record one; a CRS in the file is replaced by it. The CRS is never guessed.</source>
         <translation>El SRC de la nube si el archivo no registra ninguno; un SRC presente en el archivo se sustituye por este. El SRC nunca se adivina.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="121" />
+        <location filename="../algorithms/groundfilter.py" line="129" />
         <source>Reset existing classes</source>
         <translation>Restablecer las clases existentes</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="121" />
+        <location filename="../algorithms/groundfilter.py" line="129" />
         <source>Set every non-ground point to class 1 (unclassified) instead of keeping its class.</source>
         <translation>Asigna la clase 1 (sin clasificar) a todos los puntos que no son suelo en lugar de conservar su clase.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="130" />
+        <location filename="../algorithms/groundfilter.py" line="137" />
         <source>Ground-classified cloud</source>
         <translation>Nube con suelo clasificado</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="130" />
+        <location filename="../algorithms/groundfilter.py" line="137" />
         <source>LAZ (*.laz);;LAS (*.las)</source>
         <translation>LAZ (*.laz);;LAS (*.las)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="135" />
+        <location filename="../algorithms/groundfilter.py" line="142" />
         <source>Engine that ran</source>
         <translation>Motor utilizado</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="136" />
+        <location filename="../algorithms/groundfilter.py" line="143" />
         <source>Points read</source>
         <translation>Puntos leídos</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="137" />
+        <location filename="../algorithms/groundfilter.py" line="144" />
         <source>Points written</source>
         <translation>Puntos escritos</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="138" />
+        <location filename="../algorithms/groundfilter.py" line="145" />
         <source>Ground points</source>
         <translation>Puntos de suelo</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="148" />
+        <location filename="../algorithms/groundfilter.py" line="155" />
         <source>The crop layer holds points or lines: give a crop buffer in metres (&gt; 0) to make a corridor around them</source>
         <translation>La capa de recorte contiene puntos o líneas: indique un búfer de recorte en metros (&gt; 0) para formar un corredor a su alrededor</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="153" />
+        <location filename="../algorithms/groundfilter.py" line="160" />
         <source>Reprojecting the crop layer from {} to {}</source>
         <translation>Reproyectando la capa de recorte de {} a {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="254" />
+        <location filename="../algorithms/groundfilter.py" line="262" />
         <source>Engine: {}; method: {}; {} points read, {} written, {} ground</source>
         <translation>Motor: {}; método: {}; {} puntos leídos, {} escritos, {} de suelo</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="159" />
+        <location filename="../algorithms/groundfilter.py" line="166" />
         <source>Cancelled: nothing was written.</source>
         <translation>Cancelado: no se escribió nada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="168" />
+        <location filename="../algorithms/groundfilter.py" line="175" />
         <source>The crop layer {} has no feature: nothing to crop by. Leave the crop layer empty to process the whole cloud</source>
         <translation>La capa de recorte {} no tiene entidades: no hay nada con qué recortar. Deje vacía la capa de recorte para procesar toda la nube</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="172" />
+        <location filename="../algorithms/groundfilter.py" line="179" />
         <source>The crop layer {} has no geometry (its {} features are empty): nothing to crop by</source>
         <translation>La capa de recorte {} no tiene geometría (sus {} entidades están vacías): no hay nada con qué recortar</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="187" />
+        <location filename="../algorithms/groundfilter.py" line="194" />
         <source>The crop area (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}) does not overlap the point cloud {} (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}): nothing would be kept</source>
         <translation>El área de recorte (x {:.1f} a {:.1f}, y {:.1f} a {:.1f}) no se superpone con la nube de puntos {} (x {:.1f} a {:.1f}, y {:.1f} a {:.1f}): no se conservaría nada</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="200" />
+        <location filename="../algorithms/groundfilter.py" line="207" />
         <source>PDAL said: {}</source>
         <translation>PDAL dijo: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="201" />
+        <location filename="../algorithms/groundfilter.py" line="208" />
         <source>PDAL failed: {}</source>
         <translation>PDAL falló: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="222" />
+        <location filename="../algorithms/groundfilter.py" line="229" />
         <source>The output {} must not be the input file</source>
         <translation>La salida {} no debe ser el archivo de entrada</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="64" />
-        <source>Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless &lt;i&gt;Reset existing classes&lt;/i&gt; is checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are written unchanged.&lt;br&gt;&lt;br&gt;&lt;b&gt;Crop&lt;/b&gt;: polygons (grown by the crop buffer), or points and lines such as the panorama stations or detection rays, buffered into a corridor. The crop layer is reprojected to the cloud's CRS.&lt;br&gt;&lt;br&gt;&lt;b&gt;Engine&lt;/b&gt;: PDAL runs filters.csf / filters.smrf through its Python bindings or the &lt;i&gt;pdal&lt;/i&gt; executable (on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign inventory); the built-in engine runs the same filters in Python, tile by tile, so clouds larger than memory work. Auto uses PDAL when present and falls back to the built-in engine if PDAL fails, saying so in the log.&lt;br&gt;&lt;br&gt;&lt;b&gt;Tiles&lt;/b&gt;: the input may be one LAS/LAZ file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc); PDAL classifies a single file, tiles go to the built-in engine. They are written to one file, or, with &lt;i&gt;Write one tile per input tile&lt;/i&gt;, each to a file of its own name in a folder named after the output (out/ground.laz gives the folder out/ground), with a virtual point cloud listing them (out/ground/ground.vpc, the output to give the next stages). Each tile is classified with its neighbours' points around it, so the classes at tile edges are those of a run on the whole cloud.</source>
-        <translation>Lee la nube LAS/LAZ por bloques, conserva los puntos dentro del área de recorte y clasifica los puntos de suelo como clase 2 con el filtro de simulación de tela (CSF, Zhang et al. 2016) o el filtro morfológico simple (SMRF, Pingel et al. 2013), con los parámetros de PDAL (valores por defecto ajustados para nubes densas de cartografía móvil: umbral de 0,2 m, celdas de 0,5 m; los de PDAL son 0,5 m y 1 m). Las demás clases se conservan salvo que se marque &lt;i&gt;Restablecer las clases existentes&lt;/i&gt;. Todas las dimensiones, los bytes extra, los VLR, las escalas y desplazamientos y el SRC se escriben sin cambios.&lt;br&gt;&lt;br&gt;&lt;b&gt;Recorte&lt;/b&gt;: polígonos (ampliados con el búfer de recorte), o puntos y líneas como las estaciones de panorama o los rayos de detección, convertidos en un corredor mediante un búfer. La capa de recorte se reproyecta al SRC de la nube.&lt;br&gt;&lt;br&gt;&lt;b&gt;Motor&lt;/b&gt;: PDAL ejecuta filters.csf / filters.smrf mediante sus enlaces de Python o el ejecutable &lt;i&gt;pdal&lt;/i&gt; (en el PATH, en la carpeta bin de QGIS o configurado en Procesos ▸ Opciones ▸ Proveedores ▸ Inventario de señales viales); el motor integrado ejecuta los mismos filtros en Python, tesela a tesela, por lo que funciona con nubes más grandes que la memoria. Automático usa PDAL si está presente y recurre al motor integrado si PDAL falla, indicándolo en el registro.&lt;br&gt;&lt;br&gt;&lt;b&gt;Teselas&lt;/b&gt;: la entrada puede ser un archivo LAS/LAZ, una carpeta de teselas LAS/LAZ o una nube de puntos virtual (.vpc); PDAL clasifica un único archivo, las teselas van al motor integrado. Se escriben en un solo archivo o, con &lt;i&gt;Escribir una tesela por cada tesela de entrada&lt;/i&gt;, cada una en un archivo con su propio nombre dentro de una carpeta que lleva el nombre de la salida (out/ground.laz da la carpeta out/ground), con una nube de puntos virtual que las enumera (out/ground/ground.vpc, la salida que se da a las etapas siguientes). Cada tesela se clasifica con los puntos de sus vecinas a su alrededor, de modo que las clases en los bordes de las teselas son las de una ejecución sobre la nube entera.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/groundfilter.py" line="125" />
+        <location filename="../algorithms/groundfilter.py" line="133" />
         <source>Write one tile per input tile</source>
         <translation>Escribir una tesela por cada tesela de entrada</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="125" />
-        <source>Write each input tile to its own file (same name, same header) in a folder named after the output, with a virtual point cloud (.vpc) listing them, instead of one file. Uses the built-in engine.</source>
-        <translation>Escribe cada tesela de entrada en su propio archivo (mismo nombre, misma cabecera) dentro de una carpeta que lleva el nombre de la salida, con una nube de puntos virtual (.vpc) que las enumera, en lugar de un solo archivo. Usa el motor integrado.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/groundfilter.py" line="130" />
+        <location filename="../algorithms/groundfilter.py" line="137" />
         <source>The cropped cloud with ground as class 2; LAZ or LAS by the file extension. With one tile per input tile: the folder of this name without its extension gets the tiles and &lt;name&gt;.vpc, which is then this output.</source>
         <translation>La nube recortada con el suelo como clase 2; LAZ o LAS según la extensión del archivo. Con una tesela por cada tesela de entrada: la carpeta con este nombre sin su extensión recibe las teselas y &lt;name&gt;.vpc, que pasa a ser esta salida.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="244" />
+        <location filename="../algorithms/groundfilter.py" line="251" />
         <source>Writing one tile per input tile to the folder {}, listed in {}</source>
         <translation>Escribiendo una tesela por cada tesela de entrada en la carpeta {}, enumeradas en {}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="108" />
+        <source>Auto (the faster engine: built-in)</source>
+        <translation>Automático (el motor más rápido: el integrado)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="108" />
+        <source>Auto: the engine measured faster for the method, today the built-in engine for both (PDAL when the built-in CSF's package is missing). PDAL: its Python bindings or the pdal executable that QGIS has; an error when there is neither.</source>
+        <translation>Automático: el motor que resultó más rápido en las mediciones para el método; hoy, el motor integrado para ambos (PDAL cuando falta el paquete del CSF integrado). PDAL: sus enlaces de Python o el ejecutable pdal que tenga QGIS; un error si no hay ninguno de los dos.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="133" />
+        <source>Write each input tile to its own file (same name, same header) in a folder named after the output, with a virtual point cloud (.vpc) listing them, instead of one file.</source>
+        <translation>Escribe cada tesela de entrada en su propio archivo (mismo nombre, misma cabecera) dentro de una carpeta que lleva el nombre de la salida, con una nube de puntos virtual (.vpc) que las enumera, en lugar de un solo archivo.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="64" />
+        <source>Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless &lt;i&gt;Reset existing classes&lt;/i&gt; is checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are written unchanged.&lt;br&gt;&lt;br&gt;&lt;b&gt;Crop&lt;/b&gt;: polygons (grown by the crop buffer), or points and lines such as the panorama stations or detection rays, buffered into a corridor. The crop layer is reprojected to the cloud's CRS.&lt;br&gt;&lt;br&gt;&lt;b&gt;Engine&lt;/b&gt;: PDAL runs filters.csf / filters.smrf through its Python bindings or the &lt;i&gt;pdal&lt;/i&gt; executable (on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign inventory), holding the cloud in memory (about 150 bytes a point); the built-in engine runs the same filters in Python, streaming the cloud, so clouds larger than memory work. &lt;b&gt;Auto picks the built-in engine&lt;/b&gt; for both methods: measured against PDAL 2.9.2 on two cores it was as fast for CSF on 8 M points and 1.5 to 1.7 times faster on 38 M, and 1.3 to 1.7 times faster for SMRF, in about 300 MB where PDAL took 5.7 GB for 38 M points (bench/README.md). Auto uses PDAL only when the built-in CSF's Python package (cloth-simulation-filter) is missing; the log says which engine ran and why.&lt;br&gt;&lt;br&gt;&lt;b&gt;Tiles&lt;/b&gt;: the input may be one LAS/LAZ file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc); PDAL takes the tiles one by one, each with its neighbours' points around it. They are written to one file, or, with &lt;i&gt;Write one tile per input tile&lt;/i&gt;, each to a file of its own name in a folder named after the output (out/ground.laz gives the folder out/ground), with a virtual point cloud listing them (out/ground/ground.vpc, the output to give the next stages). Each tile is classified with its neighbours' points around it, so the classes at tile edges are those of a run on the whole cloud.</source>
+        <translation>Lee la nube LAS/LAZ por bloques, conserva los puntos dentro del área de recorte y clasifica los puntos de suelo como clase 2 con el filtro de simulación de tela (CSF, Zhang et al. 2016) o el filtro morfológico simple (SMRF, Pingel et al. 2013), con los parámetros de PDAL (valores por defecto ajustados para nubes densas de cartografía móvil: umbral de 0,2 m, celdas de 0,5 m; los de PDAL son 0,5 m y 1 m). Las demás clases se conservan salvo que se marque &lt;i&gt;Restablecer las clases existentes&lt;/i&gt;. Todas las dimensiones, los bytes extra, los VLR, las escalas y desplazamientos y el SRC se escriben sin cambios.&lt;br&gt;&lt;br&gt;&lt;b&gt;Recorte&lt;/b&gt;: polígonos (ampliados con el búfer de recorte), o puntos y líneas como las estaciones de panorama o los rayos de detección, convertidos en un corredor mediante un búfer. La capa de recorte se reproyecta al SRC de la nube.&lt;br&gt;&lt;br&gt;&lt;b&gt;Motor&lt;/b&gt;: PDAL ejecuta filters.csf / filters.smrf mediante sus enlaces de Python o el ejecutable &lt;i&gt;pdal&lt;/i&gt; (en el PATH, en la carpeta bin de QGIS o configurado en Procesos ▸ Opciones ▸ Proveedores ▸ Road sign inventory), manteniendo la nube en memoria (unos 150 bytes por punto); el motor integrado ejecuta los mismos filtros en Python, procesando la nube en flujo continuo, por lo que funciona con nubes más grandes que la memoria. &lt;b&gt;Automático elige el motor integrado&lt;/b&gt; para ambos métodos: medido frente a PDAL 2.9.2 con dos núcleos, fue igual de rápido para CSF con 8 M de puntos y de 1,5 a 1,7 veces más rápido con 38 M, y de 1,3 a 1,7 veces más rápido para SMRF, con unos 300 MB, mientras que PDAL ocupó 5,7 GB para 38 M de puntos (bench/README.md). Automático usa PDAL solo cuando falta el paquete de Python del CSF integrado (cloth-simulation-filter); el registro indica qué motor se ejecutó y por qué.&lt;br&gt;&lt;br&gt;&lt;b&gt;Teselas&lt;/b&gt;: la entrada puede ser un archivo LAS/LAZ, una carpeta de teselas LAS/LAZ o una nube de puntos virtual (.vpc); PDAL toma las teselas una a una, cada una con los puntos de sus vecinas a su alrededor. Se escriben en un solo archivo o, con &lt;i&gt;Escribir una tesela por cada tesela de entrada&lt;/i&gt;, cada una en un archivo con su propio nombre dentro de una carpeta que lleva el nombre de la salida (out/ground.laz da la carpeta out/ground), con una nube de puntos virtual que las enumera (out/ground/ground.vpc, la salida que se da a las etapas siguientes). Cada tesela se clasifica con los puntos de sus vecinas a su alrededor, de modo que las clases en los bordes de las teselas son las de una ejecución sobre la nube entera.</translation>
     </message>
 </context>
 <context>
@@ -2192,7 +2192,7 @@
     </message>
     <message>
         <location filename="../core/cloudsource.py" line="462" />
-        <location filename="../core/ground/pdal.py" line="286" />
+        <location filename="../core/ground/pdal.py" line="306" />
         <location filename="../core/pointcloud.py" line="67" />
         <location filename="../core/pointcloud.py" line="110" />
         <source>Cannot read {path}: {detail}</source>
@@ -2255,11 +2255,11 @@
     </message>
     <message>
         <location filename="../core/cloudsource.py" line="391" />
-        <location filename="../core/ground/pdal.py" line="290" />
-        <location filename="../core/ground/pdal.py" line="292" />
-        <location filename="../core/ground/pdal.py" line="288" />
-        <location filename="../core/ground/pdal.py" line="273" />
-        <location filename="../core/ground/pdal.py" line="282" />
+        <location filename="../core/ground/pdal.py" line="310" />
+        <location filename="../core/ground/pdal.py" line="312" />
+        <location filename="../core/ground/pdal.py" line="308" />
+        <location filename="../core/ground/pdal.py" line="293" />
+        <location filename="../core/ground/pdal.py" line="302" />
         <location filename="../core/pointcloud.py" line="112" />
         <location filename="../core/pointcloud.py" line="127" />
         <location filename="../core/pointcloud.py" line="185" />
@@ -2583,89 +2583,96 @@
         <translation>El CSF integrado necesita el paquete de Python cloth-simulation-filter (módulo CSF): {detail}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="70" />
+        <location filename="../core/ground/engine.py" line="73" />
         <source>Unknown return type {kinds} in '{returns}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tipo de retorno desconocido {kinds} en '{returns}'</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="235" />
+        <location filename="../core/ground/engine.py" line="237" />
         <location filename="../core/pointcloud.py" line="244" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la salida debe terminar en .las o .laz</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="247" />
+        <location filename="../core/ground/engine.py" line="249" />
         <location filename="../core/ground/tiled.py" line="153" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SRC de la nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="259" />
-        <source>{path} holds {n} tiles: the built-in engine classifies them (PDAL is used for a single file only)</source>
+        <location filename="../core/ground/engine.py" line="330" />
+        <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>{path} contiene {n} teselas: las clasifica el motor integrado (PDAL solo se usa para un único archivo)</translation>
+        <translation>No se encontró PDAL: se usa el motor integrado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="309" />
+        <location filename="../core/ground/engine.py" line="380" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay polígonos de recorte: se ignora el búfer de recorte</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="189" />
-        <location filename="../core/ground/tiled.py" line="268" />
+        <location filename="../core/ground/engine.py" line="192" />
+        <location filename="../core/ground/tiled.py" line="320" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo está dañado ({detail})</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="203" />
+        <location filename="../core/ground/engine.py" line="206" />
         <source>No point of {path} has the returns '{returns}': nothing was classified</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} tiene los retornos '{returns}': no se clasificó nada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="241" />
+        <location filename="../core/ground/engine.py" line="243" />
         <source>The output {path} must not be the input file</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La salida {path} no puede ser el archivo de entrada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="249" />
+        <location filename="../core/ground/engine.py" line="251" />
         <location filename="../core/ground/tiled.py" line="155" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene sistema de referencia de coordenadas: indique el SRC de la nube (nunca se adivina)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="256" />
-        <source>The PDAL engine classifies a single LAS/LAZ file, and {path} holds {n} tiles: choose the built-in engine (or Auto), which classifies tiles with the same filters</source>
+        <location filename="../core/ground/engine.py" line="317" />
+        <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>El motor PDAL clasifica un único archivo LAS/LAZ, y {path} contiene {n} teselas: elija el motor integrado (o Automático), que clasifica teselas con los mismos filtros</translation>
+        <translation>Automático: el motor integrado, más rápido que PDAL en las mediciones para {method} (y procesa la nube en flujo continuo con memoria acotada)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="296" />
-        <source>No point of {path} is left after the crop: {output} has no points</source>
+        <location filename="../core/ground/engine.py" line="322" />
+        <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No queda ningún punto de {path} tras el recorte: {output} no tiene puntos</translation>
+        <translation>Automático: PDAL, porque el {method} integrado necesita el paquete de Python cloth-simulation-filter, que no está instalado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="267" />
-        <source>PDAL not found: using the built-in engine</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No se encontró PDAL: se usa el motor integrado</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/engine.py" line="265" />
+        <location filename="../core/ground/engine.py" line="328" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se pidió PDAL, pero no se encontró ni el módulo de Python pdal ni un ejecutable pdal (PATH, carpeta bin de QGIS)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="280" />
+        <location filename="../core/ground/engine.py" line="332" />
+        <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Automático: PDAL, más rápido que el motor integrado en las mediciones para {method}</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="367" />
+        <source>No point of {path} is left after the crop: {output} has no points</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No queda ningún punto de {path} tras el recorte: {output} no tiene puntos</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="274" />
+        <location filename="../core/ground/tiled.py" line="184" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>PDAL falló; se usó el motor integrado en su lugar: {error}</translation>
@@ -2677,46 +2684,40 @@
         <translation>El área que se va a clasificar ({w:.0f} m x {h:.0f} m) necesita {cells} celdas de {step} m, más de {limit}: recorte la nube o use una celda/resolución mayor</translation>
     </message>
     <message>
-        <location filename="../core/ground/params.py" line="31" />
+        <location filename="../core/ground/params.py" line="36" />
         <source>Unknown {what} {value!r}: expected one of {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se reconoce el {what} {value!r}: se esperaba uno de {names}</translation>
     </message>
     <message>
-        <location filename="../core/ground/params.py" line="37" />
+        <location filename="../core/ground/params.py" line="42" />
         <source>ground method</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>método de suelo</translation>
     </message>
     <message>
-        <location filename="../core/ground/params.py" line="42" />
+        <location filename="../core/ground/params.py" line="47" />
         <source>engine</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>motor</translation>
     </message>
     <message>
-        <location filename="../core/ground/params.py" line="56" />
+        <location filename="../core/ground/params.py" line="61" />
         <source>Parameters {params} do not belong to method {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Los parámetros {params} no pertenecen al método {method}</translation>
     </message>
     <message>
-        <location filename="../core/ground/pdal.py" line="169" />
+        <location filename="../core/ground/pdal.py" line="189" />
         <source>PDAL executable {path} not found or not executable</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El ejecutable de PDAL {path} no existe o no es ejecutable</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="211" />
+        <location filename="../core/ground/tiled.py" line="210" />
         <source>{n} tiles written to {folder}, listed in {vpc}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} teselas escritas en {folder}, enumeradas en {vpc}</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/tiled.py" line="142" />
-        <source>The PDAL engine writes one file: to write one tile per input tile choose the built-in engine (or Auto)</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>El motor PDAL escribe un solo archivo: para escribir una tesela por cada tesela de entrada, elija el motor integrado (o Automático)</translation>
     </message>
     <message>
         <location filename="../core/ground/tiled.py" line="145" />
@@ -2725,31 +2726,25 @@
         <translation>El nombre de la nube de puntos virtual {name} debe ser un nombre de archivo terminado en .vpc</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="159" />
-        <source>Writing one tile per input tile: the built-in engine classifies them (PDAL is used for one output file only)</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>Escritura de una tesela por cada tesela de entrada: las clasifica el motor integrado (PDAL solo se usa para un único archivo de salida)</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/tiled.py" line="115" />
+        <location filename="../core/ground/tiled.py" line="117" />
         <source>The output folder {folder} holds the input tile {tile}: choose another folder (the output folder is replaced as a whole)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La carpeta de salida {folder} contiene la tesela de entrada {tile}: elija otra carpeta (la carpeta de salida se reemplaza por completo)</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="118" />
+        <location filename="../core/ground/tiled.py" line="120" />
         <source>Two tiles of {path} have the same file name, {name} ({first} and {second}): the output tiles are named as the input tiles, so their names must differ</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Dos teselas de {path} tienen el mismo nombre de archivo, {name} ({first} y {second}): las teselas de salida se nombran como las de entrada, por lo que sus nombres deben ser distintos</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="208" />
+        <location filename="../core/ground/tiled.py" line="207" />
         <source>No point of {path} is left after the crop: {output} lists no tile</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No queda ningún punto de {path} tras el recorte: {output} no enumera ninguna tesela</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="197" />
+        <location filename="../core/ground/tiled.py" line="196" />
         <source>No point of the tile {tile} lies inside the crop area: no output tile for it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de la tesela {tile} está dentro del área de recorte: no hay tesela de salida para ella</translation>
