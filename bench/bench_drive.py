@@ -356,8 +356,7 @@ def main(argv=None):
                         help="also run each child of the model as its own qgis_process run")
     parser.add_argument("--cloud", choices=["file", "tiles"], default="file",
                         help="the cloud as one LAZ (as generated) or as tiles of --tile-m of drive and a .vpc "
-                             "(the ground filter's Auto engine then streams them with the built-in engine "
-                             "instead of PDAL, which holds a single file in memory)")
+                             "(as a crew delivers a drive)")
     parser.add_argument("--tile-m", type=float, default=500.0)
     parser.add_argument("--json", help="also write the figures to this file")
     args = parser.parse_args(argv)

@@ -51,6 +51,9 @@ supported of the two wins (``code_check``).
 from __future__ import annotations
 
 import math
+import os
+import shutil
+import tempfile
 from dataclasses import asdict, dataclass, field
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
@@ -73,6 +76,7 @@ from .pointcloud import (
     PointSet,
     TiledIndex,
     output_header,
+    xyz_of,
 )
 from .projection import (
     STATUS_NO_POINTS,
@@ -102,6 +106,10 @@ from .signcodes import (
 DEFAULT_MERGE_RADIUS_M = 1.0
 #: Default length (m along the drive) of the blocks the cloud is refined in (:class:`CloudBlocks`).
 DEFAULT_BLOCK_M = 150.0
+#: A point of a spooled block (:class:`CloudBlocks`): world coordinates, cloud index, the
+#: two dimensions refinement reads (LAS intensity and class).
+BLOCK_SPOOL_DTYPE = np.dtype([("xyz", "f8", (3,)), ("point_index", "i8"), ("intensity", "u2"),
+                              ("classification", "u1")])
 #: Default of ``code_confidence`` (``roadsigns:refinesigns`` ``CODE_CONFIDENCE``): a voted
 #: code whose support (:func:`vote_code`) is below this is left empty.
 DEFAULT_CODE_CONFIDENCE = 0.5
@@ -966,13 +974,13 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
         return result
     groups = merge_candidates(candidates, merge_radius_m, params)
     progress.report(0.05)
-    blocks = CloudBlocks(candidates, groups, cloud, merge_radius_m, block_m, params)
-    drafts = blocks.extract_signs(params, progress.sub(0.05, 0.9))
-    join_lone_views(candidates, drafts)
-    join_signs_on_one_panel(candidates, drafts, params)
-    unplaced = join_views_without_surface(candidates, drafts)
-    image_only = triangulate_image_only(candidates, unplaced, params)
-    blocks.ground_of(image_only, params)
+    with CloudBlocks(candidates, groups, cloud, merge_radius_m, block_m, params, progress.sub(0.05, 0.3)) as blocks:
+        drafts = blocks.extract_signs(params, progress.sub(0.3, 0.9))
+        join_lone_views(candidates, drafts)
+        join_signs_on_one_panel(candidates, drafts, params)
+        unplaced = join_views_without_surface(candidates, drafts)
+        image_only = triangulate_image_only(candidates, unplaced, params)
+        blocks.ground_of(image_only, params)
     drafts += image_only
     for draft in drafts:
         if not draft.absorbed:
@@ -1063,14 +1071,21 @@ class CloudBlocks:
     time. The bright level (:func:`bright_level`) is cloud wide: from a first pass over the
     blocks, a histogram of the non-ground intensities, each point counted in the block of
     its nearest ``ok`` candidate (exact; the one-index read samples 200 000 points, so
-    above that size the level may differ slightly). A single block is read once. Image-only
-    signs take their ground from a last spatial query around them (:meth:`ground_of`).
+    above that size the level may differ slightly). Image-only signs take their ground from
+    a last spatial query around them (:meth:`ground_of`).
+
+    The cloud is read once: a single block is read and kept; several blocks are spooled
+    first, in one pass over the tiles they meet, each block's points (coordinates, cloud
+    index, intensity, class: :data:`BLOCK_SPOOL_DTYPE`) appended to a file of its own in a
+    temporary folder, which each pass over the blocks then reads back (:meth:`close`, or
+    leaving a ``with`` block, removes it).
     """
 
     def __init__(self, cand: ProjectionResult, groups: Sequence[np.ndarray],
                  cloud: Union[str, CloudSource, TiledIndex, None], merge_radius_m: float,
-                 block_m: float, params: RefineParams):
+                 block_m: float, params: RefineParams, progress: Progress = SILENT):
         self.cand, self.groups = cand, list(groups)
+        self._spool_dir: Optional[str] = None
         ok = np.array([s == STATUS_OK for s in cand.status], bool)
         self.ok_xy = cand.xyz_world[ok, :2]
         self.corridor_m = max(3.5, merge_radius_m + 2.5)
@@ -1093,7 +1108,78 @@ class CloudBlocks:
             block_of_group = np.searchsorted(edges, axis.locate(self.centres)[0], side="right")
         self.blocks = [np.flatnonzero(block_of_group == b) for b in np.unique(block_of_group)]
         self._cached: Optional[Tuple[int, TiledIndex]] = None
+        if self.source is not None and len(self.blocks) > 1:
+            self._spool(progress)
         self.bright = self._bright_level()
+        progress.report(1.0)
+
+    def __enter__(self) -> "CloudBlocks":
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def close(self) -> None:
+        """Remove the spooled blocks."""
+        if self._spool_dir is not None:
+            shutil.rmtree(self._spool_dir, ignore_errors=True)
+            self._spool_dir = None
+
+    def _block_read(self, b: int) -> Tuple[np.ndarray, float]:
+        """Where block ``b``'s points are read around (centres ``(n, 2)``) and how far."""
+        gs = self.blocks[b]
+        rows = np.concatenate([self.groups[g] for g in gs])
+        xy = np.vstack([self.centres[gs, :2], self.cand.xyz_world[rows, :2]])
+        return xy, max(float(self.reach[gs].max()), self.corridor_m + 0.5)
+
+    def _spool_path(self, b: int) -> str:
+        assert self._spool_dir is not None
+        return os.path.join(self._spool_dir, f"block_{b}.bin")
+
+    def _spool(self, progress: Progress) -> None:
+        """One pass over the cloud: each block's points to its file (see the class doc)."""
+        assert self.source is not None and self.corridor is not None
+        regions, boxes = [], []
+        for b in range(len(self.blocks)):
+            xy, radius = self._block_read(b)
+            regions.append(CropRegion.corridor(radius, points_xy=xy))
+            boxes.append((*(xy.min(axis=0) - radius), *(xy.max(axis=0) + radius)))
+        self._spool_dir = tempfile.mkdtemp(prefix="roadsigns-refine-")
+        try:
+            area = [r.geometry for r in regions]
+            for index, chunk in self.source.iter_indexed_chunks(progress=progress, area=area):
+                x, y = np.asarray(chunk.x), np.asarray(chunk.y)
+                near = np.flatnonzero(self.corridor.mask(x, y))
+                if not len(near):
+                    continue
+                xn, yn = x[near], y[near]
+                for b, (region, (x0, y0, x1, y1)) in enumerate(zip(regions, boxes)):
+                    sub = near[(xn >= x0) & (xn <= x1) & (yn >= y0) & (yn <= y1)]
+                    if not len(sub):
+                        continue
+                    sub = sub[region.mask(x[sub], y[sub])]
+                    if not len(sub):
+                        continue
+                    rows = np.zeros(len(sub), BLOCK_SPOOL_DTYPE)
+                    rows["xyz"] = xyz_of(chunk[sub])
+                    rows["point_index"] = np.asarray(index)[sub]
+                    rows["intensity"] = np.asarray(chunk.intensity)[sub]
+                    rows["classification"] = np.asarray(chunk.classification)[sub]
+                    with open(self._spool_path(b), "ab") as f:
+                        rows.tofile(f)
+        except BaseException:
+            self.close()
+            raise
+
+    def _spooled(self, b: int) -> TiledIndex:
+        """Block ``b`` read back from its spool file."""
+        path = self._spool_path(b)
+        rows = np.fromfile(path, BLOCK_SPOOL_DTYPE) if os.path.exists(path) else np.zeros(0, BLOCK_SPOOL_DTYPE)
+        assert self.source is not None
+        return TiledIndex(np.ascontiguousarray(rows["xyz"]), np.ascontiguousarray(rows["point_index"]),
+                          {"intensity": np.ascontiguousarray(rows["intensity"]),
+                           "classification": np.ascontiguousarray(rows["classification"])},
+                          5.0, self.source.crs_wkt)
 
     @staticmethod
     def reach_m(cand: ProjectionResult, rows: np.ndarray, params: RefineParams) -> float:
@@ -1131,10 +1217,10 @@ class CloudBlocks:
         level, within the corridor of its ``ok`` candidates."""
         if self._cached is not None and self._cached[0] == b:
             return self._cached[1]
-        gs = self.blocks[b]
-        rows = np.concatenate([self.groups[g] for g in gs])
-        xy = np.vstack([self.centres[gs, :2], self.cand.xyz_world[rows, :2]])
-        return self._read(xy, max(float(self.reach[gs].max()), self.corridor_m + 0.5), progress)
+        if self._spool_dir is not None:
+            return self._spooled(b)
+        xy, radius = self._block_read(b)
+        return self._read(xy, radius, progress)
 
     def _bright_level(self) -> float:
         if self.index is not None:

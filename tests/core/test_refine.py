@@ -1,5 +1,6 @@
 """Candidates -> signs (core.refine) on a scene of known sign panels."""
 import dataclasses
+import os
 
 import numpy as np
 import pytest
@@ -782,6 +783,33 @@ def test_refining_a_las_file_block_by_block_gives_the_one_block_result(scene, ca
     assert R.CloudBlocks(candidates, R.merge_candidates(candidates, 1.0), las, 1.0, 20.0,
                          R.RefineParams()).bright == pytest.approx(R.bright_level(old))
     _same_result(R.refine_signs(candidates, old, block_m=float("inf")), one)
+
+
+def test_a_las_file_is_read_once_for_all_blocks_and_the_spool_removed(scene, candidates, tmp_path,
+                                                                      monkeypatch):
+    """Several blocks are spooled in one pass over the file (CloudBlocks._spool), not read
+    once per block and pass; the spool folder goes when refinement ends."""
+    import tempfile
+
+    from roadsigns.core.cloudsource import CloudSource
+    las = str(tmp_path / "cloud.las")
+    signscene.write_las(scene, las)
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path / "tmp"))
+    (tmp_path / "tmp").mkdir()
+    reads = []
+    real = CloudSource.iter_indexed_chunks
+
+    def counted(self, *args, **kwargs):
+        reads.append(kwargs.get("area") is not None)
+        return real(self, *args, **kwargs)
+
+    monkeypatch.setattr(CloudSource, "iter_indexed_chunks", counted)
+    with R.CloudBlocks(candidates, R.merge_candidates(candidates, 1.0), las, 1.0, 20.0, R.RefineParams()) as blocks:
+        assert len(blocks.blocks) >= 4
+        assert blocks._spool_dir and os.listdir(blocks._spool_dir)
+        drafts = blocks.extract_signs(R.RefineParams())
+        assert drafts and reads == [True]  # the bright level and the signs: one read
+    assert os.listdir(tmp_path / "tmp") == []
 
 
 def test_a_group_across_a_block_seam_is_refined_once_with_all_its_points(candidates, index,
