@@ -158,7 +158,7 @@ def main(argv=None):
     ap.add_argument("--model", default=MODEL)
     ap.add_argument("--compare", nargs="*", default=[], metavar="ONNX")
     ap.add_argument("--table", default=TABLE)
-    ap.add_argument("--detector", default=os.path.join(REPO_ROOT, "models", "roadsigns.onnx"))
+    ap.add_argument("--detector", default=os.path.join(REPO_ROOT, "models", "roadsigns-int8.onnx"))
     ap.add_argument("--confidence", type=float, default=0.4)
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--skip-gtsdb", action="store_true")

@@ -86,7 +86,7 @@ def split_one(path, detector, views, classifier, confidence, min_box_px, times):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--scene", default=os.path.join(REPO_ROOT, "bench", "out", "scene-default-7"))
-    ap.add_argument("--model", default=os.path.join(REPO_ROOT, "models", "roadsigns.onnx"))
+    ap.add_argument("--model", default=os.path.join(REPO_ROOT, "models", "roadsigns-int8.onnx"))
     ap.add_argument("--classifier", default=os.path.join(REPO_ROOT, "models", "signcodes.onnx"))
     ap.add_argument("--codes-table", default=os.path.join(REPO_ROOT, "models", "sign-codes-de.csv"))
     ap.add_argument("--no-codes", action="store_true", help="leave the sign-code reading out")

@@ -1,4 +1,4 @@
-"""Bench of sign detectors (default: the bundled models/roadsigns.onnx); ``--compare A B``
+"""Bench of sign detectors (default: the bundled models/roadsigns-int8.onnx); ``--compare A B``
 measures several models in one run, on the same images, timed alternately.
 
 1. Held-out generated panoramas (default: ``default`` preset seed 7 and ``tiny`` seed 3,
@@ -361,7 +361,7 @@ def headline(r):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--model", default=os.path.join(REPO_ROOT, "models", "roadsigns.onnx"))
+    ap.add_argument("--model", default=os.path.join(REPO_ROOT, "models", "roadsigns-int8.onnx"))
     ap.add_argument("--compare", nargs="+", metavar="MODEL", help="several models measured in the same run")
     ap.add_argument("--scene", action="append", help="held-out generated scene folder(s); default "
                     "bench/out/scene-default-7 and bench/out/scene-tiny-3, generated when missing")

@@ -4,12 +4,15 @@ NMS, class names, errors; merging across views and a sign across the +-180 deg s
 The tiny models (``helpers.tinyonnx``) output a constant tensor: the decoders see exactly
 the candidates written here.
 """
+import os
+
 import cv2
 import numpy as np
 import pytest
 from helpers.synthpano import disc_pano_box, paint_discs
 from helpers.tinyonnx import make_model
 
+from devtools import REPO_ROOT
 from roadsigns.core import detector as det
 from roadsigns.core.detector import Detector, ImageDetections, detect_panorama, merge_view_detections
 from roadsigns.core.errors import InputError
@@ -331,6 +334,31 @@ def test_int8_model_runs_like_the_float_one(tmp_path, fmt):
         a, b = f.detect(img, 0.0), i8.detect(img, 0.0)
         assert b.class_ids.tolist() == [1] and b.boxes_xyxy == pytest.approx(a.boxes_xyxy)
         assert b.scores[0] == pytest.approx(a.scores[0], rel=0.05, abs=0.02)
+
+
+def test_the_shipped_int8_detector_is_the_float_one_quantised():
+    """models/roadsigns-int8.onnx (what detectsigns runs by default) is models/roadsigns.onnx
+    quantised (devtools/train/quantize.py): the same classes, training record and score
+    calibration, int8 weights, and on one of GTSDB's photographs the same boxes and
+    classes, scores within quantisation error."""
+    import onnx
+
+    from roadsigns.algorithms.paths import BUNDLED_FLOAT_MODEL, BUNDLED_MODEL
+    assert os.path.basename(BUNDLED_MODEL) == "roadsigns-int8.onnx"
+    meta = [{p.key: p.value for p in onnx.load(path).metadata_props} for path in (BUNDLED_FLOAT_MODEL, BUNDLED_MODEL)]
+    for key in ("names", "training", "score_calibration", "imgsz"):
+        assert meta[0][key] == meta[1][key], key
+    assert "int8 static" in meta[1]["quantization"] and "quantization" not in meta[0]
+    assert os.path.getsize(BUNDLED_MODEL) < 0.35 * os.path.getsize(BUNDLED_FLOAT_MODEL)
+    photo = os.path.join(REPO_ROOT, "..", "shared", "data", "gtsdb-train", "images", "00501.jpg")
+    if not os.path.isfile(photo):
+        (pytest.fail if os.environ.get("CI", "").lower() == "true" else pytest.skip)(f"{photo} is not there")
+    image = np.ascontiguousarray(cv2.cvtColor(cv2.imread(photo), cv2.COLOR_BGR2RGB)[200:840, :640])
+    f, q = Detector(BUNDLED_FLOAT_MODEL, threads=1), Detector(BUNDLED_MODEL, threads=1)
+    a, b = f.detect(image, 0.3), q.detect(image, 0.3)
+    assert len(a.scores) >= 2 and b.class_ids.tolist() == a.class_ids.tolist()
+    assert b.boxes_xyxy == pytest.approx(a.boxes_xyxy, abs=3.0)
+    assert b.scores == pytest.approx(a.scores, abs=0.05)
 
 
 # --- a drive: decoding the next panorama while this one is detected ----------------------

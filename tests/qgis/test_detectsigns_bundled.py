@@ -1,4 +1,4 @@
-"""The bundled model (models/roadsigns.onnx) through qgis_process finds a generated scene's signs.
+"""The bundled model (models/roadsigns-int8.onnx) through qgis_process finds a generated scene's signs.
 
 The scene (tests/conftest.py ``scene_tiny``: preset tiny, seed 3, 2048 x 1024 panoramas) was
 never used in training (training scenes have seeds from 100 up). Clearly visible signs:
@@ -13,7 +13,7 @@ from osgeo import ogr
 
 from devtools import REPO_ROOT
 
-BUNDLED = os.path.join(REPO_ROOT, "models", "roadsigns.onnx")
+BUNDLED = os.path.join(REPO_ROOT, "models", "roadsigns-int8.onnx")
 MIN_HEIGHT_PX = 20
 MAX_OCCLUSION = 0.2
 MIN_RECALL = 0.8          # of clearly visible signs found with the right class
@@ -49,7 +49,7 @@ def detections(qgis_process, scene_tiny_stations, tmp_path_factory):
     out = str(work / "detections.gpkg")
     run = qgis_process.run("roadsigns:detectsigns", STATIONS=stations, OUTPUT=out)  # no MODEL: bundled
     assert run.returncode == 0, run.text
-    assert "roadsigns.onnx" in run.text
+    assert "roadsigns-int8.onnx" in run.text
     return read_detections(out)
 
 

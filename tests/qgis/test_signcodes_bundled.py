@@ -16,7 +16,7 @@ from osgeo import ogr
 
 from devtools import REPO_ROOT
 
-BUNDLED_DETECTOR = os.path.join(REPO_ROOT, "models", "roadsigns.onnx")
+BUNDLED_DETECTOR = os.path.join(REPO_ROOT, "models", "roadsigns-int8.onnx")
 BUNDLED_CLASSIFIER = os.path.join(REPO_ROOT, "models", "signcodes.onnx")
 SEED = 23
 EXPECTED = {("prohibitory", "50"): "DE:274[50]", ("stop", "stop"): "DE:206"}
