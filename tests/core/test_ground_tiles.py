@@ -226,6 +226,31 @@ def test_cancelled_tiles_leave_nothing(hilly, tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.parametrize("as_tiles", [True, False])
+def test_cancelled_pdal_tiles_leave_nothing(real_pdal, hilly, tmp_path, as_tiles):
+    """Cancelled while the tiles go through the pdal application one by one: the running
+    pdal is stopped, and neither output, spool nor temporary file is left."""
+    seen = []
+
+    def cancelled():
+        seen.append(1)
+        return len(seen) > 40  # after the halos are spooled and some tiles are done
+    out = tmp_path / "out"
+    out.mkdir()
+    before = realpdal.orphaned_pdal()
+    with pytest.raises(Cancelled):
+        if as_tiles:
+            ground.run_ground_filter_tiles(hilly["folder"], str(out / "ground"), "g.vpc", "csf", "pdal",
+                                           chunk_points=5000, pdal_executable=real_pdal.executable,
+                                           progress=Progress(is_cancelled=cancelled))
+        else:
+            ground.run_ground_filter(hilly["folder"], str(out / "ground.laz"), "csf", "pdal", chunk_points=5000,
+                                     pdal_executable=real_pdal.executable, progress=Progress(is_cancelled=cancelled))
+    assert len(seen) > 40
+    assert list(out.iterdir()) == []
+    assert realpdal.orphaned_pdal() - before == set()
+
+
 def test_output_folder_replaced_whole_but_never_the_input(hilly, tmp_path):
     out = tmp_path / "ground"
     out.mkdir()
