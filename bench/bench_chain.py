@@ -40,7 +40,7 @@ def load_scene(args):
         return scene_dir, json.load(f)
 
 
-def stage_plan(scene_dir, meta, work, model=None):
+def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=0.0, upward_views=True):
     """(stage id, parameters, output key, what it needs) in chain order."""
     p = lambda name: os.path.join(scene_dir, name)  # noqa: E731
     w = lambda name: os.path.join(work, name)  # noqa: E731
@@ -54,6 +54,7 @@ def stage_plan(scene_dir, meta, work, model=None):
                                   BORESIGHT_ROLL=bore[0], BORESIGHT_PITCH=bore[1], BORESIGHT_YAW=bore[2],
                                   OUTPUT=w("stations.gpkg")), "OUTPUT", []),
         ("detectsigns", dict(STATIONS=w("stations.gpkg"), CONFIDENCE=0.4, OUTPUT=w("detections.gpkg"),
+                             MIN_STATION_SPACING_M=station_spacing_m, UPWARD_VIEWS=upward_views,
                              **({"MODEL": model} if model else {})),
          "OUTPUT", ["importtrajectory"]),
         # the scene's cloud carries its true classes: reset them, compare afterwards
@@ -105,23 +106,30 @@ def main(argv=None):
     parser.add_argument("--detections", choices=["model", "oracle"], default="model",
                         help="the detector (bundled or --model), or the scene's true boxes")
     parser.add_argument("--model", help="an ONNX model instead of the bundled one")
+    parser.add_argument("--station-spacing", type=float, default=0.0, metavar="M",
+                        help="detectsigns' MIN_STATION_SPACING_M: detect only on stations at least M metres "
+                             "apart (0: every station)")
+    parser.add_argument("--no-upward", action="store_true",
+                        help="detectsigns without its upward views (UPWARD_VIEWS false: the 8 horizon views only)")
     parser.add_argument("--from", dest="from_stage", metavar="STAGE",
                         help="reuse the outputs of the stages before STAGE from an earlier run "
                              "(e.g. --from refinesigns while tuning the refinement)")
     args = parser.parse_args(argv)
 
     scene_dir, meta = load_scene(args)
-    work = os.path.join(REPO_ROOT, "bench", "out", "chain-{}-{}-{}".format(
-        os.path.basename(os.path.normpath(scene_dir)), args.detections, args.seed))
+    work = os.path.join(REPO_ROOT, "bench", "out", "chain-{}-{}-{}{}".format(
+        os.path.basename(os.path.normpath(scene_dir)), args.detections, args.seed,
+        f"-spacing{args.station_spacing:g}" if args.station_spacing else "") + ("-noupward" if args.no_upward else ""))
     os.makedirs(work, exist_ok=True)
     qgis = QgisProcess()
     listing = qgis("--json", "list")
     available = set(listing.json["providers"]["roadsigns"]["algorithms"])
 
     figures = {"scene": scene_dir, "preset": args.preset, "seed": args.seed,
-               "detections": args.detections, "stages": {}}
+               "detections": args.detections, "station_spacing_m": args.station_spacing,
+               "upward_views": not args.no_upward, "stages": {}}
     done = set()
-    plan = stage_plan(scene_dir, meta, work, args.model)
+    plan = stage_plan(scene_dir, meta, work, args.model, args.station_spacing, not args.no_upward)
     if args.from_stage and args.from_stage not in [p[0] for p in plan]:
         parser.error(f"--from: no stage {args.from_stage}")
     reuse = args.from_stage is not None
