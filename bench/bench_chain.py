@@ -22,6 +22,8 @@ import os
 import sys
 import time
 
+if os.path.isdir("/usr/share/proj"):  # pyproj inside a venv looks under the venv otherwise
+    os.environ.setdefault("PROJ_DATA", "/usr/share/proj")
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, REPO_ROOT)
 

@@ -248,6 +248,15 @@ class CloudSource:
         keep = _boxes_meet(boxes, bbox_xy, area)
         return [t for t, k in zip(self.tiles, keep) if k]
 
+    def tile_shares(self, tiles: Sequence[int], progress: Progress) -> Iterator[Tuple[int, Progress]]:
+        """Each tile number of ``tiles`` with its share of ``progress``, by point count."""
+        total = max(sum(self.tiles[k].point_count for k in tiles), 1)
+        done = 0
+        for k in tiles:
+            n = self.tiles[k].point_count
+            yield k, progress.sub(done / total, (done + n) / total)
+            done += n
+
     def tile_of_index(self, index: np.ndarray) -> np.ndarray:
         """The tile number (position in :attr:`tiles`) of each cloud point index."""
         starts = np.array([t.first_index for t in self.tiles], dtype=np.int64)

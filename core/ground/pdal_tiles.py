@@ -106,12 +106,8 @@ def run_pdal_tiles(source: CloudSource, work: List[int], output_of: Callable[[in
     pipeline, used = "", "pdal-python" if executable is None else "pdal-cli"
     with tempfile.TemporaryDirectory(prefix=".roadsigns-pdal-halo-") as spool_dir:
         spools, came_from = spool_pdal_halos(source, work, halo, spool_dir, chunk_points, progress.sub(0.0, 0.2))
-        total = max(sum(source.tiles[k].point_count for k in work), 1)
-        done = 0
-        for k in work:
+        for k, share in source.tile_shares(work, progress.sub(0.2, 1.0)):
             tile = source.tiles[k]
-            share = progress.sub(0.2 + 0.8 * done / total, 0.2 + 0.8 * (done + tile.point_count) / total)
-            done += tile.point_count
             try:
                 n_out, n_ground, json_text, used = run_pdal_engine(
                     tile.path, output_of(k), method, params, region, source.tile_header(k), crs_wkt,

@@ -222,12 +222,8 @@ def _builtin_tiles(source: CloudSource, work: List[int], grown: Dict[int, BBoxXY
     with tempfile.TemporaryDirectory(prefix=".roadsigns-halo-") as spool_dir:
         spools = _spool_halos(source, work, grown, region, params, spool_dir, chunk_points,
                               progress.sub(0.0, 0.3))
-        total = max(sum(source.tiles[k].point_count for k in work), 1)
-        done = 0
-        for k in work:
+        for k, share in source.tile_shares(work, progress.sub(0.3, 1.0)):
             tile = source.tiles[k]
-            share = progress.sub(0.3 + 0.7 * done / total, 0.3 + 0.7 * (done + tile.point_count) / total)
-            done += tile.point_count
             path = os.path.join(folder, names[k])
             n_out, n_ground = _classify_tile(source, k, grown[k], spools.get(k), path, region, params,
                                              crs_wkt, reset_classes, chunk_points, tile_buffer_m, share)
