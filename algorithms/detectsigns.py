@@ -49,7 +49,7 @@ class DetectSigns(RoadSignsAlgorithm):
     def shortHelpString(self):
         return self.tr(
             "Cuts each station's equirectangular panorama into overlapping perspective views "
-            "(a horizon ring, and an upward ring for overhead signs), runs the ONNX detector on "
+            "(a horizon ring, and optionally an upward ring for overhead signs), runs the ONNX detector on "
             "each view, maps the boxes back to panorama pixels and merges the same sign found in "
             "two views.<br><br>The <b>model</b> is the bundled one when left empty, or your own "
             "ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model "
@@ -93,9 +93,13 @@ class DetectSigns(RoadSignsAlgorithm):
             self.tr("Length of each detection ray from the panorama centre, in metres."),
             minimum=1.0, advanced=True)
         self.add_boolean(
-            self.UPWARD_VIEWS, self.tr("Also look upwards (overhead and gantry signs)"), True,
-            self.tr("Adds a ring of views tilted 35° up; unchecked halves the work but misses signs "
-                    "high above the road close to the vehicle."), advanced=True)
+            self.UPWARD_VIEWS, self.tr("Also look upwards (overhead and gantry signs)"), False,
+            self.tr("Adds a ring of 6 views tilted 35° up to the 8 horizon views, for signs high above the road "
+                    "close to the vehicle. Off by default: a sign overhead is in the horizon views from every "
+                    "station more than a few metres away, and on two held-out test streets (panoramas every "
+                    "5 m, 6 gantry panels each) the horizon views alone found every sign, as many as with "
+                    "the upward ring, in 1.3 to 1.6 times less detection time. Check it for drives with "
+                    "panoramas far apart."), advanced=True)
         self.add_number(
             self.MIN_STATION_SPACING, self.tr("Skip stations closer than (m)"), 0.0,
             self.tr("Detects only in panoramas whose station stands at least this far from the last station "
@@ -103,7 +107,10 @@ class DetectSigns(RoadSignsAlgorithm):
                     "over many stations, so a few metres save detection time in proportion, but each sign is "
                     "then seen from fewer stations: fewer rays to place it, and a sign visible from only a "
                     "few stations (small, or hidden behind trees or vehicles) may be missed. 0 detects in every "
-                    "panorama."),
+                    "panorama. Measured on two held-out test streets with a panorama every 5 m: every "
+                    "panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 "
+                    "of 46. For drives with denser panoramas, 5 m keeps the density those figures were "
+                    "measured at."),
             minimum=0.0, advanced=True)
         self.add_number(
             self.THREADS, self.tr("CPU threads (0: all)"), 0,
