@@ -117,7 +117,7 @@
         <translation>Ejecuta un detector de señales ONNX en cada panorama; un rayo por señal detectada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="155" />
+        <location filename="../algorithms/detectsigns.py" line="162" />
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
@@ -137,7 +137,7 @@
         <translation>Un detector ONNX de la familia YOLO. Vacío usa el modelo incluido con el complemento.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="117" />
+        <location filename="../algorithms/detectsigns.py" line="124" />
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>Modelos ONNX (*.onnx);;Todos los archivos (*.*)</translation>
     </message>
@@ -192,144 +192,144 @@
         <translation>Mirar también hacia arriba (señales elevadas y de pórtico)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="95" />
-        <source>Adds a ring of views tilted 35° up; unchecked halves the work but misses signs high above the road close to the vehicle.</source>
-        <translation>Añade un anillo de vistas inclinadas 35° hacia arriba; si se desmarca, el trabajo se reduce a la mitad, pero se pierden las señales situadas muy por encima de la calzada cerca del vehículo.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="108" />
+        <location filename="../algorithms/detectsigns.py" line="115" />
         <source>CPU threads (0: all)</source>
         <translation>Hilos de CPU (0: todos)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="108" />
+        <location filename="../algorithms/detectsigns.py" line="115" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>Hilos que onnxruntime puede usar en la CPU; 0 le permite usar todos los núcleos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="130" />
+        <location filename="../algorithms/detectsigns.py" line="137" />
         <source>Detections</source>
         <translation>Detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="134" />
+        <location filename="../algorithms/detectsigns.py" line="141" />
         <source>Number of detections</source>
         <translation>Número de detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="135" />
+        <location filename="../algorithms/detectsigns.py" line="142" />
         <source>Panoramas skipped</source>
         <translation>Panoramas omitidos</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="148" />
+        <location filename="../algorithms/detectsigns.py" line="155" />
         <source>ONNX model not found: {}</source>
         <translation>No se encontró el modelo ONNX: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="162" />
+        <location filename="../algorithms/detectsigns.py" line="169" />
         <source>{} panoramas, {} views each</source>
         <translation>{} panoramas, {} vistas cada uno</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="175" />
+        <location filename="../algorithms/detectsigns.py" line="182" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>Se omitieron {} panorama(s) que no se pudieron leer.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="191" />
+        <location filename="../algorithms/detectsigns.py" line="198" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} detecciones en {} panoramas ({} omitidos).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="183" />
+        <location filename="../algorithms/detectsigns.py" line="190" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>No se detectó ninguna señal: la capa de detecciones está vacía.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="50" />
-        <source>Cuts each station's equirectangular panorama into overlapping perspective views (a horizon ring, and an upward ring for overhead signs), runs the ONNX detector on each view, maps the boxes back to panorama pixels and merges the same sign found in two views.&lt;br&gt;&lt;br&gt;The &lt;b&gt;model&lt;/b&gt; is the bundled one when left empty, or your own ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model with NMS built in ([1, N, 6]). Class names come from the model's metadata (Ultralytics &lt;i&gt;names&lt;/i&gt;) or a labels file (one name per line).&lt;br&gt;&lt;br&gt;Output: one line per detection from the panorama centre along the ray through the box centre, &lt;i&gt;Ray length&lt;/i&gt; long, with the box (u0, v0, u1, v1 in panorama pixels; across the ±180° seam u1 exceeds the width) and the station's pose. A panorama that cannot be read is skipped with a warning and counted.&lt;br&gt;&lt;br&gt;&lt;b&gt;Sign codes&lt;/b&gt;: a second, small ONNX model (the bundled sign-code classifier, or your own) reads what each detected sign says, from a rectified crop of the panorama around its box at the panorama's own resolution: &lt;i&gt;code&lt;/i&gt; (such as DE:274[50], speed limit 50, from the codes table; &lt;i&gt;other&lt;/i&gt; when it knows none) and &lt;i&gt;code_score&lt;/i&gt; (its probability). Refine signs votes them across the views of each sign. The classifier's format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</source>
-        <translation>Corta el panorama equirrectangular de cada estación en vistas en perspectiva superpuestas (un anillo horizontal y un anillo hacia arriba para las señales elevadas), ejecuta el detector ONNX en cada vista, devuelve los recuadros a píxeles del panorama y fusiona la misma señal encontrada en dos vistas.&lt;br&gt;&lt;br&gt;El &lt;b&gt;modelo&lt;/b&gt; es el incluido si se deja vacío, o su propia exportación ONNX: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) o un modelo con NMS integrado ([1, N, 6]). Los nombres de clase provienen de los metadatos del modelo (&lt;i&gt;names&lt;/i&gt; de Ultralytics) o de un archivo de etiquetas (un nombre por línea).&lt;br&gt;&lt;br&gt;Salida: una línea por detección desde el centro del panorama a lo largo del rayo que pasa por el centro del recuadro, de &lt;i&gt;Longitud del rayo&lt;/i&gt; de largo, con el recuadro (u0, v0, u1, v1 en píxeles del panorama; a través de la costura de ±180°, u1 supera el ancho) y la pose de la estación. Un panorama que no se puede leer se omite con una advertencia y se contabiliza.&lt;br&gt;&lt;br&gt;&lt;b&gt;Códigos de señal&lt;/b&gt;: un segundo modelo ONNX, pequeño (el clasificador de códigos de señal incluido, o el suyo propio), lee lo que dice cada señal detectada a partir de un recorte rectificado del panorama alrededor de su recuadro, con la resolución propia del panorama: &lt;i&gt;code&lt;/i&gt; (como DE:274[50], límite de velocidad 50, de la tabla de códigos; &lt;i&gt;other&lt;/i&gt; cuando no conoce ninguno) y &lt;i&gt;code_score&lt;/i&gt; (su probabilidad). «Refinar y fusionar señales» los somete a votación entre las vistas de cada señal. El formato del clasificador está en models/README.md (sección &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="112" />
+        <location filename="../algorithms/detectsigns.py" line="119" />
         <source>Read the sign codes</source>
         <translation>Leer los códigos de señal</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="112" />
+        <location filename="../algorithms/detectsigns.py" line="119" />
         <source>Reads what each detected sign says (its code, such as DE:206 for stop) with the sign-code classifier. Unchecked, the code fields stay empty. When the bundled classifier is missing, the log says so and the detections get no code.</source>
         <translation>Lee lo que dice cada señal detectada (su código, como DE:206 para la señal de stop) con el clasificador de códigos de señal. Si se desmarca, los campos de código quedan vacíos. Cuando falta el clasificador incluido, el registro lo indica y las detecciones no reciben código.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="117" />
+        <location filename="../algorithms/detectsigns.py" line="124" />
         <source>Sign-code classifier (empty: the bundled one)</source>
         <translation>Clasificador de códigos de señal (vacío: el incluido)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="117" />
+        <location filename="../algorithms/detectsigns.py" line="124" />
         <source>An ONNX classifier of sign crops: float input [N, 3, S, S] (RGB, 0..1), output [N, C], the codes it answers in its metadata 'names' (each in the codes table, or 'other'). The format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;). Empty uses the classifier bundled with the plugin (models/signcodes.onnx).</source>
         <translation>Un clasificador ONNX de recortes de señales: entrada float [N, 3, S, S] (RGB, 0..1), salida [N, C], los códigos que puede responder en sus metadatos 'names' (cada uno en la tabla de códigos, o bien 'other'). El formato está en models/README.md (sección &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;). Vacío usa el clasificador incluido con el complemento (models/signcodes.onnx).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="124" />
+        <location filename="../algorithms/detectsigns.py" line="131" />
         <source>Sign codes table (empty: the bundled one)</source>
         <translation>Tabla de códigos de señal (vacío: la incluida)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="124" />
+        <location filename="../algorithms/detectsigns.py" line="131" />
         <source>The codes the classifier may answer, with their names and classes: UTF-8 text, semicolon-separated, the header code;name;class (format in models/README.md). Empty uses the bundled table of German codes (models/sign-codes-de.csv).</source>
         <translation>Los códigos que el clasificador puede responder, con sus nombres y clases: texto UTF-8, separado por punto y coma, con la cabecera code;name;class (formato en models/README.md). Vacío usa la tabla incluida de códigos alemanes (models/sign-codes-de.csv).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="124" />
+        <location filename="../algorithms/detectsigns.py" line="131" />
         <source>CSV files (*.csv *.txt);;All files (*.*)</source>
         <translation>Archivos CSV (*.csv *.txt);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="130" />
+        <location filename="../algorithms/detectsigns.py" line="137" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>Capa LineStringZ, un rayo por detección, con det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views y los campos de pose de la estación.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="195" />
+        <location filename="../algorithms/detectsigns.py" line="202" />
         <source>Sign codes read in {} of the {} detections (the others: other).</source>
         <translation>Códigos de señal leídos en {} de las {} detecciones (las demás: other).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="205" />
+        <location filename="../algorithms/detectsigns.py" line="212" />
         <source>Sign codes are not read (Read the sign codes is off).</source>
         <translation>Los códigos de señal no se leen («Leer los códigos de señal» está desactivado).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="211" />
+        <location filename="../algorithms/detectsigns.py" line="218" />
         <source>The bundled sign-code classifier {} is missing: the detections get no sign code.</source>
         <translation>Falta el clasificador de códigos de señal incluido {}: las detecciones no reciben código de señal.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="215" />
+        <location filename="../algorithms/detectsigns.py" line="222" />
         <source>Sign-code classifier not found: {}</source>
         <translation>No se encontró el clasificador de códigos de señal: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="218" />
+        <location filename="../algorithms/detectsigns.py" line="225" />
         <source>Sign codes: {}</source>
         <translation>Códigos de señal: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="99" />
+        <location filename="../algorithms/detectsigns.py" line="103" />
         <source>Skip stations closer than (m)</source>
         <translation>Omitir estaciones a menos de (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="99" />
-        <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so a few metres save detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. 0 detects in every panorama.</source>
-        <translation>Detecta solo en los panoramas cuya estación está al menos a esta distancia de la última estación en la que se detectó; las intermedias se omiten (no se leen, sin detecciones). Una señal permanece a la vista durante muchas estaciones, así que unos pocos metros ahorran tiempo de detección en proporción, pero cada señal se ve entonces desde menos estaciones: menos rayos para situarla, y una señal visible solo desde unas pocas estaciones (pequeña, u oculta tras árboles o vehículos) puede perderse. 0 detecta en todos los panoramas.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="167" />
+        <location filename="../algorithms/detectsigns.py" line="174" />
         <source>Detecting in {} of the {} panoramas: stations closer than {} m to the last one detected in are skipped.</source>
         <translation>Detectando en {} de los {} panoramas: se omiten las estaciones a menos de {} m de la última en la que se detectó.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="50" />
+        <source>Cuts each station's equirectangular panorama into overlapping perspective views (a horizon ring, and optionally an upward ring for overhead signs), runs the ONNX detector on each view, maps the boxes back to panorama pixels and merges the same sign found in two views.&lt;br&gt;&lt;br&gt;The &lt;b&gt;model&lt;/b&gt; is the bundled one when left empty, or your own ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model with NMS built in ([1, N, 6]). Class names come from the model's metadata (Ultralytics &lt;i&gt;names&lt;/i&gt;) or a labels file (one name per line).&lt;br&gt;&lt;br&gt;Output: one line per detection from the panorama centre along the ray through the box centre, &lt;i&gt;Ray length&lt;/i&gt; long, with the box (u0, v0, u1, v1 in panorama pixels; across the ±180° seam u1 exceeds the width) and the station's pose. A panorama that cannot be read is skipped with a warning and counted.&lt;br&gt;&lt;br&gt;&lt;b&gt;Sign codes&lt;/b&gt;: a second, small ONNX model (the bundled sign-code classifier, or your own) reads what each detected sign says, from a rectified crop of the panorama around its box at the panorama's own resolution: &lt;i&gt;code&lt;/i&gt; (such as DE:274[50], speed limit 50, from the codes table; &lt;i&gt;other&lt;/i&gt; when it knows none) and &lt;i&gt;code_score&lt;/i&gt; (its probability). Refine signs votes them across the views of each sign. The classifier's format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</source>
+        <translation>Corta el panorama equirrectangular de cada estación en vistas en perspectiva superpuestas (un anillo horizontal y, opcionalmente, un anillo hacia arriba para las señales elevadas), ejecuta el detector ONNX en cada vista, devuelve los recuadros a píxeles del panorama y fusiona la misma señal encontrada en dos vistas.&lt;br&gt;&lt;br&gt;El &lt;b&gt;modelo&lt;/b&gt; es el incluido si se deja vacío, o su propia exportación ONNX: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) o un modelo con NMS integrado ([1, N, 6]). Los nombres de clase provienen de los metadatos del modelo (&lt;i&gt;names&lt;/i&gt; de Ultralytics) o de un archivo de etiquetas (un nombre por línea).&lt;br&gt;&lt;br&gt;Salida: una línea por detección desde el centro del panorama a lo largo del rayo que pasa por el centro del recuadro, de &lt;i&gt;Longitud del rayo&lt;/i&gt; de largo, con el recuadro (u0, v0, u1, v1 en píxeles del panorama; a través de la costura de ±180°, u1 supera el ancho) y la pose de la estación. Un panorama que no se puede leer se omite con una advertencia y se contabiliza.&lt;br&gt;&lt;br&gt;&lt;b&gt;Códigos de señal&lt;/b&gt;: un segundo modelo ONNX, pequeño (el clasificador de códigos de señal incluido, o el suyo propio), lee lo que dice cada señal detectada a partir de un recorte rectificado del panorama alrededor de su recuadro, con la resolución propia del panorama: &lt;i&gt;code&lt;/i&gt; (como DE:274[50], límite de velocidad 50, de la tabla de códigos; &lt;i&gt;other&lt;/i&gt; cuando no conoce ninguno) y &lt;i&gt;code_score&lt;/i&gt; (su probabilidad). «Refinar y fusionar señales» los somete a votación entre las vistas de cada señal. El formato del clasificador está en models/README.md (sección &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="95" />
+        <source>Adds a ring of 6 views tilted 35° up to the 8 horizon views, for signs high above the road close to the vehicle. Off by default: a sign overhead is in the horizon views from every station more than a few metres away, and on two held-out test streets (panoramas every 5 m, 6 gantry panels each) the horizon views alone found every sign, as many as with the upward ring, in 1.3 to 1.6 times less detection time. Check it for drives with panoramas far apart.</source>
+        <translation>Añade un anillo de 6 vistas inclinadas 35° hacia arriba a las 8 vistas horizontales, para las señales situadas muy por encima de la calzada cerca del vehículo. Desactivado por defecto: una señal elevada aparece en las vistas horizontales desde cualquier estación situada a más de unos pocos metros, y en dos calles de prueba no usadas en el ajuste (panoramas cada 5 m, 6 paneles de pórtico en cada una) las vistas horizontales por sí solas encontraron todas las señales, tantas como con el anillo hacia arriba, en un tiempo de detección de 1,3 a 1,6 veces menor. Márquelo para recorridos con panoramas muy separados entre sí.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="103" />
+        <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so a few metres save detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. 0 detects in every panorama. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. For drives with denser panoramas, 5 m keeps the density those figures were measured at.</source>
+        <translation>Detecta solo en los panoramas cuya estación está al menos a esta distancia de la última estación en la que se detectó; las intermedias se omiten (no se leen, sin detecciones). Una señal permanece a la vista durante muchas estaciones, así que unos pocos metros ahorran tiempo de detección en proporción, pero cada señal se ve entonces desde menos estaciones: menos rayos para situarla, y una señal visible solo desde unas pocas estaciones (pequeña, u oculta tras árboles o vehículos) puede perderse. 0 detecta en todos los panoramas. Medido en dos calles de prueba no usadas en el ajuste, con un panorama cada 5 m: detectando en todos los panoramas se encontraron las 46 y las 45 señales; con 10 m (uno de cada dos) se perdieron 2 en cada una, y con 15 m, 11 de 46. Para recorridos con panoramas más densos, 5 m mantiene la densidad con la que se midieron esas cifras.</translation>
     </message>
 </context>
 <context>
@@ -2134,8 +2134,8 @@
         <translation>El {share:.0%} de los puntos cercanos a la vía tiene la intensidad saturada: el umbral de brillo {thr:.3f} del fondo de escala y el estado de las señales pueden carecer de sentido</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="469" />
-        <location filename="../core/cloudsource.py" line="467" />
+        <location filename="../core/cloudsource.py" line="478" />
+        <location filename="../core/cloudsource.py" line="476" />
         <source>expected a virtual point cloud: a JSON FeatureCollection (STAC ItemCollection) whose features each have assets.data.href (the tile's file, relative to the .vpc) and properties, as QGIS's Build virtual point cloud writes it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>se esperaba una nube de puntos virtual: una FeatureCollection JSON (ItemCollection de STAC) cuyas entidades tengan cada una assets.data.href (el archivo de la tesela, relativo al .vpc) y properties, tal como la escribe «Construir nube de puntos virtual» de QGIS</translation>
@@ -2147,25 +2147,25 @@
         <translation>sin SRC</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="428" />
+        <location filename="../core/cloudsource.py" line="437" />
         <source>The folder {path} holds no LAS or LAZ file (*.las, *.laz); expected a point cloud file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La carpeta {path} no contiene ningún archivo LAS ni LAZ (*.las, *.laz); se esperaba un archivo de nube de puntos, una carpeta de teselas LAS/LAZ o una nube de puntos virtual (.vpc)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="471" />
+        <location filename="../core/cloudsource.py" line="480" />
         <source>Cannot read {path}: the JSON is not an object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el JSON no es un objeto; {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="474" />
+        <location filename="../core/cloudsource.py" line="483" />
         <source>Cannot read {path}: it is not a 'FeatureCollection' with a 'features' list; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: no es una 'FeatureCollection' con una lista 'features'; {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="477" />
+        <location filename="../core/cloudsource.py" line="486" />
         <source>The virtual point cloud {path} lists no tile</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} no enumera ninguna tesela</translation>
@@ -2178,20 +2178,20 @@
         <translation>{path} no tiene la dimensión {names} (formato de punto {fmt})</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="421" />
+        <location filename="../core/cloudsource.py" line="430" />
         <source>Cannot read the folder {path}: {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer la carpeta {path}: {detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="460" />
+        <location filename="../core/cloudsource.py" line="469" />
         <location filename="../core/pointcloud.py" line="65" />
         <source>Cannot read {path}: the file does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo no existe</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="462" />
+        <location filename="../core/cloudsource.py" line="471" />
         <location filename="../core/ground/pdal.py" line="306" />
         <location filename="../core/pointcloud.py" line="67" />
         <location filename="../core/pointcloud.py" line="110" />
@@ -2200,61 +2200,61 @@
         <translation>No se puede leer {path}: {detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="466" />
+        <location filename="../core/cloudsource.py" line="475" />
         <source>Cannot read {path}: it is not valid JSON ({detail}); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: no es un JSON válido ({detail}); {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="484" />
+        <location filename="../core/cloudsource.py" line="493" />
         <source>Cannot read {path}: feature {feature} has no 'assets' object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: la entidad {feature} no tiene objeto 'assets'; {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="492" />
+        <location filename="../core/cloudsource.py" line="501" />
         <source>Cannot read {path}: feature {feature} has no asset with an 'href' (assets.data.href); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: la entidad {feature} no tiene ningún asset con 'href' (assets.data.href); {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="496" />
+        <location filename="../core/cloudsource.py" line="505" />
         <source>The virtual point cloud {path} lists the remote tile {href}: only local files are read; download the tiles and build the virtual point cloud again</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} enumera la tesela remota {href}: solo se leen archivos locales; descargue las teselas y vuelva a construir la nube de puntos virtual</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="502" />
+        <location filename="../core/cloudsource.py" line="511" />
         <source>The virtual point cloud {path} lists the tile {tile} twice (features {first} and {second})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} enumera la tesela {tile} dos veces (entidades {first} y {second})</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="506" />
+        <location filename="../core/cloudsource.py" line="515" />
         <source>The virtual point cloud {path} lists the tile {tile} (feature {feature}), which does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} enumera la tesela {tile} (entidad {feature}), que no existe</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="521" />
+        <location filename="../core/cloudsource.py" line="530" />
         <source>The tiles of {path} cannot be read as one cloud: {tile_a} has point format {fmt_a}, {tile_b} point format {fmt_b}; every tile needs the same point format (convert them to one, e.g. with PDAL's translate)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Las teselas de {path} no se pueden leer como una sola nube: {tile_a} tiene el formato de punto {fmt_a}, {tile_b} el formato de punto {fmt_b}; todas las teselas necesitan el mismo formato de punto (conviértalas a uno solo, p. ej. con translate de PDAL)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="527" />
+        <location filename="../core/cloudsource.py" line="536" />
         <source>The tiles of {path} are in different CRSs: {tile_a} in {crs_a}, {tile_b} in {crs_b}; every tile must be in the same CRS (reproject them to one first)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Las teselas de {path} están en SRC distintos: {tile_a} en {crs_a}, {tile_b} en {crs_b}; todas las teselas deben estar en el mismo SRC (reproyéctelas antes a uno solo)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="556" />
+        <location filename="../core/cloudsource.py" line="565" />
         <source>The points cannot be written with the first tile's scale {scale} and offset {offset} in {axis}: their coordinates are too far from it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Los puntos no se pueden escribir con la escala {scale} y el desplazamiento {offset} de la primera tesela en {axis}: sus coordenadas están demasiado lejos de ellos</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="391" />
+        <location filename="../core/cloudsource.py" line="400" />
         <location filename="../core/ground/pdal.py" line="310" />
         <location filename="../core/ground/pdal.py" line="312" />
         <location filename="../core/ground/pdal.py" line="308" />
@@ -2616,7 +2616,7 @@
     </message>
     <message>
         <location filename="../core/ground/engine.py" line="192" />
-        <location filename="../core/ground/tiled.py" line="320" />
+        <location filename="../core/ground/tiled.py" line="316" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo está dañado ({detail})</translation>
@@ -2985,115 +2985,115 @@
         <translation>{path} no tiene puntos dentro de los troncos de visión de las detecciones; no se encontró ningún candidato</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="122" />
+        <location filename="../core/refine.py" line="130" />
         <source>curved surface (a convex mirror?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>superficie curva (¿un espejo convexo?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="123" />
+        <location filename="../core/refine.py" line="131" />
         <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>parte de una superficie plana mayor (¿una imagen en una valla publicitaria o una pared?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="983" />
+        <location filename="../core/refine.py" line="991" />
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} señales a partir de {candidates} candidatos ({from_images} situadas solo a partir de las imágenes)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1430" />
+        <location filename="../core/refine.py" line="1516" />
         <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{coded} de {signs} señales tienen código de señal; {from_code} tomaron su clase del código, {dropped} códigos se descartaron por la votación de clase (code_check)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1439" />
+        <location filename="../core/refine.py" line="1525" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>la altura de las estaciones menos {height} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="393" />
+        <location filename="../core/refine.py" line="401" />
         <source>Detection {det_id} has the sign code {code}, which is not in the sign codes table {table}: give the codes table the classifier was run with</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La detección {det_id} tiene el código de señal {code}, que no está en la tabla de códigos de señal {table}: indique la tabla de códigos con la que se ejecutó el clasificador</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="962" />
+        <location filename="../core/refine.py" line="970" />
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El radio de fusión debe ser positivo; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="965" />
+        <location filename="../core/refine.py" line="973" />
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay candidatos que refinar; la capa de señales está vacía</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1239" />
+        <location filename="../core/refine.py" line="1325" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids}: {reason}; situados en la mediana de los candidatos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1379" />
+        <location filename="../core/refine.py" line="1465" />
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: un panel de {width:.2f} x {height:.2f} m es demasiado grande para una señal {sign_class} (¿una valla publicitaria?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1384" />
+        <location filename="../core/refine.py" line="1470" />
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: vistos en una sola panorámica, con una puntuación de {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="493" />
+        <location filename="../core/refine.py" line="501" />
         <source>too few points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="496" />
+        <location filename="../core/refine.py" line="504" />
         <source>too few points in the boxes</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos en los recuadros</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="502" />
+        <location filename="../core/refine.py" line="510" />
         <source>no near-vertical plane</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>ningún plano casi vertical</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="506" />
+        <location filename="../core/refine.py" line="514" />
         <source>too few planar points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos planos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1233" />
+        <location filename="../core/refine.py" line="1319" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>sin nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1236" />
+        <location filename="../core/refine.py" line="1322" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: {reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1440" />
+        <location filename="../core/refine.py" line="1526" />
         <source>the lowest points below the sign</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>los puntos más bajos bajo la señal</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1444" />
+        <location filename="../core/refine.py" line="1530" />
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} señal(es) no tienen puntos de suelo (clase 2) a menos de {radius} m: su altura se mide desde {source}</translation>

@@ -117,7 +117,7 @@
         <translation>在每张全景图上运行 ONNX 标志检测器；每个检测到的标志生成一条射线。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="155" />
+        <location filename="../algorithms/detectsigns.py" line="162" />
         <source>Panorama stations</source>
         <translation>全景站点</translation>
     </message>
@@ -137,7 +137,7 @@
         <translation>YOLO 系列 ONNX 检测器。留空则使用插件内置的模型。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="117" />
+        <location filename="../algorithms/detectsigns.py" line="124" />
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>ONNX 模型 (*.onnx);;所有文件 (*.*)</translation>
     </message>
@@ -192,144 +192,144 @@
         <translation>同时向上看（悬挂式和门架式标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="95" />
-        <source>Adds a ring of views tilted 35° up; unchecked halves the work but misses signs high above the road close to the vehicle.</source>
-        <translation>增加一圈上仰 35° 的视图；不勾选可将工作量减半，但会漏掉车辆附近高悬于道路上方的标志。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="108" />
+        <location filename="../algorithms/detectsigns.py" line="115" />
         <source>CPU threads (0: all)</source>
         <translation>CPU 线程数（0：全部）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="108" />
+        <location filename="../algorithms/detectsigns.py" line="115" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>onnxruntime 在 CPU 上可使用的线程数；0 表示使用所有核心。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="130" />
+        <location filename="../algorithms/detectsigns.py" line="137" />
         <source>Detections</source>
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="134" />
+        <location filename="../algorithms/detectsigns.py" line="141" />
         <source>Number of detections</source>
         <translation>检测数量</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="135" />
+        <location filename="../algorithms/detectsigns.py" line="142" />
         <source>Panoramas skipped</source>
         <translation>跳过的全景图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="148" />
+        <location filename="../algorithms/detectsigns.py" line="155" />
         <source>ONNX model not found: {}</source>
         <translation>未找到 ONNX 模型：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="162" />
+        <location filename="../algorithms/detectsigns.py" line="169" />
         <source>{} panoramas, {} views each</source>
         <translation>{} 张全景图，每张 {} 个视图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="175" />
+        <location filename="../algorithms/detectsigns.py" line="182" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>跳过了 {} 张无法读取的全景图。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="191" />
+        <location filename="../algorithms/detectsigns.py" line="198" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} 个检测，来自 {} 张全景图（跳过 {} 张）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="183" />
+        <location filename="../algorithms/detectsigns.py" line="190" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>未检测到任何标志：检测图层为空。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="50" />
-        <source>Cuts each station's equirectangular panorama into overlapping perspective views (a horizon ring, and an upward ring for overhead signs), runs the ONNX detector on each view, maps the boxes back to panorama pixels and merges the same sign found in two views.&lt;br&gt;&lt;br&gt;The &lt;b&gt;model&lt;/b&gt; is the bundled one when left empty, or your own ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model with NMS built in ([1, N, 6]). Class names come from the model's metadata (Ultralytics &lt;i&gt;names&lt;/i&gt;) or a labels file (one name per line).&lt;br&gt;&lt;br&gt;Output: one line per detection from the panorama centre along the ray through the box centre, &lt;i&gt;Ray length&lt;/i&gt; long, with the box (u0, v0, u1, v1 in panorama pixels; across the ±180° seam u1 exceeds the width) and the station's pose. A panorama that cannot be read is skipped with a warning and counted.&lt;br&gt;&lt;br&gt;&lt;b&gt;Sign codes&lt;/b&gt;: a second, small ONNX model (the bundled sign-code classifier, or your own) reads what each detected sign says, from a rectified crop of the panorama around its box at the panorama's own resolution: &lt;i&gt;code&lt;/i&gt; (such as DE:274[50], speed limit 50, from the codes table; &lt;i&gt;other&lt;/i&gt; when it knows none) and &lt;i&gt;code_score&lt;/i&gt; (its probability). Refine signs votes them across the views of each sign. The classifier's format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</source>
-        <translation>将每个站点的等距柱状全景图切分为相互重叠的透视视图（一圈水平视图，以及一圈用于悬挂式标志的上视视图），在每个视图上运行 ONNX 检测器，将检测框映射回全景图像素，并合并在两个视图中找到的同一标志。&lt;br&gt;&lt;br&gt;&lt;b&gt;模型&lt;/b&gt;留空时使用内置模型，也可以是您自己导出的 ONNX 模型：Ultralytics YOLOv8/11（[1, 4+nc, N]）、YOLOv5/7（[1, N, 5+nc]）或内置 NMS 的模型（[1, N, 6]）。类别名称来自模型元数据（Ultralytics &lt;i&gt;names&lt;/i&gt;）或标签文件（每行一个名称）。&lt;br&gt;&lt;br&gt;输出：每个检测一条线，从全景图中心沿穿过检测框中心的射线延伸，长度为&lt;i&gt;射线长度&lt;/i&gt;，附带检测框（u0、v0、u1、v1，单位为全景图像素；跨越 ±180° 接缝时 u1 大于图像宽度）和站点位姿。无法读取的全景图将被跳过，并给出警告和计数。&lt;br&gt;&lt;br&gt;&lt;b&gt;标志代码&lt;/b&gt;：第二个小型 ONNX 模型（内置的标志代码分类器或您自己的分类器）从全景图中围绕检测框、按全景图原始分辨率截取的校正裁剪图像中读取每个检测到的标志的内容：&lt;i&gt;code&lt;/i&gt;（例如 DE:274[50]，即限速 50，取自代码表；不认识时为 &lt;i&gt;other&lt;/i&gt;）和 &lt;i&gt;code_score&lt;/i&gt;（其概率）。“精化与合并标志”在每个标志的各视图之间对其进行投票。分类器的格式见 models/README.md（&lt;i&gt;Sign-code classifier: the format&lt;/i&gt; 一节）。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="112" />
+        <location filename="../algorithms/detectsigns.py" line="119" />
         <source>Read the sign codes</source>
         <translation>读取标志代码</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="112" />
+        <location filename="../algorithms/detectsigns.py" line="119" />
         <source>Reads what each detected sign says (its code, such as DE:206 for stop) with the sign-code classifier. Unchecked, the code fields stay empty. When the bundled classifier is missing, the log says so and the detections get no code.</source>
         <translation>使用标志代码分类器读取每个检测到的标志的内容（其代码，例如 DE:206 表示停车让行）。不勾选时代码字段保持为空。内置分类器缺失时，日志会加以说明，检测结果不带代码。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="117" />
+        <location filename="../algorithms/detectsigns.py" line="124" />
         <source>Sign-code classifier (empty: the bundled one)</source>
         <translation>标志代码分类器（留空：使用内置分类器）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="117" />
+        <location filename="../algorithms/detectsigns.py" line="124" />
         <source>An ONNX classifier of sign crops: float input [N, 3, S, S] (RGB, 0..1), output [N, C], the codes it answers in its metadata 'names' (each in the codes table, or 'other'). The format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;). Empty uses the classifier bundled with the plugin (models/signcodes.onnx).</source>
         <translation>标志裁剪图像的 ONNX 分类器：float 输入 [N, 3, S, S]（RGB，0..1），输出 [N, C]，其可给出的代码写在元数据 'names' 中（每个代码都须在代码表中，或为 'other'）。格式见 models/README.md（&lt;i&gt;Sign-code classifier: the format&lt;/i&gt; 一节）。留空则使用插件内置的分类器（models/signcodes.onnx）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="124" />
+        <location filename="../algorithms/detectsigns.py" line="131" />
         <source>Sign codes table (empty: the bundled one)</source>
         <translation>标志代码表（留空：使用内置代码表）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="124" />
+        <location filename="../algorithms/detectsigns.py" line="131" />
         <source>The codes the classifier may answer, with their names and classes: UTF-8 text, semicolon-separated, the header code;name;class (format in models/README.md). Empty uses the bundled table of German codes (models/sign-codes-de.csv).</source>
         <translation>分类器可给出的代码及其名称和类别：UTF-8 文本，以分号分隔，表头为 code;name;class（格式见 models/README.md）。留空则使用内置的德国代码表（models/sign-codes-de.csv）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="124" />
+        <location filename="../algorithms/detectsigns.py" line="131" />
         <source>CSV files (*.csv *.txt);;All files (*.*)</source>
         <translation>CSV 文件 (*.csv *.txt);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="130" />
+        <location filename="../algorithms/detectsigns.py" line="137" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>LineStringZ 图层，每个检测一条射线，包含字段 det_id、station_id、image、class、score、code、code_score、u0、v0、u1、v1、n_views 以及站点的位姿字段。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="195" />
+        <location filename="../algorithms/detectsigns.py" line="202" />
         <source>Sign codes read in {} of the {} detections (the others: other).</source>
         <translation>{} 个检测读出了标志代码（共 {} 个检测；其余为 other）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="205" />
+        <location filename="../algorithms/detectsigns.py" line="212" />
         <source>Sign codes are not read (Read the sign codes is off).</source>
         <translation>不读取标志代码（“读取标志代码”未勾选）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="211" />
+        <location filename="../algorithms/detectsigns.py" line="218" />
         <source>The bundled sign-code classifier {} is missing: the detections get no sign code.</source>
         <translation>内置标志代码分类器 {} 缺失：检测结果不带标志代码。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="215" />
+        <location filename="../algorithms/detectsigns.py" line="222" />
         <source>Sign-code classifier not found: {}</source>
         <translation>未找到标志代码分类器：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="218" />
+        <location filename="../algorithms/detectsigns.py" line="225" />
         <source>Sign codes: {}</source>
         <translation>标志代码：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="99" />
+        <location filename="../algorithms/detectsigns.py" line="103" />
         <source>Skip stations closer than (m)</source>
         <translation>跳过间距小于此值的站点 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="99" />
-        <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so a few metres save detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. 0 detects in every panorama.</source>
-        <translation>仅在其站点与上一个执行检测的站点相距至少此距离的全景图中进行检测；其间的全景图将被跳过（不读取，无检测结果）。一个标志会在许多站点中保持可见，因此几米的间距可按比例节省检测时间，但每个标志被看到的站点也随之减少：用于定位它的射线更少，而只在少数站点可见的标志（较小，或被树木、车辆遮挡）可能会漏检。0 表示在每张全景图中检测。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="167" />
+        <location filename="../algorithms/detectsigns.py" line="174" />
         <source>Detecting in {} of the {} panoramas: stations closer than {} m to the last one detected in are skipped.</source>
         <translation>在 {} 张全景图（共 {} 张）中检测：距上一个检测站点不足 {} m 的站点将被跳过。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="50" />
+        <source>Cuts each station's equirectangular panorama into overlapping perspective views (a horizon ring, and optionally an upward ring for overhead signs), runs the ONNX detector on each view, maps the boxes back to panorama pixels and merges the same sign found in two views.&lt;br&gt;&lt;br&gt;The &lt;b&gt;model&lt;/b&gt; is the bundled one when left empty, or your own ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model with NMS built in ([1, N, 6]). Class names come from the model's metadata (Ultralytics &lt;i&gt;names&lt;/i&gt;) or a labels file (one name per line).&lt;br&gt;&lt;br&gt;Output: one line per detection from the panorama centre along the ray through the box centre, &lt;i&gt;Ray length&lt;/i&gt; long, with the box (u0, v0, u1, v1 in panorama pixels; across the ±180° seam u1 exceeds the width) and the station's pose. A panorama that cannot be read is skipped with a warning and counted.&lt;br&gt;&lt;br&gt;&lt;b&gt;Sign codes&lt;/b&gt;: a second, small ONNX model (the bundled sign-code classifier, or your own) reads what each detected sign says, from a rectified crop of the panorama around its box at the panorama's own resolution: &lt;i&gt;code&lt;/i&gt; (such as DE:274[50], speed limit 50, from the codes table; &lt;i&gt;other&lt;/i&gt; when it knows none) and &lt;i&gt;code_score&lt;/i&gt; (its probability). Refine signs votes them across the views of each sign. The classifier's format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</source>
+        <translation>将每个站点的等距柱状全景图切分为相互重叠的透视视图（一圈水平视图，以及可选的一圈用于悬挂式标志的上视视图），在每个视图上运行 ONNX 检测器，将检测框映射回全景图像素，并合并在两个视图中找到的同一标志。&lt;br&gt;&lt;br&gt;&lt;b&gt;模型&lt;/b&gt;留空时使用内置模型，也可以是您自己导出的 ONNX 模型：Ultralytics YOLOv8/11（[1, 4+nc, N]）、YOLOv5/7（[1, N, 5+nc]）或内置 NMS 的模型（[1, N, 6]）。类别名称来自模型元数据（Ultralytics &lt;i&gt;names&lt;/i&gt;）或标签文件（每行一个名称）。&lt;br&gt;&lt;br&gt;输出：每个检测一条线，从全景图中心沿穿过检测框中心的射线延伸，长度为&lt;i&gt;射线长度&lt;/i&gt;，附带检测框（u0、v0、u1、v1，单位为全景图像素；跨越 ±180° 接缝时 u1 大于图像宽度）和站点位姿。无法读取的全景图将被跳过，并给出警告和计数。&lt;br&gt;&lt;br&gt;&lt;b&gt;标志代码&lt;/b&gt;：第二个小型 ONNX 模型（内置的标志代码分类器或您自己的分类器）从全景图中围绕检测框、按全景图原始分辨率截取的校正裁剪图像中读取每个检测到的标志的内容：&lt;i&gt;code&lt;/i&gt;（例如 DE:274[50]，即限速 50，取自代码表；不认识时为 &lt;i&gt;other&lt;/i&gt;）和 &lt;i&gt;code_score&lt;/i&gt;（其概率）。“精化与合并标志”在每个标志的各视图之间对其进行投票。分类器的格式见 models/README.md（&lt;i&gt;Sign-code classifier: the format&lt;/i&gt; 一节）。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="95" />
+        <source>Adds a ring of 6 views tilted 35° up to the 8 horizon views, for signs high above the road close to the vehicle. Off by default: a sign overhead is in the horizon views from every station more than a few metres away, and on two held-out test streets (panoramas every 5 m, 6 gantry panels each) the horizon views alone found every sign, as many as with the upward ring, in 1.3 to 1.6 times less detection time. Check it for drives with panoramas far apart.</source>
+        <translation>在 8 个水平视图之外增加一圈 6 个上仰 35° 的视图，用于车辆附近高悬于道路上方的标志。默认不勾选：从相距几米以上的每个站点看，悬挂式标志都会出现在水平视图中；在两条未参与调参的测试街道上（每 5 m 一张全景图，各有 6 块门架标志牌），仅用水平视图就找到了所有标志，与加上上视视图时一样多，而检测时间仅为后者的 1/1.3 至 1/1.6。全景图间距较大的行驶采集请勾选此项。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="103" />
+        <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so a few metres save detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. 0 detects in every panorama. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. For drives with denser panoramas, 5 m keeps the density those figures were measured at.</source>
+        <translation>仅在其站点与上一个执行检测的站点相距至少此距离的全景图中进行检测；其间的全景图将被跳过（不读取，无检测结果）。一个标志会在许多站点中保持可见，因此几米的间距可按比例节省检测时间，但每个标志被看到的站点也随之减少：用于定位它的射线更少，而只在少数站点可见的标志（较小，或被树木、车辆遮挡）可能会漏检。0 表示在每张全景图中检测。在两条未参与调参的测试街道上测得（每 5 m 一张全景图）：在每张全景图中检测时，分别找到了全部 46 个和 45 个标志；10 m（每隔一张）时各漏掉 2 个，15 m 时 46 个中漏掉 11 个。对于全景图更密集的行驶采集，5 m 可保持测得这些数据时的全景图密度。</translation>
     </message>
 </context>
 <context>
@@ -2134,8 +2134,8 @@
         <translation>道路附近 {share:.0%} 的点强度饱和：满量程的亮度阈值 {thr:.3f} 以及标志的状态可能没有意义</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="469" />
-        <location filename="../core/cloudsource.py" line="467" />
+        <location filename="../core/cloudsource.py" line="478" />
+        <location filename="../core/cloudsource.py" line="476" />
         <source>expected a virtual point cloud: a JSON FeatureCollection (STAC ItemCollection) whose features each have assets.data.href (the tile's file, relative to the .vpc) and properties, as QGIS's Build virtual point cloud writes it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>应为虚拟点云：一个 JSON FeatureCollection（STAC ItemCollection），其每个要素都有 assets.data.href（分块文件，相对于 .vpc 的路径）和 properties，即 QGIS 的“构建虚拟点云”写出的格式</translation>
@@ -2147,25 +2147,25 @@
         <translation>无坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="428" />
+        <location filename="../core/cloudsource.py" line="437" />
         <source>The folder {path} holds no LAS or LAZ file (*.las, *.laz); expected a point cloud file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>文件夹 {path} 中没有 LAS 或 LAZ 文件（*.las、*.laz）；应为点云文件、LAS/LAZ 分块文件夹或虚拟点云（.vpc）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="471" />
+        <location filename="../core/cloudsource.py" line="480" />
         <source>Cannot read {path}: the JSON is not an object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：该 JSON 不是对象；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="474" />
+        <location filename="../core/cloudsource.py" line="483" />
         <source>Cannot read {path}: it is not a 'FeatureCollection' with a 'features' list; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：不是带有 'features' 列表的 'FeatureCollection'；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="477" />
+        <location filename="../core/cloudsource.py" line="486" />
         <source>The virtual point cloud {path} lists no tile</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 未列出任何分块</translation>
@@ -2178,20 +2178,20 @@
         <translation>{path} 没有维度 {names}（点格式 {fmt}）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="421" />
+        <location filename="../core/cloudsource.py" line="430" />
         <source>Cannot read the folder {path}: {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取文件夹 {path}：{detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="460" />
+        <location filename="../core/cloudsource.py" line="469" />
         <location filename="../core/pointcloud.py" line="65" />
         <source>Cannot read {path}: the file does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件不存在</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="462" />
+        <location filename="../core/cloudsource.py" line="471" />
         <location filename="../core/ground/pdal.py" line="306" />
         <location filename="../core/pointcloud.py" line="67" />
         <location filename="../core/pointcloud.py" line="110" />
@@ -2200,61 +2200,61 @@
         <translation>无法读取 {path}：{detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="466" />
+        <location filename="../core/cloudsource.py" line="475" />
         <source>Cannot read {path}: it is not valid JSON ({detail}); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：不是有效的 JSON（{detail}）；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="484" />
+        <location filename="../core/cloudsource.py" line="493" />
         <source>Cannot read {path}: feature {feature} has no 'assets' object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：要素 {feature} 没有 'assets' 对象；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="492" />
+        <location filename="../core/cloudsource.py" line="501" />
         <source>Cannot read {path}: feature {feature} has no asset with an 'href' (assets.data.href); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：要素 {feature} 没有带 'href' 的 asset（assets.data.href）；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="496" />
+        <location filename="../core/cloudsource.py" line="505" />
         <source>The virtual point cloud {path} lists the remote tile {href}: only local files are read; download the tiles and build the virtual point cloud again</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 列出了远程分块 {href}：只读取本地文件；请下载这些分块并重新构建虚拟点云</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="502" />
+        <location filename="../core/cloudsource.py" line="511" />
         <source>The virtual point cloud {path} lists the tile {tile} twice (features {first} and {second})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 两次列出分块 {tile}（要素 {first} 和 {second}）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="506" />
+        <location filename="../core/cloudsource.py" line="515" />
         <source>The virtual point cloud {path} lists the tile {tile} (feature {feature}), which does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 列出的分块 {tile}（要素 {feature}）不存在</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="521" />
+        <location filename="../core/cloudsource.py" line="530" />
         <source>The tiles of {path} cannot be read as one cloud: {tile_a} has point format {fmt_a}, {tile_b} point format {fmt_b}; every tile needs the same point format (convert them to one, e.g. with PDAL's translate)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 的分块无法作为一个点云读取：{tile_a} 的点格式为 {fmt_a}，{tile_b} 的点格式为 {fmt_b}；所有分块必须使用相同的点格式（请将其转换为同一格式，例如使用 PDAL 的 translate）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="527" />
+        <location filename="../core/cloudsource.py" line="536" />
         <source>The tiles of {path} are in different CRSs: {tile_a} in {crs_a}, {tile_b} in {crs_b}; every tile must be in the same CRS (reproject them to one first)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 的分块位于不同的坐标参考系中：{tile_a} 为 {crs_a}，{tile_b} 为 {crs_b}；所有分块必须位于同一坐标参考系中（请先将其重投影到同一坐标参考系）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="556" />
+        <location filename="../core/cloudsource.py" line="565" />
         <source>The points cannot be written with the first tile's scale {scale} and offset {offset} in {axis}: their coordinates are too far from it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法以第一个分块在 {axis} 方向的缩放 {scale} 和偏移 {offset} 写入这些点：其坐标离偏移太远</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="391" />
+        <location filename="../core/cloudsource.py" line="400" />
         <location filename="../core/ground/pdal.py" line="310" />
         <location filename="../core/ground/pdal.py" line="312" />
         <location filename="../core/ground/pdal.py" line="308" />
@@ -2616,7 +2616,7 @@
     </message>
     <message>
         <location filename="../core/ground/engine.py" line="192" />
-        <location filename="../core/ground/tiled.py" line="320" />
+        <location filename="../core/ground/tiled.py" line="316" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件已损坏（{detail}）</translation>
@@ -2985,115 +2985,115 @@
         <translation>{path} 在检测结果的视锥内没有点；未找到候选</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="122" />
+        <location filename="../core/refine.py" line="130" />
         <source>curved surface (a convex mirror?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>曲面（凸面镜？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="123" />
+        <location filename="../core/refine.py" line="131" />
         <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>较大平面的一部分（广告牌或墙上的图案？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="983" />
+        <location filename="../core/refine.py" line="991" />
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>从 {candidates} 个候选得到 {signs} 个标志（{from_images} 个仅由图像定位）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1430" />
+        <location filename="../core/refine.py" line="1516" />
         <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} 个标志中有 {coded} 个带有标志代码；{from_code} 个的类别取自代码，{dropped} 个代码因类别投票被舍弃（code_check）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1439" />
+        <location filename="../core/refine.py" line="1525" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>站点高度减去 {height} 米</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="393" />
+        <location filename="../core/refine.py" line="401" />
         <source>Detection {det_id} has the sign code {code}, which is not in the sign codes table {table}: give the codes table the classifier was run with</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id} 的标志代码 {code} 不在标志代码表 {table} 中：请提供运行分类器时所用的代码表</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="962" />
+        <location filename="../core/refine.py" line="970" />
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>合并半径必须为正数，实际为 {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="965" />
+        <location filename="../core/refine.py" line="973" />
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有要精化的候选；标志图层为空</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1239" />
+        <location filename="../core/refine.py" line="1325" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>候选 {ids}：{reason}；位置取候选的中位数</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1379" />
+        <location filename="../core/refine.py" line="1465" />
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{width:.2f} x {height:.2f} 米的面板对 {sign_class} 标志来说太大（广告牌？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1384" />
+        <location filename="../core/refine.py" line="1470" />
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：只在一张全景图中出现，得分为 {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="493" />
+        <location filename="../core/refine.py" line="501" />
         <source>too few points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="496" />
+        <location filename="../core/refine.py" line="504" />
         <source>too few points in the boxes</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>框内的点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="502" />
+        <location filename="../core/refine.py" line="510" />
         <source>no near-vertical plane</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有近似竖直的平面</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="506" />
+        <location filename="../core/refine.py" line="514" />
         <source>too few planar points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>平面点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1233" />
+        <location filename="../core/refine.py" line="1319" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有点云</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1236" />
+        <location filename="../core/refine.py" line="1322" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1440" />
+        <location filename="../core/refine.py" line="1526" />
         <source>the lowest points below the sign</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志下方的最低点</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1444" />
+        <location filename="../core/refine.py" line="1530" />
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 个标志在 {radius} 米内没有地面点（类别 2）：其高度从{source}起算</translation>
