@@ -142,7 +142,7 @@ def local_features(xyz: np.ndarray, k: int = FEATURE_NEIGHBOURS
     tree = cKDTree(xyz)
     for b0 in range(0, n, FEATURE_BLOCK):
         b1 = min(n, b0 + FEATURE_BLOCK)
-        _, idx = tree.query(xyz[b0:b1], k=k)
+        _, idx = tree.query(xyz[b0:b1], k=k, workers=-1)
         nb = xyz[idx]                                   # (m, k, 3)
         rel = nb - nb.mean(axis=1, keepdims=True)
         cov = np.einsum("mki,mkj->mij", rel, rel) / k

@@ -244,7 +244,7 @@ class GroundModel:
         if self.tree is None:
             return np.full(len(xy), np.nan)
         k = min(GROUND_NEIGHBOURS, len(self.xyz))
-        d, idx = self.tree.query(xy, k=k)
+        d, idx = self.tree.query(xy, k=k, workers=-1)
         d, idx = d.reshape(len(xy), k), idx.reshape(len(xy), k)
         z = self.xyz[idx, 2]
         z = np.where(d <= GROUND_MAX_DISTANCE_M, z, np.nan)

@@ -114,7 +114,7 @@ class DriveAxis:
         xy = np.asarray(xy, dtype=np.float64)[:, :2]
         if len(xy) == 0:
             return np.zeros(0), np.zeros(0), np.zeros(0, np.int64)
-        _, idx = self._tree.query(xy)
+        _, idx = self._tree.query(xy, workers=-1)
         rel = xy - self.xyz_world[idx, :2]
         t = self.tangent_xy[idx]
         along = np.einsum("ij,ij->i", rel, t)
@@ -140,7 +140,7 @@ class DriveAxis:
                     out[by_time, k] = np.interp(tt, self.times, self._vertex_xyz[:, k])
         rest = ~by_time
         if rest.any():
-            _, idx = self._tree.query(xyz_world[rest, :2])
+            _, idx = self._tree.query(xyz_world[rest, :2], workers=-1)
             out[rest] = self.xyz_world[idx]
         return out
 
