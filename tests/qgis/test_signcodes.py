@@ -70,8 +70,9 @@ def inputs(qgis_process, work):
 
 
 def detect(qgis_process, inputs, out, **extra):
+    # the detector boxes the centre of every view: 14 a panorama with the upward ring
     parameters = dict(STATIONS=inputs["stations"], MODEL=inputs["detector"], CLASSIFIER=inputs["classifier"],
-                      CODES_TABLE=inputs["table"], MIN_SIZE=0, OUTPUT=str(out))
+                      CODES_TABLE=inputs["table"], MIN_SIZE=0, UPWARD_VIEWS=True, OUTPUT=str(out))
     parameters.update(extra)
     return qgis_process.run("roadsigns:detectsigns", **{k: v for k, v in parameters.items() if v is not None})
 
