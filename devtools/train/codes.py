@@ -38,6 +38,7 @@ import signal
 import sys
 import time
 from collections import defaultdict
+from typing import Optional
 
 import cv2
 import numpy as np
@@ -80,11 +81,22 @@ def gtsrb_codes(path: str = GTSRB_CODES_PATH):
 
 # --- cutting -------------------------------------------------------------------------------
 
+def set_crop_px(px: int) -> None:
+    """Train or evaluate at crops of ``px`` x ``px`` (``--crop-px``; default :data:`CROP_PX`):
+    the network is size independent (global pooling), the exported model's input is ``px``,
+    and the plugin cuts crops at its model's input size. Set before the workers start."""
+    global CROP_PX
+    if px < 16:
+        raise SystemExit(f"--crop-px {px}: at least 16")
+    CROP_PX = int(px)
+
+
 def crop_square(image: np.ndarray, box, margin: float = CROP_MARGIN, scale: float = 1.0,
-                shift=(0.0, 0.0), angle_deg: float = 0.0, out_px: int = CROP_PX) -> np.ndarray:
+                shift=(0.0, 0.0), angle_deg: float = 0.0, out_px: Optional[int] = None) -> np.ndarray:
     """A square around ``box`` (x0, y0, x1, y1, exclusive ends) like the chain's crop: side =
     longer box side x (1 + 2 margin) x ``scale``, centre moved by ``shift`` x side, turned by
-    ``angle_deg``; cut at native density (borders reflected), then resized to ``out_px``."""
+    ``angle_deg``; cut at native density (borders reflected), then resized to ``out_px``
+    (default :data:`CROP_PX`)."""
     x0, y0, x1, y1 = (float(v) for v in box)
     side = max(x1 - x0, y1 - y0) * (1.0 + 2.0 * margin) * scale
     cx = 0.5 * (x0 + x1) + shift[0] * side
@@ -96,7 +108,8 @@ def crop_square(image: np.ndarray, box, margin: float = CROP_MARGIN, scale: floa
     return resize_to(native, out_px)
 
 
-def resize_to(crop: np.ndarray, out_px: int = CROP_PX) -> np.ndarray:
+def resize_to(crop: np.ndarray, out_px: Optional[int] = None) -> np.ndarray:
+    out_px = out_px or CROP_PX
     interp = cv2.INTER_AREA if crop.shape[0] > out_px else cv2.INTER_LINEAR
     return cv2.resize(crop, (out_px, out_px), interpolation=interp)
 
@@ -453,7 +466,7 @@ def build_net(n_classes: int, widths=(32, 64, 96, 160)):
     c1, c2, c3, c4 = widths
 
     class CodeNet(nn.Module):
-        """RGB 0..1 ``[N, 3, 32, 32]`` -> logits; normalisation inside."""
+        """RGB 0..1 ``[N, 3, S, S]`` (S = :data:`CROP_PX`; any size works) -> logits; normalisation inside."""
 
         def __init__(self):
             super().__init__()
@@ -564,7 +577,9 @@ class BatchFeeder:
 
 def train(out_path: str, minutes: float, work: str, threads: int = 1, batch: int = 128, lr: float = 3e-3,
           seed: int = 0, resume: str = "", device: str = "auto", checkpoint_every_min: float = 5.0,
-          workers: int = 1, use_pano: bool = True, log=print) -> dict:
+          workers: int = 1, use_pano: bool = True, crop_px: int = 0, log=print) -> dict:
+    """Train (or go on from ``resume``) for ``minutes`` in all; ``crop_px`` (0: the
+    checkpoint's, else :data:`CROP_PX`) sets the crop side (:func:`set_crop_px`)."""
     import torch
     import torch.nn.functional as F
 
@@ -580,18 +595,22 @@ def train(out_path: str, minutes: float, work: str, threads: int = 1, batch: int
         state = torch.load(resume, map_location=dev, weights_only=False)
         if state["names"] != names:
             raise SystemExit(f"{resume} was trained for other codes; start afresh")
+        if crop_px and crop_px != state.get("crop_px", 32):
+            raise SystemExit(f"{resume} was trained on {state.get('crop_px', 32)} px crops, not {crop_px}")
+        crop_px = state.get("crop_px", 32)
         net.load_state_dict(state["net"])
         opt.load_state_dict(state["opt"])
         step, elapsed = state["step"], state["elapsed_s"]
         seed = seed + step
-    pano_cache = os.path.join(work, "pano-train.npz") if use_pano else ""
+    set_crop_px(crop_px or CROP_PX)
+    pano_cache = os.path.join(work, "pano-train.npz") if use_pano else ""  # native density: any CROP_PX
     sampler = Sampler(names, seed, pano_cache)
     torch.manual_seed(seed)
     if state is not None and "rng" in state:
         sampler.rng.bit_generator.state = state["rng"]
     val_x, val_y, _ = heldout_gtsrb(names, "val")
     log(f"codes: {len(names)} names, {len(sampler.gtsrb)} GTSRB train crops, {len(sampler.drawn)} drawn, "
-        f"{len(sampler.pano)} panorama crops; validation {len(val_y)} crops; device {dev}")
+        f"{len(sampler.pano)} panorama crops; validation {len(val_y)} crops; {CROP_PX} px crops; device {dev}")
     feeder = BatchFeeder(names, seed, pano_cache, batch, workers) if workers else None
     stop = {"now": False}
 
@@ -604,7 +623,7 @@ def train(out_path: str, minutes: float, work: str, threads: int = 1, batch: int
 
     def save(path):
         torch.save({"net": net.state_dict(), "opt": opt.state_dict(), "step": step, "elapsed_s": elapsed,
-                    "names": names, "rng": sampler.rng.bit_generator.state}, path + ".tmp")
+                    "names": names, "rng": sampler.rng.bit_generator.state, "crop_px": CROP_PX}, path + ".tmp")
         os.replace(path + ".tmp", path)
 
     t_last_ckpt = time.time()
@@ -672,6 +691,7 @@ def evaluate_onnx(model_path: str, work: str = WORK_DIR) -> dict:
     session = ort.InferenceSession(model_path, providers=["CPUExecutionProvider"])
     names = json.loads(session.get_modelmeta().custom_metadata_map["names"])
     name = session.get_inputs()[0].name
+    set_crop_px(int(session.get_inputs()[0].shape[2]))  # crops as the plugin cuts them for this model
 
     def run(crops_bgr):
         rgb = crops_bgr[..., ::-1].astype(np.float32).transpose(0, 3, 1, 2) / 255.0
@@ -703,12 +723,14 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--device", default="auto")
     ap.add_argument("--resume", default="")
+    ap.add_argument("--crop-px", type=int, default=0,
+                    help=f"crop side in pixels (default {CROP_PX}, or the resumed checkpoint's)")
     a = ap.parse_args(argv)
     if a.evaluate:
         print(json.dumps(evaluate_onnx(a.evaluate, a.work), indent=1))
         return 0
     train(a.out, a.minutes, a.work, a.threads, a.batch, a.lr, a.seed, a.resume, a.device,
-          a.checkpoint_every, a.workers, not a.no_pano)
+          a.checkpoint_every, a.workers, not a.no_pano, a.crop_px)
     return 0
 
 
