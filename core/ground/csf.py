@@ -106,6 +106,15 @@ def _csf_module() -> types.ModuleType:
     return CSF
 
 
+def csf_available() -> bool:
+    """Whether the reference CSF (PyPI ``cloth-simulation-filter``) imports here."""
+    try:
+        _csf_module()
+    except InputError:
+        return False
+    return True
+
+
 def run_csf_cloth(xyz: np.ndarray, params: CsfParams) -> np.ndarray:
     """Run the reference CSF on points ``(n, 3)`` and return its cloth nodes ``(m, 3)``
     (x, y, height), after the slope post-processing when ``params.smooth``."""

@@ -38,7 +38,7 @@ from ..pointcloud import (
     iter_chunks,
     output_header,
 )
-from .csf import CSF_BUFFER_M, CSF_TILE_M, CsfGrid, CsfParams
+from .csf import CSF_BUFFER_M, CSF_TILE_M, CsfGrid, CsfParams, csf_available
 from .lattice import BoundsXY, GroundGrid, OutsideGridError
 from .params import AUTO_ENGINES, Params, engine_name, method_name, method_params
 from .pdal import PdalError, PdalRunner, find_pdal_runner, run_pdal_engine
@@ -288,15 +288,7 @@ def classify_ground(input_path: Union[str, CloudSource], output_path: str, metho
 def builtin_available(method: str) -> bool:
     """Whether the built-in engine can run ``method`` here: CSF needs the Python package
     cloth-simulation-filter (module ``CSF``), SMRF nothing beyond numpy and scipy."""
-    if method_name(method) != "csf":
-        return True
-    from .csf import _csf_module
-
-    try:
-        _csf_module()
-    except InputError:
-        return False
-    return True
+    return method_name(method) != "csf" or csf_available()
 
 
 def pdal_runner_for(engine: str, method: str, pdal_executable: Optional[str] = None,
