@@ -19,7 +19,7 @@ import os
 import shutil
 import tempfile
 from dataclasses import dataclass
-from typing import Dict, List, Optional, Tuple
+from typing import Dict, List, Optional, Tuple, TypeVar
 
 import numpy as np
 from scipy.spatial import cKDTree
@@ -173,31 +173,77 @@ def make_windows(length_m: float, window_m: float) -> List[Window]:
     return [Window(k, float(edges[k]), float(edges[k + 1])) for k in range(n)]
 
 
-class WindowSpool:
-    """Rows of a structured dtype appended per window to files in a temporary folder.
+_SpoolT = TypeVar("_SpoolT", bound="Spool")
 
-    :meth:`add` takes the rows and their arc lengths; a row goes to every window whose core
-    range grown by ``margin_m`` holds it. At most :data:`SPOOL_FLUSH_ROWS` rows wait in
-    memory. Use as a context manager (the folder is deleted on exit).
+
+class Spool:
+    """Rows of structured dtypes appended per key (``kind``, integer index) to files in a
+    temporary folder, and read back whole.
+
+    ``dtypes``: the dtype of each kind. At most ``flush_rows`` rows wait in memory (then
+    they are appended to their files); :meth:`read` flushes first. Use as a context manager
+    (the folder is deleted on exit, or by :meth:`close`).
     """
 
-    def __init__(self, windows: List[Window], margin_m: float, dtypes: Dict[str, np.dtype],
-                 folder: Optional[str] = None, flush_rows: int = SPOOL_FLUSH_ROWS):
-        self.windows = windows
-        self.margin_m = float(margin_m)
+    def __init__(self, dtypes: Dict[str, np.dtype], folder: Optional[str] = None,
+                 flush_rows: int = SPOOL_FLUSH_ROWS, prefix: str = "roadsigns-spool-"):
         self.dtypes = {k: np.dtype(v) for k, v in dtypes.items()}
-        self.folder = tempfile.mkdtemp(prefix="roadsigns-windows-", dir=folder)
+        self.folder = tempfile.mkdtemp(prefix=prefix, dir=folder)
         self.flush_rows = int(flush_rows)
         self._pending: Dict[Tuple[str, int], List[np.ndarray]] = {}
         self._pending_rows = 0
         self.rows_written = {k: 0 for k in self.dtypes}
-        starts = np.array([w.s0_m for w in windows])
-        ends = np.array([w.s1_m for w in windows])
-        self._lo = starts - self.margin_m
-        self._hi = ends + self.margin_m
 
     def _path(self, kind: str, index: int) -> str:
         return os.path.join(self.folder, "{}-{:06d}.bin".format(kind, index))
+
+    def append(self, kind: str, index: int, rows: np.ndarray) -> None:
+        """Append ``rows`` (dtype of ``kind``) to the file of ``(kind, index)``."""
+        if len(rows):
+            self._pending.setdefault((kind, index), []).append(np.asarray(rows, dtype=self.dtypes[kind]))
+            self._pending_rows += len(rows)
+            if self._pending_rows >= self.flush_rows:
+                self.flush()
+
+    def flush(self) -> None:
+        for (kind, k), parts in self._pending.items():
+            with open(self._path(kind, k), "ab") as f:
+                for part in parts:
+                    part.tofile(f)
+                    self.rows_written[kind] += len(part)
+        self._pending.clear()
+        self._pending_rows = 0
+
+    def read(self, kind: str, index: int) -> np.ndarray:
+        """All rows of ``kind`` appended to ``index``."""
+        self.flush()
+        path = self._path(kind, index)
+        if not os.path.exists(path):
+            return np.zeros(0, dtype=self.dtypes[kind])
+        return np.fromfile(path, dtype=self.dtypes[kind])
+
+    def close(self) -> None:
+        self._pending.clear()
+        shutil.rmtree(self.folder, ignore_errors=True)
+
+    def __enter__(self: _SpoolT) -> _SpoolT:
+        return self
+
+    def __exit__(self, exc_type, exc, tb) -> None:
+        self.close()
+
+
+class WindowSpool(Spool):
+    """A :class:`Spool` per window of the drive: :meth:`add` takes rows and their arc lengths;
+    a row goes to every window whose core range grown by ``margin_m`` holds it."""
+
+    def __init__(self, windows: List[Window], margin_m: float, dtypes: Dict[str, np.dtype],
+                 folder: Optional[str] = None, flush_rows: int = SPOOL_FLUSH_ROWS):
+        super().__init__(dtypes, folder, flush_rows, prefix="roadsigns-windows-")
+        self.windows = windows
+        self.margin_m = float(margin_m)
+        self._lo = np.array([w.s0_m for w in windows]) - self.margin_m
+        self._hi = np.array([w.s1_m for w in windows]) + self.margin_m
 
     def add(self, kind: str, s_m: np.ndarray, rows: np.ndarray) -> None:
         """Append ``rows`` (dtype of ``kind``) located at arc lengths ``s_m``."""
@@ -211,33 +257,4 @@ class WindowSpool:
                        int(min(last.max(initial=-1), len(self.windows) - 1)) + 1):
             mine = (first <= k) & (last >= k)
             if mine.any():
-                self._pending.setdefault((kind, k), []).append(rows[mine])
-                self._pending_rows += int(mine.sum())
-        if self._pending_rows >= self.flush_rows:
-            self.flush()
-
-    def flush(self) -> None:
-        for (kind, k), parts in self._pending.items():
-            with open(self._path(kind, k), "ab") as f:
-                for part in parts:
-                    part.tofile(f)
-                    self.rows_written[kind] += len(part)
-        self._pending.clear()
-        self._pending_rows = 0
-
-    def read(self, kind: str, index: int) -> np.ndarray:
-        """All rows of ``kind`` spooled to window ``index`` (flush first)."""
-        path = self._path(kind, index)
-        if not os.path.exists(path):
-            return np.zeros(0, dtype=self.dtypes[kind])
-        return np.fromfile(path, dtype=self.dtypes[kind])
-
-    def close(self) -> None:
-        self._pending.clear()
-        shutil.rmtree(self.folder, ignore_errors=True)
-
-    def __enter__(self) -> "WindowSpool":
-        return self
-
-    def __exit__(self, exc_type, exc, tb) -> None:
-        self.close()
+                self.append(kind, k, rows[mine])

@@ -51,9 +51,6 @@ supported of the two wins (``code_check``).
 from __future__ import annotations
 
 import math
-import os
-import shutil
-import tempfile
 from dataclasses import asdict, dataclass, field
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
@@ -67,7 +64,7 @@ from scipy.spatial.distance import squareform
 from . import geometry
 from .cloudsource import CloudSource, conform, open_cloud
 from .detections import Detections
-from .drivewindows import DriveAxis, Track, make_windows
+from .drivewindows import DriveAxis, Spool, Track, make_windows
 from .errors import SILENT, InputError, Message, Progress
 from .pointcloud import (
     GROUND_CLASS,
@@ -1085,7 +1082,7 @@ class CloudBlocks:
                  cloud: Union[str, CloudSource, TiledIndex, None], merge_radius_m: float,
                  block_m: float, params: RefineParams, progress: Progress = SILENT):
         self.cand, self.groups = cand, list(groups)
-        self._spool_dir: Optional[str] = None
+        self._spool: Optional[Spool] = None
         ok = np.array([s == STATUS_OK for s in cand.status], bool)
         self.ok_xy = cand.xyz_world[ok, :2]
         self.corridor_m = max(3.5, merge_radius_m + 2.5)
@@ -1109,7 +1106,7 @@ class CloudBlocks:
         self.blocks = [np.flatnonzero(block_of_group == b) for b in np.unique(block_of_group)]
         self._cached: Optional[Tuple[int, TiledIndex]] = None
         if self.source is not None and len(self.blocks) > 1:
-            self._spool(progress)
+            self._spool_blocks(progress)
         self.bright = self._bright_level()
         progress.report(1.0)
 
@@ -1121,9 +1118,9 @@ class CloudBlocks:
 
     def close(self) -> None:
         """Remove the spooled blocks."""
-        if self._spool_dir is not None:
-            shutil.rmtree(self._spool_dir, ignore_errors=True)
-            self._spool_dir = None
+        if self._spool is not None:
+            self._spool.close()
+            self._spool = None
 
     def _block_read(self, b: int) -> Tuple[np.ndarray, float]:
         """Where block ``b``'s points are read around (centres ``(n, 2)``) and how far."""
@@ -1132,11 +1129,7 @@ class CloudBlocks:
         xy = np.vstack([self.centres[gs, :2], self.cand.xyz_world[rows, :2]])
         return xy, max(float(self.reach[gs].max()), self.corridor_m + 0.5)
 
-    def _spool_path(self, b: int) -> str:
-        assert self._spool_dir is not None
-        return os.path.join(self._spool_dir, f"block_{b}.bin")
-
-    def _spool(self, progress: Progress) -> None:
+    def _spool_blocks(self, progress: Progress) -> None:
         """One pass over the cloud: each block's points to its file (see the class doc)."""
         assert self.source is not None and self.corridor is not None
         regions, boxes = [], []
@@ -1144,7 +1137,7 @@ class CloudBlocks:
             xy, radius = self._block_read(b)
             regions.append(CropRegion.corridor(radius, points_xy=xy))
             boxes.append((*(xy.min(axis=0) - radius), *(xy.max(axis=0) + radius)))
-        self._spool_dir = tempfile.mkdtemp(prefix="roadsigns-refine-")
+        self._spool = spool = Spool({"block": BLOCK_SPOOL_DTYPE}, prefix="roadsigns-refine-")
         try:
             area = [r.geometry for r in regions]
             for index, chunk in self.source.iter_indexed_chunks(progress=progress, area=area):
@@ -1165,17 +1158,16 @@ class CloudBlocks:
                     rows["point_index"] = np.asarray(index)[sub]
                     rows["intensity"] = np.asarray(chunk.intensity)[sub]
                     rows["classification"] = np.asarray(chunk.classification)[sub]
-                    with open(self._spool_path(b), "ab") as f:
-                        rows.tofile(f)
+                    spool.append("block", b, rows)
+            spool.flush()
         except BaseException:
             self.close()
             raise
 
     def _spooled(self, b: int) -> TiledIndex:
         """Block ``b`` read back from its spool file."""
-        path = self._spool_path(b)
-        rows = np.fromfile(path, BLOCK_SPOOL_DTYPE) if os.path.exists(path) else np.zeros(0, BLOCK_SPOOL_DTYPE)
-        assert self.source is not None
+        assert self.source is not None and self._spool is not None
+        rows = self._spool.read("block", b)
         return TiledIndex(np.ascontiguousarray(rows["xyz"]), np.ascontiguousarray(rows["point_index"]),
                           {"intensity": np.ascontiguousarray(rows["intensity"]),
                            "classification": np.ascontiguousarray(rows["classification"])},
@@ -1217,7 +1209,7 @@ class CloudBlocks:
         level, within the corridor of its ``ok`` candidates."""
         if self._cached is not None and self._cached[0] == b:
             return self._cached[1]
-        if self._spool_dir is not None:
+        if self._spool is not None:
             return self._spooled(b)
         xy, radius = self._block_read(b)
         return self._read(xy, radius, progress)

@@ -806,7 +806,7 @@ def test_a_las_file_is_read_once_for_all_blocks_and_the_spool_removed(scene, can
     monkeypatch.setattr(CloudSource, "iter_indexed_chunks", counted)
     with R.CloudBlocks(candidates, R.merge_candidates(candidates, 1.0), las, 1.0, 20.0, R.RefineParams()) as blocks:
         assert len(blocks.blocks) >= 4
-        assert blocks._spool_dir and os.listdir(blocks._spool_dir)
+        assert blocks._spool is not None and os.listdir(blocks._spool.folder)
         drafts = blocks.extract_signs(R.RefineParams())
         assert drafts and reads == [True]  # the bright level and the signs: one read
     assert os.listdir(tmp_path / "tmp") == []
