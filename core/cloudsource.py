@@ -257,6 +257,28 @@ class CloudSource:
             yield k, progress.sub(done / total, (done + n) / total)
             done += n
 
+    def points_near_tiles(self, boxes: Dict[int, BBoxXY], chunk_points: int = DEFAULT_CHUNK_POINTS,
+                          progress: Progress = SILENT
+                          ) -> Iterator[Tuple[int, int, laspy.ScaleAwarePointRecord]]:
+        """One read of the tiles ``boxes`` names (tile number: a box around it): for each
+        tile ``t``, the points of the *other* tiles ``s`` of ``boxes`` inside ``boxes[t]`` (its
+        halo), as ``(s, t, points)`` chunk by chunk. Only tiles whose header bounds meet
+        another tile's box are read."""
+        near = {s: [t for t, b in boxes.items() if t != s and _box_meets(self.tiles[s].bounds_xy, b)]
+                for s in boxes}
+        readers = [self.tiles[s] for s in boxes if near[s]]
+        if not readers:
+            progress.report(1.0)
+            return
+        for index, chunk in self.iter_indexed_chunks(chunk_points, progress, tiles=readers):
+            s = int(self.tile_of_index(index[:1])[0])
+            x, y = np.asarray(chunk.x), np.asarray(chunk.y)
+            for t in near[s]:
+                x0, y0, x1, y1 = boxes[t]
+                inside = (x >= x0) & (x <= x1) & (y >= y0) & (y <= y1)
+                if inside.any():
+                    yield s, t, chunk[inside]
+
     def tile_of_index(self, index: np.ndarray) -> np.ndarray:
         """The tile number (position in :attr:`tiles`) of each cloud point index."""
         starts = np.array([t.first_index for t in self.tiles], dtype=np.int64)
@@ -311,6 +333,15 @@ class CloudSource:
                               {d: np.zeros(0) for d in dimensions}, tile_size_m, self.crs_wkt)
         return TiledIndex.from_chunks(self.iter_indexed_chunks(chunk_points, progress, area=area),
                                       region, dimensions, tile_size_m, self.crs_wkt)
+
+
+def grown_box(box: BBoxXY, by_m: float) -> BBoxXY:
+    """``box`` grown by ``by_m`` on every side."""
+    return (box[0] - by_m, box[1] - by_m, box[2] + by_m, box[3] + by_m)
+
+
+def _box_meets(a: BBoxXY, b: BBoxXY) -> bool:
+    return a[0] <= b[2] and a[2] >= b[0] and a[1] <= b[3] and a[3] >= b[1]
 
 
 def _boxes_meet(boxes: np.ndarray, bbox_xy: Optional[BBoxXY], area: Optional[Area]) -> np.ndarray:

@@ -27,9 +27,8 @@ import tempfile
 from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import laspy
-import numpy as np
 
-from ..cloudsource import BBoxXY, CloudSource, conform, template_header
+from ..cloudsource import CloudSource, conform, grown_box, template_header
 from ..errors import SILENT, Progress
 from ..pointcloud import DEFAULT_CHUNK_POINTS, CropRegion
 from .csf import CSF_BUFFER_M, CsfParams
@@ -47,43 +46,25 @@ def pdal_halo_m(params: Params) -> float:
     return float(SmrfGrid((0.0, 0.0, 1.0, 1.0), params).halo_cells * params.cell)
 
 
-def _grown(box: BBoxXY, by: float) -> BBoxXY:
-    return (box[0] - by, box[1] - by, box[2] + by, box[3] + by)
-
-
-def _meets(a: BBoxXY, b: BBoxXY) -> bool:
-    return a[0] <= b[2] and a[2] >= b[0] and a[1] <= b[3] and a[3] >= b[1]
-
-
 def spool_pdal_halos(source: CloudSource, work: List[int], halo: float, folder: str,
                      chunk_points: int = DEFAULT_CHUNK_POINTS,
                      progress: Progress = SILENT) -> Tuple[Dict[int, str], Dict[int, List[int]]]:
     """Pass 1: for each tile number of ``work``, the points of the other tiles of ``work``
-    within ``halo`` metres of its header bounds, written to a LAS file in ``folder`` with
-    that tile's header. Returns ``{tile number: file}`` (tiles without neighbours have none)
-    and ``{tile number: the tiles its halo's points come from}``."""
-    grown = {k: _grown(source.tiles[k].bounds_xy, halo) for k in work}
-    neighbours = {s: [t for t in work if t != s and _meets(source.tiles[s].bounds_xy, grown[t])]
-                  for s in work}
-    readers = [source.tiles[s] for s in work if neighbours[s]]
+    within ``halo`` metres of its header bounds (:meth:`.cloudsource.CloudSource.points_near_tiles`),
+    written to a LAS file in ``folder`` with that tile's header. Returns ``{tile number: file}``
+    (tiles without neighbours have none) and ``{tile number: the tiles its halo's points come from}``."""
+    boxes = {k: grown_box(source.tiles[k].bounds_xy, halo) for k in work}
     writers: Dict[int, Any] = {}
     paths: Dict[int, str] = {}
     came_from: Dict[int, List[int]] = {}
     try:
-        for index, chunk in source.iter_indexed_chunks(chunk_points, progress, tiles=readers):
-            s = int(source.tile_of_index(index[:1])[0])
-            x, y = np.asarray(chunk.x), np.asarray(chunk.y)
-            for t in neighbours[s]:
-                box = grown[t]
-                near = (x >= box[0]) & (x <= box[2]) & (y >= box[1]) & (y <= box[3])
-                if not near.any():
-                    continue
-                if t not in writers:
-                    paths[t] = os.path.join(folder, f"halo_{t}.las")
-                    writers[t] = laspy.open(paths[t], mode="w", header=template_header(source.tile_header(t)))
-                writers[t].write_points(conform(chunk[near], writers[t].header))
-                if s not in came_from.setdefault(t, []):
-                    came_from[t].append(s)
+        for s, t, pts in source.points_near_tiles(boxes, chunk_points, progress):
+            if t not in writers:
+                paths[t] = os.path.join(folder, f"halo_{t}.las")
+                writers[t] = laspy.open(paths[t], mode="w", header=template_header(source.tile_header(t)))
+            writers[t].write_points(conform(pts, writers[t].header))
+            if s not in came_from.setdefault(t, []):
+                came_from[t].append(s)
     finally:
         for w in writers.values():
             w.close()

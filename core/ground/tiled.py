@@ -35,7 +35,7 @@ from typing import Any, Dict, Iterable, List, Optional, Tuple, Union
 
 import numpy as np
 
-from ..cloudsource import BBoxXY, CloudSource, Tile, open_cloud, template_header, vpc_text
+from ..cloudsource import BBoxXY, CloudSource, Tile, grown_box, open_cloud, template_header, vpc_text
 from ..errors import SILENT, InputError, Progress
 from ..outputs import StagedOutputs, remove
 from ..pointcloud import DEFAULT_CHUNK_POINTS, CloudWriter, CropRegion, output_header, read_header
@@ -89,18 +89,6 @@ def tile_grid(params: Params, cloud_bounds: BBoxXY, tile_box: BBoxXY,
     # bounds that Lattice.covering (2 nodes of padding) turns into exactly these nodes
     return (whole.x0 + (c0 + 2.5) * step, whole.y0 + (r0 + 2.5) * step,
             whole.x0 + (c1 - 2.5) * step, whole.y0 + (r1 - 2.5) * step)
-
-
-def _grown(box: BBoxXY, by: float) -> BBoxXY:
-    return (box[0] - by, box[1] - by, box[2] + by, box[3] + by)
-
-
-def _meets(a: BBoxXY, b: BBoxXY) -> bool:
-    return a[0] <= b[2] and a[2] >= b[0] and a[1] <= b[3] and a[3] >= b[1]
-
-
-def _inside(x: np.ndarray, y: np.ndarray, box: BBoxXY) -> np.ndarray:
-    return (x >= box[0]) & (x <= box[2]) & (y >= box[1]) & (y <= box[3])
 
 
 def _kept(chunk: Any, region: Optional[CropRegion]) -> Any:
@@ -267,28 +255,16 @@ def _spool_halos(source: CloudSource, work: List[int], grown: Dict[int, BBoxXY],
     """Pass 0: the eligible points of each tile near another tile's grid (``grown``, a few
     cells more), appended to that tile's file in ``folder``; {tile number: file}."""
     step = params.resolution if isinstance(params, CsfParams) else params.cell
-    grown = {k: _grown(b, 3.0 * step) for k, b in grown.items()}
-    neighbours: Dict[int, List[int]] = {}
-    for s in work:
-        box = source.tiles[s].bounds_xy
-        neighbours[s] = [t for t in work if t != s and _meets(box, grown[t])]
-    readers = [s for s in work if neighbours[s]]
+    boxes = {k: grown_box(grown[k], 3.0 * step) for k in work}
     spools: Dict[int, str] = {}
-    if not readers:
-        progress.report(1.0)
-        return spools
-    for index, chunk in source.iter_indexed_chunks(chunk_points, progress, tiles=[source.tiles[s] for s in readers]):
-        s = int(source.tile_of_index(index[:1])[0])
-        pts = _kept(chunk, region)
-        _, xyz = eligible_xyz(pts, params)
-        for t in neighbours[s]:
-            near = _inside(xyz[:, 0], xyz[:, 1], grown[t])
-            if near.any():
-                rows = np.zeros(int(near.sum()), _HALO_DTYPE)
-                rows["x"], rows["y"], rows["z"] = xyz[near, 0], xyz[near, 1], xyz[near, 2]
-                path = spools.setdefault(t, os.path.join(folder, f"halo_{t}.bin"))
-                with open(path, "ab") as f:
-                    rows.tofile(f)
+    for _, t, pts in source.points_near_tiles(boxes, chunk_points, progress):
+        _, xyz = eligible_xyz(_kept(pts, region), params)
+        if len(xyz):
+            rows = np.zeros(len(xyz), _HALO_DTYPE)
+            rows["x"], rows["y"], rows["z"] = xyz[:, 0], xyz[:, 1], xyz[:, 2]
+            path = spools.setdefault(t, os.path.join(folder, f"halo_{t}.bin"))
+            with open(path, "ab") as f:
+                rows.tofile(f)
     return spools
 
 
