@@ -40,7 +40,16 @@ from ..errors import SILENT, InputError, Progress
 from ..outputs import StagedOutputs, remove
 from ..pointcloud import DEFAULT_CHUNK_POINTS, CloudWriter, CropRegion, output_header, read_header
 from .csf import CsfGrid, CsfParams
-from .engine import GroundResult, classified, crop_region, eligible_xyz, grid_bounds, make_grid, pdal_runner_for
+from .engine import (
+    GroundResult,
+    builtin_available,
+    classified,
+    crop_region,
+    eligible_xyz,
+    grid_bounds,
+    make_grid,
+    pdal_runner_for,
+)
 from .lattice import Lattice, OutsideGridError
 from .params import Params, engine_name, method_name, method_params
 from .pdal import PdalError
@@ -153,7 +162,6 @@ def classify_ground_tiles(input_path: Union[str, CloudSource], output_folder: st
             grown[k] = bounds
     work = sorted(grown)
     skipped = [t.path for k, t in enumerate(source.tiles) if k not in grown]
-    initially_skipped = set(skipped)
     result = GroundResult(os.path.join(output_folder, vpc_name), method, "builtin", source.point_count, 0, 0,
                           out_crs)
     staged = StagedOutputs()
@@ -161,25 +169,35 @@ def classify_ground_tiles(input_path: Union[str, CloudSource], output_folder: st
     written: List[Tuple[str, Any]] = []
     runner = pdal_runner_for(engine, method, pdal_executable, progress)
     try:
+        counts: Optional[Dict[int, Tuple[int, int]]] = None
         if runner is not None:
+            from .pdal_tiles import run_pdal_tiles
+
             try:
-                result.engine = _pdal_tiles(source, work, names, temporary, method, params, region, crs_wkt,
-                                            reset_classes, runner.executable, chunk_points, progress, result,
-                                            written, skipped)
+                counts, result.pipeline_json, result.engine = run_pdal_tiles(
+                    source, work, lambda k: os.path.join(temporary, names[k]), method, params, region, crs_wkt,
+                    reset_classes, runner.executable, chunk_points, progress)
             except PdalError as e:
-                if engine == "pdal":
+                if engine == "pdal" or not builtin_available(method):
                     raise
                 result.warnings.append(progress.warning(
                     "PDAL failed, the built-in engine was used instead: {error}", error=str(e)))
                 for name in os.listdir(temporary):
                     remove(os.path.join(temporary, name))
-                result.n_output = result.n_ground = 0
-                written.clear()
-                skipped[:] = [p for p in skipped if p in initially_skipped]
-                runner = None
-        if runner is None:
-            _builtin_tiles(source, work, grown, names, temporary, region, params, out_crs if crs_wkt else None,
-                           reset_classes, chunk_points, tile_buffer_m, progress, result, written, skipped)
+        if counts is None:
+            counts = _builtin_tiles(source, work, grown, names, temporary, region, params,
+                                    out_crs if crs_wkt else None, reset_classes, chunk_points, tile_buffer_m,
+                                    progress)
+        for k in work:
+            n_out, n_ground = counts[k]
+            path = os.path.join(temporary, names[k])
+            result.n_output += n_out
+            result.n_ground += n_ground
+            if n_out:
+                written.append((os.path.join(output_folder, names[k]), read_header(path)))
+            else:
+                remove(path)  # PDAL writes an empty file, the built-in engine none
+                skipped.append(source.tiles[k].path)
         for path in skipped:
             result.warnings.append(progress.info("No point of the tile {tile} lies inside the crop area: no "
                                                  "output tile for it", tile=path))
@@ -202,51 +220,18 @@ def classify_ground_tiles(input_path: Union[str, CloudSource], output_folder: st
 
 def _builtin_tiles(source: CloudSource, work: List[int], grown: Dict[int, BBoxXY], names: List[str],
                    folder: str, region: Optional[CropRegion], params: Params, crs_wkt: Optional[str],
-                   reset_classes: bool, chunk_points: int, tile_buffer_m: Optional[float], progress: Progress,
-                   result: GroundResult, written: List[Tuple[str, Any]], skipped: List[str]) -> None:
-    """The tiles ``work`` with the built-in engine into ``folder``; counts into ``result``,
-    ``(destination, header)`` of each tile written into ``written``, empty tiles into ``skipped``."""
-    output_folder = os.path.dirname(result.output_path)
+                   reset_classes: bool, chunk_points: int, tile_buffer_m: Optional[float],
+                   progress: Progress) -> Dict[int, Tuple[int, int]]:
+    """The tiles ``work`` with the built-in engine into ``folder`` (file ``names[k]``, none when
+    empty); ``{tile: (points written, ground points)}``."""
+    counts: Dict[int, Tuple[int, int]] = {}
     with tempfile.TemporaryDirectory(prefix=".roadsigns-halo-") as spool_dir:
         spools = _spool_halos(source, work, grown, region, params, spool_dir, chunk_points,
                               progress.sub(0.0, 0.3))
         for k, share in source.tile_shares(work, progress.sub(0.3, 1.0)):
-            tile = source.tiles[k]
-            path = os.path.join(folder, names[k])
-            n_out, n_ground = _classify_tile(source, k, grown[k], spools.get(k), path, region, params,
-                                             crs_wkt, reset_classes, chunk_points, tile_buffer_m, share)
-            result.n_output += n_out
-            result.n_ground += n_ground
-            if n_out:
-                written.append((os.path.join(output_folder, names[k]), read_header(path)))
-            else:
-                skipped.append(tile.path)
-
-
-def _pdal_tiles(source: CloudSource, work: List[int], names: List[str], folder: str, method: str,
-                params: Params, region: Optional[CropRegion], crs_wkt: Optional[str], reset_classes: bool,
-                executable: Optional[str], chunk_points: int, progress: Progress, result: GroundResult,
-                written: List[Tuple[str, Any]], skipped: List[str]) -> str:
-    """The tiles ``work`` through PDAL, each with its halo (:mod:`.pdal_tiles`), into
-    ``folder``; as :func:`_builtin_tiles`; returns the engine used."""
-    from .pdal_tiles import run_pdal_tiles
-
-    output_folder = os.path.dirname(result.output_path)
-    counts, pipeline, used = run_pdal_tiles(source, work, lambda k: os.path.join(folder, names[k]), method,
-                                            params, region, crs_wkt, reset_classes, executable, chunk_points,
-                                            progress)
-    result.pipeline_json = pipeline
-    for k in work:
-        n_out, n_ground = counts[k]
-        path = os.path.join(folder, names[k])
-        result.n_output += n_out
-        result.n_ground += n_ground
-        if n_out:
-            written.append((os.path.join(output_folder, names[k]), read_header(path)))
-        else:
-            os.remove(path)
-            skipped.append(source.tiles[k].path)
-    return used
+            counts[k] = _classify_tile(source, k, grown[k], spools.get(k), os.path.join(folder, names[k]), region,
+                                       params, crs_wkt, reset_classes, chunk_points, tile_buffer_m, share)
+    return counts
 
 
 def _spool_halos(source: CloudSource, work: List[int], grown: Dict[int, BBoxXY],

@@ -118,6 +118,36 @@ def test_auto_classifies_tiles_with_the_builtin_engine_and_says_why(hilly, tmp_p
     assert res.engine == "builtin" and any("Auto: the built-in engine" in m for m in infos), infos
 
 
+def test_tiles_fall_back_to_the_builtin_engine_when_pdal_fails_under_auto(hilly, tmp_path, monkeypatch):
+    """With PDAL as Auto's engine for the method (AUTO_ENGINES), a PDAL failing on a tile is a
+    warning and the built-in engine writes every tile; what PDAL wrote before is gone."""
+    import stat
+    import sys
+    import textwrap
+
+    exe = tmp_path / "pdal"
+    exe.write_text(f"#!{sys.executable}\n" + textwrap.dedent("""
+        import json, sys, laspy
+        stages = json.load(sys.stdin)["pipeline"]
+        if "tile_00_00" not in stages[0]["filename"]:
+            sys.stderr.write("PDAL: refused this tile\\n")
+            sys.exit(1)
+        las = laspy.read(stages[0]["filename"])
+        las.classification[:] = 2
+        las.write(stages[-1]["filename"])
+    """))
+    exe.chmod(exe.stat().st_mode | stat.S_IXUSR)
+    monkeypatch.setitem(ground.AUTO_ENGINES, "smrf", "pdal")
+    builtin = tmp_path / "builtin"
+    ground.run_ground_filter_tiles(hilly["folder"], str(builtin), "g.vpc", "smrf", "builtin")
+    out = tmp_path / "auto"
+    res = ground.run_ground_filter_tiles(hilly["folder"], str(out), "g.vpc", "smrf", "auto", pdal_executable=str(exe))
+    assert res.engine == "builtin" and any("refused this tile" in w for w in res.warnings)
+    assert sorted(p.name for p in out.iterdir()) == sorted(p.name for p in builtin.iterdir())
+    for p in sorted(builtin.glob("*.laz")):
+        assert agreement(str(p), [str(out / p.name)]) == 1.0
+
+
 @pytest.fixture(scope="module")
 def real_pdal():
     return realpdal.require()
