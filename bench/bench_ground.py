@@ -39,6 +39,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
 SHARED_PDAL = os.path.normpath(os.path.join(REPO, "..", "shared", "tools", "pdal-2.9.2", "bin", "pdal"))
 ENGINES = ("builtin", "pdal-cli", "pdal-python")
+sys.path.insert(0, HERE)
+from bench_projection_memory import peak_rss_mb  # noqa: E402  (the bench folder is not a package)
+
 METHODS = ("csf", "smrf")
 CROPS = ("whole", "corridor")
 
@@ -50,25 +53,13 @@ def _import_package():
     import_roadsigns()
 
 
-def _vm_hwm_mb() -> float:
-    """This process's own peak (``VmHWM``): ``ru_maxrss`` would start at the parent's size
-    at fork, which after comparing outputs is gigabytes."""
-    try:
-        with open("/proc/self/status") as fh:
-            for line in fh:
-                if line.startswith("VmHWM:"):
-                    return float(line.split()[1]) / 1024.0
-    except OSError:
-        pass
-    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / (1024.0 if sys.platform != "darwin" else 2.0 ** 20)
-
-
 def _usage() -> dict:
     """Peak memory (this process, or the ``pdal`` child it waited for) and CPU time."""
     me = resource.getrusage(resource.RUSAGE_SELF)
     kids = resource.getrusage(resource.RUSAGE_CHILDREN)
     scale = 1024.0 if sys.platform != "darwin" else 2.0 ** 20  # KiB on Linux
-    return {"peak_rss_mb": max(_vm_hwm_mb(), kids.ru_maxrss / scale),
+    # this process's own peak (VmHWM): ru_maxrss would start at the parent's size at fork
+    return {"peak_rss_mb": max(peak_rss_mb(), kids.ru_maxrss / scale),
             "cpu_s": me.ru_utime + me.ru_stime + kids.ru_utime + kids.ru_stime}
 
 
