@@ -39,11 +39,11 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
 SHARED_PDAL = os.path.normpath(os.path.join(REPO, "..", "shared", "tools", "pdal-2.9.2", "bin", "pdal"))
 ENGINES = ("builtin", "pdal-cli", "pdal-python")
-sys.path.insert(0, HERE)
-from bench_projection_memory import peak_rss_mb  # noqa: E402  (the bench folder is not a package)
-
 METHODS = ("csf", "smrf")
 CROPS = ("whole", "corridor")
+
+sys.path.insert(0, HERE)
+from bench_projection_memory import peak_rss_mb  # noqa: E402  (the bench folder is not a package)
 
 
 def _import_package():
