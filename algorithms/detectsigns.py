@@ -17,11 +17,12 @@ from ..core.detector import DEFAULT_MIN_BOX_PX, spaced_stations
 from ..core.signcodes import OTHER_CODE
 from ..core.trajectory import STATION_FIELDS, Stations
 from .base import RoadSignsAlgorithm
+from .codeparams import ReadsCodes
 from .layers import check_layer_extent, check_metric_crs, qgs_fields, read_records, write_records
-from .paths import BUNDLED_CLASSIFIER, BUNDLED_CODES_TABLE, BUNDLED_MODEL
+from .paths import BUNDLED_MODEL
 
 
-class DetectSigns(RoadSignsAlgorithm):
+class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
     ALGORITHM_ID = "detectsigns"
     REQUIRES = ("numpy", "cv2", "onnxruntime")
     STATIONS = "STATIONS"
@@ -33,9 +34,6 @@ class DetectSigns(RoadSignsAlgorithm):
     UPWARD_VIEWS = "UPWARD_VIEWS"
     THREADS = "THREADS"
     MIN_STATION_SPACING = "MIN_STATION_SPACING_M"
-    READ_CODES = "READ_CODES"
-    CLASSIFIER = "CLASSIFIER"
-    CODES_TABLE = "CODES_TABLE"
     OUTPUT = "OUTPUT"
     DETECTIONS = "DETECTIONS"
     SKIPPED_IMAGES = "SKIPPED_IMAGES"
@@ -116,24 +114,8 @@ class DetectSigns(RoadSignsAlgorithm):
             self.THREADS, self.tr("CPU threads (0: all)"), 0,
             self.tr("Threads onnxruntime may use on the CPU; 0 lets it use every core."),
             minimum=0, integer=True, advanced=True)
-        self.add_boolean(
-            self.READ_CODES, self.tr("Read the sign codes"), True,
-            self.tr("Reads what each detected sign says (its code, such as DE:206 for stop) with the sign-code "
-                    "classifier. Unchecked, the code fields stay empty. When the bundled classifier is "
-                    "missing, the log says so and the detections get no code."))
-        self.add_file(
-            self.CLASSIFIER, self.tr("Sign-code classifier (empty: the bundled one)"),
-            self.tr("An ONNX classifier of sign crops: float input [N, 3, S, S] (RGB, 0..1), output [N, C], "
-                    "the codes it answers in its metadata 'names' (each in the codes table, or 'other'). The "
-                    "format is in models/README.md (section <i>Sign-code classifier: the format</i>). Empty uses "
-                    "the classifier bundled with the plugin (models/signcodes.onnx)."),
-            file_filter=self.tr("ONNX models (*.onnx);;All files (*.*)"), optional=True, advanced=True)
-        self.add_file(
-            self.CODES_TABLE, self.tr("Sign codes table (empty: the bundled one)"),
-            self.tr("The codes the classifier may answer, with their names and classes: UTF-8 text, "
-                    "semicolon-separated, the header code;name;class (format in models/README.md). Empty uses "
-                    "the bundled table of German codes (models/sign-codes-de.csv)."),
-            file_filter=self.tr("CSV files (*.csv *.txt);;All files (*.*)"), optional=True, advanced=True)
+        self.add_code_parameters(self.tr("in a crop around each detection, voted later across the views of "
+                                         "each sign by Refine and merge signs"))
         self.add_sink(
             self.OUTPUT, self.tr("Detections"), Qgis.ProcessingSourceType.VectorLine,
             self.tr("LineStringZ layer, one ray per detection, with det_id, station_id, image, class, "
@@ -167,7 +149,8 @@ class DetectSigns(RoadSignsAlgorithm):
             views = ViewSet.default(size_px=detector.input_size,
                                     upward=self.parameterAsBoolean(parameters, self.UPWARD_VIEWS, context))
             feedback.pushInfo(self.tr("{} panoramas, {} views each").format(len(stations), len(views)))
-            classifier = self._classifier(parameters, context, feedback)
+            classifier = self.code_classifier(parameters, context, feedback,
+                                              self.parameterAsInt(parameters, self.THREADS, context))
             spacing_m = self.parameterAsDouble(parameters, self.MIN_STATION_SPACING, context)
             chosen = spaced_stations(stations.xyz_world, spacing_m)
             if len(chosen) < len(stations):
@@ -203,24 +186,3 @@ class DetectSigns(RoadSignsAlgorithm):
                 coded, len(detections)))
         return {self.OUTPUT: dest_id, self.DETECTIONS: len(detections), self.SKIPPED_IMAGES: len(found.skipped)}
 
-    def _classifier(self, parameters, context, feedback):
-        """The sign-code classifier to run (None when codes are not read, or when the bundled
-        classifier is missing: a warning says so); core errors are raised as they are."""
-        from ..core.signcodes import CodeClassifier, read_codes_table
-
-        if not self.parameterAsBoolean(parameters, self.READ_CODES, context):
-            feedback.pushInfo(self.tr("Sign codes are not read (Read the sign codes is off)."))
-            return None
-        path = self.parameterAsFile(parameters, self.CLASSIFIER, context)
-        if not path:
-            path = BUNDLED_CLASSIFIER
-            if not os.path.isfile(path):
-                feedback.pushWarning(self.tr("The bundled sign-code classifier {} is missing: the detections get "
-                                             "no sign code.").format(path))
-                return None
-        elif not os.path.isfile(path):
-            raise QgsProcessingException(self.tr("Sign-code classifier not found: {}").format(path))
-        table = read_codes_table(self.parameterAsFile(parameters, self.CODES_TABLE, context) or BUNDLED_CODES_TABLE)
-        classifier = CodeClassifier(path, table, threads=self.parameterAsInt(parameters, self.THREADS, context))
-        feedback.pushInfo(self.tr("Sign codes: {}").format(classifier.describe()))
-        return classifier

@@ -3,14 +3,16 @@ merged into one sign layer that says which sources found each sign."""
 from qgis.core import Qgis, QgsGeometry, QgsPoint, QgsProcessingException, QgsProcessingOutputNumber
 
 from ..core.review import CHIP_FIELD
+from ..core.signcodes import DEFAULT_CODE_CONFIDENCE
 from ..core.trajectory import STATION_FIELDS
 from .base import RoadSignsAlgorithm
+from .codeparams import ReadsCodes
 from .layers import crs_label, qgs_fields, read_records, write_records
 from .paths import BUNDLED_MODEL
 from .style import SignLayerStyler, file_of, write_sign_style
 
 
-class FuseSigns(RoadSignsAlgorithm):
+class FuseSigns(ReadsCodes, RoadSignsAlgorithm):
     ALGORITHM_ID = "fusesigns"
     REQUIRES = ("numpy", "scipy", "shapely", "cv2", "onnxruntime")
     SIGNS = "SIGNS"
@@ -20,6 +22,7 @@ class FuseSigns(RoadSignsAlgorithm):
     MODEL = "MODEL"
     CONFIDENCE = "CONFIDENCE"
     MATCH_RADIUS = "MATCH_RADIUS"
+    CODE_CONFIDENCE = "CODE_CONFIDENCE"
     OUTPUT = "OUTPUT"
     BOTH = "BOTH"
     IMAGE_ONLY = "IMAGE_ONLY"
@@ -41,7 +44,9 @@ class FuseSigns(RoadSignsAlgorithm):
             "image sign explains becomes a sign of its own (<i>source</i> = lidar): with the stations "
             "and the panorama folder, the panoramas in front of its face are cut into views centred on "
             "it and the detector reads its class there; if none recognises it, its class is "
-            "<i>unknown</i> and it is flagged for review. An image sign whose place in the cloud holds "
+            "<i>unknown</i> and it is flagged for review. The sign-code classifier reads its code in a crop "
+            "around each of those detections, and the views vote as Refine and merge signs votes them "
+            "(code, code_name, code_score, code_views, code_check). An image sign whose place in the cloud holds "
             "no retro-reflective panel loses confidence (its score × 0.6) and is flagged for review "
             "(<i>source</i> = image).<br><br>Output: the sign layer with the fields of Refine and merge "
             "signs plus source, review, image_sign_id, cloud_sign_id, retro_index and condition, "
@@ -75,6 +80,14 @@ class FuseSigns(RoadSignsAlgorithm):
             self.MATCH_RADIUS, self.tr("Match radius (m)"), 1.0,
             self.tr("An image sign and a cloud panel farther apart than this (3D, metres) are never the "
                     "same sign."), minimum=0.05, advanced=True)
+        self.add_code_parameters(self.tr("for each sign found in the cloud alone and recognised in the "
+                                         "panoramas, in a crop around each of its detections there"))
+        self.add_number(
+            self.CODE_CONFIDENCE, self.tr("Minimum code confidence"), DEFAULT_CODE_CONFIDENCE,
+            self.tr("The code voted for a sign found in the cloud alone is kept when its support (its share of "
+                    "the views' weighted vote x the mean probability the classifier gave it, 0-1: the "
+                    "code_score field) is at least this; else the code field stays empty."),
+            minimum=0.0, maximum=1.0, advanced=True)
         self.add_sink(
             self.OUTPUT, self.tr("Signs (fused)"), Qgis.ProcessingSourceType.VectorPoint,
             self.tr("PointZ sign layer: the sign fields, and source (image, lidar, image+lidar), review "
@@ -148,15 +161,23 @@ class FuseSigns(RoadSignsAlgorithm):
             if detector is None:
                 feedback.pushWarning(self.tr("ONNX model not found: {}").format(model_path))
                 return
+            codes = self.code_classifier(parameters, context, feedback)
             found = classify_from_views(lidar_only, stations, detector, folder,
                                         confidence=self.parameterAsDouble(parameters, self.CONFIDENCE, context),
-                                        progress=self.progress(feedback).sub(0.1, 0.9))
+                                        progress=self.progress(feedback).sub(0.1, 0.9), codes=codes,
+                                        code_confidence=self.parameterAsDouble(parameters, self.CODE_CONFIDENCE,
+                                                                               context))
         for record, view_class in zip(lidar_only, found):
             if view_class.images_found:
                 record.update({"class": view_class.klass, "review": 0, "n_views": len(view_class.images_found),
                                "source_images": ";".join(view_class.images_found),
                                "best_image": view_class.images_found[0], "score": view_class.score})
+                if view_class.code is not None:
+                    record.update(view_class.code.fields())
         named = sum(bool(v.images_found) for v in found)
         feedback.pushInfo(self.tr("{} of the {} signs found in the cloud alone were recognised in the "
                                   "panoramas; the others keep the class unknown and are to review.").format(
             named, len(found)))
+        if codes is not None:
+            coded = sum(bool(v.code and v.code.code) for v in found)
+            feedback.pushInfo(self.tr("Sign codes read for {} of them.").format(coded))

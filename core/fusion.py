@@ -14,7 +14,8 @@ Result per sign (:data:`FUSED_SIGN_FIELDS`: the sign layer's fields, then ``sour
 ``review``, ``image_sign_id``, ``cloud_sign_id``, ``retro_index``, ``condition``):
 
 Image signs keep their sign code (the code fields of :data:`.refine.SIGN_FIELDS`); signs
-found by the laser alone have none (empty ``code``).
+found by the laser alone have none here (empty ``code``): ``fusesigns`` reads their class
+and code from the panoramas afterwards (:func:`.viewclass.classify_from_views`).
 
 * **image+lidar**: the image sign, confirmed; its class and score are kept; a position
   triangulated from images only (``position_source = image``) is replaced by the panel's;

@@ -61,7 +61,7 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 from scipy.spatial.distance import squareform
 
-from . import geometry
+from . import geometry, signcodes
 from .cloudsource import CloudSource, conform, open_cloud
 from .detections import Detections
 from .drivewindows import DriveAxis, Spool, Track, make_windows
@@ -90,14 +90,18 @@ from .projection import (
     pca,
 )
 from .schema import Schema, fields, select
-from .signcodes import (
+from .signcodes import (  # noqa: F401 (CodeVote and the constants are the refine API too)
+    CLASS_FROM_CODE,
+    CODE_DROPPED,
+    DEFAULT_CODE_CONFIDENCE,
     DEFAULT_CROP_MARGIN,
     OTHER_CODE,
-    SIGN_CLASSES,
     SIGN_CODE_FIELDS,
     CodesTable,
+    CodeVote,
+    code_support,
     crop_view,
-    vote,
+    decide_code,
 )
 
 DEFAULT_MERGE_RADIUS_M = 1.0
@@ -107,11 +111,6 @@ DEFAULT_BLOCK_M = 150.0
 #: two dimensions refinement reads (LAS intensity and class).
 BLOCK_SPOOL_DTYPE = np.dtype([("xyz", "f8", (3,)), ("point_index", "i8"), ("intensity", "u2"),
                               ("classification", "u1")])
-#: Default of ``code_confidence`` (``roadsigns:refinesigns`` ``CODE_CONFIDENCE``): a voted
-#: code whose support (:func:`vote_code`) is below this is left empty.
-DEFAULT_CODE_CONFIDENCE = 0.5
-#: ``code_check`` values: the code's class replaced the class vote; the code was dropped.
-CLASS_FROM_CODE, CODE_DROPPED = "class_from_code", "code_dropped"
 #: The sign layer (PointZ at the panel centre), one field per :class:`SignRecord` attribute;
 #: the code fields (:data:`.signcodes.SIGN_CODE_FIELDS`) follow the score.
 SIGN_FIELDS: Schema = fields(("sign_id", int), ("class", str), ("score", float)) + SIGN_CODE_FIELDS + fields(
@@ -315,23 +314,6 @@ def vote_class(cand: ProjectionResult, rows: Rows) -> Tuple[str, float]:
     return winner, float(1.0 - np.prod(1.0 - np.clip(s, 0.0, 1.0)))
 
 
-@dataclass
-class CodeVote:
-    """A sign's code (:func:`vote_code`): the :data:`.signcodes.SIGN_CODE_FIELDS` values and
-    the sign's class after the check (``klass``)."""
-
-    code: str
-    name: str
-    score: float
-    views: int
-    check: str
-    klass: str
-
-    def fields(self) -> Dict[str, Any]:
-        return {"code": self.code, "code_name": self.name, "code_score": self.score,
-                "code_views": self.views, "code_check": self.check}
-
-
 def crop_side_px(det: Detections, rows: Rows) -> np.ndarray:
     """Side (pixels) of the crop :func:`.signcodes.cut_crop` cuts for each view's box: the
     box's larger angular side with the default margin, at the panorama's density, clamped to
@@ -342,14 +324,10 @@ def crop_side_px(det: Detections, rows: Rows) -> np.ndarray:
 
 
 def class_support(cand: ProjectionResult, rows: Rows, klass: str) -> float:
-    """How well the views ``rows`` support the class ``klass``: its share of the
-    score-weighted class vote (its views' detection scores over all views' scores) x the
-    mean detection score of its views; 0..1."""
-    s = np.clip(np.nan_to_num(cand.detections.score[np.asarray(list(rows), np.int64)]), 0.0, 1.0)
-    mine = np.array([cand.detections.class_name[k] == klass for k in rows], bool)
-    if not np.any(mine) or s.sum() <= 0:
-        return 0.0
-    return float(s[mine].sum() / s.sum() * s[mine].mean())
+    """How well the views ``rows`` support the class ``klass`` (:func:`.signcodes.class_support`)."""
+    rows = np.asarray(list(rows), np.int64)
+    return signcodes.class_support([cand.detections.class_name[k] for k in rows], cand.detections.score[rows],
+                                   klass)
 
 
 def vote_code(cand: ProjectionResult, rows: Rows, klass: str, table: Optional[CodesTable] = None,
@@ -383,27 +361,15 @@ def vote_code(cand: ProjectionResult, rows: Rows, klass: str, table: Optional[Co
     if not read:
         return CodeVote("", "", math.nan, 0, "", klass)
     codes = [det.code[k] for k in read]
-    p = np.clip(np.nan_to_num(det.code_score[read]), 0.0, 1.0)
     w = np.clip(np.nan_to_num(det.score[read]), 0.0, None) * crop_side_px(det, read)
-    winner, share, n_views = vote(codes, p.tolist(), w.tolist())
-    theirs = np.array([c == winner for c in codes], bool)
-    mean_p = float((w[theirs] * p[theirs]).sum() / w[theirs].sum()) if w[theirs].sum() > 0 else 0.0
-    support = float(share * mean_p)
-    if winner == OTHER_CODE or support < confidence:
-        return CodeVote("", "", support, n_views, "", klass)
-    if table is None:
-        return CodeVote(winner, "", support, n_views, "", klass)
-    if winner not in table:
-        k = read[int(np.flatnonzero(theirs)[0])]
+    winner, support, n_views = code_support(codes, det.code_score[read], w)
+    if table is not None and winner != OTHER_CODE and support >= confidence and winner not in table:
+        k = read[codes.index(winner)]
         raise InputError("Detection {det_id} has the sign code {code}, which is not in the sign "
                          "codes table {table}: give the codes table the classifier was run with",
                          det_id=int(det.det_id[k]), code=winner, table=table.path)
-    entry = table.entry(winner)
-    if entry.class_name == klass or klass not in SIGN_CLASSES:
-        return CodeVote(winner, entry.name, support, n_views, "", klass)
-    if support > class_support(cand, rows, klass):
-        return CodeVote(winner, entry.name, support, n_views, CLASS_FROM_CODE, entry.class_name)
-    return CodeVote("", "", support, n_views, CODE_DROPPED, klass)
+    return decide_code(winner, support, n_views, klass, lambda: class_support(cand, rows, klass), table,
+                       confidence)
 
 
 # --------------------------------------------------------------------------------------

@@ -26,7 +26,7 @@ import csv
 import math
 import os
 from dataclasses import dataclass
-from typing import Dict, Iterator, List, Sequence, Tuple
+from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -65,6 +65,12 @@ CODE_FIELDS = fields(("code", str), ("code_score", float))
 #: or ``code_dropped`` (code and class disagreed; the better-supported one was kept).
 SIGN_CODE_FIELDS = fields(("code", str), ("code_name", str), ("code_score", float),
                           ("code_views", int), ("code_check", str))
+
+#: Default minimum support of a voted code (``CODE_CONFIDENCE`` of ``refinesigns`` and
+#: ``fusesigns``): a code whose support (:func:`code_support`) is below this is left empty.
+DEFAULT_CODE_CONFIDENCE = 0.5
+#: ``code_check`` values: the code's class replaced the class vote; the code was dropped.
+CLASS_FROM_CODE, CODE_DROPPED = "class_from_code", "code_dropped"
 
 
 # --- the codes table ----------------------------------------------------------------------
@@ -347,16 +353,30 @@ MAX_CROP_FOV_DEG = 120.0
 MAX_SUPERSAMPLE = 4
 
 
+def square_view(yaw_deg: float, pitch_deg: float, size_deg: float, width_px: int,
+                margin: float = DEFAULT_CROP_MARGIN, max_side_px: int = 256) -> Tuple[PerspectiveView, int]:
+    """The square crop view looking along (``yaw_deg``, ``pitch_deg``) of the panorama (no
+    roll) around a sign ``size_deg`` across, and the view's native side.
+
+    Field of view: ``size_deg x (1 + 2 margin)``, at least one panorama pixel and at most
+    :data:`MAX_CROP_FOV_DEG`. The native side is that field of view in panorama pixels
+    (``fov / 360 x width_px``, the panorama's sampling along a great circle); the view's side
+    is it clamped to ``[8, max_side_px]``.
+    """
+    fov_deg = float(size_deg) * (1.0 + 2.0 * max(float(margin), 0.0))
+    fov_deg = min(max(fov_deg, 360.0 / width_px), MAX_CROP_FOV_DEG)  # at least one pixel
+    native_px = fov_deg / 360.0 * width_px
+    side = int(min(max(round(native_px), 8), max(int(max_side_px), 8)))
+    return PerspectiveView(float(yaw_deg), float(pitch_deg), fov_deg, side, side), int(round(native_px))
+
+
 def crop_view(box_px, width_px: int, height_px: int, margin: float = DEFAULT_CROP_MARGIN,
               max_side_px: int = 256) -> Tuple[PerspectiveView, int]:
     """The square view :func:`cut_crop` cuts for a panorama box, and the box's native side.
 
-    The view looks along the ray of the box centre (no roll); its field of view is the
-    box's larger angular side (width ``(u1 - u0) / W x 360 x cos(elevation)``, height
-    ``(v1 - v0) / H x 180``) times ``1 + 2 margin``, at most :data:`MAX_CROP_FOV_DEG`. The
-    native side is that field of view in panorama pixels (``fov / 360 x W``, the
-    panorama's sampling along a great circle); the view's side is it clamped to
-    ``[8, max_side_px]``.
+    The view looks along the ray of the box centre; the sign's size is the box's larger
+    angular side (width ``(u1 - u0) / W x 360 x cos(elevation)``, height ``(v1 - v0) / H x
+    180``); the rest is :func:`square_view`.
     """
     u0, v0, u1, v1 = (float(x) for x in box_px)
     if not all(math.isfinite(x) for x in (u0, v0, u1, v1)):
@@ -366,12 +386,22 @@ def crop_view(box_px, width_px: int, height_px: int, margin: float = DEFAULT_CRO
     yaw_rad, pitch_rad = geometry.pixel_to_angles_rad(u, v, width_px, height_px)
     box_w_deg = max(u1 - u0, 0.0) / width_px * 360.0 * math.cos(float(pitch_rad))
     box_h_deg = max(v1 - v0, 0.0) / height_px * 180.0
-    fov_deg = max(box_w_deg, box_h_deg) * (1.0 + 2.0 * max(float(margin), 0.0))
-    fov_deg = min(max(fov_deg, 360.0 / width_px), MAX_CROP_FOV_DEG)  # at least one pixel
-    native_px = fov_deg / 360.0 * width_px
-    side = int(min(max(round(native_px), 8), max(int(max_side_px), 8)))
-    view = PerspectiveView(float(np.degrees(yaw_rad)), float(np.degrees(pitch_rad)), fov_deg, side, side)
-    return view, int(round(native_px))
+    return square_view(float(np.degrees(yaw_rad)), float(np.degrees(pitch_rad)), max(box_w_deg, box_h_deg),
+                       width_px, margin, max_side_px)
+
+
+def view_box_crop_view(view: PerspectiveView, box_xyxy, width_px: int, margin: float = DEFAULT_CROP_MARGIN,
+                       max_side_px: int = 256) -> Tuple[PerspectiveView, int]:
+    """The square crop view (:func:`square_view`) of a box found in a perspective ``view``
+    of a panorama ``width_px`` wide: centred on the ray of the box centre, the sign's size
+    the angle the box's larger side spans there."""
+    x0, y0, x1, y1 = (float(x) for x in box_xyxy)
+    ray = view.pixel_to_ray(0.5 * (x0 + x1), 0.5 * (y0 + y1))
+    yaw_rad, pitch_rad = geometry.ray_to_angles_rad(ray)
+    corners = view.pixel_to_ray(np.array([x0, x1, x0, x0]), np.array([y0, y0, y0, y1]))
+    across = [float(np.arccos(np.clip(np.dot(corners[i], corners[i + 1]), -1.0, 1.0))) for i in (0, 2)]
+    return square_view(float(np.degrees(yaw_rad)), float(np.degrees(pitch_rad)), math.degrees(max(across)),
+                       width_px, margin, max_side_px)
 
 
 def cut_crop(pano_bgr: np.ndarray, box_px, margin: float = DEFAULT_CROP_MARGIN,
@@ -382,19 +412,30 @@ def cut_crop(pano_bgr: np.ndarray, box_px, margin: float = DEFAULT_CROP_MARGIN,
     ``W`` across the seam). The crop is a rectified perspective view centred on the box
     centre's ray (:func:`crop_view`: field of view the box's larger angular side x
     ``(1 + 2 margin)``, side in panorama pixels at the native density, clamped to
-    ``[8, max_side_px]``). Columns wrap across the +-180 deg seam. A crop cut smaller than
-    its native side is sampled up to :data:`MAX_SUPERSAMPLE` x finer and shrunk with
-    ``INTER_AREA``, so that fine print does not alias.
+    ``[8, max_side_px]``), cut by :func:`cut_square_view`.
     """
-    import cv2
+    pano = _bgr_panorama(pano_bgr)
+    return cut_square_view(pano, *crop_view(box_px, pano.shape[1], pano.shape[0], margin, max_side_px))
 
+
+def _bgr_panorama(pano_bgr: np.ndarray) -> np.ndarray:
     pano = np.asarray(pano_bgr)
     if pano.ndim != 3 or pano.shape[2] != 3:
         raise ValueError("expected an H x W x 3 BGR panorama, got shape {}".format(pano.shape))
+    return pano
+
+
+def cut_square_view(pano_bgr: np.ndarray, view: PerspectiveView, native_px: int) -> np.ndarray:
+    """The **RGB** uint8 picture of a crop ``view`` (:func:`square_view`) of the panorama
+    (``H x W x 3`` **BGR**). Columns wrap across the +-180 deg seam. A view cut smaller than
+    its ``native_px`` side is sampled up to :data:`MAX_SUPERSAMPLE` x finer and shrunk with
+    ``INTER_AREA``, so that fine print does not alias."""
+    import cv2
+
+    pano = _bgr_panorama(pano_bgr)
     H, W = pano.shape[:2]
-    view, native = crop_view(box_px, W, H, margin, max_side_px)
     side = view.width_px
-    factor = int(min(max(math.ceil(native / side), 1), MAX_SUPERSAMPLE))
+    factor = int(min(max(math.ceil(native_px / side), 1), MAX_SUPERSAMPLE))
     n = side * factor
     sample = PerspectiveView(view.yaw_deg, view.pitch_deg, view.hfov_deg, n, n)
     ys, xs = np.mgrid[0:n, 0:n].astype(float) + 0.5
@@ -446,3 +487,77 @@ def vote(codes: Sequence[str], scores: Sequence[float],
     share = totals[winner] / grand if grand > 0 else 0.0
     return winner, float(min(max(share, 0.0), 1.0)), views[winner]
 
+
+
+def code_support(codes: Sequence[str], probs: Sequence[float],
+                 weights: Sequence[float]) -> Tuple[str, float, int]:
+    """The code voted across the views of one sign, and its **support**.
+
+    View ``i`` read ``codes[i]`` with probability ``probs[i]`` and weighs ``weights[i]``
+    (detection score x crop side in pixels); it votes ``weights[i] x probs[i]``
+    (:func:`vote`). The support is the winner's share of the vote x the ``weights``-weighted
+    mean probability of the views that read it (0..1; a code every view read with certainty
+    has 1). Returns (code, support, views that read it); no views: ``("", nan, 0)``.
+    """
+    if not len(codes):
+        return "", math.nan, 0
+    p = np.clip(np.nan_to_num(np.asarray(probs, float)), 0.0, 1.0)
+    w = np.clip(np.nan_to_num(np.asarray(weights, float)), 0.0, None)
+    winner, share, n_views = vote(codes, p.tolist(), w.tolist())
+    theirs = np.array([c == winner for c in codes], bool)
+    mean_p = float((w[theirs] * p[theirs]).sum() / w[theirs].sum()) if w[theirs].sum() > 0 else 0.0
+    return winner, float(share * mean_p), n_views
+
+
+def class_support(classes: Sequence[str], scores: Sequence[float], klass: str) -> float:
+    """How well views support the class ``klass`` (the other side of :func:`decide_code`'s
+    check): its share of the score-weighted class vote (the detection scores of its views
+    over all views' scores) x the mean detection score of its views; 0..1."""
+    s = np.clip(np.nan_to_num(np.asarray(scores, float)), 0.0, 1.0)
+    mine = np.array([c == klass for c in classes], bool)
+    if not np.any(mine) or s.sum() <= 0:
+        return 0.0
+    return float(s[mine].sum() / s.sum() * s[mine].mean())
+
+
+@dataclass
+class CodeVote:
+    """A sign's code after the vote and the class check (:func:`decide_code`): the
+    :data:`SIGN_CODE_FIELDS` values and the sign's class after the check (``klass``)."""
+
+    code: str
+    name: str
+    score: float
+    views: int
+    check: str
+    klass: str
+
+    def fields(self) -> Dict[str, Any]:
+        return {"code": self.code, "code_name": self.name, "code_score": self.score,
+                "code_views": self.views, "code_check": self.check}
+
+
+def decide_code(winner: str, support: float, n_views: int, klass: str,
+                class_support: Callable[[], float], table: Optional[CodesTable] = None,
+                confidence: float = DEFAULT_CODE_CONFIDENCE) -> CodeVote:
+    """What a sign keeps of the code :func:`code_support` voted, with its class ``klass``.
+
+    ``code`` and ``code_name`` are empty when the winner is :data:`OTHER_CODE`, nothing was
+    read (``winner`` empty) or the support is below ``confidence`` (``code_score`` and
+    ``code_views`` still describe the winner). **Class check**, for a kept code whose class in
+    ``table`` differs from ``klass`` (when ``klass`` is one of :data:`SIGN_CLASSES`):
+    ``class_support()`` is the class's support (0..1); a code with a strictly larger support
+    gives the sign its class (``code_check = class_from_code``), else the code is emptied
+    (``code_check = code_dropped``). Without a ``table`` the name is empty and there is no
+    check. The caller makes sure ``winner`` is in ``table``.
+    """
+    if not winner or winner == OTHER_CODE or not support >= confidence:
+        return CodeVote("", "", support, n_views, "", klass)
+    if table is None:
+        return CodeVote(winner, "", support, n_views, "", klass)
+    entry = table.entry(winner)
+    if entry.class_name == klass or klass not in SIGN_CLASSES:
+        return CodeVote(winner, entry.name, support, n_views, "", klass)
+    if support > class_support():
+        return CodeVote(winner, entry.name, support, n_views, CLASS_FROM_CODE, entry.class_name)
+    return CodeVote("", "", support, n_views, CODE_DROPPED, klass)

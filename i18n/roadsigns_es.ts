@@ -107,229 +107,179 @@
 <context>
     <name>DetectSigns</name>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="44" />
+        <location filename="../algorithms/detectsigns.py" line="42" />
         <source>Detect signs in panoramas</source>
         <translation>Detectar señales en panoramas</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="47" />
+        <location filename="../algorithms/detectsigns.py" line="45" />
         <source>Runs an ONNX sign detector on each panorama; one ray per detected sign.</source>
         <translation>Ejecuta un detector de señales ONNX en cada panorama; un rayo por señal detectada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="162" />
+        <location filename="../algorithms/detectsigns.py" line="144" />
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="70" />
+        <location filename="../algorithms/detectsigns.py" line="68" />
         <source>The output of Import trajectory: one point per panorama with its pose and path.</source>
         <translation>La salida de «Importar trayectoria y panoramas»: un punto por panorama con su pose y su ruta.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="73" />
+        <location filename="../algorithms/detectsigns.py" line="71" />
         <source>ONNX model (empty: the bundled model)</source>
         <translation>Modelo ONNX (vacío: el modelo incluido)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="73" />
+        <location filename="../algorithms/detectsigns.py" line="71" />
         <source>A YOLO-family ONNX detector. Empty uses the model bundled with the plugin.</source>
         <translation>Un detector ONNX de la familia YOLO. Vacío usa el modelo incluido con el complemento.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="124" />
+        <location filename="../algorithms/detectsigns.py" line="71" />
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>Modelos ONNX (*.onnx);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="77" />
+        <location filename="../algorithms/detectsigns.py" line="75" />
         <source>Minimum confidence</source>
         <translation>Confianza mínima</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="77" />
+        <location filename="../algorithms/detectsigns.py" line="75" />
         <source>Detections scoring below this (0-1) are dropped.</source>
         <translation>Se descartan las detecciones con una puntuación inferior a este valor (0-1).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="80" />
+        <location filename="../algorithms/detectsigns.py" line="78" />
         <source>Smallest sign kept (panorama pixels)</source>
         <translation>Señal más pequeña conservada (píxeles de panorama)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="80" />
+        <location filename="../algorithms/detectsigns.py" line="78" />
         <source>Detections whose box is shorter than this on its shorter side are dropped: signs that small are boxed a few pixels off and their class is unsure, and the drive sees them again, larger, from the next stations. 0 keeps every detection.</source>
         <translation>Se descartan las detecciones cuyo recuadro tiene el lado menor por debajo de este valor: en señales tan pequeñas el recuadro se desvía unos píxeles y la clase es dudosa, y el recorrido las vuelve a ver, más grandes, desde las estaciones siguientes. 0 conserva todas las detecciones.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="86" />
+        <location filename="../algorithms/detectsigns.py" line="84" />
         <source>Class names file (optional)</source>
         <translation>Archivo de nombres de clase (opcional)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="86" />
+        <location filename="../algorithms/detectsigns.py" line="84" />
         <source>One class name per line, in the model's class order; needed when the model has no names in its metadata and no labels file beside it.</source>
         <translation>Un nombre de clase por línea, en el orden de clases del modelo; necesario cuando el modelo no tiene nombres en sus metadatos ni un archivo de etiquetas a su lado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="86" />
+        <location filename="../algorithms/detectsigns.py" line="84" />
         <source>Text files (*.txt);;All files (*.*)</source>
         <translation>Archivos de texto (*.txt);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="91" />
+        <location filename="../algorithms/detectsigns.py" line="89" />
         <source>Ray length (m)</source>
         <translation>Longitud del rayo (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="91" />
+        <location filename="../algorithms/detectsigns.py" line="89" />
         <source>Length of each detection ray from the panorama centre, in metres.</source>
         <translation>Longitud de cada rayo de detección desde el centro del panorama, en metros.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="95" />
+        <location filename="../algorithms/detectsigns.py" line="93" />
         <source>Also look upwards (overhead and gantry signs)</source>
         <translation>Mirar también hacia arriba (señales elevadas y de pórtico)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="115" />
+        <location filename="../algorithms/detectsigns.py" line="113" />
         <source>CPU threads (0: all)</source>
         <translation>Hilos de CPU (0: todos)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="115" />
+        <location filename="../algorithms/detectsigns.py" line="113" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>Hilos que onnxruntime puede usar en la CPU; 0 le permite usar todos los núcleos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="137" />
+        <location filename="../algorithms/detectsigns.py" line="119" />
         <source>Detections</source>
         <translation>Detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="141" />
+        <location filename="../algorithms/detectsigns.py" line="123" />
         <source>Number of detections</source>
         <translation>Número de detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="142" />
+        <location filename="../algorithms/detectsigns.py" line="124" />
         <source>Panoramas skipped</source>
         <translation>Panoramas omitidos</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="155" />
+        <location filename="../algorithms/detectsigns.py" line="137" />
         <source>ONNX model not found: {}</source>
         <translation>No se encontró el modelo ONNX: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="169" />
+        <location filename="../algorithms/detectsigns.py" line="151" />
         <source>{} panoramas, {} views each</source>
         <translation>{} panoramas, {} vistas cada uno</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="182" />
+        <location filename="../algorithms/detectsigns.py" line="165" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>Se omitieron {} panorama(s) que no se pudieron leer.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="198" />
+        <location filename="../algorithms/detectsigns.py" line="181" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} detecciones en {} panoramas ({} omitidos).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="190" />
+        <location filename="../algorithms/detectsigns.py" line="173" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>No se detectó ninguna señal: la capa de detecciones está vacía.</translation>
     </message>
     <message>
         <location filename="../algorithms/detectsigns.py" line="119" />
-        <source>Read the sign codes</source>
-        <translation>Leer los códigos de señal</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="119" />
-        <source>Reads what each detected sign says (its code, such as DE:206 for stop) with the sign-code classifier. Unchecked, the code fields stay empty. When the bundled classifier is missing, the log says so and the detections get no code.</source>
-        <translation>Lee lo que dice cada señal detectada (su código, como DE:206 para la señal de stop) con el clasificador de códigos de señal. Si se desmarca, los campos de código quedan vacíos. Cuando falta el clasificador incluido, el registro lo indica y las detecciones no reciben código.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="124" />
-        <source>Sign-code classifier (empty: the bundled one)</source>
-        <translation>Clasificador de códigos de señal (vacío: el incluido)</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="124" />
-        <source>An ONNX classifier of sign crops: float input [N, 3, S, S] (RGB, 0..1), output [N, C], the codes it answers in its metadata 'names' (each in the codes table, or 'other'). The format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;). Empty uses the classifier bundled with the plugin (models/signcodes.onnx).</source>
-        <translation>Un clasificador ONNX de recortes de señales: entrada float [N, 3, S, S] (RGB, 0..1), salida [N, C], los códigos que puede responder en sus metadatos 'names' (cada uno en la tabla de códigos, o bien 'other'). El formato está en models/README.md (sección &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;). Vacío usa el clasificador incluido con el complemento (models/signcodes.onnx).</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="131" />
-        <source>Sign codes table (empty: the bundled one)</source>
-        <translation>Tabla de códigos de señal (vacío: la incluida)</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="131" />
-        <source>The codes the classifier may answer, with their names and classes: UTF-8 text, semicolon-separated, the header code;name;class (format in models/README.md). Empty uses the bundled table of German codes (models/sign-codes-de.csv).</source>
-        <translation>Los códigos que el clasificador puede responder, con sus nombres y clases: texto UTF-8, separado por punto y coma, con la cabecera code;name;class (formato en models/README.md). Vacío usa la tabla incluida de códigos alemanes (models/sign-codes-de.csv).</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="131" />
-        <source>CSV files (*.csv *.txt);;All files (*.*)</source>
-        <translation>Archivos CSV (*.csv *.txt);;Todos los archivos (*.*)</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="137" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>Capa LineStringZ, un rayo por detección, con det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views y los campos de pose de la estación.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="202" />
+        <location filename="../algorithms/detectsigns.py" line="185" />
         <source>Sign codes read in {} of the {} detections (the others: other).</source>
         <translation>Códigos de señal leídos en {} de las {} detecciones (las demás: other).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="212" />
-        <source>Sign codes are not read (Read the sign codes is off).</source>
-        <translation>Los códigos de señal no se leen («Leer los códigos de señal» está desactivado).</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="218" />
-        <source>The bundled sign-code classifier {} is missing: the detections get no sign code.</source>
-        <translation>Falta el clasificador de códigos de señal incluido {}: las detecciones no reciben código de señal.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="222" />
-        <source>Sign-code classifier not found: {}</source>
-        <translation>No se encontró el clasificador de códigos de señal: {}</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="225" />
-        <source>Sign codes: {}</source>
-        <translation>Códigos de señal: {}</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="103" />
+        <location filename="../algorithms/detectsigns.py" line="101" />
         <source>Skip stations closer than (m)</source>
         <translation>Omitir estaciones a menos de (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="174" />
+        <location filename="../algorithms/detectsigns.py" line="157" />
         <source>Detecting in {} of the {} panoramas: stations closer than {} m to the last one detected in are skipped.</source>
         <translation>Detectando en {} de los {} panoramas: se omiten las estaciones a menos de {} m de la última en la que se detectó.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="50" />
+        <location filename="../algorithms/detectsigns.py" line="48" />
         <source>Cuts each station's equirectangular panorama into overlapping perspective views (a horizon ring, and optionally an upward ring for overhead signs), runs the ONNX detector on each view, maps the boxes back to panorama pixels and merges the same sign found in two views.&lt;br&gt;&lt;br&gt;The &lt;b&gt;model&lt;/b&gt; is the bundled one when left empty, or your own ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model with NMS built in ([1, N, 6]). Class names come from the model's metadata (Ultralytics &lt;i&gt;names&lt;/i&gt;) or a labels file (one name per line).&lt;br&gt;&lt;br&gt;Output: one line per detection from the panorama centre along the ray through the box centre, &lt;i&gt;Ray length&lt;/i&gt; long, with the box (u0, v0, u1, v1 in panorama pixels; across the ±180° seam u1 exceeds the width) and the station's pose. A panorama that cannot be read is skipped with a warning and counted.&lt;br&gt;&lt;br&gt;&lt;b&gt;Sign codes&lt;/b&gt;: a second, small ONNX model (the bundled sign-code classifier, or your own) reads what each detected sign says, from a rectified crop of the panorama around its box at the panorama's own resolution: &lt;i&gt;code&lt;/i&gt; (such as DE:274[50], speed limit 50, from the codes table; &lt;i&gt;other&lt;/i&gt; when it knows none) and &lt;i&gt;code_score&lt;/i&gt; (its probability). Refine signs votes them across the views of each sign. The classifier's format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</source>
         <translation>Corta el panorama equirrectangular de cada estación en vistas en perspectiva superpuestas (un anillo horizontal y, opcionalmente, un anillo hacia arriba para las señales elevadas), ejecuta el detector ONNX en cada vista, devuelve los recuadros a píxeles del panorama y fusiona la misma señal encontrada en dos vistas.&lt;br&gt;&lt;br&gt;El &lt;b&gt;modelo&lt;/b&gt; es el incluido si se deja vacío, o su propia exportación ONNX: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) o un modelo con NMS integrado ([1, N, 6]). Los nombres de clase provienen de los metadatos del modelo (&lt;i&gt;names&lt;/i&gt; de Ultralytics) o de un archivo de etiquetas (un nombre por línea).&lt;br&gt;&lt;br&gt;Salida: una línea por detección desde el centro del panorama a lo largo del rayo que pasa por el centro del recuadro, de &lt;i&gt;Longitud del rayo&lt;/i&gt; de largo, con el recuadro (u0, v0, u1, v1 en píxeles del panorama; a través de la costura de ±180°, u1 supera el ancho) y la pose de la estación. Un panorama que no se puede leer se omite con una advertencia y se contabiliza.&lt;br&gt;&lt;br&gt;&lt;b&gt;Códigos de señal&lt;/b&gt;: un segundo modelo ONNX, pequeño (el clasificador de códigos de señal incluido, o el suyo propio), lee lo que dice cada señal detectada a partir de un recorte rectificado del panorama alrededor de su recuadro, con la resolución propia del panorama: &lt;i&gt;code&lt;/i&gt; (como DE:274[50], límite de velocidad 50, de la tabla de códigos; &lt;i&gt;other&lt;/i&gt; cuando no conoce ninguno) y &lt;i&gt;code_score&lt;/i&gt; (su probabilidad). «Refinar y fusionar señales» los somete a votación entre las vistas de cada señal. El formato del clasificador está en models/README.md (sección &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="95" />
+        <location filename="../algorithms/detectsigns.py" line="93" />
         <source>Adds a ring of 6 views tilted 35° up to the 8 horizon views, for signs high above the road close to the vehicle. Off by default: a sign overhead is in the horizon views from every station more than a few metres away, and on two held-out test streets (panoramas every 5 m, 6 gantry panels each) the horizon views alone found every sign, as many as with the upward ring, in 1.3 to 1.6 times less detection time. Check it for drives with panoramas far apart.</source>
         <translation>Añade un anillo de 6 vistas inclinadas 35° hacia arriba a las 8 vistas horizontales, para las señales situadas muy por encima de la calzada cerca del vehículo. Desactivado por defecto: una señal elevada aparece en las vistas horizontales desde cualquier estación situada a más de unos pocos metros, y en dos calles de prueba no usadas en el ajuste (panoramas cada 5 m, 6 paneles de pórtico en cada una) las vistas horizontales por sí solas encontraron todas las señales, tantas como con el anillo hacia arriba, en un tiempo de detección de 1,3 a 1,6 veces menor. Márquelo para recorridos con panoramas muy separados entre sí.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="103" />
+        <location filename="../algorithms/detectsigns.py" line="101" />
         <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so a few metres save detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. 0 detects in every panorama. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. For drives with denser panoramas, 5 m keeps the density those figures were measured at.</source>
         <translation>Detecta solo en los panoramas cuya estación está al menos a esta distancia de la última estación en la que se detectó; las intermedias se omiten (no se leen, sin detecciones). Una señal permanece a la vista durante muchas estaciones, así que unos pocos metros ahorran tiempo de detección en proporción, pero cada señal se ve entonces desde menos estaciones: menos rayos para situarla, y una señal visible solo desde unas pocas estaciones (pequeña, u oculta tras árboles o vehículos) puede perderse. 0 detecta en todos los panoramas. Medido en dos calles de prueba no usadas en el ajuste, con un panorama cada 5 m: detectando en todos los panoramas se encontraron las 46 y las 45 señales; con 10 m (uno de cada dos) se perdieron 2 en cada una, y con 15 m, 11 de 46. Para recorridos con panoramas más densos, 5 m mantiene la densidad con la que se midieron esas cifras.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="117" />
+        <source>in a crop around each detection, voted later across the views of each sign by Refine and merge signs</source>
+        <translation>en un recorte alrededor de cada detección; «Refinar y fusionar señales» vota después entre las vistas de cada señal</translation>
     </message>
 </context>
 <context>
@@ -904,149 +854,169 @@
 <context>
     <name>FuseSigns</name>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="29" />
+        <location filename="../algorithms/fusesigns.py" line="32" />
         <source>Fuse image and cloud signs</source>
         <translation>Fusionar señales de imagen y de nube</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="32" />
+        <location filename="../algorithms/fusesigns.py" line="35" />
         <source>Merges the signs found in the images with the panels found in the cloud alone: one sign layer that says which sources found each sign.</source>
         <translation>Fusiona las señales encontradas en las imágenes con los paneles encontrados solo en la nube: una capa de señales que indica qué fuentes encontraron cada señal.</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="36" />
-        <source>Matches each sign of the image chain (Refine and merge signs) to at most one panel found in the cloud alone (Find signs in the point cloud) by optimal assignment: centres within the match radius and facings within 90°.&lt;br&gt;&lt;br&gt;A matched sign keeps its class and gains the panel's retroreflectivity index and condition (&lt;i&gt;source&lt;/i&gt; = image+lidar). A panel no image sign explains becomes a sign of its own (&lt;i&gt;source&lt;/i&gt; = lidar): with the stations and the panorama folder, the panoramas in front of its face are cut into views centred on it and the detector reads its class there; if none recognises it, its class is &lt;i&gt;unknown&lt;/i&gt; and it is flagged for review. An image sign whose place in the cloud holds no retro-reflective panel loses confidence (its score × 0.6) and is flagged for review (&lt;i&gt;source&lt;/i&gt; = image).&lt;br&gt;&lt;br&gt;Output: the sign layer with the fields of Refine and merge signs plus source, review, image_sign_id, cloud_sign_id, retro_index and condition, styled like the sign layer.</source>
-        <translation>Empareja cada señal de la cadena de imágenes («Refinar y fusionar señales») con como máximo un panel encontrado solo en la nube («Buscar señales en la nube de puntos (sin imágenes)») mediante asignación óptima: centros dentro del radio de emparejamiento y orientaciones a menos de 90°.&lt;br&gt;&lt;br&gt;Una señal emparejada conserva su clase y recibe el índice de retrorreflexión y el estado del panel (&lt;i&gt;source&lt;/i&gt; = image+lidar). Un panel que ninguna señal de imagen explica se convierte en una señal propia (&lt;i&gt;source&lt;/i&gt; = lidar): con las estaciones y la carpeta de panoramas, los panoramas situados frente a su cara se recortan en vistas centradas en él y el detector lee allí su clase; si en ninguna se reconoce, su clase es &lt;i&gt;unknown&lt;/i&gt; y se marca para revisión. Una señal de imagen en cuyo lugar de la nube no hay ningún panel retrorreflectante pierde confianza (su puntuación × 0,6) y se marca para revisión (&lt;i&gt;source&lt;/i&gt; = image).&lt;br&gt;&lt;br&gt;Salida: la capa de señales con los campos de «Refinar y fusionar señales» más source, review, image_sign_id, cloud_sign_id, retro_index y condition, con el mismo estilo que la capa de señales.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/fusesigns.py" line="97" />
+        <location filename="../algorithms/fusesigns.py" line="110" />
         <source>Signs (from the images)</source>
         <translation>Señales (de las imágenes)</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="51" />
+        <location filename="../algorithms/fusesigns.py" line="56" />
         <source>The output of Refine and merge signs.</source>
         <translation>La salida de «Refinar y fusionar señales».</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="99" />
+        <location filename="../algorithms/fusesigns.py" line="112" />
         <source>Sign panels found in the cloud</source>
         <translation>Paneles de señal encontrados en la nube</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="54" />
+        <location filename="../algorithms/fusesigns.py" line="59" />
         <source>The output of Find signs in the point cloud.</source>
         <translation>La salida de «Buscar señales en la nube de puntos (sin imágenes)».</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="57" />
+        <location filename="../algorithms/fusesigns.py" line="62" />
         <source>Panorama stations (to classify panels found in the cloud alone)</source>
         <translation>Estaciones de panorama (para clasificar los paneles encontrados solo en la nube)</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="57" />
+        <location filename="../algorithms/fusesigns.py" line="62" />
         <source>The output of Import trajectory. With the panorama folder, the class of each panel no image sign explains is read from the panoramas in front of it.</source>
         <translation>La salida de «Importar trayectoria y panoramas». Con la carpeta de panoramas, la clase de cada panel que ninguna señal de imagen explica se lee de los panoramas situados frente a él.</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="62" />
+        <location filename="../algorithms/fusesigns.py" line="67" />
         <source>Panorama folder (optional)</source>
         <translation>Carpeta de panoramas (opcional)</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="62" />
+        <location filename="../algorithms/fusesigns.py" line="67" />
         <source>The folder of the panoramas (empty: the paths in the stations layer).</source>
         <translation>La carpeta de los panoramas (vacía: las rutas de la capa de estaciones).</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="66" />
+        <location filename="../algorithms/fusesigns.py" line="71" />
         <source>ONNX model (empty: the bundled model)</source>
         <translation>Modelo ONNX (vacío: el modelo incluido)</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="66" />
+        <location filename="../algorithms/fusesigns.py" line="71" />
         <source>The detector that reads the class of panels found in the cloud alone.</source>
         <translation>El detector que lee la clase de los paneles encontrados solo en la nube.</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="66" />
+        <location filename="../algorithms/fusesigns.py" line="71" />
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>Modelos ONNX (*.onnx);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="70" />
+        <location filename="../algorithms/fusesigns.py" line="75" />
         <source>Minimum confidence</source>
         <translation>Confianza mínima</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="70" />
+        <location filename="../algorithms/fusesigns.py" line="75" />
         <source>A class read from the panoramas is kept when the detector scores it at least this (0-1).</source>
         <translation>Una clase leída de los panoramas se conserva si el detector le da una puntuación de al menos este valor (0-1).</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="74" />
+        <location filename="../algorithms/fusesigns.py" line="79" />
         <source>Match radius (m)</source>
         <translation>Radio de emparejamiento (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="74" />
+        <location filename="../algorithms/fusesigns.py" line="79" />
         <source>An image sign and a cloud panel farther apart than this (3D, metres) are never the same sign.</source>
         <translation>Una señal de imagen y un panel de la nube separados más que esto (3D, metros) nunca son la misma señal.</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="78" />
+        <location filename="../algorithms/fusesigns.py" line="91" />
         <source>Signs (fused)</source>
         <translation>Señales (fusionadas)</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="78" />
+        <location filename="../algorithms/fusesigns.py" line="91" />
         <source>PointZ sign layer: the sign fields, and source (image, lidar, image+lidar), review (1: to be checked), image_sign_id, cloud_sign_id, retro_index, condition and the review chip of the image sign (chip, relative to the layer's folder).</source>
         <translation>Capa de señales PointZ: los campos de señal, y source (image, lidar, image+lidar), review (1: por comprobar), image_sign_id, cloud_sign_id, retro_index, condition y la miniatura de revisión de la señal de imagen (chip, relativa a la carpeta de la capa).</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="83" />
+        <location filename="../algorithms/fusesigns.py" line="96" />
         <source>Signs found by both</source>
         <translation>Señales encontradas por ambas fuentes</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="84" />
+        <location filename="../algorithms/fusesigns.py" line="97" />
         <source>Signs found in the images only</source>
         <translation>Señales encontradas solo en las imágenes</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="85" />
+        <location filename="../algorithms/fusesigns.py" line="98" />
         <source>Signs found in the cloud only</source>
         <translation>Señales encontradas solo en la nube</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="103" />
+        <location filename="../algorithms/fusesigns.py" line="116" />
         <source>The signs are in {}, the panels found in the cloud in {}: both must be in the cloud's CRS</source>
         <translation>Las señales están en {} y los paneles encontrados en la nube en {}: ambas capas deben estar en el SRC de la nube</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="114" />
+        <location filename="../algorithms/fusesigns.py" line="127" />
         <source>No stations given: the {} signs found in the cloud alone keep the class unknown.</source>
         <translation>No se indicaron estaciones: las {} señales encontradas solo en la nube conservan la clase unknown.</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="130" />
+        <location filename="../algorithms/fusesigns.py" line="143" />
         <source>{} signs: {} found by both, {} in the images only ({} of them where the cloud was searched: score lowered, to review), {} in the cloud only.</source>
         <translation>{} señales: {} encontradas por ambas fuentes, {} solo en las imágenes ({} de ellas donde se buscó en la nube: puntuación reducida, por revisar), {} solo en la nube.</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="143" />
+        <location filename="../algorithms/fusesigns.py" line="156" />
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="149" />
+        <location filename="../algorithms/fusesigns.py" line="162" />
         <source>ONNX model not found: {}</source>
         <translation>No se encontró el modelo ONNX: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="160" />
+        <location filename="../algorithms/fusesigns.py" line="178" />
         <source>{} of the {} signs found in the cloud alone were recognised in the panoramas; the others keep the class unknown and are to review.</source>
         <translation>{} de las {} señales encontradas solo en la nube se reconocieron en los panoramas; las demás conservan la clase unknown y quedan por revisar.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="39" />
+        <source>Matches each sign of the image chain (Refine and merge signs) to at most one panel found in the cloud alone (Find signs in the point cloud) by optimal assignment: centres within the match radius and facings within 90°.&lt;br&gt;&lt;br&gt;A matched sign keeps its class and gains the panel's retroreflectivity index and condition (&lt;i&gt;source&lt;/i&gt; = image+lidar). A panel no image sign explains becomes a sign of its own (&lt;i&gt;source&lt;/i&gt; = lidar): with the stations and the panorama folder, the panoramas in front of its face are cut into views centred on it and the detector reads its class there; if none recognises it, its class is &lt;i&gt;unknown&lt;/i&gt; and it is flagged for review. The sign-code classifier reads its code in a crop around each of those detections, and the views vote as Refine and merge signs votes them (code, code_name, code_score, code_views, code_check). An image sign whose place in the cloud holds no retro-reflective panel loses confidence (its score × 0.6) and is flagged for review (&lt;i&gt;source&lt;/i&gt; = image).&lt;br&gt;&lt;br&gt;Output: the sign layer with the fields of Refine and merge signs plus source, review, image_sign_id, cloud_sign_id, retro_index and condition, styled like the sign layer.</source>
+        <translation>Empareja cada señal de la cadena de imágenes («Refinar y fusionar señales») con como máximo un panel encontrado solo en la nube («Buscar señales en la nube de puntos (sin imágenes)») mediante asignación óptima: centros dentro del radio de emparejamiento y orientaciones a menos de 90°.&lt;br&gt;&lt;br&gt;Una señal emparejada conserva su clase y recibe el índice de retrorreflexión y el estado del panel (&lt;i&gt;source&lt;/i&gt; = image+lidar). Un panel que ninguna señal de imagen explica se convierte en una señal propia (&lt;i&gt;source&lt;/i&gt; = lidar): con las estaciones y la carpeta de panoramas, los panoramas situados frente a su cara se recortan en vistas centradas en él y el detector lee allí su clase; si en ninguna se reconoce, su clase es &lt;i&gt;unknown&lt;/i&gt; y se marca para revisión. El clasificador de códigos de señal lee su código en un recorte alrededor de cada una de esas detecciones, y las vistas votan como lo hace «Refinar y fusionar señales» (code, code_name, code_score, code_views, code_check). Una señal de imagen en cuyo lugar de la nube no hay ningún panel retrorreflectante pierde confianza (su puntuación × 0,6) y se marca para revisión (&lt;i&gt;source&lt;/i&gt; = image).&lt;br&gt;&lt;br&gt;Salida: la capa de señales con los campos de «Refinar y fusionar señales» más source, review, image_sign_id, cloud_sign_id, retro_index y condition, con el mismo estilo que la capa de señales.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="83" />
+        <source>for each sign found in the cloud alone and recognised in the panoramas, in a crop around each of its detections there</source>
+        <translation>para cada señal encontrada solo en la nube y reconocida en los panoramas, en un recorte alrededor de cada una de sus detecciones allí</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="85" />
+        <source>Minimum code confidence</source>
+        <translation>Confianza mínima de código</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="85" />
+        <source>The code voted for a sign found in the cloud alone is kept when its support (its share of the views' weighted vote x the mean probability the classifier gave it, 0-1: the code_score field) is at least this; else the code field stays empty.</source>
+        <translation>El código votado para una señal encontrada solo en la nube se conserva cuando su apoyo (su proporción en la votación ponderada de las vistas x la probabilidad media que le dio el clasificador, 0-1: el campo code_score) es al menos este valor; si no, el campo code queda vacío.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="183" />
+        <source>Sign codes read for {} of them.</source>
+        <translation>Códigos de señal leídos para {} de ellas.</translation>
     </message>
 </context>
 <context>
@@ -1531,6 +1501,69 @@
         <location filename="../algorithms/projectdetections.py" line="50" />
         <source>The cloud's CRS when the file records none (it must be the detections' CRS); it overrides a CRS in the file. The CRS is never guessed.</source>
         <translation>El SRC de la nube cuando el archivo no registra ninguno (debe ser el SRC de las detecciones); sustituye al SRC del archivo. El SRC nunca se adivina.</translation>
+    </message>
+</context>
+<context>
+    <name>ReadsCodes</name>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="21" />
+        <source>Read the sign codes</source>
+        <translation>Leer los códigos de señal</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="21" />
+        <source>Reads what each sign says (its code, such as DE:206 for stop) with the sign-code classifier: {}. Unchecked, the code fields stay empty. When the bundled classifier is missing, the log says so and no code is read.</source>
+        <translation>Lee lo que dice cada señal (su código, como DE:206 para la señal de stop) con el clasificador de códigos de señal: {}. Si se desmarca, los campos de código quedan vacíos. Cuando falta el clasificador incluido, el registro lo indica y no se lee ningún código.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="26" />
+        <source>Sign-code classifier (empty: the bundled one)</source>
+        <translation>Clasificador de códigos de señal (vacío: el incluido)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="26" />
+        <source>An ONNX classifier of sign crops: float input [N, 3, S, S] (RGB, 0..1), output [N, C], the codes it answers in its metadata 'names' (each in the codes table, or 'other'). The format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;). Empty uses the classifier bundled with the plugin (models/signcodes.onnx).</source>
+        <translation>Un clasificador ONNX de recortes de señales: entrada float [N, 3, S, S] (RGB, 0..1), salida [N, C], los códigos que puede responder en sus metadatos 'names' (cada uno en la tabla de códigos, o bien 'other'). El formato está en models/README.md (sección &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;). Vacío usa el clasificador incluido con el complemento (models/signcodes.onnx).</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="26" />
+        <source>ONNX models (*.onnx);;All files (*.*)</source>
+        <translation>Modelos ONNX (*.onnx);;Todos los archivos (*.*)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="33" />
+        <source>Sign codes table (empty: the bundled one)</source>
+        <translation>Tabla de códigos de señal (vacío: la incluida)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="33" />
+        <source>The codes the classifier may answer, with their names and classes: UTF-8 text, semicolon-separated, the header code;name;class (format in models/README.md). Empty uses the bundled table of German codes (models/sign-codes-de.csv).</source>
+        <translation>Los códigos que el clasificador puede responder, con sus nombres y clases: texto UTF-8, separado por punto y coma, con la cabecera code;name;class (formato en models/README.md). Vacío usa la tabla incluida de códigos alemanes (models/sign-codes-de.csv).</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="33" />
+        <source>CSV files (*.csv *.txt);;All files (*.*)</source>
+        <translation>Archivos CSV (*.csv *.txt);;Todos los archivos (*.*)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="46" />
+        <source>Sign codes are not read (Read the sign codes is off).</source>
+        <translation>Los códigos de señal no se leen («Leer los códigos de señal» está desactivado).</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="52" />
+        <source>The bundled sign-code classifier {} is missing: no sign code is read.</source>
+        <translation>Falta el clasificador de códigos de señal incluido {}: no se lee ningún código de señal.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="56" />
+        <source>Sign-code classifier not found: {}</source>
+        <translation>No se encontró el clasificador de códigos de señal: {}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="59" />
+        <source>Sign codes: {}</source>
+        <translation>Códigos de señal: {}</translation>
     </message>
 </context>
 <context>
@@ -2134,8 +2167,8 @@
         <translation>El {share:.0%} de los puntos cercanos a la vía tiene la intensidad saturada: el umbral de brillo {thr:.3f} del fondo de escala y el estado de las señales pueden carecer de sentido</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="478" />
-        <location filename="../core/cloudsource.py" line="476" />
+        <location filename="../core/cloudsource.py" line="509" />
+        <location filename="../core/cloudsource.py" line="507" />
         <source>expected a virtual point cloud: a JSON FeatureCollection (STAC ItemCollection) whose features each have assets.data.href (the tile's file, relative to the .vpc) and properties, as QGIS's Build virtual point cloud writes it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>se esperaba una nube de puntos virtual: una FeatureCollection JSON (ItemCollection de STAC) cuyas entidades tengan cada una assets.data.href (el archivo de la tesela, relativo al .vpc) y properties, tal como la escribe «Construir nube de puntos virtual» de QGIS</translation>
@@ -2147,25 +2180,25 @@
         <translation>sin SRC</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="437" />
+        <location filename="../core/cloudsource.py" line="468" />
         <source>The folder {path} holds no LAS or LAZ file (*.las, *.laz); expected a point cloud file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La carpeta {path} no contiene ningún archivo LAS ni LAZ (*.las, *.laz); se esperaba un archivo de nube de puntos, una carpeta de teselas LAS/LAZ o una nube de puntos virtual (.vpc)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="480" />
+        <location filename="../core/cloudsource.py" line="511" />
         <source>Cannot read {path}: the JSON is not an object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el JSON no es un objeto; {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="483" />
+        <location filename="../core/cloudsource.py" line="514" />
         <source>Cannot read {path}: it is not a 'FeatureCollection' with a 'features' list; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: no es una 'FeatureCollection' con una lista 'features'; {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="486" />
+        <location filename="../core/cloudsource.py" line="517" />
         <source>The virtual point cloud {path} lists no tile</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} no enumera ninguna tesela</translation>
@@ -2178,20 +2211,20 @@
         <translation>{path} no tiene la dimensión {names} (formato de punto {fmt})</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="430" />
+        <location filename="../core/cloudsource.py" line="461" />
         <source>Cannot read the folder {path}: {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer la carpeta {path}: {detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="469" />
+        <location filename="../core/cloudsource.py" line="500" />
         <location filename="../core/pointcloud.py" line="65" />
         <source>Cannot read {path}: the file does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo no existe</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="471" />
+        <location filename="../core/cloudsource.py" line="502" />
         <location filename="../core/ground/pdal.py" line="306" />
         <location filename="../core/pointcloud.py" line="67" />
         <location filename="../core/pointcloud.py" line="110" />
@@ -2200,61 +2233,61 @@
         <translation>No se puede leer {path}: {detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="475" />
+        <location filename="../core/cloudsource.py" line="506" />
         <source>Cannot read {path}: it is not valid JSON ({detail}); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: no es un JSON válido ({detail}); {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="493" />
+        <location filename="../core/cloudsource.py" line="524" />
         <source>Cannot read {path}: feature {feature} has no 'assets' object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: la entidad {feature} no tiene objeto 'assets'; {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="501" />
+        <location filename="../core/cloudsource.py" line="532" />
         <source>Cannot read {path}: feature {feature} has no asset with an 'href' (assets.data.href); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: la entidad {feature} no tiene ningún asset con 'href' (assets.data.href); {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="505" />
+        <location filename="../core/cloudsource.py" line="536" />
         <source>The virtual point cloud {path} lists the remote tile {href}: only local files are read; download the tiles and build the virtual point cloud again</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} enumera la tesela remota {href}: solo se leen archivos locales; descargue las teselas y vuelva a construir la nube de puntos virtual</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="511" />
+        <location filename="../core/cloudsource.py" line="542" />
         <source>The virtual point cloud {path} lists the tile {tile} twice (features {first} and {second})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} enumera la tesela {tile} dos veces (entidades {first} y {second})</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="515" />
+        <location filename="../core/cloudsource.py" line="546" />
         <source>The virtual point cloud {path} lists the tile {tile} (feature {feature}), which does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} enumera la tesela {tile} (entidad {feature}), que no existe</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="530" />
+        <location filename="../core/cloudsource.py" line="561" />
         <source>The tiles of {path} cannot be read as one cloud: {tile_a} has point format {fmt_a}, {tile_b} point format {fmt_b}; every tile needs the same point format (convert them to one, e.g. with PDAL's translate)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Las teselas de {path} no se pueden leer como una sola nube: {tile_a} tiene el formato de punto {fmt_a}, {tile_b} el formato de punto {fmt_b}; todas las teselas necesitan el mismo formato de punto (conviértalas a uno solo, p. ej. con translate de PDAL)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="536" />
+        <location filename="../core/cloudsource.py" line="567" />
         <source>The tiles of {path} are in different CRSs: {tile_a} in {crs_a}, {tile_b} in {crs_b}; every tile must be in the same CRS (reproject them to one first)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Las teselas de {path} están en SRC distintos: {tile_a} en {crs_a}, {tile_b} en {crs_b}; todas las teselas deben estar en el mismo SRC (reproyéctelas antes a uno solo)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="565" />
+        <location filename="../core/cloudsource.py" line="596" />
         <source>The points cannot be written with the first tile's scale {scale} and offset {offset} in {axis}: their coordinates are too far from it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Los puntos no se pueden escribir con la escala {scale} y el desplazamiento {offset} de la primera tesela en {axis}: sus coordenadas están demasiado lejos de ellos</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="400" />
+        <location filename="../core/cloudsource.py" line="431" />
         <location filename="../core/ground/pdal.py" line="310" />
         <location filename="../core/ground/pdal.py" line="312" />
         <location filename="../core/ground/pdal.py" line="308" />
@@ -2597,26 +2630,26 @@
     </message>
     <message>
         <location filename="../core/ground/engine.py" line="249" />
-        <location filename="../core/ground/tiled.py" line="153" />
+        <location filename="../core/ground/tiled.py" line="150" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SRC de la nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="330" />
+        <location filename="../core/ground/engine.py" line="322" />
         <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró PDAL: se usa el motor integrado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="380" />
+        <location filename="../core/ground/engine.py" line="372" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay polígonos de recorte: se ignora el búfer de recorte</translation>
     </message>
     <message>
         <location filename="../core/ground/engine.py" line="192" />
-        <location filename="../core/ground/tiled.py" line="316" />
+        <location filename="../core/ground/tiled.py" line="277" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo está dañado ({detail})</translation>
@@ -2635,44 +2668,44 @@
     </message>
     <message>
         <location filename="../core/ground/engine.py" line="251" />
-        <location filename="../core/ground/tiled.py" line="155" />
+        <location filename="../core/ground/tiled.py" line="152" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene sistema de referencia de coordenadas: indique el SRC de la nube (nunca se adivina)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="317" />
+        <location filename="../core/ground/engine.py" line="309" />
         <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: el motor integrado, más rápido que PDAL en las mediciones para {method} (y procesa la nube en flujo continuo con memoria acotada)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="322" />
+        <location filename="../core/ground/engine.py" line="314" />
         <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, porque el {method} integrado necesita el paquete de Python cloth-simulation-filter, que no está instalado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="328" />
+        <location filename="../core/ground/engine.py" line="320" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se pidió PDAL, pero no se encontró ni el módulo de Python pdal ni un ejecutable pdal (PATH, carpeta bin de QGIS)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="332" />
+        <location filename="../core/ground/engine.py" line="324" />
         <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, más rápido que el motor integrado en las mediciones para {method}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="367" />
+        <location filename="../core/ground/engine.py" line="359" />
         <source>No point of {path} is left after the crop: {output} has no points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No queda ningún punto de {path} tras el recorte: {output} no tiene puntos</translation>
     </message>
     <message>
         <location filename="../core/ground/engine.py" line="274" />
-        <location filename="../core/ground/tiled.py" line="184" />
+        <location filename="../core/ground/tiled.py" line="183" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>PDAL falló; se usó el motor integrado en su lugar: {error}</translation>
@@ -2714,37 +2747,37 @@
         <translation>El ejecutable de PDAL {path} no existe o no es ejecutable</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="210" />
+        <location filename="../core/ground/tiled.py" line="216" />
         <source>{n} tiles written to {folder}, listed in {vpc}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} teselas escritas en {folder}, enumeradas en {vpc}</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="145" />
+        <location filename="../core/ground/tiled.py" line="142" />
         <source>The virtual point cloud's name {name} must be a file name ending in .vpc</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El nombre de la nube de puntos virtual {name} debe ser un nombre de archivo terminado en .vpc</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="117" />
+        <location filename="../core/ground/tiled.py" line="114" />
         <source>The output folder {folder} holds the input tile {tile}: choose another folder (the output folder is replaced as a whole)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La carpeta de salida {folder} contiene la tesela de entrada {tile}: elija otra carpeta (la carpeta de salida se reemplaza por completo)</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="120" />
+        <location filename="../core/ground/tiled.py" line="117" />
         <source>Two tiles of {path} have the same file name, {name} ({first} and {second}): the output tiles are named as the input tiles, so their names must differ</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Dos teselas de {path} tienen el mismo nombre de archivo, {name} ({first} y {second}): las teselas de salida se nombran como las de entrada, por lo que sus nombres deben ser distintos</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="207" />
+        <location filename="../core/ground/tiled.py" line="213" />
         <source>No point of {path} is left after the crop: {output} lists no tile</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No queda ningún punto de {path} tras el recorte: {output} no enumera ninguna tesela</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="196" />
+        <location filename="../core/ground/tiled.py" line="202" />
         <source>No point of the tile {tile} lies inside the crop area: no output tile for it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de la tesela {tile} está dentro del área de recorte: no hay tesela de salida para ella</translation>
@@ -2985,253 +3018,253 @@
         <translation>{path} no tiene puntos dentro de los troncos de visión de las detecciones; no se encontró ningún candidato</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="130" />
+        <location filename="../core/refine.py" line="126" />
         <source>curved surface (a convex mirror?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>superficie curva (¿un espejo convexo?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="131" />
+        <location filename="../core/refine.py" line="127" />
         <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>parte de una superficie plana mayor (¿una imagen en una valla publicitaria o una pared?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="991" />
+        <location filename="../core/refine.py" line="954" />
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} señales a partir de {candidates} candidatos ({from_images} situadas solo a partir de las imágenes)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1516" />
+        <location filename="../core/refine.py" line="1474" />
         <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{coded} de {signs} señales tienen código de señal; {from_code} tomaron su clase del código, {dropped} códigos se descartaron por la votación de clase (code_check)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1525" />
+        <location filename="../core/refine.py" line="1483" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>la altura de las estaciones menos {height} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="401" />
+        <location filename="../core/refine.py" line="368" />
         <source>Detection {det_id} has the sign code {code}, which is not in the sign codes table {table}: give the codes table the classifier was run with</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La detección {det_id} tiene el código de señal {code}, que no está en la tabla de códigos de señal {table}: indique la tabla de códigos con la que se ejecutó el clasificador</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="970" />
+        <location filename="../core/refine.py" line="933" />
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El radio de fusión debe ser positivo; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="973" />
+        <location filename="../core/refine.py" line="936" />
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay candidatos que refinar; la capa de señales está vacía</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1325" />
+        <location filename="../core/refine.py" line="1283" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids}: {reason}; situados en la mediana de los candidatos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1465" />
+        <location filename="../core/refine.py" line="1423" />
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: un panel de {width:.2f} x {height:.2f} m es demasiado grande para una señal {sign_class} (¿una valla publicitaria?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1470" />
+        <location filename="../core/refine.py" line="1428" />
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: vistos en una sola panorámica, con una puntuación de {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="501" />
+        <location filename="../core/refine.py" line="464" />
         <source>too few points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="504" />
+        <location filename="../core/refine.py" line="467" />
         <source>too few points in the boxes</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos en los recuadros</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="510" />
+        <location filename="../core/refine.py" line="473" />
         <source>no near-vertical plane</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>ningún plano casi vertical</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="514" />
+        <location filename="../core/refine.py" line="477" />
         <source>too few planar points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos planos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1319" />
+        <location filename="../core/refine.py" line="1277" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>sin nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1322" />
+        <location filename="../core/refine.py" line="1280" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: {reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1526" />
+        <location filename="../core/refine.py" line="1484" />
         <source>the lowest points below the sign</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>los puntos más bajos bajo la señal</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1530" />
+        <location filename="../core/refine.py" line="1488" />
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} señal(es) no tienen puntos de suelo (clase 2) a menos de {radius} m: su altura se mide desde {source}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="173" />
+        <location filename="../core/signcodes.py" line="179" />
         <source>Sign codes table {path} is empty: expected the header {expected} and one row per code</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La tabla de códigos de señal {path} está vacía: se esperaba la cabecera {expected} y una fila por código</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="176" />
+        <location filename="../core/signcodes.py" line="182" />
         <source>Sign codes table {path} holds no codes: expected one row per code after the header {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La tabla de códigos de señal {path} no contiene códigos: se esperaba una fila por código tras la cabecera {expected}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="363" />
+        <location filename="../core/signcodes.py" line="383" />
         <source>The box {box} is not four finite pixel coordinates u0, v0, u1, v1</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El recuadro {box} no son cuatro coordenadas de píxel finitas u0, v0, u1, v1</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="119" />
+        <location filename="../core/signcodes.py" line="125" />
         <source>Sign codes table not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró la tabla de códigos de señal: {path}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="121" />
+        <location filename="../core/signcodes.py" line="127" />
         <source>Cannot read the sign codes table {path}: it is not UTF-8 text (byte {position}); save it as UTF-8</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer la tabla de códigos de señal {path}: no es texto UTF-8 (byte {position}); guárdela como UTF-8</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="124" />
+        <location filename="../core/signcodes.py" line="130" />
         <source>Cannot read the sign codes table {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer la tabla de códigos de señal {path}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="149" />
+        <location filename="../core/signcodes.py" line="155" />
         <source>Sign codes table {path}, line {line}: expected 3 fields separated by semicolons ({expected}), found {count}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: se esperaban 3 campos separados por punto y coma ({expected}), se encontraron {count}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="154" />
+        <location filename="../core/signcodes.py" line="160" />
         <source>Sign codes table {path}, line {line}: the code is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: el código está vacío</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="157" />
+        <location filename="../core/signcodes.py" line="163" />
         <source>Sign codes table {path}, line {line}: the code {code} is reserved for signs the classifier cannot read and must not be in the table</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: el código {code} está reservado para las señales que el clasificador no puede leer y no debe figurar en la tabla</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="161" />
+        <location filename="../core/signcodes.py" line="167" />
         <source>Sign codes table {path}, line {line}: the name of {code} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: el nombre de {code} está vacío</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="164" />
+        <location filename="../core/signcodes.py" line="170" />
         <source>Sign codes table {path}, lines {first} and {line}: the code {code} is there twice</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, líneas {first} y {line}: el código {code} aparece dos veces</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="167" />
+        <location filename="../core/signcodes.py" line="173" />
         <source>Sign codes table {path}, line {line}: unknown class {found} for {code}; expected one of {classes}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: clase desconocida {found} para {code}; se esperaba una de {classes}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="213" />
+        <location filename="../core/signcodes.py" line="219" />
         <source>The model {path} is a {task} model; reading sign codes needs a classify model (metadata task = classify)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} es un modelo de {task}; la lectura de códigos de señal necesita un modelo de clasificación (metadatos task = classify)</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="223" />
+        <location filename="../core/signcodes.py" line="229" />
         <source>The model {path} takes an input {name} of shape {shape} and type {type}; supported: float [batch, 3, S, S] (RGB crops S x S pixels, values 0..1)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} recibe una entrada {name} de forma {shape} y tipo {type}; admitido: float [batch, 3, S, S] (recortes RGB de S x S píxeles, valores 0..1)</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="241" />
+        <location filename="../core/signcodes.py" line="247" />
         <source>The model {path} has an output of shape {shape} for a batch of {batch}; supported: [batch, C] with C = {count}, its number of names</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} tiene una salida de forma {shape} para un lote de {batch}; admitida: [batch, C] con C = {count}, su número de nombres</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="249" />
+        <location filename="../core/signcodes.py" line="255" />
         <source>The model {path} names no codes: its metadata needs 'names', a JSON list of the sign codes in output order (such as ["DE:206", "other"])</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} no nombra ningún código: sus metadatos necesitan 'names', una lista JSON de los códigos de señal en el orden de salida (como ["DE:206", "other"])</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="255" />
+        <location filename="../core/signcodes.py" line="261" />
         <source>The model {path} names {names} more than once in its metadata 'names'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} nombra {names} más de una vez en sus metadatos 'names'</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="261" />
+        <location filename="../core/signcodes.py" line="267" />
         <source>The model {path} answers codes that are not in the sign codes table {table}: {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} responde códigos que no están en la tabla de códigos de señal {table}: {names}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="269" />
+        <location filename="../core/signcodes.py" line="275" />
         <source>The model {path} has the metadata output = {found}; expected {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} tiene en sus metadatos output = {found}; se esperaba {expected}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="282" />
+        <location filename="../core/signcodes.py" line="288" />
         <source>The model {path} has the metadata crop_margin = {found}; expected a number from 0 to 2 (the fraction of the box's longer side added on each side)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} tiene en sus metadatos crop_margin = {found}; se esperaba un número de 0 a 2 (la fracción del lado mayor del recuadro que se añade a cada lado)</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="137" />
+        <location filename="../core/signcodes.py" line="143" />
         <source>Sign codes table {path}, line {line}: cannot split the line into fields ({error})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: no se puede dividir la línea en campos ({error})</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="143" />
+        <location filename="../core/signcodes.py" line="149" />
         <source>Sign codes table {path}, line {line}: expected the header {expected}, found {found}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: se esperaba la cabecera {expected}, se encontró {found}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="238" />
+        <location filename="../core/signcodes.py" line="244" />
         <source>The model {path} failed on a blank {side} x {side} crop: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} falló con un recorte en blanco de {side} x {side}: {error}</translation>

@@ -107,229 +107,179 @@
 <context>
     <name>DetectSigns</name>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="44" />
+        <location filename="../algorithms/detectsigns.py" line="42" />
         <source>Detect signs in panoramas</source>
         <translation>在全景图中检测标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="47" />
+        <location filename="../algorithms/detectsigns.py" line="45" />
         <source>Runs an ONNX sign detector on each panorama; one ray per detected sign.</source>
         <translation>在每张全景图上运行 ONNX 标志检测器；每个检测到的标志生成一条射线。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="162" />
+        <location filename="../algorithms/detectsigns.py" line="144" />
         <source>Panorama stations</source>
         <translation>全景站点</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="70" />
+        <location filename="../algorithms/detectsigns.py" line="68" />
         <source>The output of Import trajectory: one point per panorama with its pose and path.</source>
         <translation>“导入轨迹和全景图”的输出：每张全景图一个点，带有其位姿和路径。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="73" />
+        <location filename="../algorithms/detectsigns.py" line="71" />
         <source>ONNX model (empty: the bundled model)</source>
         <translation>ONNX 模型（留空：使用内置模型）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="73" />
+        <location filename="../algorithms/detectsigns.py" line="71" />
         <source>A YOLO-family ONNX detector. Empty uses the model bundled with the plugin.</source>
         <translation>YOLO 系列 ONNX 检测器。留空则使用插件内置的模型。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="124" />
+        <location filename="../algorithms/detectsigns.py" line="71" />
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>ONNX 模型 (*.onnx);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="77" />
+        <location filename="../algorithms/detectsigns.py" line="75" />
         <source>Minimum confidence</source>
         <translation>最低置信度</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="77" />
+        <location filename="../algorithms/detectsigns.py" line="75" />
         <source>Detections scoring below this (0-1) are dropped.</source>
         <translation>得分低于此值（0-1）的检测将被丢弃。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="80" />
+        <location filename="../algorithms/detectsigns.py" line="78" />
         <source>Smallest sign kept (panorama pixels)</source>
         <translation>保留的最小标志（全景像素）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="80" />
+        <location filename="../algorithms/detectsigns.py" line="78" />
         <source>Detections whose box is shorter than this on its shorter side are dropped: signs that small are boxed a few pixels off and their class is unsure, and the drive sees them again, larger, from the next stations. 0 keeps every detection.</source>
         <translation>检测框短边小于此值的检测将被丢弃：这么小的标志框会偏差几个像素，类别也不可靠，而车辆在后续站点会以更大的尺寸再次看到它们。0 保留所有检测。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="86" />
+        <location filename="../algorithms/detectsigns.py" line="84" />
         <source>Class names file (optional)</source>
         <translation>类别名称文件（可选）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="86" />
+        <location filename="../algorithms/detectsigns.py" line="84" />
         <source>One class name per line, in the model's class order; needed when the model has no names in its metadata and no labels file beside it.</source>
         <translation>每行一个类别名称，按模型的类别顺序排列；当模型元数据中没有名称且旁边没有标签文件时需要提供。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="86" />
+        <location filename="../algorithms/detectsigns.py" line="84" />
         <source>Text files (*.txt);;All files (*.*)</source>
         <translation>文本文件 (*.txt);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="91" />
+        <location filename="../algorithms/detectsigns.py" line="89" />
         <source>Ray length (m)</source>
         <translation>射线长度 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="91" />
+        <location filename="../algorithms/detectsigns.py" line="89" />
         <source>Length of each detection ray from the panorama centre, in metres.</source>
         <translation>每条检测射线从全景图中心起算的长度，单位为米。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="95" />
+        <location filename="../algorithms/detectsigns.py" line="93" />
         <source>Also look upwards (overhead and gantry signs)</source>
         <translation>同时向上看（悬挂式和门架式标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="115" />
+        <location filename="../algorithms/detectsigns.py" line="113" />
         <source>CPU threads (0: all)</source>
         <translation>CPU 线程数（0：全部）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="115" />
+        <location filename="../algorithms/detectsigns.py" line="113" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>onnxruntime 在 CPU 上可使用的线程数；0 表示使用所有核心。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="137" />
+        <location filename="../algorithms/detectsigns.py" line="119" />
         <source>Detections</source>
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="141" />
+        <location filename="../algorithms/detectsigns.py" line="123" />
         <source>Number of detections</source>
         <translation>检测数量</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="142" />
+        <location filename="../algorithms/detectsigns.py" line="124" />
         <source>Panoramas skipped</source>
         <translation>跳过的全景图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="155" />
+        <location filename="../algorithms/detectsigns.py" line="137" />
         <source>ONNX model not found: {}</source>
         <translation>未找到 ONNX 模型：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="169" />
+        <location filename="../algorithms/detectsigns.py" line="151" />
         <source>{} panoramas, {} views each</source>
         <translation>{} 张全景图，每张 {} 个视图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="182" />
+        <location filename="../algorithms/detectsigns.py" line="165" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>跳过了 {} 张无法读取的全景图。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="198" />
+        <location filename="../algorithms/detectsigns.py" line="181" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} 个检测，来自 {} 张全景图（跳过 {} 张）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="190" />
+        <location filename="../algorithms/detectsigns.py" line="173" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>未检测到任何标志：检测图层为空。</translation>
     </message>
     <message>
         <location filename="../algorithms/detectsigns.py" line="119" />
-        <source>Read the sign codes</source>
-        <translation>读取标志代码</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="119" />
-        <source>Reads what each detected sign says (its code, such as DE:206 for stop) with the sign-code classifier. Unchecked, the code fields stay empty. When the bundled classifier is missing, the log says so and the detections get no code.</source>
-        <translation>使用标志代码分类器读取每个检测到的标志的内容（其代码，例如 DE:206 表示停车让行）。不勾选时代码字段保持为空。内置分类器缺失时，日志会加以说明，检测结果不带代码。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="124" />
-        <source>Sign-code classifier (empty: the bundled one)</source>
-        <translation>标志代码分类器（留空：使用内置分类器）</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="124" />
-        <source>An ONNX classifier of sign crops: float input [N, 3, S, S] (RGB, 0..1), output [N, C], the codes it answers in its metadata 'names' (each in the codes table, or 'other'). The format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;). Empty uses the classifier bundled with the plugin (models/signcodes.onnx).</source>
-        <translation>标志裁剪图像的 ONNX 分类器：float 输入 [N, 3, S, S]（RGB，0..1），输出 [N, C]，其可给出的代码写在元数据 'names' 中（每个代码都须在代码表中，或为 'other'）。格式见 models/README.md（&lt;i&gt;Sign-code classifier: the format&lt;/i&gt; 一节）。留空则使用插件内置的分类器（models/signcodes.onnx）。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="131" />
-        <source>Sign codes table (empty: the bundled one)</source>
-        <translation>标志代码表（留空：使用内置代码表）</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="131" />
-        <source>The codes the classifier may answer, with their names and classes: UTF-8 text, semicolon-separated, the header code;name;class (format in models/README.md). Empty uses the bundled table of German codes (models/sign-codes-de.csv).</source>
-        <translation>分类器可给出的代码及其名称和类别：UTF-8 文本，以分号分隔，表头为 code;name;class（格式见 models/README.md）。留空则使用内置的德国代码表（models/sign-codes-de.csv）。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="131" />
-        <source>CSV files (*.csv *.txt);;All files (*.*)</source>
-        <translation>CSV 文件 (*.csv *.txt);;所有文件 (*.*)</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="137" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>LineStringZ 图层，每个检测一条射线，包含字段 det_id、station_id、image、class、score、code、code_score、u0、v0、u1、v1、n_views 以及站点的位姿字段。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="202" />
+        <location filename="../algorithms/detectsigns.py" line="185" />
         <source>Sign codes read in {} of the {} detections (the others: other).</source>
         <translation>{} 个检测读出了标志代码（共 {} 个检测；其余为 other）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="212" />
-        <source>Sign codes are not read (Read the sign codes is off).</source>
-        <translation>不读取标志代码（“读取标志代码”未勾选）。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="218" />
-        <source>The bundled sign-code classifier {} is missing: the detections get no sign code.</source>
-        <translation>内置标志代码分类器 {} 缺失：检测结果不带标志代码。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="222" />
-        <source>Sign-code classifier not found: {}</source>
-        <translation>未找到标志代码分类器：{}</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="225" />
-        <source>Sign codes: {}</source>
-        <translation>标志代码：{}</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="103" />
+        <location filename="../algorithms/detectsigns.py" line="101" />
         <source>Skip stations closer than (m)</source>
         <translation>跳过间距小于此值的站点 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="174" />
+        <location filename="../algorithms/detectsigns.py" line="157" />
         <source>Detecting in {} of the {} panoramas: stations closer than {} m to the last one detected in are skipped.</source>
         <translation>在 {} 张全景图（共 {} 张）中检测：距上一个检测站点不足 {} m 的站点将被跳过。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="50" />
+        <location filename="../algorithms/detectsigns.py" line="48" />
         <source>Cuts each station's equirectangular panorama into overlapping perspective views (a horizon ring, and optionally an upward ring for overhead signs), runs the ONNX detector on each view, maps the boxes back to panorama pixels and merges the same sign found in two views.&lt;br&gt;&lt;br&gt;The &lt;b&gt;model&lt;/b&gt; is the bundled one when left empty, or your own ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model with NMS built in ([1, N, 6]). Class names come from the model's metadata (Ultralytics &lt;i&gt;names&lt;/i&gt;) or a labels file (one name per line).&lt;br&gt;&lt;br&gt;Output: one line per detection from the panorama centre along the ray through the box centre, &lt;i&gt;Ray length&lt;/i&gt; long, with the box (u0, v0, u1, v1 in panorama pixels; across the ±180° seam u1 exceeds the width) and the station's pose. A panorama that cannot be read is skipped with a warning and counted.&lt;br&gt;&lt;br&gt;&lt;b&gt;Sign codes&lt;/b&gt;: a second, small ONNX model (the bundled sign-code classifier, or your own) reads what each detected sign says, from a rectified crop of the panorama around its box at the panorama's own resolution: &lt;i&gt;code&lt;/i&gt; (such as DE:274[50], speed limit 50, from the codes table; &lt;i&gt;other&lt;/i&gt; when it knows none) and &lt;i&gt;code_score&lt;/i&gt; (its probability). Refine signs votes them across the views of each sign. The classifier's format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</source>
         <translation>将每个站点的等距柱状全景图切分为相互重叠的透视视图（一圈水平视图，以及可选的一圈用于悬挂式标志的上视视图），在每个视图上运行 ONNX 检测器，将检测框映射回全景图像素，并合并在两个视图中找到的同一标志。&lt;br&gt;&lt;br&gt;&lt;b&gt;模型&lt;/b&gt;留空时使用内置模型，也可以是您自己导出的 ONNX 模型：Ultralytics YOLOv8/11（[1, 4+nc, N]）、YOLOv5/7（[1, N, 5+nc]）或内置 NMS 的模型（[1, N, 6]）。类别名称来自模型元数据（Ultralytics &lt;i&gt;names&lt;/i&gt;）或标签文件（每行一个名称）。&lt;br&gt;&lt;br&gt;输出：每个检测一条线，从全景图中心沿穿过检测框中心的射线延伸，长度为&lt;i&gt;射线长度&lt;/i&gt;，附带检测框（u0、v0、u1、v1，单位为全景图像素；跨越 ±180° 接缝时 u1 大于图像宽度）和站点位姿。无法读取的全景图将被跳过，并给出警告和计数。&lt;br&gt;&lt;br&gt;&lt;b&gt;标志代码&lt;/b&gt;：第二个小型 ONNX 模型（内置的标志代码分类器或您自己的分类器）从全景图中围绕检测框、按全景图原始分辨率截取的校正裁剪图像中读取每个检测到的标志的内容：&lt;i&gt;code&lt;/i&gt;（例如 DE:274[50]，即限速 50，取自代码表；不认识时为 &lt;i&gt;other&lt;/i&gt;）和 &lt;i&gt;code_score&lt;/i&gt;（其概率）。“精化与合并标志”在每个标志的各视图之间对其进行投票。分类器的格式见 models/README.md（&lt;i&gt;Sign-code classifier: the format&lt;/i&gt; 一节）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="95" />
+        <location filename="../algorithms/detectsigns.py" line="93" />
         <source>Adds a ring of 6 views tilted 35° up to the 8 horizon views, for signs high above the road close to the vehicle. Off by default: a sign overhead is in the horizon views from every station more than a few metres away, and on two held-out test streets (panoramas every 5 m, 6 gantry panels each) the horizon views alone found every sign, as many as with the upward ring, in 1.3 to 1.6 times less detection time. Check it for drives with panoramas far apart.</source>
         <translation>在 8 个水平视图之外增加一圈 6 个上仰 35° 的视图，用于车辆附近高悬于道路上方的标志。默认不勾选：从相距几米以上的每个站点看，悬挂式标志都会出现在水平视图中；在两条未参与调参的测试街道上（每 5 m 一张全景图，各有 6 块门架标志牌），仅用水平视图就找到了所有标志，与加上上视视图时一样多，而检测时间仅为后者的 1/1.3 至 1/1.6。全景图间距较大的行驶采集请勾选此项。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="103" />
+        <location filename="../algorithms/detectsigns.py" line="101" />
         <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so a few metres save detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. 0 detects in every panorama. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. For drives with denser panoramas, 5 m keeps the density those figures were measured at.</source>
         <translation>仅在其站点与上一个执行检测的站点相距至少此距离的全景图中进行检测；其间的全景图将被跳过（不读取，无检测结果）。一个标志会在许多站点中保持可见，因此几米的间距可按比例节省检测时间，但每个标志被看到的站点也随之减少：用于定位它的射线更少，而只在少数站点可见的标志（较小，或被树木、车辆遮挡）可能会漏检。0 表示在每张全景图中检测。在两条未参与调参的测试街道上测得（每 5 m 一张全景图）：在每张全景图中检测时，分别找到了全部 46 个和 45 个标志；10 m（每隔一张）时各漏掉 2 个，15 m 时 46 个中漏掉 11 个。对于全景图更密集的行驶采集，5 m 可保持测得这些数据时的全景图密度。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="117" />
+        <source>in a crop around each detection, voted later across the views of each sign by Refine and merge signs</source>
+        <translation>在每个检测结果周围的裁剪图中读取，之后由“精化与合并标志”在每个标志的各视图间投票</translation>
     </message>
 </context>
 <context>
@@ -904,149 +854,169 @@
 <context>
     <name>FuseSigns</name>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="29" />
+        <location filename="../algorithms/fusesigns.py" line="32" />
         <source>Fuse image and cloud signs</source>
         <translation>融合图像与点云标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="32" />
+        <location filename="../algorithms/fusesigns.py" line="35" />
         <source>Merges the signs found in the images with the panels found in the cloud alone: one sign layer that says which sources found each sign.</source>
         <translation>将在图像中找到的标志与仅在点云中找到的标志牌合并：生成一个标志图层，注明每个标志由哪些来源找到。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="36" />
-        <source>Matches each sign of the image chain (Refine and merge signs) to at most one panel found in the cloud alone (Find signs in the point cloud) by optimal assignment: centres within the match radius and facings within 90°.&lt;br&gt;&lt;br&gt;A matched sign keeps its class and gains the panel's retroreflectivity index and condition (&lt;i&gt;source&lt;/i&gt; = image+lidar). A panel no image sign explains becomes a sign of its own (&lt;i&gt;source&lt;/i&gt; = lidar): with the stations and the panorama folder, the panoramas in front of its face are cut into views centred on it and the detector reads its class there; if none recognises it, its class is &lt;i&gt;unknown&lt;/i&gt; and it is flagged for review. An image sign whose place in the cloud holds no retro-reflective panel loses confidence (its score × 0.6) and is flagged for review (&lt;i&gt;source&lt;/i&gt; = image).&lt;br&gt;&lt;br&gt;Output: the sign layer with the fields of Refine and merge signs plus source, review, image_sign_id, cloud_sign_id, retro_index and condition, styled like the sign layer.</source>
-        <translation>通过最优分配，将图像流程（“精化与合并标志”）中的每个标志与最多一个仅在点云中找到的标志牌（“在点云中查找标志（无图像）”）进行匹配：中心位于匹配半径内，且朝向相差不超过 90°。&lt;br&gt;&lt;br&gt;匹配上的标志保留其类别，并获得该标志牌的逆反射指数和状态（&lt;i&gt;source&lt;/i&gt; = image+lidar）。没有任何图像标志与之对应的标志牌成为单独的标志（&lt;i&gt;source&lt;/i&gt; = lidar）：若提供全景站点和全景图文件夹，将从其牌面前方的全景图中截取以其为中心的视图，由检测器在其中识别其类别；若均未识别出，其类别为 &lt;i&gt;unknown&lt;/i&gt;，并标记为待审核。若某图像标志在点云中的位置没有逆反射标志牌，则降低其置信度（得分 × 0.6），并标记为待审核（&lt;i&gt;source&lt;/i&gt; = image）。&lt;br&gt;&lt;br&gt;输出：标志图层，包含“精化与合并标志”的字段以及 source、review、image_sign_id、cloud_sign_id、retro_index 和 condition，样式与标志图层相同。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/fusesigns.py" line="97" />
+        <location filename="../algorithms/fusesigns.py" line="110" />
         <source>Signs (from the images)</source>
         <translation>标志（来自图像）</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="51" />
+        <location filename="../algorithms/fusesigns.py" line="56" />
         <source>The output of Refine and merge signs.</source>
         <translation>“精化与合并标志”的输出。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="99" />
+        <location filename="../algorithms/fusesigns.py" line="112" />
         <source>Sign panels found in the cloud</source>
         <translation>点云中找到的标志牌</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="54" />
+        <location filename="../algorithms/fusesigns.py" line="59" />
         <source>The output of Find signs in the point cloud.</source>
         <translation>“在点云中查找标志（无图像）”的输出。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="57" />
+        <location filename="../algorithms/fusesigns.py" line="62" />
         <source>Panorama stations (to classify panels found in the cloud alone)</source>
         <translation>全景站点（用于对仅在点云中找到的标志牌分类）</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="57" />
+        <location filename="../algorithms/fusesigns.py" line="62" />
         <source>The output of Import trajectory. With the panorama folder, the class of each panel no image sign explains is read from the panoramas in front of it.</source>
         <translation>“导入轨迹和全景图”的输出。若提供全景图文件夹，则从标志牌前方的全景图中识别每个没有图像标志与之对应的标志牌的类别。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="62" />
+        <location filename="../algorithms/fusesigns.py" line="67" />
         <source>Panorama folder (optional)</source>
         <translation>全景图文件夹（可选）</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="62" />
+        <location filename="../algorithms/fusesigns.py" line="67" />
         <source>The folder of the panoramas (empty: the paths in the stations layer).</source>
         <translation>全景图所在的文件夹（留空：使用全景站点图层中的路径）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="66" />
+        <location filename="../algorithms/fusesigns.py" line="71" />
         <source>ONNX model (empty: the bundled model)</source>
         <translation>ONNX 模型（留空：使用内置模型）</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="66" />
+        <location filename="../algorithms/fusesigns.py" line="71" />
         <source>The detector that reads the class of panels found in the cloud alone.</source>
         <translation>用于识别仅在点云中找到的标志牌类别的检测器。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="66" />
+        <location filename="../algorithms/fusesigns.py" line="71" />
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>ONNX 模型 (*.onnx);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="70" />
+        <location filename="../algorithms/fusesigns.py" line="75" />
         <source>Minimum confidence</source>
         <translation>最低置信度</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="70" />
+        <location filename="../algorithms/fusesigns.py" line="75" />
         <source>A class read from the panoramas is kept when the detector scores it at least this (0-1).</source>
         <translation>当检测器给出的得分不低于此值（0-1）时，保留从全景图中识别出的类别。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="74" />
+        <location filename="../algorithms/fusesigns.py" line="79" />
         <source>Match radius (m)</source>
         <translation>匹配半径 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="74" />
+        <location filename="../algorithms/fusesigns.py" line="79" />
         <source>An image sign and a cloud panel farther apart than this (3D, metres) are never the same sign.</source>
         <translation>距离超过此值（三维距离，单位为米）的图像标志与点云标志牌永远不会被视为同一个标志。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="78" />
+        <location filename="../algorithms/fusesigns.py" line="91" />
         <source>Signs (fused)</source>
         <translation>标志（融合）</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="78" />
+        <location filename="../algorithms/fusesigns.py" line="91" />
         <source>PointZ sign layer: the sign fields, and source (image, lidar, image+lidar), review (1: to be checked), image_sign_id, cloud_sign_id, retro_index, condition and the review chip of the image sign (chip, relative to the layer's folder).</source>
         <translation>PointZ 标志图层：标志字段，以及 source（image、lidar、image+lidar）、review（1：待检查）、image_sign_id、cloud_sign_id、retro_index、condition 和图像标志的审核切片（chip，相对于图层所在文件夹的路径）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="83" />
+        <location filename="../algorithms/fusesigns.py" line="96" />
         <source>Signs found by both</source>
         <translation>两者均找到的标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="84" />
+        <location filename="../algorithms/fusesigns.py" line="97" />
         <source>Signs found in the images only</source>
         <translation>仅在图像中找到的标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="85" />
+        <location filename="../algorithms/fusesigns.py" line="98" />
         <source>Signs found in the cloud only</source>
         <translation>仅在点云中找到的标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="103" />
+        <location filename="../algorithms/fusesigns.py" line="116" />
         <source>The signs are in {}, the panels found in the cloud in {}: both must be in the cloud's CRS</source>
         <translation>标志位于 {}，点云中找到的标志牌位于 {}：两者都必须位于点云的坐标参考系中</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="114" />
+        <location filename="../algorithms/fusesigns.py" line="127" />
         <source>No stations given: the {} signs found in the cloud alone keep the class unknown.</source>
         <translation>未提供全景站点：仅在点云中找到的 {} 个标志保留类别 unknown。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="130" />
+        <location filename="../algorithms/fusesigns.py" line="143" />
         <source>{} signs: {} found by both, {} in the images only ({} of them where the cloud was searched: score lowered, to review), {} in the cloud only.</source>
         <translation>{} 个标志：{} 个两者均找到，{} 个仅在图像中找到（其中 {} 个位于点云已搜索的范围内：得分已降低，待审核），{} 个仅在点云中找到。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="143" />
+        <location filename="../algorithms/fusesigns.py" line="156" />
         <source>Panorama stations</source>
         <translation>全景站点</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="149" />
+        <location filename="../algorithms/fusesigns.py" line="162" />
         <source>ONNX model not found: {}</source>
         <translation>未找到 ONNX 模型：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="160" />
+        <location filename="../algorithms/fusesigns.py" line="178" />
         <source>{} of the {} signs found in the cloud alone were recognised in the panoramas; the others keep the class unknown and are to review.</source>
         <translation>有 {} 个（共 {} 个仅在点云中找到的标志）在全景图中被识别；其余标志保留类别 unknown，待审核。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="39" />
+        <source>Matches each sign of the image chain (Refine and merge signs) to at most one panel found in the cloud alone (Find signs in the point cloud) by optimal assignment: centres within the match radius and facings within 90°.&lt;br&gt;&lt;br&gt;A matched sign keeps its class and gains the panel's retroreflectivity index and condition (&lt;i&gt;source&lt;/i&gt; = image+lidar). A panel no image sign explains becomes a sign of its own (&lt;i&gt;source&lt;/i&gt; = lidar): with the stations and the panorama folder, the panoramas in front of its face are cut into views centred on it and the detector reads its class there; if none recognises it, its class is &lt;i&gt;unknown&lt;/i&gt; and it is flagged for review. The sign-code classifier reads its code in a crop around each of those detections, and the views vote as Refine and merge signs votes them (code, code_name, code_score, code_views, code_check). An image sign whose place in the cloud holds no retro-reflective panel loses confidence (its score × 0.6) and is flagged for review (&lt;i&gt;source&lt;/i&gt; = image).&lt;br&gt;&lt;br&gt;Output: the sign layer with the fields of Refine and merge signs plus source, review, image_sign_id, cloud_sign_id, retro_index and condition, styled like the sign layer.</source>
+        <translation>通过最优分配，将图像流程（“精化与合并标志”）中的每个标志与最多一个仅在点云中找到的标志牌（“在点云中查找标志（无图像）”）进行匹配：中心位于匹配半径内，且朝向相差不超过 90°。&lt;br&gt;&lt;br&gt;匹配上的标志保留其类别，并获得该标志牌的逆反射指数和状态（&lt;i&gt;source&lt;/i&gt; = image+lidar）。没有任何图像标志与之对应的标志牌成为单独的标志（&lt;i&gt;source&lt;/i&gt; = lidar）：若提供全景站点和全景图文件夹，将从其牌面前方的全景图中截取以其为中心的视图，由检测器在其中识别其类别；若均未识别出，其类别为 &lt;i&gt;unknown&lt;/i&gt;，并标记为待审核。标志代码分类器在每个这些检测结果周围的裁剪图中读取其代码，各视图按“精化与合并标志”的方式投票（code、code_name、code_score、code_views、code_check）。若某图像标志在点云中的位置没有逆反射标志牌，则降低其置信度（得分 × 0.6），并标记为待审核（&lt;i&gt;source&lt;/i&gt; = image）。&lt;br&gt;&lt;br&gt;输出：标志图层，包含“精化与合并标志”的字段以及 source、review、image_sign_id、cloud_sign_id、retro_index 和 condition，样式与标志图层相同。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="83" />
+        <source>for each sign found in the cloud alone and recognised in the panoramas, in a crop around each of its detections there</source>
+        <translation>针对每个仅在点云中找到并在全景图中识别出的标志，在其各检测结果周围的裁剪图中读取</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="85" />
+        <source>Minimum code confidence</source>
+        <translation>最低代码置信度</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="85" />
+        <source>The code voted for a sign found in the cloud alone is kept when its support (its share of the views' weighted vote x the mean probability the classifier gave it, 0-1: the code_score field) is at least this; else the code field stays empty.</source>
+        <translation>当仅在点云中找到的标志投票得出的代码的支持度（其在各视图加权投票中的占比 x 分类器给出的平均概率，0-1：即 code_score 字段）不低于此值时保留该代码；否则 code 字段保持为空。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/fusesigns.py" line="183" />
+        <source>Sign codes read for {} of them.</source>
+        <translation>其中 {} 个读取到了标志代码。</translation>
     </message>
 </context>
 <context>
@@ -1531,6 +1501,69 @@
         <location filename="../algorithms/projectdetections.py" line="50" />
         <source>The cloud's CRS when the file records none (it must be the detections' CRS); it overrides a CRS in the file. The CRS is never guessed.</source>
         <translation>文件中没有记录坐标参考系时点云的坐标参考系（必须与检测的坐标参考系相同）；它会覆盖文件中的坐标参考系。坐标参考系从不猜测。</translation>
+    </message>
+</context>
+<context>
+    <name>ReadsCodes</name>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="21" />
+        <source>Read the sign codes</source>
+        <translation>读取标志代码</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="21" />
+        <source>Reads what each sign says (its code, such as DE:206 for stop) with the sign-code classifier: {}. Unchecked, the code fields stay empty. When the bundled classifier is missing, the log says so and no code is read.</source>
+        <translation>使用标志代码分类器读取每个标志的内容（其代码，例如 DE:206 表示停车让行）：{}。不勾选时代码字段保持为空。内置分类器缺失时，日志会加以说明，不读取任何代码。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="26" />
+        <source>Sign-code classifier (empty: the bundled one)</source>
+        <translation>标志代码分类器（留空：使用内置分类器）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="26" />
+        <source>An ONNX classifier of sign crops: float input [N, 3, S, S] (RGB, 0..1), output [N, C], the codes it answers in its metadata 'names' (each in the codes table, or 'other'). The format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;). Empty uses the classifier bundled with the plugin (models/signcodes.onnx).</source>
+        <translation>标志裁剪图像的 ONNX 分类器：float 输入 [N, 3, S, S]（RGB，0..1），输出 [N, C]，其可给出的代码写在元数据 'names' 中（每个代码都须在代码表中，或为 'other'）。格式见 models/README.md（&lt;i&gt;Sign-code classifier: the format&lt;/i&gt; 一节）。留空则使用插件内置的分类器（models/signcodes.onnx）。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="26" />
+        <source>ONNX models (*.onnx);;All files (*.*)</source>
+        <translation>ONNX 模型 (*.onnx);;所有文件 (*.*)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="33" />
+        <source>Sign codes table (empty: the bundled one)</source>
+        <translation>标志代码表（留空：使用内置代码表）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="33" />
+        <source>The codes the classifier may answer, with their names and classes: UTF-8 text, semicolon-separated, the header code;name;class (format in models/README.md). Empty uses the bundled table of German codes (models/sign-codes-de.csv).</source>
+        <translation>分类器可给出的代码及其名称和类别：UTF-8 文本，以分号分隔，表头为 code;name;class（格式见 models/README.md）。留空则使用内置的德国代码表（models/sign-codes-de.csv）。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="33" />
+        <source>CSV files (*.csv *.txt);;All files (*.*)</source>
+        <translation>CSV 文件 (*.csv *.txt);;所有文件 (*.*)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="46" />
+        <source>Sign codes are not read (Read the sign codes is off).</source>
+        <translation>不读取标志代码（“读取标志代码”未勾选）。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="52" />
+        <source>The bundled sign-code classifier {} is missing: no sign code is read.</source>
+        <translation>内置标志代码分类器 {} 缺失：不读取任何标志代码。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="56" />
+        <source>Sign-code classifier not found: {}</source>
+        <translation>未找到标志代码分类器：{}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="59" />
+        <source>Sign codes: {}</source>
+        <translation>标志代码：{}</translation>
     </message>
 </context>
 <context>
@@ -2134,8 +2167,8 @@
         <translation>道路附近 {share:.0%} 的点强度饱和：满量程的亮度阈值 {thr:.3f} 以及标志的状态可能没有意义</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="478" />
-        <location filename="../core/cloudsource.py" line="476" />
+        <location filename="../core/cloudsource.py" line="509" />
+        <location filename="../core/cloudsource.py" line="507" />
         <source>expected a virtual point cloud: a JSON FeatureCollection (STAC ItemCollection) whose features each have assets.data.href (the tile's file, relative to the .vpc) and properties, as QGIS's Build virtual point cloud writes it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>应为虚拟点云：一个 JSON FeatureCollection（STAC ItemCollection），其每个要素都有 assets.data.href（分块文件，相对于 .vpc 的路径）和 properties，即 QGIS 的“构建虚拟点云”写出的格式</translation>
@@ -2147,25 +2180,25 @@
         <translation>无坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="437" />
+        <location filename="../core/cloudsource.py" line="468" />
         <source>The folder {path} holds no LAS or LAZ file (*.las, *.laz); expected a point cloud file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>文件夹 {path} 中没有 LAS 或 LAZ 文件（*.las、*.laz）；应为点云文件、LAS/LAZ 分块文件夹或虚拟点云（.vpc）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="480" />
+        <location filename="../core/cloudsource.py" line="511" />
         <source>Cannot read {path}: the JSON is not an object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：该 JSON 不是对象；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="483" />
+        <location filename="../core/cloudsource.py" line="514" />
         <source>Cannot read {path}: it is not a 'FeatureCollection' with a 'features' list; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：不是带有 'features' 列表的 'FeatureCollection'；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="486" />
+        <location filename="../core/cloudsource.py" line="517" />
         <source>The virtual point cloud {path} lists no tile</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 未列出任何分块</translation>
@@ -2178,20 +2211,20 @@
         <translation>{path} 没有维度 {names}（点格式 {fmt}）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="430" />
+        <location filename="../core/cloudsource.py" line="461" />
         <source>Cannot read the folder {path}: {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取文件夹 {path}：{detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="469" />
+        <location filename="../core/cloudsource.py" line="500" />
         <location filename="../core/pointcloud.py" line="65" />
         <source>Cannot read {path}: the file does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件不存在</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="471" />
+        <location filename="../core/cloudsource.py" line="502" />
         <location filename="../core/ground/pdal.py" line="306" />
         <location filename="../core/pointcloud.py" line="67" />
         <location filename="../core/pointcloud.py" line="110" />
@@ -2200,61 +2233,61 @@
         <translation>无法读取 {path}：{detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="475" />
+        <location filename="../core/cloudsource.py" line="506" />
         <source>Cannot read {path}: it is not valid JSON ({detail}); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：不是有效的 JSON（{detail}）；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="493" />
+        <location filename="../core/cloudsource.py" line="524" />
         <source>Cannot read {path}: feature {feature} has no 'assets' object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：要素 {feature} 没有 'assets' 对象；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="501" />
+        <location filename="../core/cloudsource.py" line="532" />
         <source>Cannot read {path}: feature {feature} has no asset with an 'href' (assets.data.href); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：要素 {feature} 没有带 'href' 的 asset（assets.data.href）；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="505" />
+        <location filename="../core/cloudsource.py" line="536" />
         <source>The virtual point cloud {path} lists the remote tile {href}: only local files are read; download the tiles and build the virtual point cloud again</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 列出了远程分块 {href}：只读取本地文件；请下载这些分块并重新构建虚拟点云</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="511" />
+        <location filename="../core/cloudsource.py" line="542" />
         <source>The virtual point cloud {path} lists the tile {tile} twice (features {first} and {second})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 两次列出分块 {tile}（要素 {first} 和 {second}）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="515" />
+        <location filename="../core/cloudsource.py" line="546" />
         <source>The virtual point cloud {path} lists the tile {tile} (feature {feature}), which does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 列出的分块 {tile}（要素 {feature}）不存在</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="530" />
+        <location filename="../core/cloudsource.py" line="561" />
         <source>The tiles of {path} cannot be read as one cloud: {tile_a} has point format {fmt_a}, {tile_b} point format {fmt_b}; every tile needs the same point format (convert them to one, e.g. with PDAL's translate)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 的分块无法作为一个点云读取：{tile_a} 的点格式为 {fmt_a}，{tile_b} 的点格式为 {fmt_b}；所有分块必须使用相同的点格式（请将其转换为同一格式，例如使用 PDAL 的 translate）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="536" />
+        <location filename="../core/cloudsource.py" line="567" />
         <source>The tiles of {path} are in different CRSs: {tile_a} in {crs_a}, {tile_b} in {crs_b}; every tile must be in the same CRS (reproject them to one first)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 的分块位于不同的坐标参考系中：{tile_a} 为 {crs_a}，{tile_b} 为 {crs_b}；所有分块必须位于同一坐标参考系中（请先将其重投影到同一坐标参考系）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="565" />
+        <location filename="../core/cloudsource.py" line="596" />
         <source>The points cannot be written with the first tile's scale {scale} and offset {offset} in {axis}: their coordinates are too far from it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法以第一个分块在 {axis} 方向的缩放 {scale} 和偏移 {offset} 写入这些点：其坐标离偏移太远</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="400" />
+        <location filename="../core/cloudsource.py" line="431" />
         <location filename="../core/ground/pdal.py" line="310" />
         <location filename="../core/ground/pdal.py" line="312" />
         <location filename="../core/ground/pdal.py" line="308" />
@@ -2597,26 +2630,26 @@
     </message>
     <message>
         <location filename="../core/ground/engine.py" line="249" />
-        <location filename="../core/ground/tiled.py" line="153" />
+        <location filename="../core/ground/tiled.py" line="150" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>点云坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="330" />
+        <location filename="../core/ground/engine.py" line="322" />
         <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到 PDAL：使用内置引擎</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="380" />
+        <location filename="../core/ground/engine.py" line="372" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有裁剪多边形：忽略裁剪缓冲区</translation>
     </message>
     <message>
         <location filename="../core/ground/engine.py" line="192" />
-        <location filename="../core/ground/tiled.py" line="316" />
+        <location filename="../core/ground/tiled.py" line="277" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件已损坏（{detail}）</translation>
@@ -2635,44 +2668,44 @@
     </message>
     <message>
         <location filename="../core/ground/engine.py" line="251" />
-        <location filename="../core/ground/tiled.py" line="155" />
+        <location filename="../core/ground/tiled.py" line="152" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有坐标参考系：请给出点云的坐标参考系（从不猜测）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="317" />
+        <location filename="../core/ground/engine.py" line="309" />
         <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：内置引擎，对 {method} 实测比 PDAL 更快（且以有限内存流式处理点云）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="322" />
+        <location filename="../core/ground/engine.py" line="314" />
         <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：PDAL，因为内置 {method} 需要 Python 包 cloth-simulation-filter，而该包未安装</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="328" />
+        <location filename="../core/ground/engine.py" line="320" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>要求使用 PDAL，但既没有找到 pdal Python 模块，也没有找到 pdal 可执行文件（PATH、QGIS 的 bin 文件夹）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="332" />
+        <location filename="../core/ground/engine.py" line="324" />
         <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：PDAL，对 {method} 实测比内置引擎更快</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="367" />
+        <location filename="../core/ground/engine.py" line="359" />
         <source>No point of {path} is left after the crop: {output} has no points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>裁剪后 {path} 没有剩余的点：{output} 中没有点</translation>
     </message>
     <message>
         <location filename="../core/ground/engine.py" line="274" />
-        <location filename="../core/ground/tiled.py" line="184" />
+        <location filename="../core/ground/tiled.py" line="183" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>PDAL 运行失败，已改用内置引擎：{error}</translation>
@@ -2714,37 +2747,37 @@
         <translation>PDAL 可执行文件 {path} 不存在或不可执行</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="210" />
+        <location filename="../core/ground/tiled.py" line="216" />
         <source>{n} tiles written to {folder}, listed in {vpc}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已将 {n} 个分块写入 {folder}，并列于 {vpc} 中</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="145" />
+        <location filename="../core/ground/tiled.py" line="142" />
         <source>The virtual point cloud's name {name} must be a file name ending in .vpc</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云的名称 {name} 必须是以 .vpc 结尾的文件名</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="117" />
+        <location filename="../core/ground/tiled.py" line="114" />
         <source>The output folder {folder} holds the input tile {tile}: choose another folder (the output folder is replaced as a whole)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>输出文件夹 {folder} 中包含输入分块 {tile}：请选择其他文件夹（输出文件夹会被整体替换）</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="120" />
+        <location filename="../core/ground/tiled.py" line="117" />
         <source>Two tiles of {path} have the same file name, {name} ({first} and {second}): the output tiles are named as the input tiles, so their names must differ</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中有两个分块的文件名相同，均为 {name}（{first} 和 {second}）：输出分块与输入分块同名，因此它们的名称必须不同</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="207" />
+        <location filename="../core/ground/tiled.py" line="213" />
         <source>No point of {path} is left after the crop: {output} lists no tile</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>裁剪后 {path} 中没有剩余的点：{output} 未列出任何分块</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="196" />
+        <location filename="../core/ground/tiled.py" line="202" />
         <source>No point of the tile {tile} lies inside the crop area: no output tile for it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>分块 {tile} 中没有点位于裁剪区域内：不为其生成输出分块</translation>
@@ -2985,253 +3018,253 @@
         <translation>{path} 在检测结果的视锥内没有点；未找到候选</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="130" />
+        <location filename="../core/refine.py" line="126" />
         <source>curved surface (a convex mirror?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>曲面（凸面镜？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="131" />
+        <location filename="../core/refine.py" line="127" />
         <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>较大平面的一部分（广告牌或墙上的图案？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="991" />
+        <location filename="../core/refine.py" line="954" />
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>从 {candidates} 个候选得到 {signs} 个标志（{from_images} 个仅由图像定位）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1516" />
+        <location filename="../core/refine.py" line="1474" />
         <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} 个标志中有 {coded} 个带有标志代码；{from_code} 个的类别取自代码，{dropped} 个代码因类别投票被舍弃（code_check）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1525" />
+        <location filename="../core/refine.py" line="1483" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>站点高度减去 {height} 米</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="401" />
+        <location filename="../core/refine.py" line="368" />
         <source>Detection {det_id} has the sign code {code}, which is not in the sign codes table {table}: give the codes table the classifier was run with</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id} 的标志代码 {code} 不在标志代码表 {table} 中：请提供运行分类器时所用的代码表</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="970" />
+        <location filename="../core/refine.py" line="933" />
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>合并半径必须为正数，实际为 {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="973" />
+        <location filename="../core/refine.py" line="936" />
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有要精化的候选；标志图层为空</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1325" />
+        <location filename="../core/refine.py" line="1283" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>候选 {ids}：{reason}；位置取候选的中位数</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1465" />
+        <location filename="../core/refine.py" line="1423" />
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{width:.2f} x {height:.2f} 米的面板对 {sign_class} 标志来说太大（广告牌？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1470" />
+        <location filename="../core/refine.py" line="1428" />
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：只在一张全景图中出现，得分为 {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="501" />
+        <location filename="../core/refine.py" line="464" />
         <source>too few points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="504" />
+        <location filename="../core/refine.py" line="467" />
         <source>too few points in the boxes</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>框内的点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="510" />
+        <location filename="../core/refine.py" line="473" />
         <source>no near-vertical plane</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有近似竖直的平面</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="514" />
+        <location filename="../core/refine.py" line="477" />
         <source>too few planar points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>平面点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1319" />
+        <location filename="../core/refine.py" line="1277" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有点云</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1322" />
+        <location filename="../core/refine.py" line="1280" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1526" />
+        <location filename="../core/refine.py" line="1484" />
         <source>the lowest points below the sign</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志下方的最低点</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1530" />
+        <location filename="../core/refine.py" line="1488" />
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 个标志在 {radius} 米内没有地面点（类别 2）：其高度从{source}起算</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="173" />
+        <location filename="../core/signcodes.py" line="179" />
         <source>Sign codes table {path} is empty: expected the header {expected} and one row per code</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path} 为空：应有表头 {expected}，且每个代码一行</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="176" />
+        <location filename="../core/signcodes.py" line="182" />
         <source>Sign codes table {path} holds no codes: expected one row per code after the header {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path} 中没有代码：表头 {expected} 之后应每个代码一行</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="363" />
+        <location filename="../core/signcodes.py" line="383" />
         <source>The box {box} is not four finite pixel coordinates u0, v0, u1, v1</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测框 {box} 不是四个有限的像素坐标 u0、v0、u1、v1</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="119" />
+        <location filename="../core/signcodes.py" line="125" />
         <source>Sign codes table not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到标志代码表：{path}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="121" />
+        <location filename="../core/signcodes.py" line="127" />
         <source>Cannot read the sign codes table {path}: it is not UTF-8 text (byte {position}); save it as UTF-8</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取标志代码表 {path}：不是 UTF-8 文本（第 {position} 字节）；请另存为 UTF-8</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="124" />
+        <location filename="../core/signcodes.py" line="130" />
         <source>Cannot read the sign codes table {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取标志代码表 {path}：{error}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="149" />
+        <location filename="../core/signcodes.py" line="155" />
         <source>Sign codes table {path}, line {line}: expected 3 fields separated by semicolons ({expected}), found {count}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：应有 3 个以分号分隔的字段（{expected}），实际为 {count} 个</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="154" />
+        <location filename="../core/signcodes.py" line="160" />
         <source>Sign codes table {path}, line {line}: the code is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：代码为空</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="157" />
+        <location filename="../core/signcodes.py" line="163" />
         <source>Sign codes table {path}, line {line}: the code {code} is reserved for signs the classifier cannot read and must not be in the table</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：代码 {code} 保留给分类器无法识别的标志，不得出现在表中</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="161" />
+        <location filename="../core/signcodes.py" line="167" />
         <source>Sign codes table {path}, line {line}: the name of {code} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：{code} 的名称为空</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="164" />
+        <location filename="../core/signcodes.py" line="170" />
         <source>Sign codes table {path}, lines {first} and {line}: the code {code} is there twice</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {first} 行和第 {line} 行：代码 {code} 出现了两次</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="167" />
+        <location filename="../core/signcodes.py" line="173" />
         <source>Sign codes table {path}, line {line}: unknown class {found} for {code}; expected one of {classes}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：{code} 的类别 {found} 未知；应为以下之一：{classes}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="213" />
+        <location filename="../core/signcodes.py" line="219" />
         <source>The model {path} is a {task} model; reading sign codes needs a classify model (metadata task = classify)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 是 {task} 模型；读取标志代码需要分类模型（元数据 task = classify）</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="223" />
+        <location filename="../core/signcodes.py" line="229" />
         <source>The model {path} takes an input {name} of shape {shape} and type {type}; supported: float [batch, 3, S, S] (RGB crops S x S pixels, values 0..1)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 的输入 {name} 形状为 {shape}，类型为 {type}；支持：float [batch, 3, S, S]（S x S 像素的 RGB 裁剪图像，值为 0..1）</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="241" />
+        <location filename="../core/signcodes.py" line="247" />
         <source>The model {path} has an output of shape {shape} for a batch of {batch}; supported: [batch, C] with C = {count}, its number of names</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 在批大小为 {batch} 时的输出形状为 {shape}；支持：[batch, C]，其中 C = {count}，即其名称数量</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="249" />
+        <location filename="../core/signcodes.py" line="255" />
         <source>The model {path} names no codes: its metadata needs 'names', a JSON list of the sign codes in output order (such as ["DE:206", "other"])</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 未给出任何代码：其元数据需要 'names'，即按输出顺序排列的标志代码 JSON 列表（例如 ["DE:206", "other"]）</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="255" />
+        <location filename="../core/signcodes.py" line="261" />
         <source>The model {path} names {names} more than once in its metadata 'names'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 在其元数据 'names' 中多次给出 {names}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="261" />
+        <location filename="../core/signcodes.py" line="267" />
         <source>The model {path} answers codes that are not in the sign codes table {table}: {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 给出的代码不在标志代码表 {table} 中：{names}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="269" />
+        <location filename="../core/signcodes.py" line="275" />
         <source>The model {path} has the metadata output = {found}; expected {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 的元数据 output = {found}；应为 {expected}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="282" />
+        <location filename="../core/signcodes.py" line="288" />
         <source>The model {path} has the metadata crop_margin = {found}; expected a number from 0 to 2 (the fraction of the box's longer side added on each side)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 的元数据 crop_margin = {found}；应为 0 到 2 之间的数字（在每一侧添加的边距占检测框长边的比例）</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="137" />
+        <location filename="../core/signcodes.py" line="143" />
         <source>Sign codes table {path}, line {line}: cannot split the line into fields ({error})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：无法将该行拆分为字段（{error}）</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="143" />
+        <location filename="../core/signcodes.py" line="149" />
         <source>Sign codes table {path}, line {line}: expected the header {expected}, found {found}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：应为表头 {expected}，实际为 {found}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="238" />
+        <location filename="../core/signcodes.py" line="244" />
         <source>The model {path} failed on a blank {side} x {side} crop: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 在一张 {side} x {side} 的空白裁剪图像上运行失败：{error}</translation>

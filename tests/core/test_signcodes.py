@@ -337,6 +337,49 @@ def test_crop_feeds_the_classifier(tmp_path, table):
     assert clf.classify(crops)[0] == ["DE:206", "DE:215"]
 
 
+def test_a_box_found_in_a_view_crops_as_its_panorama_box():
+    """fusesigns reads codes of boxes found in perspective views (viewclass): the crop
+    around such a box is the one cut_crop cuts around the same sign's panorama box."""
+    az, el, r = -30.0, 8.0, 3.0
+    pano = paint_discs([(az, el, r, RED_BGR), (az + 15, el, r, BLUE_BGR)], W)
+    pano_crop = sc.cut_crop(pano, disc_pano_box(az, el, r, W))
+    view = PerspectiveView(az + 2.0, el - 1.0, 30.0, 320, 320)  # the sign a little off the view's centre
+    mask = red_mask(view.cut(pano)[:, :, ::-1])
+    ys, xs = np.nonzero(mask)
+    box = (xs.min(), ys.min(), xs.max() + 1.0, ys.max() + 1.0)
+    crop_view, native = sc.view_box_crop_view(view, box, W)
+    crop = sc.cut_square_view(pano, crop_view, native)
+    # the box's edges in the view are whole view pixels around a disc painted in whole
+    # panorama pixels: the sign's angular size agrees to a few per cent
+    assert crop.shape[0] == pytest.approx(pano_crop.shape[0], rel=0.06) and crop.shape[0] == native
+    half_pixel_deg = 0.5 * 360.0 / W  # the painted disc's centre is good to half a panorama pixel
+    assert crop_view.yaw_deg == pytest.approx(az, abs=half_pixel_deg)
+    assert crop_view.pitch_deg == pytest.approx(el, abs=half_pixel_deg)
+    assert red_mask(crop).mean() == pytest.approx(red_mask(pano_crop).mean(), rel=0.1)
+    assert centroid(red_mask(crop)) == pytest.approx((native / 2, native / 2), abs=0.6)
+    assert not (crop[..., 2] > 160).any()  # the blue disc 15 deg away is outside
+
+
+def test_code_support_and_decision():
+    # A: weights 10 x 0.9 + 10 x 0.7 = 16 of 16 + 1 x 0.8 (B): share 16 / 16.8, mean p 0.8
+    code, support, views = sc.code_support(["A", "A", "B"], [0.9, 0.7, 0.8], [10.0, 10.0, 1.0])
+    assert (code, views) == ("A", 2) and support == pytest.approx(16 / 16.8 * 0.8)
+    assert sc.code_support([], [], []) == ("", pytest.approx(float("nan"), nan_ok=True), 0)
+    table = sc.read_codes_table(BUNDLED_TABLE)
+    never = pytest.fail  # the class's support is asked only when code and class disagree
+    keep = sc.decide_code("DE:206", 0.8, 2, "stop", never, table)
+    assert (keep.code, keep.name, keep.check, keep.klass) == ("DE:206", "stop", "", "stop")
+    low = sc.decide_code("DE:206", 0.3, 2, "stop", never, table)
+    assert (low.code, low.score, low.views) == ("", 0.3, 2)
+    assert sc.decide_code("other", 0.9, 3, "stop", never, table).code == ""
+    won = sc.decide_code("DE:206", 0.8, 2, "mandatory", lambda: 0.5, table)
+    assert (won.code, won.check, won.klass) == ("DE:206", sc.CLASS_FROM_CODE, "stop")
+    lost = sc.decide_code("DE:206", 0.8, 2, "mandatory", lambda: 0.9, table)
+    assert (lost.code, lost.check, lost.klass) == ("", sc.CODE_DROPPED, "mandatory")
+    assert sc.class_support(["stop", "stop", "yield"], [0.8, 0.6, 0.6], "stop") == pytest.approx(1.4 / 2.0 * 0.7)
+    assert sc.class_support(["yield"], [0.6], "stop") == 0.0
+
+
 def test_bad_box():
     with pytest.raises(InputError, match="not four finite pixel coordinates"):
         sc.cut_crop(np.zeros((64, 128, 3), np.uint8), (1.0, float("nan"), 3.0, 4.0))

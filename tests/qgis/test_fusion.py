@@ -2,6 +2,8 @@
 detector made to miss two of its eight signs (every detection of two classes removed from
 the scene's true boxes), the fused layer finds them again from the cloud, reads their class
 from the panoramas, and says which sources found each sign."""
+import csv
+import math
 import os
 import re
 
@@ -67,6 +69,32 @@ def test_the_cloud_finds_the_signs_the_images_missed(qgis_process, fused):
     assert sum(r["class"] in MISSED_CLASSES for r in by_source["lidar"]) >= 1  # read from the panoramas
     for record in by_source["image+lidar"]:
         assert record["class"] not in MISSED_CLASSES and record["cloud_sign_id"] is not None
+
+
+def reference_codes(scene_dir):
+    """(x, y, code) of every true sign (the generator writes each sign's code)."""
+    with open(os.path.join(scene_dir, "reference_signs.csv"), newline="") as f:
+        return [(float(r["x"]), float(r["y"]), r["code"]) for r in csv.DictReader(f)]
+
+
+def test_signs_found_in_the_cloud_alone_get_their_codes(fused):
+    """fusesigns reads the codes of the signs the images missed (bundled classifier, crops
+    around the detections in the views centred on each sign) and votes them like refine."""
+    truth = reference_codes(fused["scene_dir"])
+    recognised = [r for r in rows(fused["fused"]) if r["source"] == "lidar" and r["class"] != "unknown"]
+    assert recognised
+    coded = 0
+    for record in recognised:
+        x, y, code = min(truth, key=lambda t: math.hypot(t[0] - record["x"], t[1] - record["y"]))
+        assert math.hypot(x - record["x"], y - record["y"]) < 1.0
+        assert record["code_views"] >= 1 and 0.0 <= record["code_score"] <= 1.0
+        if record["code"]:
+            coded += 1
+            assert record["code"] == code and record["code_name"]
+            assert record["code_score"] >= 0.5  # the default minimum code confidence
+        else:
+            assert record["code_name"] == ""
+    assert coded >= 1
 
 
 def test_cloud_signs_and_poles_layers(qgis_process, fused):
