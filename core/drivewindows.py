@@ -15,6 +15,7 @@ time base as the cloud's ``gps_time`` when known.
 """
 from __future__ import annotations
 
+import contextlib
 import os
 import shutil
 import tempfile
@@ -221,6 +222,12 @@ class Spool:
         if not os.path.exists(path):
             return np.zeros(0, dtype=self.dtypes[kind])
         return np.fromfile(path, dtype=self.dtypes[kind])
+
+    def discard(self, kind: str, index: int) -> None:
+        """Delete the rows of ``(kind, index)`` (read them first)."""
+        self._pending.pop((kind, index), None)
+        with contextlib.suppress(FileNotFoundError):
+            os.remove(self._path(kind, index))
 
     def close(self) -> None:
         self._pending.clear()

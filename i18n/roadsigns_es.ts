@@ -2514,19 +2514,19 @@
         <translation>El modelo {path} falló con una imagen en blanco de {w} x {h}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="53" />
+        <location filename="../core/drivewindows.py" line="54" />
         <source>The track needs at least 2 finite positions, got {n}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El trayecto necesita al menos 2 posiciones finitas; se recibieron {n}</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="100" />
+        <location filename="../core/drivewindows.py" line="101" />
         <source>The track does not move: all its positions are at one place</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El trayecto no se desplaza: todas sus posiciones están en el mismo lugar</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="48" />
+        <location filename="../core/drivewindows.py" line="49" />
         <source>The track has {n} positions but {m} times</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El trayecto tiene {n} posiciones pero {m} tiempos</translation>
@@ -2586,25 +2586,25 @@
         <translation>Archivo de señales de referencia {path}, línea {line}, campo '{field}': valor vacío</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="161" />
+        <location filename="../core/fusion.py" line="162" />
         <source>Image sign</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>Señal de imagen</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="162" />
+        <location filename="../core/fusion.py" line="163" />
         <source>Cloud panel</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>Panel de la nube</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="105" />
+        <location filename="../core/fusion.py" line="106" />
         <source>{what} {index}: position is not finite</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what} {index}: la posición no es finita</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="102" />
+        <location filename="../core/fusion.py" line="103" />
         <source>{what} {index}: no position (x, y, z)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what} {index}: sin posición (x, y, z)</translation>
@@ -2616,95 +2616,101 @@
         <translation>El CSF integrado necesita el paquete de Python cloth-simulation-filter (módulo CSF): {detail}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="73" />
+        <location filename="../core/ground/engine.py" line="75" />
         <source>Unknown return type {kinds} in '{returns}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tipo de retorno desconocido {kinds} en '{returns}'</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="237" />
+        <location filename="../core/ground/engine.py" line="223" />
+        <source>Not enough free disk space in {folder} to keep the points between the two passes: the cloud is read twice</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No hay espacio libre suficiente en el disco en {folder} para guardar los puntos entre las dos pasadas: la nube se lee dos veces</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="291" />
         <location filename="../core/pointcloud.py" line="244" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la salida debe terminar en .las o .laz</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="249" />
+        <location filename="../core/ground/engine.py" line="303" />
         <location filename="../core/ground/tiled.py" line="150" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SRC de la nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="322" />
+        <location filename="../core/ground/engine.py" line="376" />
         <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró PDAL: se usa el motor integrado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="372" />
+        <location filename="../core/ground/engine.py" line="426" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay polígonos de recorte: se ignora el búfer de recorte</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="192" />
-        <location filename="../core/ground/tiled.py" line="277" />
-        <source>Cannot read {path}: the file is corrupt ({detail})</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No se puede leer {path}: el archivo está dañado ({detail})</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/engine.py" line="206" />
+        <location filename="../core/ground/engine.py" line="260" />
         <source>No point of {path} has the returns '{returns}': nothing was classified</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} tiene los retornos '{returns}': no se clasificó nada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="243" />
+        <location filename="../core/ground/engine.py" line="297" />
         <source>The output {path} must not be the input file</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La salida {path} no puede ser el archivo de entrada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="251" />
+        <location filename="../core/ground/engine.py" line="305" />
         <location filename="../core/ground/tiled.py" line="152" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene sistema de referencia de coordenadas: indique el SRC de la nube (nunca se adivina)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="309" />
+        <location filename="../core/ground/engine.py" line="363" />
         <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: el motor integrado, más rápido que PDAL en las mediciones para {method} (y procesa la nube en flujo continuo con memoria acotada)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="314" />
+        <location filename="../core/ground/engine.py" line="368" />
         <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, porque el {method} integrado necesita el paquete de Python cloth-simulation-filter, que no está instalado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="320" />
+        <location filename="../core/ground/engine.py" line="374" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se pidió PDAL, pero no se encontró ni el módulo de Python pdal ni un ejecutable pdal (PATH, carpeta bin de QGIS)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="324" />
+        <location filename="../core/ground/engine.py" line="378" />
         <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, más rápido que el motor integrado en las mediciones para {method}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="359" />
+        <location filename="../core/ground/engine.py" line="413" />
         <source>No point of {path} is left after the crop: {output} has no points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No queda ningún punto de {path} tras el recorte: {output} no tiene puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="274" />
+        <location filename="../core/ground/engine.py" line="242" />
+        <location filename="../core/ground/tiled.py" line="277" />
+        <source>Cannot read {path}: the file is corrupt ({detail})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer {path}: el archivo está dañado ({detail})</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="328" />
         <location filename="../core/ground/tiled.py" line="183" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>

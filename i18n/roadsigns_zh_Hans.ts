@@ -2514,19 +2514,19 @@
         <translation>模型 {path} 在一张 {w} x {h} 的空白图像上运行失败：{error}</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="53" />
+        <location filename="../core/drivewindows.py" line="54" />
         <source>The track needs at least 2 finite positions, got {n}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>轨迹线至少需要 2 个有限位置，实际为 {n} 个</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="100" />
+        <location filename="../core/drivewindows.py" line="101" />
         <source>The track does not move: all its positions are at one place</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>轨迹线没有移动：其所有位置都在同一处</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="48" />
+        <location filename="../core/drivewindows.py" line="49" />
         <source>The track has {n} positions but {m} times</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>轨迹线有 {n} 个位置，但有 {m} 个时间</translation>
@@ -2586,25 +2586,25 @@
         <translation>参考标志文件 {path}，第 {line} 行，字段 '{field}'：值为空</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="161" />
+        <location filename="../core/fusion.py" line="162" />
         <source>Image sign</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>图像标志</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="162" />
+        <location filename="../core/fusion.py" line="163" />
         <source>Cloud panel</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>点云标志牌</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="105" />
+        <location filename="../core/fusion.py" line="106" />
         <source>{what} {index}: position is not finite</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what} {index}：位置不是有限值</translation>
     </message>
     <message>
-        <location filename="../core/fusion.py" line="102" />
+        <location filename="../core/fusion.py" line="103" />
         <source>{what} {index}: no position (x, y, z)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{what} {index}：没有位置（x, y, z）</translation>
@@ -2616,95 +2616,101 @@
         <translation>内置 CSF 需要 Python 包 cloth-simulation-filter（模块 CSF）：{detail}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="73" />
+        <location filename="../core/ground/engine.py" line="75" />
         <source>Unknown return type {kinds} in '{returns}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>'{returns}' 中有未知的回波类型 {kinds}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="237" />
+        <location filename="../core/ground/engine.py" line="223" />
+        <source>Not enough free disk space in {folder} to keep the points between the two passes: the cloud is read twice</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{folder} 中的可用磁盘空间不足，无法在两遍处理之间保存点：点云将被读取两次</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="291" />
         <location filename="../core/pointcloud.py" line="244" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：输出文件必须以 .las 或 .laz 结尾</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="249" />
+        <location filename="../core/ground/engine.py" line="303" />
         <location filename="../core/ground/tiled.py" line="150" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>点云坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="322" />
+        <location filename="../core/ground/engine.py" line="376" />
         <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到 PDAL：使用内置引擎</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="372" />
+        <location filename="../core/ground/engine.py" line="426" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有裁剪多边形：忽略裁剪缓冲区</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="192" />
-        <location filename="../core/ground/tiled.py" line="277" />
-        <source>Cannot read {path}: the file is corrupt ({detail})</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>无法读取 {path}：文件已损坏（{detail}）</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/engine.py" line="206" />
+        <location filename="../core/ground/engine.py" line="260" />
         <source>No point of {path} has the returns '{returns}': nothing was classified</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中没有回波为 '{returns}' 的点：未分类任何点</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="243" />
+        <location filename="../core/ground/engine.py" line="297" />
         <source>The output {path} must not be the input file</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>输出 {path} 不能是输入文件</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="251" />
+        <location filename="../core/ground/engine.py" line="305" />
         <location filename="../core/ground/tiled.py" line="152" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有坐标参考系：请给出点云的坐标参考系（从不猜测）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="309" />
+        <location filename="../core/ground/engine.py" line="363" />
         <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：内置引擎，对 {method} 实测比 PDAL 更快（且以有限内存流式处理点云）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="314" />
+        <location filename="../core/ground/engine.py" line="368" />
         <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：PDAL，因为内置 {method} 需要 Python 包 cloth-simulation-filter，而该包未安装</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="320" />
+        <location filename="../core/ground/engine.py" line="374" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>要求使用 PDAL，但既没有找到 pdal Python 模块，也没有找到 pdal 可执行文件（PATH、QGIS 的 bin 文件夹）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="324" />
+        <location filename="../core/ground/engine.py" line="378" />
         <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：PDAL，对 {method} 实测比内置引擎更快</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="359" />
+        <location filename="../core/ground/engine.py" line="413" />
         <source>No point of {path} is left after the crop: {output} has no points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>裁剪后 {path} 没有剩余的点：{output} 中没有点</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="274" />
+        <location filename="../core/ground/engine.py" line="242" />
+        <location filename="../core/ground/tiled.py" line="277" />
+        <source>Cannot read {path}: the file is corrupt ({detail})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取 {path}：文件已损坏（{detail}）</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="328" />
         <location filename="../core/ground/tiled.py" line="183" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>

@@ -18,15 +18,17 @@ Conventions:
 """
 from __future__ import annotations
 
+import contextlib
 import os
 import tempfile
 from dataclasses import dataclass, field
-from typing import Any, Iterable, List, Optional, Tuple, Union
+from typing import Any, Iterable, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from ..cloudsource import CloudSource, conform, open_cloud
+from ..drivewindows import Spool
 from ..errors import SILENT, InputError, Message, Progress
 from ..pointcloud import (
     DEFAULT_CHUNK_POINTS,
@@ -161,6 +163,37 @@ def classified(pts: Any, grid: GroundGrid, params: Params, reset_classes: bool,
     return pts, int(ground.sum())
 
 
+#: The spool's one kind of rows: point records in the output's format (:func:`spooled_chunks`).
+SPOOL_KIND = "points"
+#: Free disk space kept beyond the spool's size (bytes).
+SPOOL_DISK_SLACK_BYTES = 512 * 1024 * 1024
+
+
+def room_to_spool(source: CloudSource, folder: str) -> bool:
+    """Whether ``folder`` has room for every point of ``source`` uncompressed (the spool
+    between the built-in engine's passes; the crop only makes it smaller) and some slack."""
+    import shutil
+
+    try:
+        free = shutil.disk_usage(folder).free
+    except OSError:
+        return False
+    return free >= int(source.point_count) * source.header.point_format.size + SPOOL_DISK_SLACK_BYTES
+
+
+def spooled_chunks(spool: Spool, n_chunks: int, header: Any, progress: Progress = SILENT) -> Iterator[Any]:
+    """The chunks pass 1 spooled (kind :data:`SPOOL_KIND`, index = chunk number), as laspy
+    records with ``header``'s point format, scales and offsets; each file is deleted once read."""
+    import laspy
+
+    for k in range(n_chunks):
+        progress.check()
+        rows = spool.read(SPOOL_KIND, k)
+        spool.discard(SPOOL_KIND, k)
+        yield laspy.ScaleAwarePointRecord(rows, header.point_format, header.scales, header.offsets)
+        progress.report((k + 1) / max(1, n_chunks))
+
+
 def _builtin_engine(source: CloudSource, output_path: str, params: Params,
                     region: Optional[CropRegion], header: Any, out_crs_wkt: Optional[str],
                     reset_classes: bool, chunk_points: int, tile_size_m: Optional[float],
@@ -173,35 +206,56 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
         grid = make_grid(params, bounds, float(source.bounds[2]), tile_size_m, tile_buffer_m)
 
     def kept(chunk: Any, masks: List[np.ndarray], k: int) -> Any:
+        """The chunk's points inside the region, its mask kept for the second read."""
         if region is None:
             return chunk
         if len(masks) <= k:
             masks.append(np.packbits(region.mask(chunk.x, chunk.y)))
         return chunk[np.unpackbits(masks[k], count=len(chunk)).astype(bool)]
 
+    def kept_once(chunk: Any) -> Any:
+        return chunk if region is None else chunk[region.mask(chunk.x, chunk.y)]
+
+    out_header = output_header(header, out_crs_wkt)
+    spool_folder = os.path.dirname(output_path)
+    spooling = grid is not None and room_to_spool(source, spool_folder)
+    if grid is not None and not spooling:
+        progress.info("Not enough free disk space in {folder} to keep the points between the two passes: "
+                      "the cloud is read twice", folder=spool_folder)
     masks: List[np.ndarray] = []
-    n_eligible = 0
-    try:
-        if grid is not None:
-            for k, chunk in enumerate(source.iter_chunks(chunk_points, progress.sub(0.0, 0.45), area=area)):
-                _, xyz = eligible_xyz(kept(chunk, masks, k), params)
-                n_eligible += len(xyz)
-                grid.accumulate(xyz[:, 0], xyz[:, 1], xyz[:, 2])
-            grid.finish(progress.sub(0.45, 0.55))
-    except OutsideGridError as e:
-        raise InputError("Cannot read {path}: the file is corrupt ({detail})",
-                         path=source.path, detail=str(e))
-    n_out = n_ground = 0
-    with CloudWriter(output_path, output_header(header, out_crs_wkt)) as writer:
-        if grid is not None:
-            for k, chunk in enumerate(source.iter_chunks(chunk_points, progress.sub(0.55, 1.0), area=area)):
-                pts = kept(chunk, masks, k)
-                if len(pts) == 0:
-                    continue
-                pts, n = classified(pts, grid, params, reset_classes, classify=n_eligible > 0)
-                writer.write(conform(pts, writer.header))
-                n_ground += n
-        n_out = writer.point_count
+    n_eligible = n_chunks = 0
+    with contextlib.ExitStack() as stack:
+        spool = stack.enter_context(Spool({SPOOL_KIND: out_header.point_format.dtype()}, folder=spool_folder,
+                                          prefix=".roadsigns-ground-")) if spooling else None
+        try:
+            if grid is not None:
+                for k, chunk in enumerate(source.iter_chunks(chunk_points, progress.sub(0.0, 0.45), area=area)):
+                    pts = kept(chunk, masks, k) if spool is None else kept_once(chunk)
+                    _, xyz = eligible_xyz(pts, params)
+                    n_eligible += len(xyz)
+                    grid.accumulate(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+                    if spool is not None:
+                        spool.append(SPOOL_KIND, k, conform(pts, out_header).array)
+                    n_chunks = k + 1
+                grid.finish(progress.sub(0.45, 0.55))
+        except OutsideGridError as e:
+            raise InputError("Cannot read {path}: the file is corrupt ({detail})",
+                             path=source.path, detail=str(e))
+        n_out = n_ground = 0
+        with CloudWriter(output_path, out_header) as writer:
+            if grid is not None:
+                if spool is not None:
+                    second = spooled_chunks(spool, n_chunks, out_header, progress.sub(0.55, 1.0))
+                else:
+                    second = (kept(chunk, masks, k) for k, chunk in
+                              enumerate(source.iter_chunks(chunk_points, progress.sub(0.55, 1.0), area=area)))
+                for pts in second:
+                    if len(pts) == 0:
+                        continue
+                    pts, n = classified(pts, grid, params, reset_classes, classify=n_eligible > 0)
+                    writer.write(conform(pts, writer.header))
+                    n_ground += n
+            n_out = writer.point_count
     if n_out and not n_eligible:
         warnings.append(Message("No point of {path} has the returns '{returns}': nothing was "
                                 "classified", path=source.path, returns=params.returns))

@@ -146,6 +146,57 @@ def test_classes_kept_or_reset(tmp_path):
     assert set(np.unique(cls)) == {1, 2}
 
 
+@pytest.mark.parametrize("method", ["csf", "smrf"])
+def test_one_read_with_the_spool_same_points_as_two(tmp_path, monkeypatch, method):
+    """The built-in engine keeps pass 1's points in an uncompressed spool beside the output
+    and reads the cloud once; without room for it, it reads the cloud twice. Same output
+    either way (crop included), and the spool is gone afterwards."""
+    from roadsigns.core.cloudsource import CloudSource
+    from roadsigns.core.ground import engine
+
+    scene = cloudgen.road_scene(length_m=40.0, density_per_m2=40.0, seed=9)
+    src = str(tmp_path / "in.laz")
+    cloudgen.write_scene(src, scene)
+    o = cloudgen.ORIGIN
+    crop = [shapely.to_wkb(box(o[0] + 5, o[1] - 3, o[0] + 30, o[1] + 3))]
+    reads = []
+    original = CloudSource.iter_chunks
+
+    def counted(self, *args, **kwargs):
+        reads.append(self.path)
+        return original(self, *args, **kwargs)
+
+    monkeypatch.setattr(CloudSource, "iter_chunks", counted)
+    outputs = {}
+    for room in (True, False):
+        monkeypatch.setattr(engine, "room_to_spool", lambda source, folder, room=room: room)
+        reads.clear()
+        out = str(tmp_path / f"out-{room}.laz")
+        res = ground.run_ground_filter(src, out, method, "builtin", crop_polygons=crop, crop_buffer_m=1.0,
+                                       chunk_points=3000)
+        assert len(reads) == (1 if room else 2)
+        outputs[room] = laspy.read(out)
+        assert res.n_output == len(outputs[room].points) > 0
+        assert not [p for p in tmp_path.iterdir() if p.name.startswith(".roadsigns")]
+    assert np.array_equal(outputs[True].points.array, outputs[False].points.array)
+
+
+def test_room_to_spool_counts_the_uncompressed_points(tmp_path, small_cloud, monkeypatch):
+    import shutil
+    from collections import namedtuple
+
+    from roadsigns.core.cloudsource import open_cloud
+    from roadsigns.core.ground import engine
+
+    source = open_cloud(small_cloud[0])
+    need = source.point_count * source.header.point_format.size + engine.SPOOL_DISK_SLACK_BYTES
+    usage = namedtuple("usage", "total used free")
+    monkeypatch.setattr(shutil, "disk_usage", lambda folder: usage(10 * need, 0, need))
+    assert engine.room_to_spool(source, str(tmp_path))
+    monkeypatch.setattr(shutil, "disk_usage", lambda folder: usage(10 * need, 0, need - 1))
+    assert not engine.room_to_spool(source, str(tmp_path))
+
+
 def test_crop_polygon_with_buffer(tmp_path):
     scene = cloudgen.road_scene(length_m=40.0, density_per_m2=40.0, seed=8)
     src = str(tmp_path / "in.laz")
