@@ -22,6 +22,7 @@ from qgis.core import (  # noqa: E402
     QgsProcessingModelOutput,
     QgsProcessingModelParameter,
     QgsProcessingOutputLayerDefinition,
+    QgsProcessingParameterBoolean,
     QgsProcessingParameterCrs,
     QgsProcessingParameterFile,
     QgsProcessingParameterNumber,
@@ -105,6 +106,18 @@ def build():
                                     optional=True), "Your own ONNX detector, or empty for the bundled one."),
         (QgsProcessingParameterNumber("CONFIDENCE", "Minimum detection confidence", DOUBLE, 0.4, False, 0, 1),
          "Detections scoring below this are dropped."),
+        (QgsProcessingParameterBoolean("READ_CODES", "Read the sign codes", True),
+         "Reads what each sign says (its code, such as DE:274[50] for speed limit 50) with the sign-code "
+         "classifier; unchecked, the code fields stay empty."),
+        (QgsProcessingParameterFile("CLASSIFIER", "Sign-code classifier (empty: bundled)", behavior=file_,
+                                    optional=True),
+         "Your own ONNX sign-code classifier (format in models/README.md), or empty for the bundled one."),
+        (QgsProcessingParameterFile("CODES_TABLE", "Sign codes table (empty: bundled)", behavior=file_,
+                                    optional=True),
+         "The codes table of your classifier (code;name;class, format in models/README.md), or empty for the "
+         "bundled German table."),
+        (QgsProcessingParameterNumber("CODE_CONFIDENCE", "Minimum code confidence", DOUBLE, 0.5, False, 0, 1),
+         "A sign's voted code whose support (code_score) is below this is left empty."),
     ]
     for name, default, help_text in (("LEVER_ARM_X", 0.0, "Lever arm x, forward (m)."),
                                      ("LEVER_ARM_Y", 0.0, "Lever arm y, right (m)."),
@@ -126,8 +139,9 @@ def build():
         TRAJECTORY=param("TRAJECTORY"), IMAGE_TIMES=param("IMAGE_TIMES"), IMAGES=param("IMAGES"),
         TRAJECTORY_CRS=param("TRAJECTORY_CRS"), TARGET_CRS=param("TARGET_CRS"), **mount), 450, 80,
         [("OUTPUT", "Panorama stations")])
+    codes = {n: param(n) for n in ("READ_CODES", "CLASSIFIER", "CODES_TABLE")}
     detections = child(model, "detections", "roadsigns:detectsigns", dict(
-        STATIONS=output_of(stations), MODEL=param("MODEL"), CONFIDENCE=param("CONFIDENCE")), 450, 220,
+        STATIONS=output_of(stations), MODEL=param("MODEL"), CONFIDENCE=param("CONFIDENCE"), **codes), 450, 220,
         [("OUTPUT", "Detections")])
     ground = child(model, "ground", "roadsigns:groundfilter", dict(
         INPUT=param("POINT_CLOUD"), CROP=output_of(stations), CROP_BUFFER=static(25.0),
@@ -137,14 +151,16 @@ def build():
         450, 500, [("OUTPUT", "Sign candidates")])
     signs = child(model, "signs", "roadsigns:refinesigns", dict(
         CANDIDATES=output_of(candidates), POINT_CLOUD=output_of(ground), MERGE_RADIUS=static(1.0),
-        IMAGES=param("IMAGES")), 450, 640,
+        CODE_CONFIDENCE=param("CODE_CONFIDENCE"), CODES_TABLE=param("CODES_TABLE"), IMAGES=param("IMAGES")),
+        450, 640,
         [("OUTPUT", "Signs"), ("OUTLINES", "Panel outlines"), ("REVIEW_REPORT", "Review report")])
     cloud = child(model, "cloudsigns", "roadsigns:findsignsincloud", dict(
         POINT_CLOUD=output_of(ground), STATIONS=output_of(stations)), 750, 500,
         [("POLES", "Poles", True)])  # its sign panels are an intermediate result: temporary
     child(model, "fused", "roadsigns:fusesigns", dict(
         SIGNS=output_of(signs), CLOUD_SIGNS=output_of(cloud), STATIONS=output_of(stations),
-        IMAGES=param("IMAGES"), MODEL=param("MODEL"), CONFIDENCE=param("CONFIDENCE")), 750, 640,
+        IMAGES=param("IMAGES"), MODEL=param("MODEL"), CONFIDENCE=param("CONFIDENCE"),
+        CODE_CONFIDENCE=param("CODE_CONFIDENCE"), **codes), 750, 640,
         [("OUTPUT", "Signs (fused)")])
     model.updateDestinationParameters()  # the children's model outputs become the model's
     return model

@@ -17,18 +17,22 @@ FUSED_FIELDS = SIGN_FIELDS[:-1] + ["source", "review", "image_sign_id", "cloud_s
                                    "condition", "chip"]
 
 
+def model_outputs(out):
+    """The model's outputs, written to the folder ``out``."""
+    return {"signs:Signs": str(out / "signs.gpkg"), "signs:Review report": str(out / "review.html"),
+            "stations:Panorama stations": str(out / "stations.gpkg"),
+            "detections:Detections": str(out / "detections.gpkg"),
+            "ground:Ground-classified cloud": str(out / "ground.laz"),
+            "candidates:Sign candidates": str(out / "candidates.gpkg"),
+            "fused:Signs (fused)": str(out / "fused.gpkg"), "cloudsigns:Poles": str(out / "poles.gpkg")}
+
+
 @pytest.fixture(scope="module")
 def model_run(qgis_process, scene_tiny, tmp_path_factory):
     scene_dir, scene = scene_tiny
     out = tmp_path_factory.mktemp("model")
-    outputs = {"signs:Signs": str(out / "signs.gpkg"), "signs:Review report": str(out / "review.html"),
-               "stations:Panorama stations": str(out / "stations.gpkg"),
-               "detections:Detections": str(out / "detections.gpkg"),
-               "ground:Ground-classified cloud": str(out / "ground.laz"),
-               "candidates:Sign candidates": str(out / "candidates.gpkg"),
-               "fused:Signs (fused)": str(out / "fused.gpkg"), "cloudsigns:Poles": str(out / "poles.gpkg")}
     run = qgis_process.run("roadsigns:signinventory", POINT_CLOUD=os.path.join(scene_dir, "cloud.laz"),
-                           CONFIDENCE=0.4, **scene_inputs(scene_dir, scene), **outputs)
+                           CONFIDENCE=0.4, **scene_inputs(scene_dir, scene), **model_outputs(out))
     assert run.returncode == 0, run.text
     return out, run, scene_dir
 
@@ -72,3 +76,18 @@ def test_signs_match_the_reference(qgis_process, model_run, layer):
     assert r["MEDIAN_HEIGHT_ERROR"] <= 0.05 and r["MEDIAN_AZIMUTH_ERROR"] <= 5.0, r
     if os.path.isfile(os.path.join(REPO_ROOT, "models", "signcodes.onnx")):  # else test_signcodes_bundled says so
         assert r["CODE_COMPARED"] >= 7 and r["CODE_ACCURACY"] >= 0.85, r  # the codes read through the chain
+
+
+def test_the_model_passes_its_code_parameters_on(qgis_process, scene_tiny, tmp_path):
+    """READ_CODES off: no stage reads a code (detections, signs and fused signs without one)."""
+    scene_dir, scene = scene_tiny
+    run = qgis_process.run("roadsigns:signinventory", POINT_CLOUD=os.path.join(scene_dir, "cloud.laz"),
+                           READ_CODES=False, CODE_CONFIDENCE=0.9, **scene_inputs(scene_dir, scene),
+                           **model_outputs(tmp_path))
+    assert run.returncode == 0, run.text
+    assert "Sign codes are not read" in run.text
+    for name in ("detections.gpkg", "signs.gpkg", "fused.gpkg"):
+        path = str(tmp_path / name)
+        dataset = ogr.Open(path)  # kept while its layer is read (OGR frees the layer with it)
+        features = list(dataset.GetLayer(0))
+        assert features and all(not f["code"] for f in features), path
