@@ -26,7 +26,7 @@ import csv
 import math
 import os
 from dataclasses import dataclass
-from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -489,8 +489,8 @@ def vote(codes: Sequence[str], scores: Sequence[float],
 
 
 
-def code_support(codes: Sequence[str], probs: Sequence[float],
-                 weights: Sequence[float]) -> Tuple[str, float, int]:
+def code_support(codes: Sequence[str], probs: Union[Sequence[float], np.ndarray],
+                 weights: Union[Sequence[float], np.ndarray]) -> Tuple[str, float, int]:
     """The code voted across the views of one sign, and its **support**.
 
     View ``i`` read ``codes[i]`` with probability ``probs[i]`` and weighs ``weights[i]``

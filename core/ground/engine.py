@@ -163,35 +163,58 @@ def classified(pts: Any, grid: GroundGrid, params: Params, reset_classes: bool,
     return pts, int(ground.sum())
 
 
-#: The spool's one kind of rows: point records in the output's format (:func:`spooled_chunks`).
-SPOOL_KIND = "points"
-#: Free disk space kept beyond the spool's size (bytes).
+#: Free disk space kept beyond a spool's size (bytes).
 SPOOL_DISK_SLACK_BYTES = 512 * 1024 * 1024
 
 
-def room_to_spool(source: CloudSource, folder: str) -> bool:
-    """Whether ``folder`` has room for every point of ``source`` uncompressed (the spool
-    between the built-in engine's passes; the crop only makes it smaller) and some slack."""
+def room_to_spool(n_points: int, point_size_bytes: int, folder: str) -> bool:
+    """Whether ``folder`` has room for ``n_points`` uncompressed records of ``point_size_bytes``
+    (a :class:`PointSpool`; a crop only makes it smaller) and some slack."""
     import shutil
 
     try:
         free = shutil.disk_usage(folder).free
     except OSError:
         return False
-    return free >= int(source.point_count) * source.header.point_format.size + SPOOL_DISK_SLACK_BYTES
+    return free >= int(n_points) * int(point_size_bytes) + SPOOL_DISK_SLACK_BYTES
 
 
-def spooled_chunks(spool: Spool, n_chunks: int, header: Any, progress: Progress = SILENT) -> Iterator[Any]:
-    """The chunks pass 1 spooled (kind :data:`SPOOL_KIND`, index = chunk number), as laspy
-    records with ``header``'s point format, scales and offsets; each file is deleted once read."""
-    import laspy
+class PointSpool:
+    """The points pass 1 of the built-in engine read, kept uncompressed for pass 2 in a hidden
+    temporary folder inside ``folder`` (beside the output), so the cloud is decompressed once.
 
-    for k in range(n_chunks):
-        progress.check()
-        rows = spool.read(SPOOL_KIND, k)
-        spool.discard(SPOOL_KIND, k)
-        yield laspy.ScaleAwarePointRecord(rows, header.point_format, header.scales, header.offsets)
-        progress.report((k + 1) / max(1, n_chunks))
+    :meth:`add` takes each chunk (conformed to ``header``'s scales and offsets); :meth:`chunks`
+    gives them back in order as laspy records of ``header``'s point format, deleting each file
+    once read. A context manager: the folder is removed on exit, whatever happened.
+    """
+
+    KIND = "points"
+
+    def __init__(self, header: Any, folder: str):
+        self.header = header
+        self.spool = Spool({self.KIND: header.point_format.dtype()}, folder=folder, prefix=".roadsigns-ground-")
+        self.n_chunks = 0
+
+    def add(self, points: Any) -> None:
+        self.spool.append(self.KIND, self.n_chunks, conform(points, self.header).array)
+        self.n_chunks += 1
+
+    def chunks(self, progress: Progress = SILENT) -> Iterator[Any]:
+        import laspy
+
+        h = self.header
+        for k in range(self.n_chunks):
+            progress.check()
+            rows = self.spool.read(self.KIND, k)
+            self.spool.discard(self.KIND, k)
+            yield laspy.ScaleAwarePointRecord(rows, h.point_format, h.scales, h.offsets)
+            progress.report((k + 1) / self.n_chunks)
+
+    def __enter__(self) -> "PointSpool":
+        return self
+
+    def __exit__(self, exc_type, exc, tb) -> None:
+        self.spool.close()
 
 
 def _builtin_engine(source: CloudSource, output_path: str, params: Params,
@@ -218,15 +241,13 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
 
     out_header = output_header(header, out_crs_wkt)
     spool_folder = os.path.dirname(output_path)
-    spooling = grid is not None and room_to_spool(source, spool_folder)
+    spooling = grid is not None and room_to_spool(source.point_count, header.point_format.size, spool_folder)
     if grid is not None and not spooling:
         progress.info("Not enough free disk space in {folder} to keep the points between the two passes: "
                       "the cloud is read twice", folder=spool_folder)
     masks: List[np.ndarray] = []
-    n_eligible = n_chunks = 0
-    with contextlib.ExitStack() as stack:
-        spool = stack.enter_context(Spool({SPOOL_KIND: out_header.point_format.dtype()}, folder=spool_folder,
-                                          prefix=".roadsigns-ground-")) if spooling else None
+    n_eligible = 0
+    with PointSpool(out_header, spool_folder) if spooling else contextlib.nullcontext() as spool:
         try:
             if grid is not None:
                 for k, chunk in enumerate(source.iter_chunks(chunk_points, progress.sub(0.0, 0.45), area=area)):
@@ -235,8 +256,7 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
                     n_eligible += len(xyz)
                     grid.accumulate(xyz[:, 0], xyz[:, 1], xyz[:, 2])
                     if spool is not None:
-                        spool.append(SPOOL_KIND, k, conform(pts, out_header).array)
-                    n_chunks = k + 1
+                        spool.add(pts)
                 grid.finish(progress.sub(0.45, 0.55))
         except OutsideGridError as e:
             raise InputError("Cannot read {path}: the file is corrupt ({detail})",
@@ -245,7 +265,7 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
         with CloudWriter(output_path, out_header) as writer:
             if grid is not None:
                 if spool is not None:
-                    second = spooled_chunks(spool, n_chunks, out_header, progress.sub(0.55, 1.0))
+                    second = spool.chunks(progress.sub(0.55, 1.0))
                 else:
                     second = (kept(chunk, masks, k) for k, chunk in
                               enumerate(source.iter_chunks(chunk_points, progress.sub(0.55, 1.0), area=area)))

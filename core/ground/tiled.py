@@ -29,6 +29,7 @@ each tile goes through PDAL alone with its neighbours' points around it (:mod:`.
 """
 from __future__ import annotations
 
+import contextlib
 import os
 import tempfile
 from typing import Any, Dict, Iterable, List, Optional, Tuple, Union
@@ -42,6 +43,7 @@ from ..pointcloud import DEFAULT_CHUNK_POINTS, CloudWriter, CropRegion, output_h
 from .csf import CsfGrid, CsfParams
 from .engine import (
     GroundResult,
+    PointSpool,
     builtin_available,
     classified,
     crop_region,
@@ -49,6 +51,7 @@ from .engine import (
     grid_bounds,
     make_grid,
     pdal_runner_for,
+    room_to_spool,
 )
 from .lattice import Lattice, OutsideGridError
 from .params import Params, engine_name, method_name, method_params
@@ -253,33 +256,48 @@ def _spool_halos(source: CloudSource, work: List[int], grown: Dict[int, BBoxXY],
     return spools
 
 
-def _classify_tile(source: CloudSource, k: int, bounds: BBoxXY, spool: Optional[str], path: str,
+def _classify_tile(source: CloudSource, k: int, bounds: BBoxXY, spool_path: Optional[str], path: str,
                    region: Optional[CropRegion], params: Params, crs_wkt: Optional[str], reset_classes: bool,
                    chunk_points: int, tile_buffer_m: Optional[float], progress: Progress) -> Tuple[int, int]:
-    """Passes 1 and 2 of one tile into ``path``; ``(points written, ground points)``; no file
-    when no point is kept."""
+    """Passes 1 and 2 of one tile into ``path`` (its halo's points in the file ``spool_path``);
+    ``(points written, ground points)``; no file when no point is kept. Pass 1 keeps the
+    tile's points in a :class:`~.engine.PointSpool` beside ``path`` when the disk has room."""
     tile: Tile = source.tiles[k]
-    n_ground = 0
     grid = make_grid(params, bounds, float(source.bounds[2]), None, tile_buffer_m)
-    n_eligible = 0
+    header = output_header(template_header(source.tile_header(k)), crs_wkt)
+    folder = os.path.dirname(path)
+    room = room_to_spool(tile.point_count, header.point_format.size, folder)
+    with PointSpool(header, folder) if room else contextlib.nullcontext() as spool:
+        return _classify_tile_passes(source, tile, grid, spool, header, spool_path, path, region, params,
+                                     reset_classes, chunk_points, progress)
+
+
+def _classify_tile_passes(source: CloudSource, tile: Tile, grid: Any, spool: Optional[PointSpool], header: Any,
+                          spool_path: Optional[str], path: str, region: Optional[CropRegion], params: Params,
+                          reset_classes: bool, chunk_points: int, progress: Progress) -> Tuple[int, int]:
+    """:func:`_classify_tile`'s two passes; with a ``spool``, the tile is read once."""
+    n_ground = n_eligible = 0
     try:
         for chunk in _tile_chunks(source, tile, chunk_points, progress.sub(0.0, 0.45)):
-            _, xyz = eligible_xyz(_kept(chunk, region), params)
+            pts = _kept(chunk, region)
+            _, xyz = eligible_xyz(pts, params)
             n_eligible += len(xyz)
             grid.accumulate(xyz[:, 0], xyz[:, 1], xyz[:, 2])
-        if spool is not None:
-            halo = np.fromfile(spool, dtype=_HALO_DTYPE)
+            if spool is not None:
+                spool.add(pts)
+        if spool_path is not None:
+            halo = np.fromfile(spool_path, dtype=_HALO_DTYPE)
             on = _on_grid(grid, halo["x"], halo["y"], isinstance(params, CsfParams))
             grid.accumulate(halo["x"][on], halo["y"][on], halo["z"][on])
             del halo
         grid.finish(progress.sub(0.45, 0.55))
     except OutsideGridError as e:
         raise InputError("Cannot read {path}: the file is corrupt ({detail})", path=tile.path, detail=str(e))
-    header = output_header(template_header(source.tile_header(k)), crs_wkt)
     writer = CloudWriter(path, header)
     try:
-        for chunk in _tile_chunks(source, tile, chunk_points, progress.sub(0.55, 1.0)):
-            pts = _kept(chunk, region)
+        second = (spool.chunks(progress.sub(0.55, 1.0)) if spool is not None else
+                  (_kept(chunk, region) for chunk in _tile_chunks(source, tile, chunk_points, progress.sub(0.55, 1.0))))
+        for pts in second:
             if len(pts):
                 pts, n = classified(pts, grid, params, reset_classes, classify=n_eligible > 0)
                 writer.write(pts)

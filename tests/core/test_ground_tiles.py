@@ -86,6 +86,34 @@ def test_tiles_get_the_classes_of_one_file(hilly, tmp_path, method, params, crop
     assert vpc.point_count == res.n_output and cs.same_crs(vpc.crs_wkt, cs.open_cloud(hilly["single"]).crs_wkt)
 
 
+def test_tiles_read_once_with_the_spool_same_tiles_as_twice(hilly, tmp_path, monkeypatch):
+    """OUTPUT_TILES: each tile's points are kept in a spool between the passes (one read of
+    the tile for both), or read twice without room on the disk; the same tiles either way."""
+    from roadsigns.core.ground import tiled
+
+    reads = []
+    original = cs.CloudSource.iter_indexed_chunks
+
+    def counted(self, *args, **kwargs):
+        reads.append(tuple(t.path for t in kwargs.get("tiles") or ()))
+        return original(self, *args, **kwargs)
+
+    monkeypatch.setattr(cs.CloudSource, "iter_indexed_chunks", counted)
+    written = {}
+    for room in (True, False):
+        monkeypatch.setattr(tiled, "room_to_spool", lambda n, size, folder, room=room: room)
+        reads.clear()
+        out = tmp_path / f"ground-{room}"
+        ground.run_ground_filter_tiles(hilly["folder"], str(out), "g.vpc", "csf", "builtin", chunk_points=20_000)
+        per_tile = [r for r in reads if len(r) == 1]
+        assert len(per_tile) == len(hilly["tiles"]) * (1 if room else 2)
+        written[room] = sorted(p for p in out.iterdir() if p.suffix == ".laz")
+        assert not [p for p in out.iterdir() if p.name.startswith(".roadsigns")]
+    assert [p.name for p in written[True]] == [p.name for p in written[False]]
+    for a, b in zip(written[True], written[False]):
+        assert np.array_equal(laspy.read(a).points.array, laspy.read(b).points.array)
+
+
 def test_tiles_keep_their_own_headers(hilly, tmp_path):
     folder = tmp_path / "mixed"
     split_into_tiles(hilly["single"], str(folder), size_m=40.0, scales=[0.01, 0.01, 0.01],
