@@ -1032,224 +1032,224 @@
         <translation>Recorta una nube LAS/LAZ y clasifica el suelo (clase 2) con CSF o SMRF, mediante PDAL o el motor integrado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="93" />
+        <location filename="../algorithms/groundfilter.py" line="95" />
         <source>Point cloud (LAS/LAZ)</source>
         <translation>Nube de puntos (LAS/LAZ)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="93" />
+        <location filename="../algorithms/groundfilter.py" line="95" />
         <source>The mobile-mapping cloud, LAS 1.2-1.4 or LAZ, any size (it is read in chunks).</source>
         <translation>La nube de cartografía móvil, LAS 1.2-1.4 o LAZ, de cualquier tamaño (se lee por bloques).</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="96" />
+        <location filename="../algorithms/groundfilter.py" line="98" />
         <source>Crop layer (optional)</source>
         <translation>Capa de recorte (opcional)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="96" />
+        <location filename="../algorithms/groundfilter.py" line="98" />
         <source>Keep only points inside these polygons, or within the crop buffer of these points or lines (e.g. the panorama stations). Empty keeps the whole cloud.</source>
         <translation>Conserva solo los puntos dentro de estos polígonos, o dentro del búfer de recorte de estos puntos o líneas (p. ej. las estaciones de panorama). Vacío conserva la nube entera.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="100" />
+        <location filename="../algorithms/groundfilter.py" line="102" />
         <source>Crop buffer (m)</source>
         <translation>Búfer de recorte (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="100" />
+        <location filename="../algorithms/groundfilter.py" line="102" />
         <source>Grow the crop geometries by this many metres; needed (&gt; 0) for a point or line layer.</source>
         <translation>Amplía las geometrías de recorte en estos metros; necesario (&gt; 0) para una capa de puntos o de líneas.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="104" />
+        <location filename="../algorithms/groundfilter.py" line="106" />
         <source>Ground method</source>
         <translation>Método de suelo</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="104" />
+        <location filename="../algorithms/groundfilter.py" line="106" />
         <source>CSF (cloth simulation)</source>
         <translation>CSF (simulación de tela)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="104" />
+        <location filename="../algorithms/groundfilter.py" line="106" />
         <source>SMRF (simple morphological filter)</source>
         <translation>SMRF (filtro morfológico simple)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="104" />
+        <location filename="../algorithms/groundfilter.py" line="106" />
         <source>CSF suits roads and gentle terrain; SMRF suits steeper or rougher terrain.</source>
         <translation>CSF es adecuado para calles y terreno suave; SMRF, para terreno más empinado o accidentado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="108" />
+        <location filename="../algorithms/groundfilter.py" line="110" />
         <source>Engine</source>
         <translation>Motor</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="108" />
+        <location filename="../algorithms/groundfilter.py" line="110" />
         <source>PDAL</source>
         <translation>PDAL</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="108" />
+        <location filename="../algorithms/groundfilter.py" line="110" />
         <source>Built-in</source>
         <translation>Integrado</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="115" />
+        <location filename="../algorithms/groundfilter.py" line="117" />
         <source>Ground distance threshold (m)</source>
         <translation>Umbral de distancia al suelo (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="115" />
+        <location filename="../algorithms/groundfilter.py" line="117" />
         <source>Points within this height of the ground surface are ground (PDAL's threshold option). PDAL's default is 0.5 m; 0.2 m suits dense mobile-mapping clouds, where it keeps the lowest parts of cars, walls and street furniture off the ground class.</source>
         <translation>Los puntos a menos de esta altura de la superficie del suelo son suelo (opción threshold de PDAL). El valor por defecto de PDAL es 0,5 m; 0,2 m es adecuado para nubes densas de cartografía móvil, en las que deja fuera de la clase suelo las partes más bajas de coches, muros y mobiliario urbano.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="121" />
+        <location filename="../algorithms/groundfilter.py" line="123" />
         <source>Cloth resolution / cell size (m)</source>
         <translation>Resolución de la tela / tamaño de celda (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="121" />
+        <location filename="../algorithms/groundfilter.py" line="123" />
         <source>CSF's cloth resolution or SMRF's cell size, in metres (PDAL's default: 1 m).</source>
         <translation>Resolución de la tela de CSF o tamaño de celda de SMRF, en metros (valor por defecto de PDAL: 1 m).</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="125" />
+        <location filename="../algorithms/groundfilter.py" line="127" />
         <source>Cloud CRS (when the file has none)</source>
         <translation>SRC de la nube (si el archivo no tiene)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="125" />
+        <location filename="../algorithms/groundfilter.py" line="127" />
         <source>The cloud's CRS if the file does not record one; a CRS in the file is replaced by it. The CRS is never guessed.</source>
         <translation>El SRC de la nube si el archivo no registra ninguno; un SRC presente en el archivo se sustituye por este. El SRC nunca se adivina.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="129" />
+        <location filename="../algorithms/groundfilter.py" line="131" />
         <source>Reset existing classes</source>
         <translation>Restablecer las clases existentes</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="129" />
+        <location filename="../algorithms/groundfilter.py" line="131" />
         <source>Set every non-ground point to class 1 (unclassified) instead of keeping its class.</source>
         <translation>Asigna la clase 1 (sin clasificar) a todos los puntos que no son suelo en lugar de conservar su clase.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="137" />
+        <location filename="../algorithms/groundfilter.py" line="139" />
         <source>Ground-classified cloud</source>
         <translation>Nube con suelo clasificado</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="137" />
+        <location filename="../algorithms/groundfilter.py" line="139" />
         <source>LAZ (*.laz);;LAS (*.las)</source>
         <translation>LAZ (*.laz);;LAS (*.las)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="142" />
+        <location filename="../algorithms/groundfilter.py" line="144" />
         <source>Engine that ran</source>
         <translation>Motor utilizado</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="143" />
+        <location filename="../algorithms/groundfilter.py" line="145" />
         <source>Points read</source>
         <translation>Puntos leídos</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="144" />
+        <location filename="../algorithms/groundfilter.py" line="146" />
         <source>Points written</source>
         <translation>Puntos escritos</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="145" />
+        <location filename="../algorithms/groundfilter.py" line="147" />
         <source>Ground points</source>
         <translation>Puntos de suelo</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="155" />
+        <location filename="../algorithms/groundfilter.py" line="157" />
         <source>The crop layer holds points or lines: give a crop buffer in metres (&gt; 0) to make a corridor around them</source>
         <translation>La capa de recorte contiene puntos o líneas: indique un búfer de recorte en metros (&gt; 0) para formar un corredor a su alrededor</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="160" />
+        <location filename="../algorithms/groundfilter.py" line="162" />
         <source>Reprojecting the crop layer from {} to {}</source>
         <translation>Reproyectando la capa de recorte de {} a {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="262" />
+        <location filename="../algorithms/groundfilter.py" line="264" />
         <source>Engine: {}; method: {}; {} points read, {} written, {} ground</source>
         <translation>Motor: {}; método: {}; {} puntos leídos, {} escritos, {} de suelo</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="166" />
+        <location filename="../algorithms/groundfilter.py" line="168" />
         <source>Cancelled: nothing was written.</source>
         <translation>Cancelado: no se escribió nada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="175" />
+        <location filename="../algorithms/groundfilter.py" line="177" />
         <source>The crop layer {} has no feature: nothing to crop by. Leave the crop layer empty to process the whole cloud</source>
         <translation>La capa de recorte {} no tiene entidades: no hay nada con qué recortar. Deje vacía la capa de recorte para procesar toda la nube</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="179" />
+        <location filename="../algorithms/groundfilter.py" line="181" />
         <source>The crop layer {} has no geometry (its {} features are empty): nothing to crop by</source>
         <translation>La capa de recorte {} no tiene geometría (sus {} entidades están vacías): no hay nada con qué recortar</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="194" />
+        <location filename="../algorithms/groundfilter.py" line="196" />
         <source>The crop area (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}) does not overlap the point cloud {} (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}): nothing would be kept</source>
         <translation>El área de recorte (x {:.1f} a {:.1f}, y {:.1f} a {:.1f}) no se superpone con la nube de puntos {} (x {:.1f} a {:.1f}, y {:.1f} a {:.1f}): no se conservaría nada</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="207" />
+        <location filename="../algorithms/groundfilter.py" line="209" />
         <source>PDAL said: {}</source>
         <translation>PDAL dijo: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="208" />
+        <location filename="../algorithms/groundfilter.py" line="210" />
         <source>PDAL failed: {}</source>
         <translation>PDAL falló: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="229" />
+        <location filename="../algorithms/groundfilter.py" line="231" />
         <source>The output {} must not be the input file</source>
         <translation>La salida {} no debe ser el archivo de entrada</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="133" />
+        <location filename="../algorithms/groundfilter.py" line="135" />
         <source>Write one tile per input tile</source>
         <translation>Escribir una tesela por cada tesela de entrada</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="137" />
+        <location filename="../algorithms/groundfilter.py" line="139" />
         <source>The cropped cloud with ground as class 2; LAZ or LAS by the file extension. With one tile per input tile: the folder of this name without its extension gets the tiles and &lt;name&gt;.vpc, which is then this output.</source>
         <translation>La nube recortada con el suelo como clase 2; LAZ o LAS según la extensión del archivo. Con una tesela por cada tesela de entrada: la carpeta con este nombre sin su extensión recibe las teselas y &lt;name&gt;.vpc, que pasa a ser esta salida.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="251" />
+        <location filename="../algorithms/groundfilter.py" line="253" />
         <source>Writing one tile per input tile to the folder {}, listed in {}</source>
         <translation>Escribiendo una tesela por cada tesela de entrada en la carpeta {}, enumeradas en {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="108" />
+        <location filename="../algorithms/groundfilter.py" line="110" />
         <source>Auto (the faster engine: built-in)</source>
         <translation>Automático (el motor más rápido: el integrado)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="108" />
+        <location filename="../algorithms/groundfilter.py" line="110" />
         <source>Auto: the engine measured faster for the method, today the built-in engine for both (PDAL when the built-in CSF's package is missing). PDAL: its Python bindings or the pdal executable that QGIS has; an error when there is neither.</source>
         <translation>Automático: el motor que resultó más rápido en las mediciones para el método; hoy, el motor integrado para ambos (PDAL cuando falta el paquete del CSF integrado). PDAL: sus enlaces de Python o el ejecutable pdal que tenga QGIS; un error si no hay ninguno de los dos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="133" />
+        <location filename="../algorithms/groundfilter.py" line="135" />
         <source>Write each input tile to its own file (same name, same header) in a folder named after the output, with a virtual point cloud (.vpc) listing them, instead of one file.</source>
         <translation>Escribe cada tesela de entrada en su propio archivo (mismo nombre, misma cabecera) dentro de una carpeta que lleva el nombre de la salida, con una nube de puntos virtual (.vpc) que las enumera, en lugar de un solo archivo.</translation>
     </message>
     <message>
         <location filename="../algorithms/groundfilter.py" line="64" />
-        <source>Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless &lt;i&gt;Reset existing classes&lt;/i&gt; is checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are written unchanged.&lt;br&gt;&lt;br&gt;&lt;b&gt;Crop&lt;/b&gt;: polygons (grown by the crop buffer), or points and lines such as the panorama stations or detection rays, buffered into a corridor. The crop layer is reprojected to the cloud's CRS.&lt;br&gt;&lt;br&gt;&lt;b&gt;Engine&lt;/b&gt;: PDAL runs filters.csf / filters.smrf through its Python bindings or the &lt;i&gt;pdal&lt;/i&gt; executable (on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign inventory), holding the cloud in memory (about 150 bytes a point); the built-in engine runs the same filters in Python, streaming the cloud, so clouds larger than memory work. &lt;b&gt;Auto picks the built-in engine&lt;/b&gt; for both methods: measured against PDAL 2.9.2 on two cores it was as fast for CSF on 8 M points (within 10 %) and 1.6 times faster on 38 M, and 1.4 to 1.7 times faster for SMRF, in about 300 MB where PDAL took 5.6 GB for 38 M points (bench/README.md). Auto uses PDAL only when the built-in CSF's Python package (cloth-simulation-filter) is missing; the log says which engine ran and why.&lt;br&gt;&lt;br&gt;&lt;b&gt;Tiles&lt;/b&gt;: the input may be one LAS/LAZ file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc); PDAL takes the tiles one by one, each with its neighbours' points around it. They are written to one file, or, with &lt;i&gt;Write one tile per input tile&lt;/i&gt;, each to a file of its own name in a folder named after the output (out/ground.laz gives the folder out/ground), with a virtual point cloud listing them (out/ground/ground.vpc, the output to give the next stages). Each tile is classified with its neighbours' points around it, so the classes at tile edges are those of a run on the whole cloud.</source>
-        <translation>Lee la nube LAS/LAZ por bloques, conserva los puntos dentro del área de recorte y clasifica los puntos de suelo como clase 2 con el filtro de simulación de tela (CSF, Zhang et al. 2016) o el filtro morfológico simple (SMRF, Pingel et al. 2013), con los parámetros de PDAL (valores por defecto ajustados para nubes densas de cartografía móvil: umbral de 0,2 m, celdas de 0,5 m; los de PDAL son 0,5 m y 1 m). Las demás clases se conservan salvo que se marque &lt;i&gt;Restablecer las clases existentes&lt;/i&gt;. Todas las dimensiones, los bytes extra, los VLR, las escalas y desplazamientos y el SRC se escriben sin cambios.&lt;br&gt;&lt;br&gt;&lt;b&gt;Recorte&lt;/b&gt;: polígonos (ampliados con el búfer de recorte), o puntos y líneas como las estaciones de panorama o los rayos de detección, convertidos en un corredor mediante un búfer. La capa de recorte se reproyecta al SRC de la nube.&lt;br&gt;&lt;br&gt;&lt;b&gt;Motor&lt;/b&gt;: PDAL ejecuta filters.csf / filters.smrf mediante sus enlaces de Python o el ejecutable &lt;i&gt;pdal&lt;/i&gt; (en el PATH, en la carpeta bin de QGIS o configurado en Procesos ▸ Opciones ▸ Proveedores ▸ Road sign inventory), manteniendo la nube en memoria (unos 150 bytes por punto); el motor integrado ejecuta los mismos filtros en Python, procesando la nube en flujo continuo, por lo que funciona con nubes más grandes que la memoria. &lt;b&gt;Automático elige el motor integrado&lt;/b&gt; para ambos métodos: medido frente a PDAL 2.9.2 con dos núcleos, fue igual de rápido para CSF con 8 M de puntos (con una diferencia inferior al 10 %) y 1,6 veces más rápido con 38 M, y de 1,4 a 1,7 veces más rápido para SMRF, con unos 300 MB, mientras que PDAL ocupó 5,6 GB para 38 M de puntos (bench/README.md). Automático usa PDAL solo cuando falta el paquete de Python del CSF integrado (cloth-simulation-filter); el registro indica qué motor se ejecutó y por qué.&lt;br&gt;&lt;br&gt;&lt;b&gt;Teselas&lt;/b&gt;: la entrada puede ser un archivo LAS/LAZ, una carpeta de teselas LAS/LAZ o una nube de puntos virtual (.vpc); PDAL toma las teselas una a una, cada una con los puntos de sus vecinas a su alrededor. Se escriben en un solo archivo o, con &lt;i&gt;Escribir una tesela por cada tesela de entrada&lt;/i&gt;, cada una en un archivo con su propio nombre dentro de una carpeta que lleva el nombre de la salida (out/ground.laz da la carpeta out/ground), con una nube de puntos virtual que las enumera (out/ground/ground.vpc, la salida que se da a las etapas siguientes). Cada tesela se clasifica con los puntos de sus vecinas a su alrededor, de modo que las clases en los bordes de las teselas son las de una ejecución sobre la nube entera.</translation>
+        <source>Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless &lt;i&gt;Reset existing classes&lt;/i&gt; is checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are written unchanged.&lt;br&gt;&lt;br&gt;&lt;b&gt;Crop&lt;/b&gt;: polygons (grown by the crop buffer), or points and lines such as the panorama stations or detection rays, buffered into a corridor. The crop layer is reprojected to the cloud's CRS.&lt;br&gt;&lt;br&gt;&lt;b&gt;Engine&lt;/b&gt;: PDAL runs filters.csf / filters.smrf through its Python bindings or the &lt;i&gt;pdal&lt;/i&gt; executable (on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign inventory), holding the cloud in memory (about 150 bytes a point); the built-in engine runs the same filters in Python, streaming the cloud, so clouds larger than memory work (between its two passes it keeps the points uncompressed on disk beside the output, about 30 bytes a point, so a LAZ is decompressed once). &lt;b&gt;Auto picks the built-in engine&lt;/b&gt; for both methods: measured against PDAL 2.9.2 on two cores it was as fast for CSF on 8 M points (within 10 %) and 1.6 times faster on 38 M, and 1.4 to 1.7 times faster for SMRF, in about 300 MB where PDAL took 5.6 GB for 38 M points (bench/README.md). Auto uses PDAL only when the built-in CSF's Python package (cloth-simulation-filter) is missing; the log says which engine ran and why.&lt;br&gt;&lt;br&gt;&lt;b&gt;Tiles&lt;/b&gt;: the input may be one LAS/LAZ file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc); PDAL takes the tiles one by one, each with its neighbours' points around it. They are written to one file, or, with &lt;i&gt;Write one tile per input tile&lt;/i&gt;, each to a file of its own name in a folder named after the output (out/ground.laz gives the folder out/ground), with a virtual point cloud listing them (out/ground/ground.vpc, the output to give the next stages). Each tile is classified with its neighbours' points around it, so the classes at tile edges are those of a run on the whole cloud.</source>
+        <translation>Lee la nube LAS/LAZ por bloques, conserva los puntos dentro del área de recorte y clasifica los puntos de suelo como clase 2 con el filtro de simulación de tela (CSF, Zhang et al. 2016) o el filtro morfológico simple (SMRF, Pingel et al. 2013), con los parámetros de PDAL (valores por defecto ajustados para nubes densas de cartografía móvil: umbral de 0,2 m, celdas de 0,5 m; los de PDAL son 0,5 m y 1 m). Las demás clases se conservan salvo que se marque &lt;i&gt;Restablecer las clases existentes&lt;/i&gt;. Todas las dimensiones, los bytes extra, los VLR, las escalas y desplazamientos y el SRC se escriben sin cambios.&lt;br&gt;&lt;br&gt;&lt;b&gt;Recorte&lt;/b&gt;: polígonos (ampliados con el búfer de recorte), o puntos y líneas como las estaciones de panorama o los rayos de detección, convertidos en un corredor mediante un búfer. La capa de recorte se reproyecta al SRC de la nube.&lt;br&gt;&lt;br&gt;&lt;b&gt;Motor&lt;/b&gt;: PDAL ejecuta filters.csf / filters.smrf mediante sus enlaces de Python o el ejecutable &lt;i&gt;pdal&lt;/i&gt; (en el PATH, en la carpeta bin de QGIS o configurado en Procesos ▸ Opciones ▸ Proveedores ▸ Road sign inventory), manteniendo la nube en memoria (unos 150 bytes por punto); el motor integrado ejecuta los mismos filtros en Python, procesando la nube en flujo continuo, por lo que funciona con nubes más grandes que la memoria (entre sus dos pasadas guarda los puntos sin comprimir en el disco junto a la salida, unos 30 bytes por punto, de modo que un LAZ se descomprime una sola vez). &lt;b&gt;Automático elige el motor integrado&lt;/b&gt; para ambos métodos: medido frente a PDAL 2.9.2 con dos núcleos, fue igual de rápido para CSF con 8 M de puntos (con una diferencia inferior al 10 %) y 1,6 veces más rápido con 38 M, y de 1,4 a 1,7 veces más rápido para SMRF, con unos 300 MB, mientras que PDAL ocupó 5,6 GB para 38 M de puntos (bench/README.md). Automático usa PDAL solo cuando falta el paquete de Python del CSF integrado (cloth-simulation-filter); el registro indica qué motor se ejecutó y por qué.&lt;br&gt;&lt;br&gt;&lt;b&gt;Teselas&lt;/b&gt;: la entrada puede ser un archivo LAS/LAZ, una carpeta de teselas LAS/LAZ o una nube de puntos virtual (.vpc); PDAL toma las teselas una a una, cada una con los puntos de sus vecinas a su alrededor. Se escriben en un solo archivo o, con &lt;i&gt;Escribir una tesela por cada tesela de entrada&lt;/i&gt;, cada una en un archivo con su propio nombre dentro de una carpeta que lleva el nombre de la salida (out/ground.laz da la carpeta out/ground), con una nube de puntos virtual que las enumera (out/ground/ground.vpc, la salida que se da a las etapas siguientes). Cada tesela se clasifica con los puntos de sus vecinas a su alrededor, de modo que las clases en los bordes de las teselas son las de una ejecución sobre la nube entera.</translation>
     </message>
 </context>
 <context>
@@ -2616,102 +2616,102 @@
         <translation>El CSF integrado necesita el paquete de Python cloth-simulation-filter (módulo CSF): {detail}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="75" />
+        <location filename="../core/ground/engine.py" line="78" />
         <source>Unknown return type {kinds} in '{returns}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tipo de retorno desconocido {kinds} en '{returns}'</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="223" />
+        <location filename="../core/ground/engine.py" line="249" />
         <source>Not enough free disk space in {folder} to keep the points between the two passes: the cloud is read twice</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay espacio libre suficiente en el disco en {folder} para guardar los puntos entre las dos pasadas: la nube se lee dos veces</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="291" />
+        <location filename="../core/ground/engine.py" line="314" />
         <location filename="../core/pointcloud.py" line="244" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la salida debe terminar en .las o .laz</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="303" />
-        <location filename="../core/ground/tiled.py" line="150" />
+        <location filename="../core/ground/engine.py" line="326" />
+        <location filename="../core/ground/tiled.py" line="153" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SRC de la nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="376" />
+        <location filename="../core/ground/engine.py" line="399" />
         <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró PDAL: se usa el motor integrado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="426" />
+        <location filename="../core/ground/engine.py" line="449" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay polígonos de recorte: se ignora el búfer de recorte</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="260" />
+        <location filename="../core/ground/engine.py" line="283" />
         <source>No point of {path} has the returns '{returns}': nothing was classified</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} tiene los retornos '{returns}': no se clasificó nada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="297" />
+        <location filename="../core/ground/engine.py" line="320" />
         <source>The output {path} must not be the input file</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La salida {path} no puede ser el archivo de entrada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="305" />
-        <location filename="../core/ground/tiled.py" line="152" />
+        <location filename="../core/ground/engine.py" line="328" />
+        <location filename="../core/ground/tiled.py" line="155" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene sistema de referencia de coordenadas: indique el SRC de la nube (nunca se adivina)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="363" />
+        <location filename="../core/ground/engine.py" line="386" />
         <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: el motor integrado, más rápido que PDAL en las mediciones para {method} (y procesa la nube en flujo continuo con memoria acotada)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="368" />
+        <location filename="../core/ground/engine.py" line="391" />
         <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, porque el {method} integrado necesita el paquete de Python cloth-simulation-filter, que no está instalado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="374" />
+        <location filename="../core/ground/engine.py" line="397" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se pidió PDAL, pero no se encontró ni el módulo de Python pdal ni un ejecutable pdal (PATH, carpeta bin de QGIS)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="378" />
+        <location filename="../core/ground/engine.py" line="401" />
         <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, más rápido que el motor integrado en las mediciones para {method}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="413" />
+        <location filename="../core/ground/engine.py" line="436" />
         <source>No point of {path} is left after the crop: {output} has no points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No queda ningún punto de {path} tras el recorte: {output} no tiene puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="242" />
-        <location filename="../core/ground/tiled.py" line="277" />
+        <location filename="../core/ground/engine.py" line="265" />
+        <location filename="../core/ground/tiled.py" line="295" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo está dañado ({detail})</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="328" />
-        <location filename="../core/ground/tiled.py" line="183" />
+        <location filename="../core/ground/engine.py" line="351" />
+        <location filename="../core/ground/tiled.py" line="186" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>PDAL falló; se usó el motor integrado en su lugar: {error}</translation>
@@ -2753,37 +2753,37 @@
         <translation>El ejecutable de PDAL {path} no existe o no es ejecutable</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="216" />
+        <location filename="../core/ground/tiled.py" line="219" />
         <source>{n} tiles written to {folder}, listed in {vpc}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} teselas escritas en {folder}, enumeradas en {vpc}</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="142" />
+        <location filename="../core/ground/tiled.py" line="145" />
         <source>The virtual point cloud's name {name} must be a file name ending in .vpc</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El nombre de la nube de puntos virtual {name} debe ser un nombre de archivo terminado en .vpc</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="114" />
+        <location filename="../core/ground/tiled.py" line="117" />
         <source>The output folder {folder} holds the input tile {tile}: choose another folder (the output folder is replaced as a whole)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La carpeta de salida {folder} contiene la tesela de entrada {tile}: elija otra carpeta (la carpeta de salida se reemplaza por completo)</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="117" />
+        <location filename="../core/ground/tiled.py" line="120" />
         <source>Two tiles of {path} have the same file name, {name} ({first} and {second}): the output tiles are named as the input tiles, so their names must differ</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Dos teselas de {path} tienen el mismo nombre de archivo, {name} ({first} y {second}): las teselas de salida se nombran como las de entrada, por lo que sus nombres deben ser distintos</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="213" />
+        <location filename="../core/ground/tiled.py" line="216" />
         <source>No point of {path} is left after the crop: {output} lists no tile</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No queda ningún punto de {path} tras el recorte: {output} no enumera ninguna tesela</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="202" />
+        <location filename="../core/ground/tiled.py" line="205" />
         <source>No point of the tile {tile} lies inside the crop area: no output tile for it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de la tesela {tile} está dentro del área de recorte: no hay tesela de salida para ella</translation>
@@ -3567,67 +3567,85 @@
         <translation>Inventario de señales viales necesita los paquetes de Python {packages}, que no se encuentran en el Python de QGIS. Instálelos con: {command}</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="660" />
+        <location filename="../models/sign_inventory.model3" line="714" />
         <source>The whole road-sign inventory: panorama stations from the trajectory, sign detection in the panoramas, ground filter and crop of the point cloud around the drive, projection of each detection into the cloud, and refinement and merging into the sign layer, with a review chip of every sign and the review report; then the sign panels and poles found in the cloud alone, fused with the image signs into the final inventory (Signs (fused): which sources found each sign, its condition, the signs the cameras missed).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>El inventario completo de señales viales: estaciones de panorama a partir de la trayectoria, detección de señales en los panoramas, filtro de suelo y recorte de la nube de puntos alrededor del recorrido, proyección de cada detección en la nube, y refinado y fusión en la capa de señales, con una miniatura de revisión de cada señal y el informe de revisión; después, los paneles de señal y los postes encontrados solo en la nube, fusionados con las señales de imagen en el inventario final (Señales (fusionadas): qué fuentes encontraron cada señal, su estado y las señales que las cámaras no vieron).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="587" />
+        <location filename="../models/sign_inventory.model3" line="641" />
         <source>Boresight pitch (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Boresight: cabeceo (°).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="593" />
+        <location filename="../models/sign_inventory.model3" line="647" />
         <source>Boresight roll (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Boresight: alabeo (°).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="599" />
+        <location filename="../models/sign_inventory.model3" line="653" />
         <source>Boresight yaw (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Boresight: guiñada (°).</translation>
     </message>
     <message>
         <location filename="../models/sign_inventory.model3" line="206" />
+        <source>Your own ONNX sign-code classifier (format in models/README.md), or empty for the bundled one.</source>
+        <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
+        <translation>Su propio clasificador ONNX de códigos de señal (formato en models/README.md), o vacío para el incluido.</translation>
+    </message>
+    <message>
+        <location filename="../models/sign_inventory.model3" line="212" />
+        <source>The codes table of your classifier (code;name;class, format in models/README.md), or empty for the bundled German table.</source>
+        <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
+        <translation>La tabla de códigos de su clasificador (code;name;class, formato en models/README.md), o vacío para la tabla alemana incluida.</translation>
+    </message>
+    <message>
+        <location filename="../models/sign_inventory.model3" line="316" />
+        <source>A sign's voted code whose support (code_score) is below this is left empty.</source>
+        <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
+        <translation>El código votado de una señal cuyo apoyo (code_score) sea inferior a este valor se deja vacío.</translation>
+    </message>
+    <message>
+        <location filename="../models/sign_inventory.model3" line="218" />
         <source>Detections scoring below this are dropped.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Se descartan las detecciones con una puntuación inferior a este valor.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="292" />
+        <location filename="../models/sign_inventory.model3" line="328" />
         <source>Folder of the equirectangular panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Carpeta de los panoramas equirrectangulares.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="611" />
+        <location filename="../models/sign_inventory.model3" line="665" />
         <source>image,time CSV of the panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>CSV image,time de los panoramas.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="617" />
+        <location filename="../models/sign_inventory.model3" line="671" />
         <source>Lever arm x, forward (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Brazo de palanca x, adelante (m).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="623" />
+        <location filename="../models/sign_inventory.model3" line="677" />
         <source>Lever arm y, right (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Brazo de palanca y, derecha (m).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="629" />
+        <location filename="../models/sign_inventory.model3" line="683" />
         <source>Lever arm z, down (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Brazo de palanca z, abajo (m).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="212" />
+        <location filename="../models/sign_inventory.model3" line="224" />
         <source>Your own ONNX detector, or empty for the bundled one.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Su propio detector ONNX, o vacío para usar el incluido.</translation>
@@ -3639,19 +3657,25 @@
         <translation>La nube LiDAR del recorrido.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="635" />
+        <location filename="../models/sign_inventory.model3" line="230" />
+        <source>Reads what each sign says (its code, such as DE:274[50] for speed limit 50) with the sign-code classifier; unchecked, the code fields stay empty.</source>
+        <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
+        <translation>Lee lo que dice cada señal (su código, como DE:274[50] para el límite de velocidad 50) con el clasificador de códigos de señal; si se desmarca, los campos de código quedan vacíos.</translation>
+    </message>
+    <message>
+        <location filename="../models/sign_inventory.model3" line="689" />
         <source>Projected CRS of the outputs: the point cloud's CRS.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>SRC proyectado de las salidas: el SRC de la nube de puntos.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="641" />
+        <location filename="../models/sign_inventory.model3" line="695" />
         <source>time,x,y,z,roll,pitch,heading CSV, or an Applanix SBET.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>CSV time,x,y,z,roll,pitch,heading, o un SBET de Applanix.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="647" />
+        <location filename="../models/sign_inventory.model3" line="701" />
         <source>CRS of the trajectory positions (ignored for an SBET).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>SRC de las posiciones de la trayectoria (se ignora para un SBET).</translation>

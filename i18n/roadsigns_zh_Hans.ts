@@ -1032,224 +1032,224 @@
         <translation>裁剪 LAS/LAZ 点云，并使用 CSF 或 SMRF（PDAL 或内置引擎）将地面分类为类别 2。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="93" />
+        <location filename="../algorithms/groundfilter.py" line="95" />
         <source>Point cloud (LAS/LAZ)</source>
         <translation>点云（LAS/LAZ）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="93" />
+        <location filename="../algorithms/groundfilter.py" line="95" />
         <source>The mobile-mapping cloud, LAS 1.2-1.4 or LAZ, any size (it is read in chunks).</source>
         <translation>移动测量点云，LAS 1.2-1.4 或 LAZ，大小不限（分块读取）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="96" />
+        <location filename="../algorithms/groundfilter.py" line="98" />
         <source>Crop layer (optional)</source>
         <translation>裁剪图层（可选）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="96" />
+        <location filename="../algorithms/groundfilter.py" line="98" />
         <source>Keep only points inside these polygons, or within the crop buffer of these points or lines (e.g. the panorama stations). Empty keeps the whole cloud.</source>
         <translation>仅保留这些多边形内的点，或这些点或线（例如全景站点）的裁剪缓冲距离内的点。留空则保留整个点云。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="100" />
+        <location filename="../algorithms/groundfilter.py" line="102" />
         <source>Crop buffer (m)</source>
         <translation>裁剪缓冲距离 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="100" />
+        <location filename="../algorithms/groundfilter.py" line="102" />
         <source>Grow the crop geometries by this many metres; needed (&gt; 0) for a point or line layer.</source>
         <translation>将裁剪几何外扩的米数；点或线图层必须大于 0。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="104" />
+        <location filename="../algorithms/groundfilter.py" line="106" />
         <source>Ground method</source>
         <translation>地面分类方法</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="104" />
+        <location filename="../algorithms/groundfilter.py" line="106" />
         <source>CSF (cloth simulation)</source>
         <translation>CSF（布料模拟）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="104" />
+        <location filename="../algorithms/groundfilter.py" line="106" />
         <source>SMRF (simple morphological filter)</source>
         <translation>SMRF（简单形态学滤波）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="104" />
+        <location filename="../algorithms/groundfilter.py" line="106" />
         <source>CSF suits roads and gentle terrain; SMRF suits steeper or rougher terrain.</source>
         <translation>CSF 适用于道路和平缓地形；SMRF 适用于较陡或较崎岖的地形。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="108" />
+        <location filename="../algorithms/groundfilter.py" line="110" />
         <source>Engine</source>
         <translation>引擎</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="108" />
+        <location filename="../algorithms/groundfilter.py" line="110" />
         <source>PDAL</source>
         <translation>PDAL</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="108" />
+        <location filename="../algorithms/groundfilter.py" line="110" />
         <source>Built-in</source>
         <translation>内置</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="115" />
+        <location filename="../algorithms/groundfilter.py" line="117" />
         <source>Ground distance threshold (m)</source>
         <translation>地面距离阈值 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="115" />
+        <location filename="../algorithms/groundfilter.py" line="117" />
         <source>Points within this height of the ground surface are ground (PDAL's threshold option). PDAL's default is 0.5 m; 0.2 m suits dense mobile-mapping clouds, where it keeps the lowest parts of cars, walls and street furniture off the ground class.</source>
         <translation>距地面表面在此高度以内的点被视为地面（PDAL 的 threshold 选项）。PDAL 的默认值为 0.5 m；0.2 m 适用于密集的移动测量点云，可避免汽车、墙体和街道设施的最低部分被归入地面类别。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="121" />
+        <location filename="../algorithms/groundfilter.py" line="123" />
         <source>Cloth resolution / cell size (m)</source>
         <translation>布料分辨率 / 格网大小 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="121" />
+        <location filename="../algorithms/groundfilter.py" line="123" />
         <source>CSF's cloth resolution or SMRF's cell size, in metres (PDAL's default: 1 m).</source>
         <translation>CSF 的布料分辨率或 SMRF 的格网大小，单位为米（PDAL 默认值：1 m）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="125" />
+        <location filename="../algorithms/groundfilter.py" line="127" />
         <source>Cloud CRS (when the file has none)</source>
         <translation>点云坐标参考系（文件中没有时）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="125" />
+        <location filename="../algorithms/groundfilter.py" line="127" />
         <source>The cloud's CRS if the file does not record one; a CRS in the file is replaced by it. The CRS is never guessed.</source>
         <translation>当文件未记录坐标参考系时使用的点云坐标参考系；文件中已有的坐标参考系将被其替换。从不猜测坐标参考系。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="129" />
+        <location filename="../algorithms/groundfilter.py" line="131" />
         <source>Reset existing classes</source>
         <translation>重置现有类别</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="129" />
+        <location filename="../algorithms/groundfilter.py" line="131" />
         <source>Set every non-ground point to class 1 (unclassified) instead of keeping its class.</source>
         <translation>将所有非地面点设为类别 1（未分类），而不保留其原有类别。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="137" />
+        <location filename="../algorithms/groundfilter.py" line="139" />
         <source>Ground-classified cloud</source>
         <translation>已地面分类的点云</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="137" />
+        <location filename="../algorithms/groundfilter.py" line="139" />
         <source>LAZ (*.laz);;LAS (*.las)</source>
         <translation>LAZ (*.laz);;LAS (*.las)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="142" />
+        <location filename="../algorithms/groundfilter.py" line="144" />
         <source>Engine that ran</source>
         <translation>实际运行的引擎</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="143" />
+        <location filename="../algorithms/groundfilter.py" line="145" />
         <source>Points read</source>
         <translation>读取的点数</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="144" />
+        <location filename="../algorithms/groundfilter.py" line="146" />
         <source>Points written</source>
         <translation>写入的点数</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="145" />
+        <location filename="../algorithms/groundfilter.py" line="147" />
         <source>Ground points</source>
         <translation>地面点数</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="155" />
+        <location filename="../algorithms/groundfilter.py" line="157" />
         <source>The crop layer holds points or lines: give a crop buffer in metres (&gt; 0) to make a corridor around them</source>
         <translation>裁剪图层包含点或线：请给出以米为单位的裁剪缓冲距离（&gt; 0），以便在其周围形成走廊</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="160" />
+        <location filename="../algorithms/groundfilter.py" line="162" />
         <source>Reprojecting the crop layer from {} to {}</source>
         <translation>正在将裁剪图层从 {} 重投影到 {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="262" />
+        <location filename="../algorithms/groundfilter.py" line="264" />
         <source>Engine: {}; method: {}; {} points read, {} written, {} ground</source>
         <translation>引擎：{}；方法：{}；读取 {} 个点，写入 {} 个，地面点 {} 个</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="166" />
+        <location filename="../algorithms/groundfilter.py" line="168" />
         <source>Cancelled: nothing was written.</source>
         <translation>已取消：未写入任何内容。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="175" />
+        <location filename="../algorithms/groundfilter.py" line="177" />
         <source>The crop layer {} has no feature: nothing to crop by. Leave the crop layer empty to process the whole cloud</source>
         <translation>裁剪图层 {} 没有要素：无可用于裁剪的内容。若要处理整个点云，请将裁剪图层留空</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="179" />
+        <location filename="../algorithms/groundfilter.py" line="181" />
         <source>The crop layer {} has no geometry (its {} features are empty): nothing to crop by</source>
         <translation>裁剪图层 {} 没有几何（其 {} 个要素均为空）：无可用于裁剪的内容</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="194" />
+        <location filename="../algorithms/groundfilter.py" line="196" />
         <source>The crop area (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}) does not overlap the point cloud {} (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}): nothing would be kept</source>
         <translation>裁剪区域（x {:.1f} 至 {:.1f}，y {:.1f} 至 {:.1f}）与点云 {}（x {:.1f} 至 {:.1f}，y {:.1f} 至 {:.1f}）不重叠：不会保留任何点</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="207" />
+        <location filename="../algorithms/groundfilter.py" line="209" />
         <source>PDAL said: {}</source>
         <translation>PDAL 输出：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="208" />
+        <location filename="../algorithms/groundfilter.py" line="210" />
         <source>PDAL failed: {}</source>
         <translation>PDAL 失败：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="229" />
+        <location filename="../algorithms/groundfilter.py" line="231" />
         <source>The output {} must not be the input file</source>
         <translation>输出 {} 不能是输入文件</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="133" />
+        <location filename="../algorithms/groundfilter.py" line="135" />
         <source>Write one tile per input tile</source>
         <translation>每个输入分块写出一个分块</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="137" />
+        <location filename="../algorithms/groundfilter.py" line="139" />
         <source>The cropped cloud with ground as class 2; LAZ or LAS by the file extension. With one tile per input tile: the folder of this name without its extension gets the tiles and &lt;name&gt;.vpc, which is then this output.</source>
         <translation>裁剪后的点云，地面为类别 2；按文件扩展名保存为 LAZ 或 LAS。每个输入分块写出一个分块时：以此名称去掉扩展名的文件夹存放各分块和 &lt;name&gt;.vpc，后者即为此输出。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="251" />
+        <location filename="../algorithms/groundfilter.py" line="253" />
         <source>Writing one tile per input tile to the folder {}, listed in {}</source>
         <translation>正在为每个输入分块写出一个分块到文件夹 {}，并列于 {} 中</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="108" />
+        <location filename="../algorithms/groundfilter.py" line="110" />
         <source>Auto (the faster engine: built-in)</source>
         <translation>自动（更快的引擎：内置引擎）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="108" />
+        <location filename="../algorithms/groundfilter.py" line="110" />
         <source>Auto: the engine measured faster for the method, today the built-in engine for both (PDAL when the built-in CSF's package is missing). PDAL: its Python bindings or the pdal executable that QGIS has; an error when there is neither.</source>
         <translation>自动：针对所选方法实测更快的引擎，目前两种方法均为内置引擎（缺少内置 CSF 所需的包时使用 PDAL）。PDAL：使用 QGIS 带有的 Python 绑定或 pdal 可执行文件；两者都没有时报错。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="133" />
+        <location filename="../algorithms/groundfilter.py" line="135" />
         <source>Write each input tile to its own file (same name, same header) in a folder named after the output, with a virtual point cloud (.vpc) listing them, instead of one file.</source>
         <translation>将每个输入分块写入各自的文件（同名、同文件头），放在以输出命名的文件夹中，并附带列出它们的虚拟点云（.vpc），而不是写成一个文件。</translation>
     </message>
     <message>
         <location filename="../algorithms/groundfilter.py" line="64" />
-        <source>Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless &lt;i&gt;Reset existing classes&lt;/i&gt; is checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are written unchanged.&lt;br&gt;&lt;br&gt;&lt;b&gt;Crop&lt;/b&gt;: polygons (grown by the crop buffer), or points and lines such as the panorama stations or detection rays, buffered into a corridor. The crop layer is reprojected to the cloud's CRS.&lt;br&gt;&lt;br&gt;&lt;b&gt;Engine&lt;/b&gt;: PDAL runs filters.csf / filters.smrf through its Python bindings or the &lt;i&gt;pdal&lt;/i&gt; executable (on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign inventory), holding the cloud in memory (about 150 bytes a point); the built-in engine runs the same filters in Python, streaming the cloud, so clouds larger than memory work. &lt;b&gt;Auto picks the built-in engine&lt;/b&gt; for both methods: measured against PDAL 2.9.2 on two cores it was as fast for CSF on 8 M points (within 10 %) and 1.6 times faster on 38 M, and 1.4 to 1.7 times faster for SMRF, in about 300 MB where PDAL took 5.6 GB for 38 M points (bench/README.md). Auto uses PDAL only when the built-in CSF's Python package (cloth-simulation-filter) is missing; the log says which engine ran and why.&lt;br&gt;&lt;br&gt;&lt;b&gt;Tiles&lt;/b&gt;: the input may be one LAS/LAZ file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc); PDAL takes the tiles one by one, each with its neighbours' points around it. They are written to one file, or, with &lt;i&gt;Write one tile per input tile&lt;/i&gt;, each to a file of its own name in a folder named after the output (out/ground.laz gives the folder out/ground), with a virtual point cloud listing them (out/ground/ground.vpc, the output to give the next stages). Each tile is classified with its neighbours' points around it, so the classes at tile edges are those of a run on the whole cloud.</source>
-        <translation>分块读取 LAS/LAZ 点云，保留裁剪范围内的点，并使用布料模拟滤波（CSF，Zhang 等，2016）或简单形态学滤波（SMRF，Pingel 等，2013）将地面点分类为类别 2，参数与 PDAL 相同（默认值针对密集的移动测量点云调整：阈值 0.2 m，格网 0.5 m；PDAL 自身的默认值为 0.5 m 和 1 m）。除非勾选&lt;i&gt;重置现有类别&lt;/i&gt;，其他类别将被保留。所有维度、额外字节、VLR、缩放与偏移以及坐标参考系均原样写出。&lt;br&gt;&lt;br&gt;&lt;b&gt;裁剪&lt;/b&gt;：多边形（按裁剪缓冲距离外扩），或点和线（例如全景站点或检测射线），缓冲为走廊。裁剪图层会被重投影到点云的坐标参考系。&lt;br&gt;&lt;br&gt;&lt;b&gt;引擎&lt;/b&gt;：PDAL 通过其 Python 绑定或 &lt;i&gt;pdal&lt;/i&gt; 可执行文件（位于 PATH、QGIS 的 bin 文件夹中，或在 处理 ▸ 选项 ▸ 提供者 ▸ Road sign inventory 中设置）运行 filters.csf / filters.smrf，并将整个点云保存在内存中（每个点约 150 字节）；内置引擎在 Python 中以流式方式读取点云并运行相同的滤波器，因此可以处理大于内存的点云。&lt;b&gt;“自动”对两种方法均选择内置引擎&lt;/b&gt;：在双核上与 PDAL 2.9.2 对比实测，CSF 在 8 M 个点上速度相当（相差不到 10 %），在 38 M 个点上快 1.6 倍；SMRF 快 1.4 至 1.7 倍；内存占用约 300 MB，而 PDAL 处理 38 M 个点时占用 5.6 GB（bench/README.md）。仅当缺少内置 CSF 的 Python 包（cloth-simulation-filter）时，“自动”才使用 PDAL；日志会说明运行了哪个引擎及原因。&lt;br&gt;&lt;br&gt;&lt;b&gt;分块&lt;/b&gt;：输入可以是单个 LAS/LAZ 文件、LAS/LAZ 分块文件夹或虚拟点云（.vpc）；PDAL 逐个处理分块，每个分块都带上其周围相邻分块的点。分块写入一个文件，或在勾选&lt;i&gt;每个输入分块写出一个分块&lt;/i&gt;时，各自写入以输出命名的文件夹中与原名相同的文件（out/ground.laz 对应文件夹 out/ground），并附带列出这些分块的虚拟点云（out/ground/ground.vpc，即交给后续步骤的输出）。每个分块在分类时会带上其周围相邻分块的点，因此分块边缘的类别与对整个点云运行所得的相同。</translation>
+        <source>Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless &lt;i&gt;Reset existing classes&lt;/i&gt; is checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are written unchanged.&lt;br&gt;&lt;br&gt;&lt;b&gt;Crop&lt;/b&gt;: polygons (grown by the crop buffer), or points and lines such as the panorama stations or detection rays, buffered into a corridor. The crop layer is reprojected to the cloud's CRS.&lt;br&gt;&lt;br&gt;&lt;b&gt;Engine&lt;/b&gt;: PDAL runs filters.csf / filters.smrf through its Python bindings or the &lt;i&gt;pdal&lt;/i&gt; executable (on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign inventory), holding the cloud in memory (about 150 bytes a point); the built-in engine runs the same filters in Python, streaming the cloud, so clouds larger than memory work (between its two passes it keeps the points uncompressed on disk beside the output, about 30 bytes a point, so a LAZ is decompressed once). &lt;b&gt;Auto picks the built-in engine&lt;/b&gt; for both methods: measured against PDAL 2.9.2 on two cores it was as fast for CSF on 8 M points (within 10 %) and 1.6 times faster on 38 M, and 1.4 to 1.7 times faster for SMRF, in about 300 MB where PDAL took 5.6 GB for 38 M points (bench/README.md). Auto uses PDAL only when the built-in CSF's Python package (cloth-simulation-filter) is missing; the log says which engine ran and why.&lt;br&gt;&lt;br&gt;&lt;b&gt;Tiles&lt;/b&gt;: the input may be one LAS/LAZ file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc); PDAL takes the tiles one by one, each with its neighbours' points around it. They are written to one file, or, with &lt;i&gt;Write one tile per input tile&lt;/i&gt;, each to a file of its own name in a folder named after the output (out/ground.laz gives the folder out/ground), with a virtual point cloud listing them (out/ground/ground.vpc, the output to give the next stages). Each tile is classified with its neighbours' points around it, so the classes at tile edges are those of a run on the whole cloud.</source>
+        <translation>分块读取 LAS/LAZ 点云，保留裁剪范围内的点，并使用布料模拟滤波（CSF，Zhang 等，2016）或简单形态学滤波（SMRF，Pingel 等，2013）将地面点分类为类别 2，参数与 PDAL 相同（默认值针对密集的移动测量点云调整：阈值 0.2 m，格网 0.5 m；PDAL 自身的默认值为 0.5 m 和 1 m）。除非勾选&lt;i&gt;重置现有类别&lt;/i&gt;，其他类别将被保留。所有维度、额外字节、VLR、缩放与偏移以及坐标参考系均原样写出。&lt;br&gt;&lt;br&gt;&lt;b&gt;裁剪&lt;/b&gt;：多边形（按裁剪缓冲距离外扩），或点和线（例如全景站点或检测射线），缓冲为走廊。裁剪图层会被重投影到点云的坐标参考系。&lt;br&gt;&lt;br&gt;&lt;b&gt;引擎&lt;/b&gt;：PDAL 通过其 Python 绑定或 &lt;i&gt;pdal&lt;/i&gt; 可执行文件（位于 PATH、QGIS 的 bin 文件夹中，或在 处理 ▸ 选项 ▸ 提供者 ▸ Road sign inventory 中设置）运行 filters.csf / filters.smrf，并将整个点云保存在内存中（每个点约 150 字节）；内置引擎在 Python 中以流式方式读取点云并运行相同的滤波器，因此可以处理大于内存的点云（在两遍处理之间，它将未压缩的点保存在输出旁边的磁盘上，每个点约 30 字节，因此 LAZ 只需解压一次）。&lt;b&gt;“自动”对两种方法均选择内置引擎&lt;/b&gt;：在双核上与 PDAL 2.9.2 对比实测，CSF 在 8 M 个点上速度相当（相差不到 10 %），在 38 M 个点上快 1.6 倍；SMRF 快 1.4 至 1.7 倍；内存占用约 300 MB，而 PDAL 处理 38 M 个点时占用 5.6 GB（bench/README.md）。仅当缺少内置 CSF 的 Python 包（cloth-simulation-filter）时，“自动”才使用 PDAL；日志会说明运行了哪个引擎及原因。&lt;br&gt;&lt;br&gt;&lt;b&gt;分块&lt;/b&gt;：输入可以是单个 LAS/LAZ 文件、LAS/LAZ 分块文件夹或虚拟点云（.vpc）；PDAL 逐个处理分块，每个分块都带上其周围相邻分块的点。分块写入一个文件，或在勾选&lt;i&gt;每个输入分块写出一个分块&lt;/i&gt;时，各自写入以输出命名的文件夹中与原名相同的文件（out/ground.laz 对应文件夹 out/ground），并附带列出这些分块的虚拟点云（out/ground/ground.vpc，即交给后续步骤的输出）。每个分块在分类时会带上其周围相邻分块的点，因此分块边缘的类别与对整个点云运行所得的相同。</translation>
     </message>
 </context>
 <context>
@@ -2616,102 +2616,102 @@
         <translation>内置 CSF 需要 Python 包 cloth-simulation-filter（模块 CSF）：{detail}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="75" />
+        <location filename="../core/ground/engine.py" line="78" />
         <source>Unknown return type {kinds} in '{returns}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>'{returns}' 中有未知的回波类型 {kinds}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="223" />
+        <location filename="../core/ground/engine.py" line="249" />
         <source>Not enough free disk space in {folder} to keep the points between the two passes: the cloud is read twice</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{folder} 中的可用磁盘空间不足，无法在两遍处理之间保存点：点云将被读取两次</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="291" />
+        <location filename="../core/ground/engine.py" line="314" />
         <location filename="../core/pointcloud.py" line="244" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：输出文件必须以 .las 或 .laz 结尾</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="303" />
-        <location filename="../core/ground/tiled.py" line="150" />
+        <location filename="../core/ground/engine.py" line="326" />
+        <location filename="../core/ground/tiled.py" line="153" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>点云坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="376" />
+        <location filename="../core/ground/engine.py" line="399" />
         <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到 PDAL：使用内置引擎</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="426" />
+        <location filename="../core/ground/engine.py" line="449" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有裁剪多边形：忽略裁剪缓冲区</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="260" />
+        <location filename="../core/ground/engine.py" line="283" />
         <source>No point of {path} has the returns '{returns}': nothing was classified</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中没有回波为 '{returns}' 的点：未分类任何点</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="297" />
+        <location filename="../core/ground/engine.py" line="320" />
         <source>The output {path} must not be the input file</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>输出 {path} 不能是输入文件</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="305" />
-        <location filename="../core/ground/tiled.py" line="152" />
+        <location filename="../core/ground/engine.py" line="328" />
+        <location filename="../core/ground/tiled.py" line="155" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有坐标参考系：请给出点云的坐标参考系（从不猜测）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="363" />
+        <location filename="../core/ground/engine.py" line="386" />
         <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：内置引擎，对 {method} 实测比 PDAL 更快（且以有限内存流式处理点云）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="368" />
+        <location filename="../core/ground/engine.py" line="391" />
         <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：PDAL，因为内置 {method} 需要 Python 包 cloth-simulation-filter，而该包未安装</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="374" />
+        <location filename="../core/ground/engine.py" line="397" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>要求使用 PDAL，但既没有找到 pdal Python 模块，也没有找到 pdal 可执行文件（PATH、QGIS 的 bin 文件夹）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="378" />
+        <location filename="../core/ground/engine.py" line="401" />
         <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：PDAL，对 {method} 实测比内置引擎更快</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="413" />
+        <location filename="../core/ground/engine.py" line="436" />
         <source>No point of {path} is left after the crop: {output} has no points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>裁剪后 {path} 没有剩余的点：{output} 中没有点</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="242" />
-        <location filename="../core/ground/tiled.py" line="277" />
+        <location filename="../core/ground/engine.py" line="265" />
+        <location filename="../core/ground/tiled.py" line="295" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件已损坏（{detail}）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="328" />
-        <location filename="../core/ground/tiled.py" line="183" />
+        <location filename="../core/ground/engine.py" line="351" />
+        <location filename="../core/ground/tiled.py" line="186" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>PDAL 运行失败，已改用内置引擎：{error}</translation>
@@ -2753,37 +2753,37 @@
         <translation>PDAL 可执行文件 {path} 不存在或不可执行</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="216" />
+        <location filename="../core/ground/tiled.py" line="219" />
         <source>{n} tiles written to {folder}, listed in {vpc}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已将 {n} 个分块写入 {folder}，并列于 {vpc} 中</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="142" />
+        <location filename="../core/ground/tiled.py" line="145" />
         <source>The virtual point cloud's name {name} must be a file name ending in .vpc</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云的名称 {name} 必须是以 .vpc 结尾的文件名</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="114" />
+        <location filename="../core/ground/tiled.py" line="117" />
         <source>The output folder {folder} holds the input tile {tile}: choose another folder (the output folder is replaced as a whole)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>输出文件夹 {folder} 中包含输入分块 {tile}：请选择其他文件夹（输出文件夹会被整体替换）</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="117" />
+        <location filename="../core/ground/tiled.py" line="120" />
         <source>Two tiles of {path} have the same file name, {name} ({first} and {second}): the output tiles are named as the input tiles, so their names must differ</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中有两个分块的文件名相同，均为 {name}（{first} 和 {second}）：输出分块与输入分块同名，因此它们的名称必须不同</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="213" />
+        <location filename="../core/ground/tiled.py" line="216" />
         <source>No point of {path} is left after the crop: {output} lists no tile</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>裁剪后 {path} 中没有剩余的点：{output} 未列出任何分块</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="202" />
+        <location filename="../core/ground/tiled.py" line="205" />
         <source>No point of the tile {tile} lies inside the crop area: no output tile for it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>分块 {tile} 中没有点位于裁剪区域内：不为其生成输出分块</translation>
@@ -3567,67 +3567,85 @@
         <translation>道路标志清查需要 Python 包 {packages}，但在 QGIS 的 Python 中未找到。安装命令：{command}</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="660" />
+        <location filename="../models/sign_inventory.model3" line="714" />
         <source>The whole road-sign inventory: panorama stations from the trajectory, sign detection in the panoramas, ground filter and crop of the point cloud around the drive, projection of each detection into the cloud, and refinement and merging into the sign layer, with a review chip of every sign and the review report; then the sign panels and poles found in the cloud alone, fused with the image signs into the final inventory (Signs (fused): which sources found each sign, its condition, the signs the cameras missed).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>完整的道路标志清查：由轨迹生成全景站点，在全景图中检测标志，对行驶采集沿线的点云进行地面滤波与裁剪，将每个检测投影到点云，并精化与合并为标志图层，同时生成每个标志的审核切片和审核报告；随后仅在点云中查找标志牌和杆，并与图像标志融合为最终的清查结果（标志（融合）：每个标志由哪些来源找到、其状态，以及相机漏掉的标志）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="587" />
+        <location filename="../models/sign_inventory.model3" line="641" />
         <source>Boresight pitch (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>安置角：俯仰（°）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="593" />
+        <location filename="../models/sign_inventory.model3" line="647" />
         <source>Boresight roll (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>安置角：横滚（°）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="599" />
+        <location filename="../models/sign_inventory.model3" line="653" />
         <source>Boresight yaw (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>安置角：偏航（°）。</translation>
     </message>
     <message>
         <location filename="../models/sign_inventory.model3" line="206" />
+        <source>Your own ONNX sign-code classifier (format in models/README.md), or empty for the bundled one.</source>
+        <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
+        <translation>您自己的 ONNX 标志代码分类器（格式见 models/README.md），留空则使用内置分类器。</translation>
+    </message>
+    <message>
+        <location filename="../models/sign_inventory.model3" line="212" />
+        <source>The codes table of your classifier (code;name;class, format in models/README.md), or empty for the bundled German table.</source>
+        <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
+        <translation>您的分类器的代码表（code;name;class，格式见 models/README.md），留空则使用内置的德国代码表。</translation>
+    </message>
+    <message>
+        <location filename="../models/sign_inventory.model3" line="316" />
+        <source>A sign's voted code whose support (code_score) is below this is left empty.</source>
+        <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
+        <translation>标志投票得出的代码的支持度（code_score）低于此值时，代码留空。</translation>
+    </message>
+    <message>
+        <location filename="../models/sign_inventory.model3" line="218" />
         <source>Detections scoring below this are dropped.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>得分低于此值的检测将被丢弃。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="292" />
+        <location filename="../models/sign_inventory.model3" line="328" />
         <source>Folder of the equirectangular panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>等距柱状全景图所在的文件夹。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="611" />
+        <location filename="../models/sign_inventory.model3" line="665" />
         <source>image,time CSV of the panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>全景图的 image,time CSV。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="617" />
+        <location filename="../models/sign_inventory.model3" line="671" />
         <source>Lever arm x, forward (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>杆臂 x，向前（m）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="623" />
+        <location filename="../models/sign_inventory.model3" line="677" />
         <source>Lever arm y, right (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>杆臂 y，向右（m）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="629" />
+        <location filename="../models/sign_inventory.model3" line="683" />
         <source>Lever arm z, down (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>杆臂 z，向下（m）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="212" />
+        <location filename="../models/sign_inventory.model3" line="224" />
         <source>Your own ONNX detector, or empty for the bundled one.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>您自己的 ONNX 检测器；留空则使用内置检测器。</translation>
@@ -3639,19 +3657,25 @@
         <translation>本次行驶采集的激光雷达点云。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="635" />
+        <location filename="../models/sign_inventory.model3" line="230" />
+        <source>Reads what each sign says (its code, such as DE:274[50] for speed limit 50) with the sign-code classifier; unchecked, the code fields stay empty.</source>
+        <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
+        <translation>使用标志代码分类器读取每个标志的内容（其代码，例如 DE:274[50] 表示限速 50）；不勾选时代码字段保持为空。</translation>
+    </message>
+    <message>
+        <location filename="../models/sign_inventory.model3" line="689" />
         <source>Projected CRS of the outputs: the point cloud's CRS.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>输出的投影坐标参考系：即点云的坐标参考系。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="641" />
+        <location filename="../models/sign_inventory.model3" line="695" />
         <source>time,x,y,z,roll,pitch,heading CSV, or an Applanix SBET.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>time,x,y,z,roll,pitch,heading CSV，或 Applanix SBET。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="647" />
+        <location filename="../models/sign_inventory.model3" line="701" />
         <source>CRS of the trajectory positions (ignored for an SBET).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>轨迹位置的坐标参考系（对 SBET 忽略）。</translation>

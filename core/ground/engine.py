@@ -9,9 +9,12 @@ Conventions:
   takes tiles one by one with a halo of their neighbours' points (:mod:`.pdal_tiles`).
 * Which engine runs: :func:`pdal_runner_for`; ``"auto"`` follows :data:`~.params.AUTO_ENGINES`
   (the engine measured faster for the method: today the built-in one for both).
-* The built-in engine streams the cloud twice (pass 1 into the method's grid, pass 2
-  classifying and writing) and never holds the cloud in memory; the output goes through
-  :class:`~..pointcloud.CloudWriter` (a temporary file moved into place on success).
+* The built-in engine makes two passes and never holds the cloud in memory: pass 1 reads
+  the cloud into the method's grid and keeps its (cropped) points uncompressed in a
+  :class:`PointSpool` beside the output, pass 2 classifies and writes them, so a LAZ is
+  decompressed once (where the disk has no room for the spool, pass 2 reads the cloud
+  again). The output goes through :class:`~..pointcloud.CloudWriter` (a temporary file moved
+  into place on success).
 * Ground is class 2 (:data:`~..pointcloud.GROUND_CLASS`); only the ``returns`` of the
   parameters are classified, the other points keep their class.
 * Log messages are :class:`~..errors.Message` templates, reported through ``progress``.
