@@ -10,9 +10,11 @@ Everything runs through the plugin's own engine (``core.signcodes``: ``CodeClass
 - **GTSRB held-out tracks**: the 188 tracks (1,880 crops) no model of the project trains on
   (``devtools.train.data.gtsrb_track_split``), each cut square around its ROI with the
   model's margin, as the chain cuts a box; accuracy, and the worst codes;
-- **held-out generated panoramas**: every front face of ``bench/out/scene-default-7`` and
-  ``scene-tiny-3`` (bench seeds, never trained on) at least 10 px and under 30 % occluded,
-  cut from the panorama with ``cut_crop`` around its true box;
+- **held-out generated panoramas**: every front face of ``bench/out/scene-default-7``,
+  ``scene-tiny-3`` and ``scene-default-11`` (bench seeds, never trained on) at least 10 px
+  and under 30 % occluded, cut from the panorama with ``cut_crop`` around its true box; and
+  the same for boxes of at least 14 px, the smallest detection the chain reads (detectsigns'
+  MIN_SIZE default);
 - **GTSDB 500-599, through the detector**: the bundled detector on 640-px tiles of each
   photograph (as ``bench_detector``); each detection matching a true sign (IoU >= 0.5) is cut
   with the model's margin and read; accuracy among them against the sign's GTSRB code;
@@ -72,10 +74,10 @@ def bench_gtsrb(classifier):
     return accuracy_report(found, [names[k] for k in labels])
 
 
-def bench_panoramas(classifier, work):
+def bench_panoramas(classifier, work, min_box_px=train_codes.MIN_PANO_BOX_PX):
     names = list(classifier.names)
     crops, labels = train_codes.heldout_pano(names, train_codes.held_out_scenes(),
-                                             os.path.join(work, "pano-heldout.npz"))
+                                             os.path.join(work, "pano-heldout.npz"), min_box_px)
     if not len(labels):
         return {"n": 0, "note": "no held-out scenes in bench/out (run bench_chain.py --seed 7 first)"}
     found, _ = read(classifier, crops)
@@ -173,20 +175,23 @@ def main(argv=None):
     for p, c in zip(paths, classifiers):
         results[p]["gtsrb_heldout_tracks"] = bench_gtsrb(c)
         results[p]["heldout_generated_panoramas"] = bench_panoramas(c, a.work)
+        results[p]["heldout_generated_panoramas_min14px"] = bench_panoramas(c, a.work,
+                                                                           train_codes.CHAIN_MIN_BOX_PX)
         results[p]["speed"] = bench_speed(c, a.threads)
     if not a.skip_gtsdb:
         for p, r in zip(paths, bench_gtsdb(classifiers, a.detector, a.confidence)):
             results[p]["gtsdb_500_599_detected"] = r
     for p, r in results.items():
         print("\n==", os.path.relpath(p, REPO_ROOT), "--", r["model"])
-        for key in ("gtsrb_heldout_tracks", "heldout_generated_panoramas", "gtsdb_500_599_detected"):
+        for key in ("gtsrb_heldout_tracks", "heldout_generated_panoramas", "heldout_generated_panoramas_min14px",
+                    "gtsdb_500_599_detected"):
             v = r.get(key)
             if not v or not v.get("n"):
                 continue
-            print("  {:32s} accuracy {:.4f} of {:5d}  read as other {:3d}  worst {}".format(
+            print("  {:36s} accuracy {:.4f} of {:5d}  read as other {:3d}  worst {}".format(
                 key, v["accuracy"], v["n"], v["read_as_other"], v["worst_codes"][:4]))
             if v["confusions"]:
-                print("  {:32s} confusions {}".format("", v["confusions"][:6]))
+                print("  {:36s} confusions {}".format("", v["confusions"][:6]))
         s = r["speed"]
         print("  speed ({} threads): cut {:.0f}/s, read {:.0f}/s, cut+read {:.0f}/s, model alone {:.0f}/s".format(
             s["threads"], s["cut_per_s"], s["read_per_s"], s["cut_and_read_per_s"], s["model_only_per_s"]))

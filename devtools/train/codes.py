@@ -56,6 +56,11 @@ WORK_DIR = os.path.join(REPO_ROOT, "bench", "out", "codes")
 #: ``python -m devtools.scenegen --preset default --seed S --no-lidar`` where missing)
 TRAIN_SCENES = tuple(os.path.join(REPO_ROOT, "bench", "out", "train", "scenes", name)
                      for name in ("default-100", "tiny-100") + tuple(f"default-{s}" for s in range(101, 107)))
+#: generated signs whose box's shorter side is below this (panorama pixels) give no crop
+MIN_PANO_BOX_PX = 10
+#: the detector's default minimum box (``core.detector.DEFAULT_MIN_BOX_PX``, detectsigns'
+#: MIN_SIZE): the chain reads no code of a smaller detection
+CHAIN_MIN_BOX_PX = 14.0
 #: every this-many-th training track of each class (offset 1) is validation
 VAL_EVERY = 9
 #: share of each source in a batch
@@ -199,14 +204,16 @@ def drawn_codes(names):
 
 def pano_crops(scene_dirs, names, cache_path: str):
     """Native-density crops (up to 96 px) of the front faces in generated panoramas, with the
-    code of each sign from ``scene.json``: list of (crop BGR, label index). Cached."""
+    code of each sign from ``scene.json``: list of (crop BGR, label index, shorter side of the
+    sign's box in panorama pixels). Cached."""
     if os.path.isfile(cache_path):
         z = np.load(cache_path, allow_pickle=True)
-        return list(zip(z["crops"], z["labels"]))
+        if "min_side" in z:
+            return list(zip(z["crops"], z["labels"], z["min_side"]))
     signcodes = import_roadsigns("roadsigns.core.signcodes")
     tx = data.import_textures()
     index = {n: k for k, n in enumerate(names)}
-    crops, labels = [], []
+    crops, labels, sides = [], [], []
     for scene_dir in scene_dirs:
         with open(os.path.join(scene_dir, "scene.json")) as f:
             scene = json.load(f)
@@ -219,14 +226,15 @@ def pano_crops(scene_dirs, names, cache_path: str):
                 b = s.get("visible_box")
                 if s["facing"] != "front" or b is None or s["occlusion"] > 0.3:
                     continue
-                if min(b[2] - b[0], b[3] - b[1]) < 10:
+                if min(b[2] - b[0], b[3] - b[1]) < MIN_PANO_BOX_PX:
                     continue
                 crop = signcodes.cut_crop(pano, (b[0], b[1], b[2] + 1, b[3] + 1), margin=CROP_MARGIN + 0.1,
                                           max_side_px=128)
                 crops.append(cv2.cvtColor(crop, cv2.COLOR_RGB2BGR))
                 labels.append(index.get(code[s["sign_id"]], index[OTHER]))
-    np.savez(cache_path, crops=np.array(crops, dtype=object), labels=np.array(labels))
-    return list(zip(crops, labels))
+                sides.append(float(min(b[2] - b[0], b[3] - b[1]) + 1))
+    np.savez(cache_path, crops=np.array(crops, dtype=object), labels=np.array(labels), min_side=np.array(sides))
+    return list(zip(crops, labels, sides))
 
 
 _UNKNOWN_LEGENDS = ("10", "15", "25", "35", "45", "90", "110", "130", "3.5t", "7.5t", "2.8m", "3m", "6t",
@@ -405,7 +413,7 @@ class Sampler:
         return far_camera(crop_square(image, box, **self.jitter()), self.rng, 0.7), label
 
     def from_pano(self):
-        crop, label = self.pano[int(self.rng.integers(len(self.pano)))]
+        crop, label, _ = self.pano[int(self.rng.integers(len(self.pano)))]
         n = crop.shape[0]
         inner = n / (1.0 + 2.0 * (CROP_MARGIN + 0.1))  # the sign's box inside the cached crop
         box = ((n - inner) / 2, (n - inner) / 2, (n + inner) / 2, (n + inner) / 2)
@@ -448,11 +456,14 @@ def heldout_gtsrb(names, part: str = "test"):
     return crops, np.array([lab for _, _, lab, _ in items]), [key for *_, key in items]
 
 
-def heldout_pano(names, scene_dirs, cache_path: str):
-    """Crops of held-out generated panoramas at the chain's margin (no jitter)."""
+def heldout_pano(names, scene_dirs, cache_path: str, min_box_px: float = MIN_PANO_BOX_PX):
+    """Crops of held-out generated panoramas at the chain's margin (no jitter), of the signs
+    whose box's shorter side is at least ``min_box_px``."""
     items = pano_crops(scene_dirs, names, cache_path)
     out, labels = [], []
-    for crop, label in items:
+    for crop, label, side in items:
+        if side < min_box_px:
+            continue
         n = crop.shape[0]
         inner = n / (1.0 + 2.0 * (CROP_MARGIN + 0.1))
         out.append(crop_square(crop, ((n - inner) / 2, (n - inner) / 2, (n + inner) / 2, (n + inner) / 2)))
@@ -677,14 +688,23 @@ def evaluate_net(net, names, dev, work, log=print) -> dict:
     acc = accuracy(predict(net, test_x, dev), test_y)
     figures = {"gtsrb_test_tracks_accuracy": round(acc, 4), "gtsrb_test_crops": int(len(test_y))}
     try:
-        px, py = heldout_pano(names, held_out_scenes(), os.path.join(work, "pano-heldout.npz"))
+        figures.update(panorama_figures(lambda x: predict(net, x, dev), names, work))
     except ImportError as e:  # the plugin's cut_crop is missing in this checkout
         log(f"no held-out panorama figures: {e}")
-        px, py = np.zeros(0), np.zeros(0)
-    if len(py):
-        figures["heldout_panorama_accuracy"] = round(accuracy(predict(net, px, dev), py), 4)
-        figures["heldout_panorama_crops"] = int(len(py))
     log("held out: " + json.dumps(figures))
+    return figures
+
+
+def panorama_figures(probabilities, names, work: str) -> dict:
+    """Accuracy on the held-out panoramas' crops (``probabilities``: BGR crops -> ``(n, C)``):
+    every sign box of at least :data:`MIN_PANO_BOX_PX`, and those of at least
+    :data:`CHAIN_MIN_BOX_PX`, the smallest detection the chain reads a code of."""
+    figures = {}
+    for key, min_box_px in (("", MIN_PANO_BOX_PX), ("_min14px", CHAIN_MIN_BOX_PX)):
+        px, py = heldout_pano(names, held_out_scenes(), os.path.join(work, "pano-heldout.npz"), min_box_px)
+        if len(py):
+            figures["heldout_panorama_accuracy" + key] = round(accuracy(probabilities(px), py), 4)
+            figures["heldout_panorama_crops" + key] = int(len(py))
     return figures
 
 
@@ -704,10 +724,7 @@ def evaluate_onnx(model_path: str, work: str = WORK_DIR) -> dict:
     test_x, test_y, _ = heldout_gtsrb(names, "test")
     figures = {"gtsrb_test_tracks_accuracy": round(accuracy(run(test_x), test_y), 4),
                "gtsrb_test_crops": int(len(test_y))}
-    px, py = heldout_pano(names, held_out_scenes(), os.path.join(work, "pano-heldout.npz"))
-    if len(py):
-        figures["heldout_panorama_accuracy"] = round(accuracy(run(px), py), 4)
-        figures["heldout_panorama_crops"] = int(len(py))
+    figures.update(panorama_figures(run, names, work))
     return figures
 
 
@@ -731,6 +748,7 @@ def main(argv=None):
                     help=f"crop side in pixels (default {CROP_PX}, or the resumed checkpoint's)")
     a = ap.parse_args(argv)
     if a.evaluate:
+        os.makedirs(a.work, exist_ok=True)
         print(json.dumps(evaluate_onnx(a.evaluate, a.work), indent=1))
         return 0
     train(a.out, a.minutes, a.work, a.threads, a.batch, a.lr, a.seed, a.resume, a.device,
