@@ -42,7 +42,7 @@ def load_scene(args):
         return scene_dir, json.load(f)
 
 
-def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=0.0, upward_views=True):
+def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=0.0, upward_views=True, classifier=None):
     """(stage id, parameters, output key, what it needs) in chain order."""
     p = lambda name: os.path.join(scene_dir, name)  # noqa: E731
     w = lambda name: os.path.join(work, name)  # noqa: E731
@@ -57,7 +57,8 @@ def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=0.0, upward_
                                   OUTPUT=w("stations.gpkg")), "OUTPUT", []),
         ("detectsigns", dict(STATIONS=w("stations.gpkg"), CONFIDENCE=0.4, OUTPUT=w("detections.gpkg"),
                              MIN_STATION_SPACING_M=station_spacing_m, UPWARD_VIEWS=upward_views,
-                             **({"MODEL": model} if model else {})),
+                             **({"MODEL": model} if model else {}),
+                             **({"CLASSIFIER": classifier} if classifier else {})),
          "OUTPUT", ["importtrajectory"]),
         # the scene's cloud carries its true classes: reset them, compare afterwards
         ("groundfilter", dict(INPUT=p("cloud.laz"), METHOD=0, ENGINE=0, RESET_CLASSES=True,
@@ -108,6 +109,7 @@ def main(argv=None):
     parser.add_argument("--detections", choices=["model", "oracle"], default="model",
                         help="the detector (bundled or --model), or the scene's true boxes")
     parser.add_argument("--model", help="an ONNX model instead of the bundled one")
+    parser.add_argument("--classifier", help="a sign-code classifier (ONNX) instead of the bundled one")
     parser.add_argument("--station-spacing", type=float, default=0.0, metavar="M",
                         help="detectsigns' MIN_STATION_SPACING_M: detect only on stations at least M metres "
                              "apart (0: every station)")
@@ -121,7 +123,8 @@ def main(argv=None):
     scene_dir, meta = load_scene(args)
     work = os.path.join(REPO_ROOT, "bench", "out", "chain-{}-{}-{}{}".format(
         os.path.basename(os.path.normpath(scene_dir)), args.detections, args.seed,
-        f"-spacing{args.station_spacing:g}" if args.station_spacing else "") + ("-noupward" if args.no_upward else ""))
+        f"-spacing{args.station_spacing:g}" if args.station_spacing else "") + ("-noupward" if args.no_upward else "")
+        + ("-classifier-" + os.path.splitext(os.path.basename(args.classifier))[0] if args.classifier else ""))
     os.makedirs(work, exist_ok=True)
     qgis = QgisProcess()
     listing = qgis("--json", "list")
@@ -129,9 +132,9 @@ def main(argv=None):
 
     figures = {"scene": scene_dir, "preset": args.preset, "seed": args.seed,
                "detections": args.detections, "station_spacing_m": args.station_spacing,
-               "upward_views": not args.no_upward, "stages": {}}
+               "upward_views": not args.no_upward, "classifier": args.classifier, "stages": {}}
     done = set()
-    plan = stage_plan(scene_dir, meta, work, args.model, args.station_spacing, not args.no_upward)
+    plan = stage_plan(scene_dir, meta, work, args.model, args.station_spacing, not args.no_upward, args.classifier)
     if args.from_stage and args.from_stage not in [p[0] for p in plan]:
         parser.error(f"--from: no stage {args.from_stage}")
     reuse = args.from_stage is not None
