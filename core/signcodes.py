@@ -488,7 +488,6 @@ def vote(codes: Sequence[str], scores: Sequence[float],
     return winner, float(min(max(share, 0.0), 1.0)), views[winner]
 
 
-
 def code_support(codes: Sequence[str], probs: Union[Sequence[float], np.ndarray],
                  weights: Union[Sequence[float], np.ndarray]) -> Tuple[str, float, int]:
     """The code voted across the views of one sign, and its **support**.
