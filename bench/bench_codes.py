@@ -173,6 +173,7 @@ def main(argv=None):
     classifiers = [signcodes.CodeClassifier(p, table, threads=a.threads) for p in paths]
     results = {p: {"model": c.describe()} for p, c in zip(paths, classifiers)}
     for p, c in zip(paths, classifiers):
+        train_codes.set_crop_px(c.input_px)  # held-out crops cut at this model's input size, as the chain's are
         results[p]["gtsrb_heldout_tracks"] = bench_gtsrb(c)
         results[p]["heldout_generated_panoramas"] = bench_panoramas(c, a.work)
         results[p]["heldout_generated_panoramas_min14px"] = bench_panoramas(c, a.work,
