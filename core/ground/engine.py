@@ -231,16 +231,18 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
     if bounds is not None and source.point_count > 0:
         grid = make_grid(params, bounds, float(source.bounds[2]), tile_size_m, tile_buffer_m)
 
-    def kept(chunk: Any, masks: List[np.ndarray], k: int) -> Any:
-        """The chunk's points inside the region, its mask kept for the second read."""
+    masks: List[np.ndarray] = []  # the crop of each chunk, when the cloud is read a second time
+
+    def kept(chunk: Any, k: int, again: bool) -> Any:
+        """The chunk's points inside the region; with ``again``, its mask is kept for (or
+        taken from) the second read."""
         if region is None:
             return chunk
+        if not again:
+            return chunk[region.mask(chunk.x, chunk.y)]
         if len(masks) <= k:
             masks.append(np.packbits(region.mask(chunk.x, chunk.y)))
         return chunk[np.unpackbits(masks[k], count=len(chunk)).astype(bool)]
-
-    def kept_once(chunk: Any) -> Any:
-        return chunk if region is None else chunk[region.mask(chunk.x, chunk.y)]
 
     out_header = output_header(header, out_crs_wkt)
     spool_folder = os.path.dirname(output_path)
@@ -248,13 +250,12 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
     if grid is not None and not spooling:
         progress.info("Not enough free disk space in {folder} to keep the points between the two passes: "
                       "the cloud is read twice", folder=spool_folder)
-    masks: List[np.ndarray] = []
     n_eligible = 0
     with PointSpool(out_header, spool_folder) if spooling else contextlib.nullcontext() as spool:
         try:
             if grid is not None:
                 for k, chunk in enumerate(source.iter_chunks(chunk_points, progress.sub(0.0, 0.45), area=area)):
-                    pts = kept(chunk, masks, k) if spool is None else kept_once(chunk)
+                    pts = kept(chunk, k, again=spool is None)
                     _, xyz = eligible_xyz(pts, params)
                     n_eligible += len(xyz)
                     grid.accumulate(xyz[:, 0], xyz[:, 1], xyz[:, 2])
@@ -270,7 +271,7 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
                 if spool is not None:
                     second = spool.chunks(progress.sub(0.55, 1.0))
                 else:
-                    second = (kept(chunk, masks, k) for k, chunk in
+                    second = (kept(chunk, k, again=True) for k, chunk in
                               enumerate(source.iter_chunks(chunk_points, progress.sub(0.55, 1.0), area=area)))
                 for pts in second:
                     if len(pts) == 0:

@@ -268,49 +268,42 @@ def _classify_tile(source: CloudSource, k: int, bounds: BBoxXY, spool_path: Opti
     folder = os.path.dirname(path)
     room = room_to_spool(tile.point_count, header.point_format.size, folder)
     with PointSpool(header, folder) if room else contextlib.nullcontext() as spool:
-        return _classify_tile_passes(source, tile, grid, spool, header, spool_path, path, region, params,
-                                     reset_classes, chunk_points, progress)
-
-
-def _classify_tile_passes(source: CloudSource, tile: Tile, grid: Any, spool: Optional[PointSpool], header: Any,
-                          spool_path: Optional[str], path: str, region: Optional[CropRegion], params: Params,
-                          reset_classes: bool, chunk_points: int, progress: Progress) -> Tuple[int, int]:
-    """:func:`_classify_tile`'s two passes; with a ``spool``, the tile is read once."""
-    n_ground = n_eligible = 0
-    try:
-        for chunk in _tile_chunks(source, tile, chunk_points, progress.sub(0.0, 0.45)):
-            pts = _kept(chunk, region)
-            _, xyz = eligible_xyz(pts, params)
-            n_eligible += len(xyz)
-            grid.accumulate(xyz[:, 0], xyz[:, 1], xyz[:, 2])
-            if spool is not None:
-                spool.add(pts)
-        if spool_path is not None:
-            halo = np.fromfile(spool_path, dtype=_HALO_DTYPE)
-            on = _on_grid(grid, halo["x"], halo["y"], isinstance(params, CsfParams))
-            grid.accumulate(halo["x"][on], halo["y"][on], halo["z"][on])
-            del halo
-        grid.finish(progress.sub(0.45, 0.55))
-    except OutsideGridError as e:
-        raise InputError("Cannot read {path}: the file is corrupt ({detail})", path=tile.path, detail=str(e))
-    writer = CloudWriter(path, header)
-    try:
-        second = (spool.chunks(progress.sub(0.55, 1.0)) if spool is not None else
-                  (_kept(chunk, region) for chunk in _tile_chunks(source, tile, chunk_points, progress.sub(0.55, 1.0))))
-        for pts in second:
-            if len(pts):
-                pts, n = classified(pts, grid, params, reset_classes, classify=n_eligible > 0)
-                writer.write(pts)
-                n_ground += n
-    except BaseException:
-        writer.abort()
-        raise
-    n_out = writer.point_count
-    if n_out:
-        writer.commit()
-    else:
-        writer.abort()
-    return n_out, n_ground
+        n_ground = n_eligible = 0
+        try:
+            for chunk in _tile_chunks(source, tile, chunk_points, progress.sub(0.0, 0.45)):
+                pts = _kept(chunk, region)
+                _, xyz = eligible_xyz(pts, params)
+                n_eligible += len(xyz)
+                grid.accumulate(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+                if spool is not None:
+                    spool.add(pts)
+            if spool_path is not None:
+                halo = np.fromfile(spool_path, dtype=_HALO_DTYPE)
+                on = _on_grid(grid, halo["x"], halo["y"], isinstance(params, CsfParams))
+                grid.accumulate(halo["x"][on], halo["y"][on], halo["z"][on])
+                del halo
+            grid.finish(progress.sub(0.45, 0.55))
+        except OutsideGridError as e:
+            raise InputError("Cannot read {path}: the file is corrupt ({detail})", path=tile.path, detail=str(e))
+        writer = CloudWriter(path, header)
+        try:
+            reading = progress.sub(0.55, 1.0)
+            second = (spool.chunks(reading) if spool is not None else
+                      (_kept(chunk, region) for chunk in _tile_chunks(source, tile, chunk_points, reading)))
+            for pts in second:
+                if len(pts):
+                    pts, n = classified(pts, grid, params, reset_classes, classify=n_eligible > 0)
+                    writer.write(pts)
+                    n_ground += n
+        except BaseException:
+            writer.abort()
+            raise
+        n_out = writer.point_count
+        if n_out:
+            writer.commit()
+        else:
+            writer.abort()
+        return n_out, n_ground
 
 
 def _on_grid(grid: Any, x: np.ndarray, y: np.ndarray, nodes: bool) -> np.ndarray:
