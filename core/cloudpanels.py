@@ -132,28 +132,79 @@ def local_features(xyz: np.ndarray, k: int = FEATURE_NEIGHBOURS
     """Per point: unit normal (smallest principal axis of its ``k`` nearest neighbours),
     linearity ``(l1-l2)/l1``, flatness ``l3/l2`` (small on a surface however anisotropic
     the sampling: a scanner's rows are further apart than its points), scattering
-    ``l3/l1``."""
+    ``l3/l1``. The normal's sign is arbitrary."""
     n = len(xyz)
     normal = np.zeros((n, 3))
     lin, flat, sca = np.zeros(n), np.ones(n), np.ones(n)
     if n < 3:
         return normal, lin, flat, sca
     k = min(k, n)
+    xyz = np.asarray(xyz, dtype=np.float64)
     tree = cKDTree(xyz)
+    columns = [np.ascontiguousarray(xyz[:, j]) for j in range(3)]
     for b0 in range(0, n, FEATURE_BLOCK):
         b1 = min(n, b0 + FEATURE_BLOCK)
         _, idx = tree.query(xyz[b0:b1], k=k, workers=-1)
-        nb = xyz[idx]                                   # (m, k, 3)
-        rel = nb - nb.mean(axis=1, keepdims=True)
-        cov = np.einsum("mki,mkj->mij", rel, rel) / k
-        w, V = np.linalg.eigh(cov)                      # ascending
+        w, normal[b0:b1] = sym3_eigen(*neighbour_covariances(columns, idx))   # ascending
         w = np.clip(w, 0.0, None)
         l1 = np.maximum(w[:, 2], 1e-12)
         lin[b0:b1] = (w[:, 2] - w[:, 1]) / l1
         flat[b0:b1] = w[:, 0] / np.maximum(w[:, 1], 1e-12)
         sca[b0:b1] = w[:, 0] / l1
-        normal[b0:b1] = V[:, :, 0]
     return normal, lin, flat, sca
+
+
+def neighbour_covariances(columns: Sequence[np.ndarray], idx: np.ndarray) -> Tuple[np.ndarray, ...]:
+    """Covariance entries ``(xx, yy, zz, xy, xz, yz)`` (population, ``/k``) of each row's
+    neighbours ``idx`` ``(m, k)``, from the coordinate ``columns`` (x, y, z, each ``(n,)``),
+    taken relative to each row's first neighbour (no loss of digits far from the origin)."""
+    k = idx.shape[1]
+    rel = []
+    for c in columns:
+        g = c[idx]
+        g -= g[:, :1]
+        rel.append(g)
+    x, y, z = rel
+    mx, my, mz = x.mean(axis=1), y.mean(axis=1), z.mean(axis=1)
+
+    def moment(a, b, ma, mb):
+        return np.einsum("ij,ij->i", a, b) / k - ma * mb
+
+    return (moment(x, x, mx, mx), moment(y, y, my, my), moment(z, z, mz, mz),
+            moment(x, y, mx, my), moment(x, z, mx, mz), moment(y, z, my, mz))
+
+
+def sym3_eigen(xx: np.ndarray, yy: np.ndarray, zz: np.ndarray, xy: np.ndarray, xz: np.ndarray,
+               yz: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+    """Eigenvalues (ascending, ``(m, 3)``) of many symmetric 3 x 3 matrices given by their
+    entries, and the unit eigenvector of the smallest ``(m, 3)``, in closed form (the
+    trigonometric solution of the characteristic cubic; the vector as the longest cross
+    product of two rows of ``A - l3 I``). Agrees with ``numpy.linalg.eigh`` to rounding
+    where the smallest eigenvalue is distinct, several times faster on millions of
+    matrices; an isotropic matrix gets ``(0, 0, 1)``."""
+    q = (xx + yy + zz) / 3.0
+    off = xy * xy + xz * xz + yz * yz
+    a, b, c = xx - q, yy - q, zz - q
+    p = np.sqrt((a * a + b * b + c * c + 2.0 * off) / 6.0)
+    ps = np.where(p > 0.0, p, 1.0)
+    det = (a * (b * c - yz * yz) - xy * (xy * c - yz * xz) + xz * (xy * yz - b * xz)) / (ps * ps * ps)
+    phi = np.arccos(np.clip(0.5 * det, -1.0, 1.0)) / 3.0
+    l1 = q + 2.0 * p * np.cos(phi)
+    l3 = q + 2.0 * p * np.cos(phi + 2.0 * math.pi / 3.0)
+    l2 = 3.0 * q - l1 - l3
+    r0 = np.column_stack([xx - l3, xy, xz])
+    r1 = np.column_stack([xy, yy - l3, yz])
+    r2 = np.column_stack([xz, yz, zz - l3])
+    crosses = np.stack([np.cross(r0, r1), np.cross(r0, r2), np.cross(r1, r2)])     # (3, m, 3)
+    sq = np.einsum("kmi,kmi->km", crosses, crosses)
+    best = np.argmax(sq, axis=0)
+    rows = np.arange(len(q))
+    v = crosses[best, rows]
+    length = np.sqrt(sq[best, rows])
+    ok = length > 0.0
+    v[ok] /= length[ok, None]
+    v[~ok] = UP
+    return np.column_stack([l3, l2, l1]), v
 
 
 def panel_frame(normal: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:

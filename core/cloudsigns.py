@@ -246,11 +246,13 @@ class GroundModel:
         k = min(GROUND_NEIGHBOURS, len(self.xyz))
         d, idx = self.tree.query(xy, k=k, workers=-1)
         d, idx = d.reshape(len(xy), k), idx.reshape(len(xy), k)
-        z = self.xyz[idx, 2]
-        z = np.where(d <= GROUND_MAX_DISTANCE_M, z, np.nan)
-        out = np.nanmedian(np.where(np.isnan(z).all(axis=1, keepdims=True), self.xyz[idx[:, :1], 2], z),
-                           axis=1)
-        return out
+        z = np.where(d <= GROUND_MAX_DISTANCE_M, self.xyz[idx, 2], np.nan)
+        far = np.isnan(z[:, 0])                     # distances ascend: the nearest is too far, all are
+        z[far, 0] = self.xyz[idx[far, 0], 2]
+        z.sort(axis=1)                              # NaN last: the median of each row's first n_valid
+        n_valid = np.count_nonzero(~np.isnan(z), axis=1)
+        rows = np.arange(len(z))
+        return 0.5 * (z[rows, (n_valid - 1) // 2] + z[rows, n_valid // 2])
 
 
 # --------------------------------------------------------------------------------------

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 import shapely
 
+from roadsigns.core import cloudpanels as CP
 from roadsigns.core import cloudsigns as CS
 from roadsigns.core import retroreflectivity as RR
 from roadsigns.core.drivewindows import DriveAxis, Track, Window, WindowSpool, make_windows
@@ -320,6 +321,48 @@ def test_condition_thresholds_and_reference():
     values = np.r_[np.full(50, 1.0), np.full(10, 0.1)]
     interior = np.r_[np.ones(50, bool), np.zeros(10, bool)]
     assert RR.retro_index(values, interior) == 1.0
+
+
+def test_closed_form_eigen_agrees_with_lapack():
+    rng = np.random.default_rng(3)
+    # shapes of neighbourhoods: a plane with rows, a line, a blob, and a point far from the origin
+    pts = [rng.normal(size=(16, 3)) * s for s in ([1.0, 0.5, 0.01], [1.0, 0.02, 0.01], [1.0, 1.0, 1.0])]
+    pts += [rng.normal(size=(16, 3)) for _ in range(200)]
+    mats = np.array([np.cov(p.T, bias=True) for p in pts])
+    w_ref, V_ref = np.linalg.eigh(mats)
+    entries = (mats[:, 0, 0], mats[:, 1, 1], mats[:, 2, 2], mats[:, 0, 1], mats[:, 0, 2], mats[:, 1, 2])
+    w, v = CP.sym3_eigen(*entries)
+    assert np.allclose(w, w_ref, rtol=0, atol=1e-12 * w_ref[:, 2:].max())
+    assert np.allclose(np.linalg.norm(v, axis=1), 1.0)
+    assert np.all(np.abs(np.einsum("mi,mi->m", v, V_ref[:, :, 0])) > 1 - 1e-9)   # sign is free
+    w, v = CP.sym3_eigen(*(np.full(1, x) for x in (2.0, 2.0, 2.0, 0.0, 0.0, 0.0)))   # isotropic
+    assert np.allclose(w, 2.0) and np.allclose(v, [[0.0, 0.0, 1.0]])
+
+
+def test_local_features_match_eigh_far_from_the_origin():
+    rng = np.random.default_rng(4)
+    plane = np.column_stack([rng.uniform(0, 2, 400), np.zeros(400), rng.uniform(0, 2, 400)])
+    plane[:, 1] += rng.normal(0, 0.003, 400)
+    xyz = plane + [641_180.0, 5_340_273.0, 230.0]          # UTM-sized coordinates
+    normal, lin, flat, sca = CP.local_features(xyz, k=16)
+    from scipy.spatial import cKDTree
+    _, idx = cKDTree(xyz).query(xyz, k=16)
+    nb = xyz[idx] - xyz[idx].mean(axis=1, keepdims=True)
+    w, V = np.linalg.eigh(np.einsum("mki,mkj->mij", nb, nb) / 16)
+    assert np.allclose(flat, w[:, 0] / w[:, 1], atol=1e-6)
+    assert np.allclose(lin, (w[:, 2] - w[:, 1]) / w[:, 2], atol=1e-6)
+    assert np.all(np.abs(normal[:, 1]) > 0.99)              # the wall faces y
+    assert np.all(np.abs(np.einsum("mi,mi->m", normal, V[:, :, 0])) > 1 - 1e-6)
+
+
+def test_ground_model_median_of_near_points_else_the_nearest():
+    g = np.array([[0.0, 0.0, 1.0], [0.5, 0.0, 2.0], [0.0, 0.5, 4.0], [0.5, 0.5, 10.0], [20.0, 0.0, 7.0]])
+    ground = CS.GroundModel(g)
+    z = ground(np.array([[0.25, 0.25], [40.0, 0.0], [1.0, 0.0]]))
+    assert z[0] == pytest.approx(3.0)                     # median of 1, 2, 4, 10 (the far one is out)
+    assert z[1] == pytest.approx(7.0)                     # nothing within reach: the nearest point's
+    assert z[2] == pytest.approx(np.median([1.0, 2.0, 4.0, 10.0]))
+    assert np.isnan(CS.GroundModel(np.zeros((0, 3)))(np.zeros((2, 2)))).all()
 
 
 def test_drive_axis_locates_points_and_sensor_positions():
