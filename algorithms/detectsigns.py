@@ -13,7 +13,7 @@ from qgis.core import (
 )
 
 from ..core.detections import DETECTION_FIELDS, drive_detections
-from ..core.detector import DEFAULT_MIN_BOX_PX, spaced_stations
+from ..core.detector import DEFAULT_MIN_BOX_PX, DEFAULT_MIN_STATION_SPACING_M, spaced_stations
 from ..core.signcodes import OTHER_CODE
 from ..core.trajectory import STATION_FIELDS, Stations
 from .base import RoadSignsAlgorithm
@@ -99,16 +99,17 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
                     "the upward ring, in 1.3 to 1.6 times less detection time. Check it for drives with "
                     "panoramas far apart."), advanced=True)
         self.add_number(
-            self.MIN_STATION_SPACING, self.tr("Skip stations closer than (m)"), 0.0,
+            self.MIN_STATION_SPACING, self.tr("Skip stations closer than (m)"), DEFAULT_MIN_STATION_SPACING_M,
             self.tr("Detects only in panoramas whose station stands at least this far from the last station "
                     "detected in; the ones between are skipped (not read, no detections). A sign stays in view "
-                    "over many stations, so a few metres save detection time in proportion, but each sign is "
+                    "over many stations, so skipping saves detection time in proportion, but each sign is "
                     "then seen from fewer stations: fewer rays to place it, and a sign visible from only a "
-                    "few stations (small, or hidden behind trees or vehicles) may be missed. 0 detects in every "
-                    "panorama. Measured on two held-out test streets with a panorama every 5 m: every "
-                    "panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 "
-                    "of 46. For drives with denser panoramas, 5 m keeps the density those figures were "
-                    "measured at."),
+                    "few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two "
+                    "held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; "
+                    "10 m (every other one) lost 2 of each, 15 m lost 11 of 46. The default, 2.5 m, keeps a "
+                    "detected panorama at least every 5 m on any drive (every second one of a drive with a "
+                    "panorama every 1.25 m) and skips nothing on drives with panoramas 2.5 m or more apart. "
+                    "0 detects in every panorama."),
             minimum=0.0, advanced=True)
         self.add_number(
             self.THREADS, self.tr("CPU threads (0: all)"), 0,

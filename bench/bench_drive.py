@@ -358,6 +358,8 @@ def main(argv=None):
                         help="the cloud as one LAZ (as generated) or as tiles of --tile-m of drive and a .vpc "
                              "(as a crew delivers a drive)")
     parser.add_argument("--tile-m", type=float, default=500.0)
+    parser.add_argument("--station-spacing", type=float,
+                        help="the model's MIN_STATION_SPACING_M (default: the model's own)")
     parser.add_argument("--json", help="also write the figures to this file")
     args = parser.parse_args(argv)
 
@@ -378,6 +380,8 @@ def main(argv=None):
         from devtools.scenegen.drive import write_tiles
         cloud = write_tiles(drive_dir, args.tile_m, verbose=True)
     inputs, outputs = model_parameters(drive_dir, meta, work, cloud)
+    if args.station_spacing is not None:
+        inputs["MIN_STATION_SPACING_M"] = args.station_spacing
     args_run = ["--verbose", "run", MODEL_ID, "--"] + [f"{k}={v}" for k, v in {**inputs, **outputs}.items()]
     print(f"running {MODEL_ID} (models/sign_inventory.model3) on {drive_dir}: "
           f"{n_pano:,} panoramas, {n_points:,} points", flush=True)
@@ -388,6 +392,7 @@ def main(argv=None):
                "length_m": drive["length_m"], "road_length_m": drive["road_length_m"],
                "panoramas": n_pano, "rendered": drive["rendered"], "reused": drive["reused"],
                "reuse": drive["reuse"], "points": n_points, "cloud": inputs["POINT_CLOUD"],
+               "min_station_spacing_m": inputs.get("MIN_STATION_SPACING_M"),
                "pano_width": drive["pano_width"],
                "image_spacing_m": drive["image_spacing_m"], "reference_signs": drive["reference_signs"],
                "generation_s": drive.get("timings_s"), "load_average": [round(load0[0], 2), round(load1[0], 2)],
@@ -442,6 +447,9 @@ def main(argv=None):
     print("Chain: the shipped model {} in one qgis_process run: exit {}, {:.1f} s wall, peak RSS {:.0f} MB; "
           "load average {:.1f} before, {:.1f} after (2 shared cores: times are inflated)."
           .format(MODEL_ID, rc, wall, peak, load0[0], load1[0]))
+    if args.station_spacing is not None:
+        print(f"MIN_STATION_SPACING_M = {args.station_spacing:g} m: detection only in panoramas that far apart "
+              f"(panoramas every {drive['image_spacing_m']} m here); s/panorama still divides by all of them.")
     print("\n{:<18} {:>9} {:>9} {:>11} {:>11} {:>8} {:>10} {:>9} {:>11}".format(
         "stage", "wall s", "CPU s", "s/panorama", "s/M points", "RSS in", "peak RSS", "driver", "9.2 km s"))
     for alg, r in figures["stages"].items():

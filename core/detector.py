@@ -607,6 +607,13 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
 
 # --- a drive ------------------------------------------------------------------------------
 
+#: Default of detectsigns' MIN_STATION_SPACING_M (metres). A drive with panoramas every
+#: ``d`` metres is then detected in at least every ``d + 2.5`` m (< 5 m when ``d`` < 2.5 m;
+#: sparser drives keep every panorama): two held-out streets with a panorama every 5 m had
+#: every sign found, every 10 m lost 2 in 45 (bench/README.md, "Fewer views, fewer stations").
+DEFAULT_MIN_STATION_SPACING_M = 2.5
+
+
 def spaced_stations(xyz_world, min_spacing_m: float) -> np.ndarray:
     """Indices of the stations to detect in, in order: the first, then each station at least
     ``min_spacing_m`` (3-D distance) from the last one kept. ``min_spacing_m`` <= 0 keeps all.

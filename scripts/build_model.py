@@ -75,6 +75,7 @@ def static(value):
 
 
 def build():
+    from roadsigns.core.detector import DEFAULT_MIN_STATION_SPACING_M  # after import_roadsigns()
     model = QgsProcessingModelAlgorithm("Sign inventory (whole chain)", "Road sign inventory", "roadsigns")
     model.setName("signinventory")
     model.setHelpContent({"ALG_DESC": (
@@ -106,6 +107,11 @@ def build():
                                     optional=True), "Your own ONNX detector, or empty for the bundled one."),
         (QgsProcessingParameterNumber("CONFIDENCE", "Minimum detection confidence", DOUBLE, 0.4, False, 0, 1),
          "Detections scoring below this are dropped."),
+        (QgsProcessingParameterNumber("MIN_STATION_SPACING_M", "Skip stations closer than (m)", DOUBLE,
+                                      DEFAULT_MIN_STATION_SPACING_M, False, 0),
+         "Detects only in panoramas at least this far from the last one detected in (the ones between are "
+         "skipped); 0 detects in every panorama. The default, 2.5 m, detects at least every 5 m on any drive: "
+         "on held-out test streets a panorama every 5 m found every sign, every 10 m lost 2 in 45."),
         (QgsProcessingParameterBoolean("READ_CODES", "Read the sign codes", True),
          "Reads what each sign says (its code, such as DE:274[50] for speed limit 50) with the sign-code "
          "classifier; unchecked, the code fields stay empty."),
@@ -141,7 +147,8 @@ def build():
         [("OUTPUT", "Panorama stations")])
     codes = {n: param(n) for n in ("READ_CODES", "CLASSIFIER", "CODES_TABLE")}
     detections = child(model, "detections", "roadsigns:detectsigns", dict(
-        STATIONS=output_of(stations), MODEL=param("MODEL"), CONFIDENCE=param("CONFIDENCE"), **codes), 450, 220,
+        STATIONS=output_of(stations), MODEL=param("MODEL"), CONFIDENCE=param("CONFIDENCE"),
+        MIN_STATION_SPACING_M=param("MIN_STATION_SPACING_M"), **codes), 450, 220,
         [("OUTPUT", "Detections")])
     ground = child(model, "ground", "roadsigns:groundfilter", dict(
         INPUT=param("POINT_CLOUD"), CROP=output_of(stations), CROP_BUFFER=static(25.0),

@@ -20,10 +20,13 @@ def main(argv=None):
     ap.add_argument("--no-lidar", action="store_true")
     ap.add_argument("--no-masks", action="store_true", help="do not write the sign-id mask PNGs")
     ap.add_argument("--pano-width", type=int, default=None, help="equirectangular width (height = width / 2)")
+    ap.add_argument("--image-spacing", type=float, default=None,
+                    help="metres between panorama exposures (default: the preset's)")
     a = ap.parse_args(argv)
     t0 = time.perf_counter()
     paths = generate_scene(a.preset, a.seed, a.out, crs=a.crs, panoramas=not a.no_panoramas, lidar=not a.no_lidar,
-                           pano_width=a.pano_width, masks=not a.no_masks, verbose=True)
+                           pano_width=a.pano_width, masks=not a.no_masks, verbose=True,
+                           image_spacing_m=a.image_spacing)
     peak_mib = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     print(f"[scenegen] wrote {a.out} in {time.perf_counter() - t0:.1f} s (peak memory {peak_mib:.0f} MiB)")
     for k, v in sorted(paths.items()):

@@ -115,7 +115,7 @@ def _write_sbet(path, frames, motion, tau):
 
 
 def generate_scene(preset="tiny", seed=1, out_dir="scene", crs="projected", panoramas=True, lidar=True,
-                   pano_width=None, masks=True, verbose=False):
+                   pano_width=None, masks=True, verbose=False, image_spacing_m=None):
     """Write one synthetic scene into ``out_dir``; returns a dict of the written paths.
 
     ``crs``: ``projected`` (trajectory, poses in EPSG:32633) or ``geographic`` (EPSG:4326 lon/lat,
@@ -124,7 +124,7 @@ def generate_scene(preset="tiny", seed=1, out_dir="scene", crs="projected", pano
     """
     if crs not in ("projected", "geographic"):
         raise ValueError("crs must be 'projected' or 'geographic'")
-    p = get_preset(preset, pano_width=pano_width)
+    p = get_preset(preset, pano_width=pano_width, image_spacing_m=image_spacing_m)
     g = roadsigns_geometry()
     os.makedirs(out_dir, exist_ok=True)
     timings = {}

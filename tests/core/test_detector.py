@@ -456,3 +456,17 @@ def test_spaced_stations_keeps_each_station_far_enough_from_the_last_kept():
     assert det.spaced_stations(xyz, 2.0).tolist() == [0, 2, 4, 5]  # 2.5 m, then 2.5 m, then 3 m up
     assert det.spaced_stations(xyz, 10.0).tolist() == [0]
     assert det.spaced_stations(np.zeros((0, 3)), 2.0).tolist() == []
+
+
+@pytest.mark.parametrize("gap_m", [0.5, 1.2447, 1.9, 2.4, 2.5, 3.0, 5.0])
+def test_default_spacing_detects_at_least_every_5_m_and_skips_nothing_on_sparse_drives(gap_m):
+    rng = np.random.default_rng(int(gap_m * 100))
+    s = np.cumsum(np.r_[0.0, np.full(400, gap_m) + rng.uniform(-0.05, 0.05, 400) * gap_m])
+    xyz = np.column_stack([s, 0.1 * np.sin(s / 30.0), np.zeros_like(s)])
+    kept = det.spaced_stations(xyz, det.DEFAULT_MIN_STATION_SPACING_M)
+    kept_gaps = np.linalg.norm(np.diff(xyz[kept], axis=0), axis=1)
+    assert kept_gaps.max() < 5.0 or gap_m >= det.DEFAULT_MIN_STATION_SPACING_M
+    if gap_m * 0.95 >= det.DEFAULT_MIN_STATION_SPACING_M:
+        assert len(kept) == len(xyz)                   # panoramas already that far apart: all kept
+    if gap_m < 1.3:
+        assert len(kept) <= len(xyz) / 1.9            # a dense drive: half the panoramas or fewer
