@@ -45,8 +45,10 @@ from __future__ import annotations
 import math
 import os
 import time
+from collections import deque
+from concurrent.futures import Future, ThreadPoolExecutor, wait
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Dict, List, Optional, Tuple, Union
+from typing import TYPE_CHECKING, Callable, Deque, Dict, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
 import shapely
@@ -117,6 +119,7 @@ class CloudSignParams:
     edge_clearance_m: float = 1.0       # objects this close to the corridor's edge are cut by it
     window_m: float = 50.0
     margin_m: float = 10.0
+    window_threads: int = 2             # windows searched at once (numpy and scipy release the GIL)
     ground_cell_m: float = 0.25
     min_height_m: float = 0.1           # candidate points above the ground model
     feature_min_height_m: float = 0.75  # local PCA features only above this (panels, pole heads)
@@ -530,6 +533,50 @@ def _process_window(window: Window, rows: np.ndarray, ground_rows: np.ndarray, a
     return found, owned_poles
 
 
+@dataclass
+class _WindowResult:
+    n_points: int
+    found: List[_Found] = field(default_factory=list)
+    poles: List[Pole] = field(default_factory=list)
+    rejected: Dict[str, int] = field(default_factory=dict)
+    diagnostics: Optional[list] = None
+
+
+def _in_order(work: Callable[[Window], _WindowResult], windows: List[Window], threads: int,
+              check: Callable[[], None]) -> Iterator[_WindowResult]:
+    """``work(window)`` for every window, ``threads`` at a time (1: in this thread), yielded in
+    window order; at most ``threads`` windows are held at once. ``check`` (raising
+    :class:`~.errors.Cancelled`) runs before each window is started and while waiting: on
+    cancel, the windows not started are dropped and the running ones are waited for."""
+    if threads <= 1 or len(windows) <= 1:
+        for w in windows:
+            check()
+            yield work(w)
+        return
+    with ThreadPoolExecutor(max_workers=threads, thread_name_prefix="roadsigns-window") as pool:
+        pending: Deque[Future] = deque()
+        todo = iter(windows)
+        try:
+            while True:
+                while len(pending) < threads:
+                    nxt: Optional[Window] = next(todo, None)
+                    if nxt is None:
+                        break
+                    check()
+                    pending.append(pool.submit(work, nxt))
+                if not pending:
+                    return
+                head = pending[0]
+                while not head.done():
+                    check()
+                    wait([head], timeout=0.2)
+                pending.popleft()
+                yield head.result()
+        finally:
+            for f in pending:
+                f.cancel()
+
+
 # --------------------------------------------------------------------------------------
 # The stage
 # --------------------------------------------------------------------------------------
@@ -610,16 +657,25 @@ def find_signs_in_cloud(cloud_path: Union[str, CloudSource], track: Union[Track,
         poles: List[Pole] = []
         max_window_points = 0
         win_progress = progress.sub(0.5, 0.98)
-        for i, window in enumerate(windows):
-            win_progress.check()
+
+        def search(window: Window) -> _WindowResult:
             rows = spool.read("points", window.index)
             ground_rows = spool.read("ground", window.index)
-            max_window_points = max(max_window_points, len(rows) + len(ground_rows))
+            out = _WindowResult(n_points=len(rows) + len(ground_rows),
+                                diagnostics=[] if diagnostics is not None else None)
             if len(rows) and len(ground_rows):
-                f, p = _process_window(window, rows, ground_rows, axis, model, threshold.value, params,
-                                       rejected, diagnostics)
-                found.extend(f)
-                poles.extend(p)
+                out.found, out.poles = _process_window(window, rows, ground_rows, axis, model, threshold.value,
+                                                       params, out.rejected, out.diagnostics)
+            return out
+
+        for i, res in enumerate(_in_order(search, windows, params.window_threads, win_progress.check)):
+            max_window_points = max(max_window_points, res.n_points)
+            found.extend(res.found)
+            poles.extend(res.poles)
+            for k, v in res.rejected.items():
+                rejected[k] = rejected.get(k, 0) + v
+            if diagnostics is not None and res.diagnostics:
+                diagnostics.extend(res.diagnostics)
             win_progress.report((i + 1) / len(windows))
     signs, poles = _finish(found, poles, threshold, params, messages, progress)
     ref = drive_reference(np.array([f.stats["retro"] for f in found if f.panel.bright and f.face_seen]),

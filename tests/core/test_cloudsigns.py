@@ -186,6 +186,37 @@ def test_small_chunks_and_windows_give_the_same_answer(built_path, built_result)
     assert pa.shape == pb.shape and np.abs(pa - pb).max() <= 0.011
 
 
+def test_windows_searched_in_threads_give_the_same_answer(tiny):
+    folder, res, axis, _ = tiny
+    track = Track(axis.track.xyz_world, axis.track.time_s)
+    kw = dict(window_m=12.0, margin_m=8.0)
+    one = CS.find_signs_in_cloud(os.path.join(folder, "cloud.laz"), track,
+                                 params=CS.CloudSignParams(window_threads=1, **kw))
+    two = CS.find_signs_in_cloud(os.path.join(folder, "cloud.laz"), track,
+                                 params=CS.CloudSignParams(window_threads=2, **kw))
+    assert one.n_windows >= 4 and len(one.signs) > 0
+    same = lambda a, b: repr([x.as_dict() for x in a]) == repr([x.as_dict() for x in b])  # noqa: E731 (NaN)
+    assert same(one.signs, two.signs) and same(one.poles, two.poles)
+    assert one.rejected == two.rejected and one.max_window_points == two.max_window_points
+
+
+def test_cancel_while_windows_are_searched_in_threads(built_path):
+    seen = {"windows": 0}
+
+    def cancelled():
+        return seen["windows"] >= 2
+
+    def on_report(percent):
+        if percent > 50.0:                    # pass 2: the windows
+            seen["windows"] += 1
+
+    params = CS.CloudSignParams(window_m=10.0, margin_m=5.0, window_threads=2)
+    with pytest.raises(Cancelled):
+        CS.find_signs_in_cloud(built_path, built_track(), params=params,
+                               progress=Progress(on_report, cancelled))
+    assert 2 <= seen["windows"] < 6
+
+
 def test_window_spool_bounds_memory_and_duplicates_margins(tmp_path):
     windows = make_windows(100.0, 20.0)
     dtype = np.dtype([("s", "f8")])
