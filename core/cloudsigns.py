@@ -45,10 +45,8 @@ from __future__ import annotations
 import math
 import os
 import time
-from collections import deque
-from concurrent.futures import Future, ThreadPoolExecutor, wait
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Callable, Deque, Dict, Iterator, List, Optional, Tuple, Union
+from typing import TYPE_CHECKING, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 import shapely
@@ -57,7 +55,7 @@ from scipy.spatial import cKDTree
 from . import geometry
 from .cloudpanels import PanelCandidate, PanelParams, WindowPoints, find_panels, local_features, panel_frame
 from .cloudsource import CloudSource, open_cloud
-from .drivewindows import DriveAxis, Track, Window, WindowSpool, as_track, make_windows
+from .drivewindows import DriveAxis, Track, Window, WindowSpool, as_track, make_windows, map_in_order
 from .errors import SILENT, InputError, Message, Progress
 from .pointcloud import DEFAULT_CHUNK_POINTS, GROUND_CLASS, xyz_of
 from .poles import GANTRY, Pole, PoleParams, classify_pole, find_poles, promote_far_posts
@@ -542,41 +540,6 @@ class _WindowResult:
     diagnostics: Optional[list] = None
 
 
-def _in_order(work: Callable[[Window], _WindowResult], windows: List[Window], threads: int,
-              check: Callable[[], None]) -> Iterator[_WindowResult]:
-    """``work(window)`` for every window, ``threads`` at a time (1: in this thread), yielded in
-    window order; at most ``threads`` windows are held at once. ``check`` (raising
-    :class:`~.errors.Cancelled`) runs before each window is started and while waiting: on
-    cancel, the windows not started are dropped and the running ones are waited for."""
-    if threads <= 1 or len(windows) <= 1:
-        for w in windows:
-            check()
-            yield work(w)
-        return
-    with ThreadPoolExecutor(max_workers=threads, thread_name_prefix="roadsigns-window") as pool:
-        pending: Deque[Future] = deque()
-        todo = iter(windows)
-        try:
-            while True:
-                while len(pending) < threads:
-                    nxt: Optional[Window] = next(todo, None)
-                    if nxt is None:
-                        break
-                    check()
-                    pending.append(pool.submit(work, nxt))
-                if not pending:
-                    return
-                head = pending[0]
-                while not head.done():
-                    check()
-                    wait([head], timeout=0.2)
-                pending.popleft()
-                yield head.result()
-        finally:
-            for f in pending:
-                f.cancel()
-
-
 # --------------------------------------------------------------------------------------
 # The stage
 # --------------------------------------------------------------------------------------
@@ -668,7 +631,7 @@ def find_signs_in_cloud(cloud_path: Union[str, CloudSource], track: Union[Track,
                                                        params, out.rejected, out.diagnostics)
             return out
 
-        for i, res in enumerate(_in_order(search, windows, params.window_threads, win_progress.check)):
+        for i, res in enumerate(map_in_order(search, windows, params.window_threads, win_progress.check)):
             max_window_points = max(max_window_points, res.n_points)
             found.extend(res.found)
             poles.extend(res.poles)

@@ -7,7 +7,8 @@ of the driving direction), those kept are appended to the window of ``window_m``
 drive that holds them, and to its neighbours when within ``margin_m`` of the boundary, in
 files of a temporary folder. Windows are then read back one at a time; an object found in
 a window is reported only by the window whose core range holds its centre, so objects that
-straddle a boundary are found whole (in the margin) and once.
+straddle a boundary are found whole (in the margin) and once. :func:`map_in_order` works on
+windows (or blocks) a few at a time in threads.
 
 Conventions: world coordinates of the cloud's CRS (metres, E, N, U); ``xyz_world`` arrays
 ``(n, 3)``; the track is the sensor's positions in driving order, with times in the same
@@ -19,8 +20,10 @@ import contextlib
 import os
 import shutil
 import tempfile
+from collections import deque
+from concurrent.futures import Future, ThreadPoolExecutor, wait
 from dataclasses import dataclass
-from typing import Dict, List, Optional, Tuple, TypeVar
+from typing import Callable, Deque, Dict, Iterable, Iterator, List, Optional, Tuple, TypeVar
 
 import numpy as np
 from scipy.spatial import cKDTree
@@ -172,6 +175,50 @@ def make_windows(length_m: float, window_m: float) -> List[Window]:
     edges = np.linspace(0.0, length_m, n + 1)
     edges[0], edges[-1] = -np.inf, np.inf
     return [Window(k, float(edges[k]), float(edges[k + 1])) for k in range(n)]
+
+
+_ItemT = TypeVar("_ItemT")
+_ResultT = TypeVar("_ResultT")
+
+
+def map_in_order(work: Callable[[_ItemT], _ResultT], items: Iterable[_ItemT], threads: int,
+                 check: Callable[[], None]) -> Iterator[_ResultT]:
+    """``work(item)`` for every item (windows, blocks), ``threads`` at a time (1: in this
+    thread), yielded in the items' order; at most ``threads`` items are worked on at once,
+    and ``items`` (which may read its blocks lazily) is advanced in this thread. For work
+    whose time is spent in numpy and scipy, which release the GIL. ``check`` (raising
+    :class:`~.errors.Cancelled`) runs before each item is started and while waiting: on
+    cancel, items not started are dropped and the running ones are waited for."""
+    todo = iter(items)
+    if threads <= 1:
+        for item in todo:
+            check()
+            yield work(item)
+        return
+    with ThreadPoolExecutor(max_workers=threads, thread_name_prefix="roadsigns-block") as pool:
+        pending: Deque[Future] = deque()
+        exhausted = False
+        try:
+            while True:
+                while not exhausted and len(pending) < threads:
+                    check()
+                    try:
+                        item = next(todo)
+                    except StopIteration:
+                        exhausted = True
+                        break
+                    pending.append(pool.submit(work, item))
+                if not pending:
+                    return
+                head = pending[0]
+                while not head.done():
+                    check()
+                    wait([head], timeout=0.2)
+                pending.popleft()
+                yield head.result()
+        finally:
+            for f in pending:
+                f.cancel()
 
 
 _SpoolT = TypeVar("_SpoolT", bound="Spool")

@@ -39,7 +39,7 @@ from scipy.spatial import cKDTree
 from . import geometry
 from .cloudsource import CloudSource, open_cloud
 from .detections import DETECTION_POSE_FIELDS, Detections
-from .drivewindows import DriveAxis, Track, WindowSpool, make_windows
+from .drivewindows import DriveAxis, Track, WindowSpool, make_windows, map_in_order
 from .errors import SILENT, InputError, Progress
 from .pointcloud import GROUND_CLASS, CropRegion, TiledIndex, xyz_of
 from .schema import Schema, fields
@@ -249,6 +249,7 @@ class ProjectionParams:
     min_range_m: float = 0.5
     tile_size_m: float = 5.0
     block_m: float = 150.0            # metres of drive indexed at a time (memory follows it)
+    block_threads: int = 2            # blocks searched at once (numpy and scipy release the GIL)
     cluster_tolerance_m: float = 0.15  # Euclidean clustering: at least this, or
     cluster_tolerance_per_m: float = 0.008  # this x range
     min_points: int = 12              # points a surface needs
@@ -518,13 +519,18 @@ def project_detections(detections: Detections, cloud: Union[str, CloudSource, Ti
         reading, searching = progress.sub(0.0, 0.5), progress.sub(0.5, 1.0)
         blocks = drive_blocks(det, frusta, cloud_source, max_range_m, params, reading)
     R, rays = det.R_world_from_pano(), det.centre_rays_world()  # once, not per block
-    n_done = 0
-    for rows, index in blocks:
-        if not isinstance(cloud, TiledIndex):  # a block of the spooled cloud
-            result.n_indexed += len(index)
-            result.n_tiles += len(index.tile_keys)
+
+    def project(block: Tuple[np.ndarray, TiledIndex]) -> Tuple[int, int, int]:
+        rows, index = block                   # each block fills its own rows of result
         _project_block(det, rows, index, frusta, R, rays, max_range_m, params, result)
-        n_done += len(rows)
+        return len(rows), len(index), len(index.tile_keys)
+
+    n_done = 0
+    for n_rows, n_points, n_tiles in map_in_order(project, blocks, params.block_threads, searching.check):
+        if not isinstance(cloud, TiledIndex):  # a block of the spooled cloud
+            result.n_indexed += n_points
+            result.n_tiles += n_tiles
+        n_done += n_rows
         searching.report(n_done / len(det))
     if result.n_indexed == 0:
         result.warnings.append(progress.warning(

@@ -217,6 +217,40 @@ def test_cancel_while_windows_are_searched_in_threads(built_path):
     assert 2 <= seen["windows"] < 6
 
 
+def test_map_in_order_keeps_order_bounds_the_work_in_flight_and_cancels():
+    import threading
+    import time
+
+    from roadsigns.core.drivewindows import map_in_order
+
+    lock, state = threading.Lock(), {"now": 0, "most": 0, "started": []}
+
+    def work(i):
+        with lock:
+            state["now"] += 1
+            state["most"] = max(state["most"], state["now"])
+            state["started"].append(i)
+        time.sleep(0.05 if i % 2 else 0.01)              # uneven: later items finish first
+        with lock:
+            state["now"] -= 1
+        return i * i
+
+    assert list(map_in_order(work, range(9), 2, lambda: None)) == [i * i for i in range(9)]
+    assert state["most"] == 2
+    assert list(map_in_order(work, iter(range(4)), 1, lambda: None)) == [0, 1, 4, 9]
+    state["started"].clear()
+    seen = []
+
+    def check():
+        if len(seen) >= 3:
+            raise Cancelled("cancelled")
+
+    with pytest.raises(Cancelled):
+        for r in map_in_order(work, range(50), 2, check):
+            seen.append(r)
+    assert seen == [0, 1, 4] and len(state["started"]) <= 5
+
+
 def test_window_spool_bounds_memory_and_duplicates_margins(tmp_path):
     windows = make_windows(100.0, 20.0)
     dtype = np.dtype([("s", "f8")])

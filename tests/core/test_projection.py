@@ -166,3 +166,8 @@ def test_block_by_block_projection_equals_one_index(scene, detections, las_path,
     np.testing.assert_allclose(small.xyz_world, whole.xyz_world, atol=0.002, equal_nan=True)  # LAS: mm
     for a, b in zip(small.point_index, result.point_index):
         assert np.array_equal(np.sort(a), np.sort(b))
+    one = P.project_detections(detections, las_path,
+                               params=dataclasses.replace(P.ProjectionParams(), block_m=20.0, block_threads=1))
+    assert one.status == small.status and one.n_indexed == small.n_indexed and one.n_tiles == small.n_tiles
+    np.testing.assert_array_equal(one.xyz_world, small.xyz_world)       # two blocks at a time: the same
+    np.testing.assert_array_equal(one.tiles_visited, small.tiles_visited)
