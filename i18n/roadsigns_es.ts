@@ -117,7 +117,7 @@
         <translation>Ejecuta un detector de señales ONNX en cada panorama; un rayo por señal detectada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="144" />
+        <location filename="../algorithms/detectsigns.py" line="145" />
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
@@ -192,62 +192,62 @@
         <translation>Mirar también hacia arriba (señales elevadas y de pórtico)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="113" />
+        <location filename="../algorithms/detectsigns.py" line="114" />
         <source>CPU threads (0: all)</source>
         <translation>Hilos de CPU (0: todos)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="113" />
+        <location filename="../algorithms/detectsigns.py" line="114" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>Hilos que onnxruntime puede usar en la CPU; 0 le permite usar todos los núcleos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="119" />
+        <location filename="../algorithms/detectsigns.py" line="120" />
         <source>Detections</source>
         <translation>Detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="123" />
+        <location filename="../algorithms/detectsigns.py" line="124" />
         <source>Number of detections</source>
         <translation>Número de detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="124" />
+        <location filename="../algorithms/detectsigns.py" line="125" />
         <source>Panoramas skipped</source>
         <translation>Panoramas omitidos</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="137" />
+        <location filename="../algorithms/detectsigns.py" line="138" />
         <source>ONNX model not found: {}</source>
         <translation>No se encontró el modelo ONNX: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="151" />
+        <location filename="../algorithms/detectsigns.py" line="152" />
         <source>{} panoramas, {} views each</source>
         <translation>{} panoramas, {} vistas cada uno</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="165" />
+        <location filename="../algorithms/detectsigns.py" line="166" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>Se omitieron {} panorama(s) que no se pudieron leer.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="181" />
+        <location filename="../algorithms/detectsigns.py" line="182" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} detecciones en {} panoramas ({} omitidos).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="173" />
+        <location filename="../algorithms/detectsigns.py" line="174" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>No se detectó ninguna señal: la capa de detecciones está vacía.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="119" />
+        <location filename="../algorithms/detectsigns.py" line="120" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>Capa LineStringZ, un rayo por detección, con det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views y los campos de pose de la estación.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="185" />
+        <location filename="../algorithms/detectsigns.py" line="186" />
         <source>Sign codes read in {} of the {} detections (the others: other).</source>
         <translation>Códigos de señal leídos en {} de las {} detecciones (las demás: other).</translation>
     </message>
@@ -257,7 +257,7 @@
         <translation>Omitir estaciones a menos de (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="157" />
+        <location filename="../algorithms/detectsigns.py" line="158" />
         <source>Detecting in {} of the {} panoramas: stations closer than {} m to the last one detected in are skipped.</source>
         <translation>Detectando en {} de los {} panoramas: se omiten las estaciones a menos de {} m de la última en la que se detectó.</translation>
     </message>
@@ -272,14 +272,14 @@
         <translation>Añade un anillo de 6 vistas inclinadas 35° hacia arriba a las 8 vistas horizontales, para las señales situadas muy por encima de la calzada cerca del vehículo. Desactivado por defecto: una señal elevada aparece en las vistas horizontales desde cualquier estación situada a más de unos pocos metros, y en dos calles de prueba no usadas en el ajuste (panoramas cada 5 m, 6 paneles de pórtico en cada una) las vistas horizontales por sí solas encontraron todas las señales, tantas como con el anillo hacia arriba, en un tiempo de detección de 1,3 a 1,6 veces menor. Márquelo para recorridos con panoramas muy separados entre sí.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="101" />
-        <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so a few metres save detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. 0 detects in every panorama. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. For drives with denser panoramas, 5 m keeps the density those figures were measured at.</source>
-        <translation>Detecta solo en los panoramas cuya estación está al menos a esta distancia de la última estación en la que se detectó; las intermedias se omiten (no se leen, sin detecciones). Una señal permanece a la vista durante muchas estaciones, así que unos pocos metros ahorran tiempo de detección en proporción, pero cada señal se ve entonces desde menos estaciones: menos rayos para situarla, y una señal visible solo desde unas pocas estaciones (pequeña, u oculta tras árboles o vehículos) puede perderse. 0 detecta en todos los panoramas. Medido en dos calles de prueba no usadas en el ajuste, con un panorama cada 5 m: detectando en todos los panoramas se encontraron las 46 y las 45 señales; con 10 m (uno de cada dos) se perdieron 2 en cada una, y con 15 m, 11 de 46. Para recorridos con panoramas más densos, 5 m mantiene la densidad con la que se midieron esas cifras.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="117" />
+        <location filename="../algorithms/detectsigns.py" line="118" />
         <source>in a crop around each detection, voted later across the views of each sign by Refine and merge signs</source>
         <translation>en un recorte alrededor de cada detección; «Refinar y fusionar señales» vota después entre las vistas de cada señal</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="101" />
+        <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so skipping saves detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. The default, 2.5 m, keeps a detected panorama at least every 5 m on any drive (every second one of a drive with a panorama every 1.25 m) and skips nothing on drives with panoramas 2.5 m or more apart. 0 detects in every panorama.</source>
+        <translation>Detecta solo en las panorámicas cuya estación está al menos a esta distancia de la última estación en la que se detectó; las intermedias se omiten (no se leen, sin detecciones). Una señal permanece visible desde muchas estaciones, así que omitir ahorra tiempo de detección en proporción, pero cada señal se ve entonces desde menos estaciones: menos rayos para situarla, y una señal visible solo desde pocas estaciones (pequeña, u oculta tras árboles o vehículos) puede perderse. Medido en dos calles de prueba reservadas con una panorámica cada 5 m: todas las panorámicas encontraron las 46 y 45 señales; 10 m (una de cada dos) perdió 2 en cada una, 15 m perdió 11 de 46. El valor por defecto, 2,5 m, mantiene una panorámica detectada al menos cada 5 m en cualquier recorrido (una de cada dos en un recorrido con una panorámica cada 1,25 m) y no omite nada en recorridos con panorámicas a 2,5 m o más. 0 detecta en todas las panorámicas.</translation>
     </message>
 </context>
 <context>
@@ -2095,73 +2095,73 @@
 <context>
     <name>RoadSigns</name>
     <message>
-        <location filename="../core/cloudsigns.py" line="268" />
+        <location filename="../core/cloudsigns.py" line="271" />
         <source>The stations do not overlap the cloud {path}: the track passes {gap:.1f} m from the cloud's extent ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}), more than the corridor of {corridor} m; are the cloud and the stations in the same CRS and of the same drive?</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Las estaciones no se solapan con la nube {path}: el trayecto pasa a {gap:.1f} m de la extensión de la nube ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}), más que el corredor de {corridor} m; ¿están la nube y las estaciones en el mismo SRC y son del mismo recorrido?</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="281" />
+        <location filename="../core/cloudsigns.py" line="284" />
         <source>{path} has no intensity dimension (point format {fmt}): signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene dimensión de intensidad (formato de punto {fmt}): sin imágenes no se pueden encontrar señales en ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="284" />
+        <location filename="../core/cloudsigns.py" line="287" />
         <source>{path} has no classification dimension: run roadsigns:groundfilter on it first</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene dimensión de clasificación: ejecute primero roadsigns:groundfilter sobre ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="626" />
+        <location filename="../core/cloudsigns.py" line="647" />
         <source>Found {signs} sign panels ({bright} retroreflective) and {poles} poles in {n} points ({cand} kept near the road, {windows} windows of {w} m); condition reference {ref:.3f} ({src})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se encontraron {signs} paneles de señal ({bright} retrorreflectantes) y {poles} postes en {n} puntos ({cand} conservados cerca de la vía, {windows} ventanas de {w} m); referencia de estado {ref:.3f} ({src})</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="569" />
+        <location filename="../core/cloudsigns.py" line="581" />
         <source>No point of {path} lies within {corridor} m of the stations' track ({n} points read)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} está a menos de {corridor} m del trayecto de las estaciones ({n} puntos leídos)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="572" />
+        <location filename="../core/cloudsigns.py" line="584" />
         <source>{path} has no ground points (class 2) along the track: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene puntos de suelo (clase 2) a lo largo del trayecto: ejecute primero roadsigns:groundfilter sobre ella (o clasifique el suelo con otra herramienta)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="576" />
+        <location filename="../core/cloudsigns.py" line="588" />
         <source>{path} has no intensity: all {n} points near the track have intensity 0; signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene intensidad: los {n} puntos cercanos al trayecto tienen intensidad 0; sin imágenes no se pueden encontrar señales en ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="587" />
+        <location filename="../core/cloudsigns.py" line="599" />
         <source>Intensity: range exponent {alpha:.2f} ({source}), bright threshold {thr:.3f} of full scale at 10 m ({method}; background level {bg:.3f}, bright mode {mode:.3f}; {n} non-ground points near the road)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Intensidad: exponente de distancia {alpha:.2f} ({source}), umbral de brillo {thr:.3f} del fondo de escala a 10 m ({method}; nivel de fondo {bg:.3f}, moda brillante {mode:.3f}; {n} puntos que no son de suelo cerca de la vía)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="695" />
+        <location filename="../core/cloudsigns.py" line="716" />
         <source>{n} gantry posts</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} postes de pórtico</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="579" />
+        <location filename="../core/cloudsigns.py" line="591" />
         <source>The cloud's GPS times [{t0:.1f}, {t1:.1f}] do not meet the stations' times: ranges are taken from the nearest track position instead (is one of them in GPS week seconds and the other in adjusted standard GPS time?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Los tiempos GPS de la nube [{t0:.1f}, {t1:.1f}] no coinciden con los de las estaciones: las distancias se toman en su lugar desde la posición más cercana del trayecto (¿está uno en segundos de la semana GPS y el otro en tiempo GPS estándar ajustado?)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="598" />
+        <location filename="../core/cloudsigns.py" line="610" />
         <source>{share:.0%} of the points near the road have intensity 0: the bright threshold {thr:.3f} of full scale may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El {share:.0%} de los puntos cercanos a la vía tiene intensidad 0: el umbral de brillo {thr:.3f} del fondo de escala puede carecer de sentido</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="603" />
+        <location filename="../core/cloudsigns.py" line="615" />
         <source>{share:.0%} of the points near the road have saturated intensity: the bright threshold {thr:.3f} of full scale and the condition of the signs may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El {share:.0%} de los puntos cercanos a la vía tiene la intensidad saturada: el umbral de brillo {thr:.3f} del fondo de escala y el estado de las señales pueden carecer de sentido</translation>
@@ -2429,14 +2429,14 @@
     </message>
     <message>
         <location filename="../core/detections.py" line="106" />
-        <location filename="../core/projection.py" line="339" />
+        <location filename="../core/projection.py" line="340" />
         <source>Detection {det_id}: the field {field} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}: el campo {field} está vacío</translation>
     </message>
     <message>
         <location filename="../core/detections.py" line="114" />
-        <location filename="../core/projection.py" line="331" />
+        <location filename="../core/projection.py" line="332" />
         <source>Detection {det_id}, field {field}: expected a number, found '{value}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}, campo {field}: se esperaba un número, se encontró '{value}'</translation>
@@ -2514,19 +2514,19 @@
         <translation>El modelo {path} falló con una imagen en blanco de {w} x {h}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="54" />
+        <location filename="../core/drivewindows.py" line="57" />
         <source>The track needs at least 2 finite positions, got {n}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El trayecto necesita al menos 2 posiciones finitas; se recibieron {n}</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="101" />
+        <location filename="../core/drivewindows.py" line="104" />
         <source>The track does not move: all its positions are at one place</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El trayecto no se desplaza: todas sus posiciones están en el mismo lugar</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="49" />
+        <location filename="../core/drivewindows.py" line="52" />
         <source>The track has {n} positions but {m} times</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El trayecto tiene {n} posiciones pero {m} tiempos</translation>
@@ -2622,95 +2622,95 @@
         <translation>Tipo de retorno desconocido {kinds} en '{returns}'</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="249" />
+        <location filename="../core/ground/engine.py" line="251" />
         <source>Not enough free disk space in {folder} to keep the points between the two passes: the cloud is read twice</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay espacio libre suficiente en el disco en {folder} para guardar los puntos entre las dos pasadas: la nube se lee dos veces</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="314" />
+        <location filename="../core/ground/engine.py" line="315" />
         <location filename="../core/pointcloud.py" line="244" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la salida debe terminar en .las o .laz</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="326" />
+        <location filename="../core/ground/engine.py" line="327" />
         <location filename="../core/ground/tiled.py" line="153" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SRC de la nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="399" />
+        <location filename="../core/ground/engine.py" line="400" />
         <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró PDAL: se usa el motor integrado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="449" />
+        <location filename="../core/ground/engine.py" line="450" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay polígonos de recorte: se ignora el búfer de recorte</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="283" />
+        <location filename="../core/ground/engine.py" line="284" />
         <source>No point of {path} has the returns '{returns}': nothing was classified</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} tiene los retornos '{returns}': no se clasificó nada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="320" />
+        <location filename="../core/ground/engine.py" line="321" />
         <source>The output {path} must not be the input file</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La salida {path} no puede ser el archivo de entrada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="328" />
+        <location filename="../core/ground/engine.py" line="329" />
         <location filename="../core/ground/tiled.py" line="155" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene sistema de referencia de coordenadas: indique el SRC de la nube (nunca se adivina)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="386" />
+        <location filename="../core/ground/engine.py" line="387" />
         <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: el motor integrado, más rápido que PDAL en las mediciones para {method} (y procesa la nube en flujo continuo con memoria acotada)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="391" />
+        <location filename="../core/ground/engine.py" line="392" />
         <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, porque el {method} integrado necesita el paquete de Python cloth-simulation-filter, que no está instalado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="397" />
+        <location filename="../core/ground/engine.py" line="398" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se pidió PDAL, pero no se encontró ni el módulo de Python pdal ni un ejecutable pdal (PATH, carpeta bin de QGIS)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="401" />
+        <location filename="../core/ground/engine.py" line="402" />
         <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, más rápido que el motor integrado en las mediciones para {method}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="436" />
+        <location filename="../core/ground/engine.py" line="437" />
         <source>No point of {path} is left after the crop: {output} has no points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No queda ningún punto de {path} tras el recorte: {output} no tiene puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="265" />
-        <location filename="../core/ground/tiled.py" line="295" />
+        <location filename="../core/ground/engine.py" line="266" />
+        <location filename="../core/ground/tiled.py" line="287" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo está dañado ({detail})</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="351" />
+        <location filename="../core/ground/engine.py" line="352" />
         <location filename="../core/ground/tiled.py" line="186" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -2969,56 +2969,56 @@
         <translation>Ningún punto de {path} está dentro del área de recorte; {output} está vacío</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="534" />
+        <location filename="../core/projection.py" line="540" />
         <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{ok} de {count} detecciones encontraron una superficie en la nube ({no_points} sin puntos, {no_surface} sin superficie plana)</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="360" />
-        <location filename="../core/projection.py" line="596" />
+        <location filename="../core/projection.py" line="361" />
+        <location filename="../core/projection.py" line="602" />
         <source>{source} has no ground points (class 2) where the signs are: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{source} no tiene puntos de suelo (clase 2) donde están las señales: ejecute primero roadsigns:groundfilter sobre ella (o clasifique el suelo con otra herramienta)</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="500" />
+        <location filename="../core/projection.py" line="501" />
         <source>The maximum range must exceed {min} m, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El alcance máximo debe superar {min} m; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="324" />
+        <location filename="../core/projection.py" line="325" />
         <source>The candidates lack the field(s) {fields}; expected the output of Project detections</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>A los candidatos les faltan los campos {fields}; se esperaba la salida de «Proyectar detecciones en la nube de puntos»</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="349" />
+        <location filename="../core/projection.py" line="350" />
         <source>Unknown candidate status {status!r}; expected ok, no_points or no_surface</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Estado de candidato desconocido {status!r}; se esperaba ok, no_points o no_surface</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="353" />
+        <location filename="../core/projection.py" line="354" />
         <source>A candidate with status ok has no position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un candidato con estado ok no tiene posición</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="374" />
+        <location filename="../core/projection.py" line="375" />
         <source>The point index lacks {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Al índice de puntos le falta {names}</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="505" />
+        <location filename="../core/projection.py" line="506" />
         <source>No detections to project; the candidates are empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay detecciones que proyectar; los candidatos están vacíos</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="530" />
+        <location filename="../core/projection.py" line="536" />
         <source>{path} has no point inside the detections' frusta; no candidate found</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene puntos dentro de los troncos de visión de las detecciones; no se encontró ningún candidato</translation>
@@ -3567,115 +3567,121 @@
         <translation>Inventario de señales viales necesita los paquetes de Python {packages}, que no se encuentran en el Python de QGIS. Instálelos con: {command}</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="714" />
+        <location filename="../models/sign_inventory.model3" line="720" />
         <source>The whole road-sign inventory: panorama stations from the trajectory, sign detection in the panoramas, ground filter and crop of the point cloud around the drive, projection of each detection into the cloud, and refinement and merging into the sign layer, with a review chip of every sign and the review report; then the sign panels and poles found in the cloud alone, fused with the image signs into the final inventory (Signs (fused): which sources found each sign, its condition, the signs the cameras missed).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>El inventario completo de señales viales: estaciones de panorama a partir de la trayectoria, detección de señales en los panoramas, filtro de suelo y recorte de la nube de puntos alrededor del recorrido, proyección de cada detección en la nube, y refinado y fusión en la capa de señales, con una miniatura de revisión de cada señal y el informe de revisión; después, los paneles de señal y los postes encontrados solo en la nube, fusionados con las señales de imagen en el inventario final (Señales (fusionadas): qué fuentes encontraron cada señal, su estado y las señales que las cámaras no vieron).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="641" />
+        <location filename="../models/sign_inventory.model3" line="721" />
         <source>Boresight pitch (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Boresight: cabeceo (°).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="647" />
+        <location filename="../models/sign_inventory.model3" line="722" />
         <source>Boresight roll (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Boresight: alabeo (°).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="653" />
+        <location filename="../models/sign_inventory.model3" line="723" />
         <source>Boresight yaw (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Boresight: guiñada (°).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="206" />
+        <location filename="../models/sign_inventory.model3" line="724" />
         <source>Your own ONNX sign-code classifier (format in models/README.md), or empty for the bundled one.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Su propio clasificador ONNX de códigos de señal (formato en models/README.md), o vacío para el incluido.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="212" />
+        <location filename="../models/sign_inventory.model3" line="725" />
         <source>The codes table of your classifier (code;name;class, format in models/README.md), or empty for the bundled German table.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>La tabla de códigos de su clasificador (code;name;class, formato en models/README.md), o vacío para la tabla alemana incluida.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="316" />
+        <location filename="../models/sign_inventory.model3" line="726" />
         <source>A sign's voted code whose support (code_score) is below this is left empty.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>El código votado de una señal cuyo apoyo (code_score) sea inferior a este valor se deja vacío.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="218" />
+        <location filename="../models/sign_inventory.model3" line="727" />
         <source>Detections scoring below this are dropped.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Se descartan las detecciones con una puntuación inferior a este valor.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="328" />
+        <location filename="../models/sign_inventory.model3" line="728" />
         <source>Folder of the equirectangular panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Carpeta de los panoramas equirrectangulares.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="665" />
+        <location filename="../models/sign_inventory.model3" line="729" />
         <source>image,time CSV of the panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>CSV image,time de los panoramas.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="671" />
+        <location filename="../models/sign_inventory.model3" line="730" />
         <source>Lever arm x, forward (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Brazo de palanca x, adelante (m).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="677" />
+        <location filename="../models/sign_inventory.model3" line="731" />
         <source>Lever arm y, right (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Brazo de palanca y, derecha (m).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="683" />
+        <location filename="../models/sign_inventory.model3" line="732" />
         <source>Lever arm z, down (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Brazo de palanca z, abajo (m).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="224" />
+        <location filename="../models/sign_inventory.model3" line="733" />
+        <source>Detects only in panoramas at least this far from the last one detected in (the ones between are skipped); 0 detects in every panorama. The default, 2.5 m, detects at least every 5 m on any drive: on held-out test streets a panorama every 5 m found every sign, every 10 m lost 2 in 45.</source>
+        <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
+        <translation>Detecta solo en las panorámicas al menos a esta distancia de la última en la que se detectó (las intermedias se omiten); 0 detecta en todas las panorámicas. El valor por defecto, 2,5 m, detecta al menos cada 5 m en cualquier recorrido: en calles de prueba reservadas, una panorámica cada 5 m encontró todas las señales y una cada 10 m perdió 2 de 45.</translation>
+    </message>
+    <message>
+        <location filename="../models/sign_inventory.model3" line="734" />
         <source>Your own ONNX detector, or empty for the bundled one.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Su propio detector ONNX, o vacío para usar el incluido.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="69" />
+        <location filename="../models/sign_inventory.model3" line="735" />
         <source>The drive's LiDAR cloud.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>La nube LiDAR del recorrido.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="230" />
+        <location filename="../models/sign_inventory.model3" line="736" />
         <source>Reads what each sign says (its code, such as DE:274[50] for speed limit 50) with the sign-code classifier; unchecked, the code fields stay empty.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Lee lo que dice cada señal (su código, como DE:274[50] para el límite de velocidad 50) con el clasificador de códigos de señal; si se desmarca, los campos de código quedan vacíos.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="689" />
+        <location filename="../models/sign_inventory.model3" line="737" />
         <source>Projected CRS of the outputs: the point cloud's CRS.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>SRC proyectado de las salidas: el SRC de la nube de puntos.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="695" />
+        <location filename="../models/sign_inventory.model3" line="738" />
         <source>time,x,y,z,roll,pitch,heading CSV, or an Applanix SBET.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>CSV time,x,y,z,roll,pitch,heading, o un SBET de Applanix.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="701" />
+        <location filename="../models/sign_inventory.model3" line="739" />
         <source>CRS of the trajectory positions (ignored for an SBET).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>SRC de las posiciones de la trayectoria (se ignora para un SBET).</translation>

@@ -117,7 +117,7 @@
         <translation>在每张全景图上运行 ONNX 标志检测器；每个检测到的标志生成一条射线。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="144" />
+        <location filename="../algorithms/detectsigns.py" line="145" />
         <source>Panorama stations</source>
         <translation>全景站点</translation>
     </message>
@@ -192,62 +192,62 @@
         <translation>同时向上看（悬挂式和门架式标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="113" />
+        <location filename="../algorithms/detectsigns.py" line="114" />
         <source>CPU threads (0: all)</source>
         <translation>CPU 线程数（0：全部）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="113" />
+        <location filename="../algorithms/detectsigns.py" line="114" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>onnxruntime 在 CPU 上可使用的线程数；0 表示使用所有核心。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="119" />
+        <location filename="../algorithms/detectsigns.py" line="120" />
         <source>Detections</source>
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="123" />
+        <location filename="../algorithms/detectsigns.py" line="124" />
         <source>Number of detections</source>
         <translation>检测数量</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="124" />
+        <location filename="../algorithms/detectsigns.py" line="125" />
         <source>Panoramas skipped</source>
         <translation>跳过的全景图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="137" />
+        <location filename="../algorithms/detectsigns.py" line="138" />
         <source>ONNX model not found: {}</source>
         <translation>未找到 ONNX 模型：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="151" />
+        <location filename="../algorithms/detectsigns.py" line="152" />
         <source>{} panoramas, {} views each</source>
         <translation>{} 张全景图，每张 {} 个视图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="165" />
+        <location filename="../algorithms/detectsigns.py" line="166" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>跳过了 {} 张无法读取的全景图。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="181" />
+        <location filename="../algorithms/detectsigns.py" line="182" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} 个检测，来自 {} 张全景图（跳过 {} 张）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="173" />
+        <location filename="../algorithms/detectsigns.py" line="174" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>未检测到任何标志：检测图层为空。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="119" />
+        <location filename="../algorithms/detectsigns.py" line="120" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>LineStringZ 图层，每个检测一条射线，包含字段 det_id、station_id、image、class、score、code、code_score、u0、v0、u1、v1、n_views 以及站点的位姿字段。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="185" />
+        <location filename="../algorithms/detectsigns.py" line="186" />
         <source>Sign codes read in {} of the {} detections (the others: other).</source>
         <translation>{} 个检测读出了标志代码（共 {} 个检测；其余为 other）。</translation>
     </message>
@@ -257,7 +257,7 @@
         <translation>跳过间距小于此值的站点 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="157" />
+        <location filename="../algorithms/detectsigns.py" line="158" />
         <source>Detecting in {} of the {} panoramas: stations closer than {} m to the last one detected in are skipped.</source>
         <translation>在 {} 张全景图（共 {} 张）中检测：距上一个检测站点不足 {} m 的站点将被跳过。</translation>
     </message>
@@ -272,14 +272,14 @@
         <translation>在 8 个水平视图之外增加一圈 6 个上仰 35° 的视图，用于车辆附近高悬于道路上方的标志。默认不勾选：从相距几米以上的每个站点看，悬挂式标志都会出现在水平视图中；在两条未参与调参的测试街道上（每 5 m 一张全景图，各有 6 块门架标志牌），仅用水平视图就找到了所有标志，与加上上视视图时一样多，而检测时间仅为后者的 1/1.3 至 1/1.6。全景图间距较大的行驶采集请勾选此项。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="101" />
-        <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so a few metres save detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. 0 detects in every panorama. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. For drives with denser panoramas, 5 m keeps the density those figures were measured at.</source>
-        <translation>仅在其站点与上一个执行检测的站点相距至少此距离的全景图中进行检测；其间的全景图将被跳过（不读取，无检测结果）。一个标志会在许多站点中保持可见，因此几米的间距可按比例节省检测时间，但每个标志被看到的站点也随之减少：用于定位它的射线更少，而只在少数站点可见的标志（较小，或被树木、车辆遮挡）可能会漏检。0 表示在每张全景图中检测。在两条未参与调参的测试街道上测得（每 5 m 一张全景图）：在每张全景图中检测时，分别找到了全部 46 个和 45 个标志；10 m（每隔一张）时各漏掉 2 个，15 m 时 46 个中漏掉 11 个。对于全景图更密集的行驶采集，5 m 可保持测得这些数据时的全景图密度。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="117" />
+        <location filename="../algorithms/detectsigns.py" line="118" />
         <source>in a crop around each detection, voted later across the views of each sign by Refine and merge signs</source>
         <translation>在每个检测结果周围的裁剪图中读取，之后由“精化与合并标志”在每个标志的各视图间投票</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="101" />
+        <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so skipping saves detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. The default, 2.5 m, keeps a detected panorama at least every 5 m on any drive (every second one of a drive with a panorama every 1.25 m) and skips nothing on drives with panoramas 2.5 m or more apart. 0 detects in every panorama.</source>
+        <translation>仅在其站点与上一个检测站点相距至少此距离的全景图中检测；其间的全景图将被跳过（不读取，无检测结果）。一个标志在许多站点中都可见，因此跳过可按比例节省检测时间，但每个标志被看到的站点会变少：用于定位它的射线更少，而只在少数站点可见的标志（较小，或被树木或车辆遮挡）可能会漏检。在两条保留的测试街道上（每 5 米一张全景图）测得：使用全部全景图找到了全部 46 个和 45 个标志；10 米（隔一张）各漏检 2 个，15 米漏检 46 个中的 11 个。默认值 2.5 米可保证在任何行驶路线上至少每 5 米有一张被检测的全景图（全景图间隔 1.25 米的路线即每隔一张），而对全景图间隔 2.5 米或以上的路线不跳过任何全景图。0 表示在每张全景图中检测。</translation>
     </message>
 </context>
 <context>
@@ -2095,73 +2095,73 @@
 <context>
     <name>RoadSigns</name>
     <message>
-        <location filename="../core/cloudsigns.py" line="268" />
+        <location filename="../core/cloudsigns.py" line="271" />
         <source>The stations do not overlap the cloud {path}: the track passes {gap:.1f} m from the cloud's extent ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}), more than the corridor of {corridor} m; are the cloud and the stations in the same CRS and of the same drive?</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>全景站点与点云 {path} 不重叠：轨迹线距点云范围 ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}) {gap:.1f} m，超出 {corridor} m 的走廊；点云和全景站点是否在同一坐标参考系中、是否来自同一次行驶采集？</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="281" />
+        <location filename="../core/cloudsigns.py" line="284" />
         <source>{path} has no intensity dimension (point format {fmt}): signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有强度维度（点格式 {fmt}）：没有图像时无法在其中找到标志</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="284" />
+        <location filename="../core/cloudsigns.py" line="287" />
         <source>{path} has no classification dimension: run roadsigns:groundfilter on it first</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有分类维度：请先对其运行 roadsigns:groundfilter</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="626" />
+        <location filename="../core/cloudsigns.py" line="647" />
         <source>Found {signs} sign panels ({bright} retroreflective) and {poles} poles in {n} points ({cand} kept near the road, {windows} windows of {w} m); condition reference {ref:.3f} ({src})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>在 {n} 个点中找到 {signs} 个标志牌（其中 {bright} 个具有逆反射性）和 {poles} 根杆（道路附近保留 {cand} 个点，{windows} 个 {w} m 的窗口）；状态参考值 {ref:.3f}（{src}）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="569" />
+        <location filename="../core/cloudsigns.py" line="581" />
         <source>No point of {path} lies within {corridor} m of the stations' track ({n} points read)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中没有点位于全景站点轨迹线 {corridor} m 范围内（已读取 {n} 个点）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="572" />
+        <location filename="../core/cloudsigns.py" line="584" />
         <source>{path} has no ground points (class 2) along the track: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 沿轨迹线没有地面点（类别 2）：请先对其运行 roadsigns:groundfilter（或用其他工具对地面进行分类）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="576" />
+        <location filename="../core/cloudsigns.py" line="588" />
         <source>{path} has no intensity: all {n} points near the track have intensity 0; signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有强度：轨迹线附近的全部 {n} 个点强度均为 0；没有图像时无法在其中找到标志</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="587" />
+        <location filename="../core/cloudsigns.py" line="599" />
         <source>Intensity: range exponent {alpha:.2f} ({source}), bright threshold {thr:.3f} of full scale at 10 m ({method}; background level {bg:.3f}, bright mode {mode:.3f}; {n} non-ground points near the road)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>强度：距离指数 {alpha:.2f}（{source}），亮度阈值为 10 m 处满量程的 {thr:.3f}（{method}；背景水平 {bg:.3f}，亮峰 {mode:.3f}；道路附近 {n} 个非地面点）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="695" />
+        <location filename="../core/cloudsigns.py" line="716" />
         <source>{n} gantry posts</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} 根门架立柱</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="579" />
+        <location filename="../core/cloudsigns.py" line="591" />
         <source>The cloud's GPS times [{t0:.1f}, {t1:.1f}] do not meet the stations' times: ranges are taken from the nearest track position instead (is one of them in GPS week seconds and the other in adjusted standard GPS time?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点云的 GPS 时间 [{t0:.1f}, {t1:.1f}] 与全景站点的时间不重合：改为从最近的轨迹线位置计算距离（是否一个使用 GPS 周秒、另一个使用调整后的标准 GPS 时间？）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="598" />
+        <location filename="../core/cloudsigns.py" line="610" />
         <source>{share:.0%} of the points near the road have intensity 0: the bright threshold {thr:.3f} of full scale may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>道路附近 {share:.0%} 的点强度为 0：满量程的亮度阈值 {thr:.3f} 可能没有意义</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="603" />
+        <location filename="../core/cloudsigns.py" line="615" />
         <source>{share:.0%} of the points near the road have saturated intensity: the bright threshold {thr:.3f} of full scale and the condition of the signs may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>道路附近 {share:.0%} 的点强度饱和：满量程的亮度阈值 {thr:.3f} 以及标志的状态可能没有意义</translation>
@@ -2429,14 +2429,14 @@
     </message>
     <message>
         <location filename="../core/detections.py" line="106" />
-        <location filename="../core/projection.py" line="339" />
+        <location filename="../core/projection.py" line="340" />
         <source>Detection {det_id}: the field {field} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}：字段 {field} 为空</translation>
     </message>
     <message>
         <location filename="../core/detections.py" line="114" />
-        <location filename="../core/projection.py" line="331" />
+        <location filename="../core/projection.py" line="332" />
         <source>Detection {det_id}, field {field}: expected a number, found '{value}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}，字段 {field}：应为数字，实际为 '{value}'</translation>
@@ -2514,19 +2514,19 @@
         <translation>模型 {path} 在一张 {w} x {h} 的空白图像上运行失败：{error}</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="54" />
+        <location filename="../core/drivewindows.py" line="57" />
         <source>The track needs at least 2 finite positions, got {n}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>轨迹线至少需要 2 个有限位置，实际为 {n} 个</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="101" />
+        <location filename="../core/drivewindows.py" line="104" />
         <source>The track does not move: all its positions are at one place</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>轨迹线没有移动：其所有位置都在同一处</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="49" />
+        <location filename="../core/drivewindows.py" line="52" />
         <source>The track has {n} positions but {m} times</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>轨迹线有 {n} 个位置，但有 {m} 个时间</translation>
@@ -2622,95 +2622,95 @@
         <translation>'{returns}' 中有未知的回波类型 {kinds}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="249" />
+        <location filename="../core/ground/engine.py" line="251" />
         <source>Not enough free disk space in {folder} to keep the points between the two passes: the cloud is read twice</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{folder} 中的可用磁盘空间不足，无法在两遍处理之间保存点：点云将被读取两次</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="314" />
+        <location filename="../core/ground/engine.py" line="315" />
         <location filename="../core/pointcloud.py" line="244" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：输出文件必须以 .las 或 .laz 结尾</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="326" />
+        <location filename="../core/ground/engine.py" line="327" />
         <location filename="../core/ground/tiled.py" line="153" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>点云坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="399" />
+        <location filename="../core/ground/engine.py" line="400" />
         <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到 PDAL：使用内置引擎</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="449" />
+        <location filename="../core/ground/engine.py" line="450" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有裁剪多边形：忽略裁剪缓冲区</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="283" />
+        <location filename="../core/ground/engine.py" line="284" />
         <source>No point of {path} has the returns '{returns}': nothing was classified</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中没有回波为 '{returns}' 的点：未分类任何点</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="320" />
+        <location filename="../core/ground/engine.py" line="321" />
         <source>The output {path} must not be the input file</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>输出 {path} 不能是输入文件</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="328" />
+        <location filename="../core/ground/engine.py" line="329" />
         <location filename="../core/ground/tiled.py" line="155" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有坐标参考系：请给出点云的坐标参考系（从不猜测）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="386" />
+        <location filename="../core/ground/engine.py" line="387" />
         <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：内置引擎，对 {method} 实测比 PDAL 更快（且以有限内存流式处理点云）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="391" />
+        <location filename="../core/ground/engine.py" line="392" />
         <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：PDAL，因为内置 {method} 需要 Python 包 cloth-simulation-filter，而该包未安装</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="397" />
+        <location filename="../core/ground/engine.py" line="398" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>要求使用 PDAL，但既没有找到 pdal Python 模块，也没有找到 pdal 可执行文件（PATH、QGIS 的 bin 文件夹）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="401" />
+        <location filename="../core/ground/engine.py" line="402" />
         <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：PDAL，对 {method} 实测比内置引擎更快</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="436" />
+        <location filename="../core/ground/engine.py" line="437" />
         <source>No point of {path} is left after the crop: {output} has no points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>裁剪后 {path} 没有剩余的点：{output} 中没有点</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="265" />
-        <location filename="../core/ground/tiled.py" line="295" />
+        <location filename="../core/ground/engine.py" line="266" />
+        <location filename="../core/ground/tiled.py" line="287" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件已损坏（{detail}）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="351" />
+        <location filename="../core/ground/engine.py" line="352" />
         <location filename="../core/ground/tiled.py" line="186" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -2969,56 +2969,56 @@
         <translation>{path} 中没有点位于裁剪区域内；{output} 为空</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="534" />
+        <location filename="../core/projection.py" line="540" />
         <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 个检测结果中有 {ok} 个在点云中找到了表面（{no_points} 个没有点，{no_surface} 个没有平面）</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="360" />
-        <location filename="../core/projection.py" line="596" />
+        <location filename="../core/projection.py" line="361" />
+        <location filename="../core/projection.py" line="602" />
         <source>{source} has no ground points (class 2) where the signs are: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{source} 在标志所在区域没有地面点（类别 2）：请先对其运行 roadsigns:groundfilter（或用其他工具进行地面分类）</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="500" />
+        <location filename="../core/projection.py" line="501" />
         <source>The maximum range must exceed {min} m, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>最大距离必须大于 {min} m，实际为 {value} m</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="324" />
+        <location filename="../core/projection.py" line="325" />
         <source>The candidates lack the field(s) {fields}; expected the output of Project detections</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>候选缺少字段 {fields}；应为“将检测投影到点云”的输出</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="349" />
+        <location filename="../core/projection.py" line="350" />
         <source>Unknown candidate status {status!r}; expected ok, no_points or no_surface</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未知的候选状态 {status!r}；应为 ok、no_points 或 no_surface</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="353" />
+        <location filename="../core/projection.py" line="354" />
         <source>A candidate with status ok has no position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>状态为 ok 的候选没有位置</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="374" />
+        <location filename="../core/projection.py" line="375" />
         <source>The point index lacks {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点索引缺少 {names}</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="505" />
+        <location filename="../core/projection.py" line="506" />
         <source>No detections to project; the candidates are empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有要投影的检测结果；候选为空</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="530" />
+        <location filename="../core/projection.py" line="536" />
         <source>{path} has no point inside the detections' frusta; no candidate found</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 在检测结果的视锥内没有点；未找到候选</translation>
@@ -3567,115 +3567,121 @@
         <translation>道路标志清查需要 Python 包 {packages}，但在 QGIS 的 Python 中未找到。安装命令：{command}</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="714" />
+        <location filename="../models/sign_inventory.model3" line="720" />
         <source>The whole road-sign inventory: panorama stations from the trajectory, sign detection in the panoramas, ground filter and crop of the point cloud around the drive, projection of each detection into the cloud, and refinement and merging into the sign layer, with a review chip of every sign and the review report; then the sign panels and poles found in the cloud alone, fused with the image signs into the final inventory (Signs (fused): which sources found each sign, its condition, the signs the cameras missed).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>完整的道路标志清查：由轨迹生成全景站点，在全景图中检测标志，对行驶采集沿线的点云进行地面滤波与裁剪，将每个检测投影到点云，并精化与合并为标志图层，同时生成每个标志的审核切片和审核报告；随后仅在点云中查找标志牌和杆，并与图像标志融合为最终的清查结果（标志（融合）：每个标志由哪些来源找到、其状态，以及相机漏掉的标志）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="641" />
+        <location filename="../models/sign_inventory.model3" line="721" />
         <source>Boresight pitch (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>安置角：俯仰（°）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="647" />
+        <location filename="../models/sign_inventory.model3" line="722" />
         <source>Boresight roll (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>安置角：横滚（°）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="653" />
+        <location filename="../models/sign_inventory.model3" line="723" />
         <source>Boresight yaw (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>安置角：偏航（°）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="206" />
+        <location filename="../models/sign_inventory.model3" line="724" />
         <source>Your own ONNX sign-code classifier (format in models/README.md), or empty for the bundled one.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>您自己的 ONNX 标志代码分类器（格式见 models/README.md），留空则使用内置分类器。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="212" />
+        <location filename="../models/sign_inventory.model3" line="725" />
         <source>The codes table of your classifier (code;name;class, format in models/README.md), or empty for the bundled German table.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>您的分类器的代码表（code;name;class，格式见 models/README.md），留空则使用内置的德国代码表。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="316" />
+        <location filename="../models/sign_inventory.model3" line="726" />
         <source>A sign's voted code whose support (code_score) is below this is left empty.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>标志投票得出的代码的支持度（code_score）低于此值时，代码留空。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="218" />
+        <location filename="../models/sign_inventory.model3" line="727" />
         <source>Detections scoring below this are dropped.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>得分低于此值的检测将被丢弃。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="328" />
+        <location filename="../models/sign_inventory.model3" line="728" />
         <source>Folder of the equirectangular panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>等距柱状全景图所在的文件夹。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="665" />
+        <location filename="../models/sign_inventory.model3" line="729" />
         <source>image,time CSV of the panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>全景图的 image,time CSV。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="671" />
+        <location filename="../models/sign_inventory.model3" line="730" />
         <source>Lever arm x, forward (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>杆臂 x，向前（m）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="677" />
+        <location filename="../models/sign_inventory.model3" line="731" />
         <source>Lever arm y, right (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>杆臂 y，向右（m）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="683" />
+        <location filename="../models/sign_inventory.model3" line="732" />
         <source>Lever arm z, down (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>杆臂 z，向下（m）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="224" />
+        <location filename="../models/sign_inventory.model3" line="733" />
+        <source>Detects only in panoramas at least this far from the last one detected in (the ones between are skipped); 0 detects in every panorama. The default, 2.5 m, detects at least every 5 m on any drive: on held-out test streets a panorama every 5 m found every sign, every 10 m lost 2 in 45.</source>
+        <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
+        <translation>仅在与上一个检测全景图相距至少此距离的全景图中检测（其间的将被跳过）；0 表示在每张全景图中检测。默认值 2.5 米可在任何行驶路线上至少每 5 米检测一次：在保留的测试街道上，每 5 米一张全景图找到了全部标志，每 10 米一张则漏检 45 个中的 2 个。</translation>
+    </message>
+    <message>
+        <location filename="../models/sign_inventory.model3" line="734" />
         <source>Your own ONNX detector, or empty for the bundled one.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>您自己的 ONNX 检测器；留空则使用内置检测器。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="69" />
+        <location filename="../models/sign_inventory.model3" line="735" />
         <source>The drive's LiDAR cloud.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>本次行驶采集的激光雷达点云。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="230" />
+        <location filename="../models/sign_inventory.model3" line="736" />
         <source>Reads what each sign says (its code, such as DE:274[50] for speed limit 50) with the sign-code classifier; unchecked, the code fields stay empty.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>使用标志代码分类器读取每个标志的内容（其代码，例如 DE:274[50] 表示限速 50）；不勾选时代码字段保持为空。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="689" />
+        <location filename="../models/sign_inventory.model3" line="737" />
         <source>Projected CRS of the outputs: the point cloud's CRS.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>输出的投影坐标参考系：即点云的坐标参考系。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="695" />
+        <location filename="../models/sign_inventory.model3" line="738" />
         <source>time,x,y,z,roll,pitch,heading CSV, or an Applanix SBET.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>time,x,y,z,roll,pitch,heading CSV，或 Applanix SBET。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="701" />
+        <location filename="../models/sign_inventory.model3" line="739" />
         <source>CRS of the trajectory positions (ignored for an SBET).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>轨迹位置的坐标参考系（对 SBET 忽略）。</translation>
