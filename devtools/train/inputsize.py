@@ -1,0 +1,78 @@
+"""Set the input height of an exported detector (float or int8) without retraining.
+
+    .venv/bin/python -m devtools.train.inputsize --model models/roadsigns.onnx --height 384 \
+        --out models/roadsigns.onnx
+
+The detector is fully convolutional and its decoder reads the feature map's size from the
+graph (``Shape`` operators), so the same weights run on views of another height at the same
+pixel density. The plugin cuts its views at the model's input size (``imgsz``, height then
+width): 640 x 384 horizon views of 80 degrees span +-26.8 degrees of elevation instead of
++-40 degrees, leaving out sky and road, and cost about 0.6 of the square views' time
+(``models/README.md``, "Views that skip sky and road"). The file's ``imgsz`` metadata is
+updated and ``input_height`` records the change; a quantised file keeps its calibration.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import tempfile
+
+from .. import REPO_ROOT
+
+
+def set_input_height(model_path: str, out_path: str, height_px: int) -> None:
+    """Write ``model_path`` with input height ``height_px`` (a multiple of the stride 32 of the
+    deepest level) to ``out_path`` (may be the same file; written under a temporary name
+    first), checked by running it once."""
+    import numpy as np
+    import onnx
+    import onnxruntime as ort
+
+    if height_px <= 0 or height_px % 32:
+        raise SystemExit(f"the height must be a positive multiple of 32, got {height_px}")
+    model = onnx.load(model_path)
+    dims = model.graph.input[0].type.tensor_type.shape.dim
+    if len(dims) != 4 or not dims[3].dim_value:
+        raise SystemExit(f"{model_path}: expected a [batch, 3, height, width] input with a fixed width")
+    old_height = dims[2].dim_value or dims[2].dim_param
+    dims[2].ClearField("dim_param")
+    dims[2].dim_value = int(height_px)
+    del model.graph.value_info[:]            # shapes inferred for the old height
+    meta = {p.key: p for p in model.metadata_props}
+    width = dims[3].dim_value
+    for key, value in (("imgsz", f"[{height_px}, {width}]"),
+                       ("input_height", json.dumps({"from": old_height, "to": int(height_px)}))):
+        if key in meta:
+            meta[key].value = value
+        else:
+            model.metadata_props.add(key=key, value=value)
+    onnx.checker.check_model(model)
+    fd, tmp = tempfile.mkstemp(suffix=".onnx", dir=os.path.dirname(os.path.abspath(out_path)))
+    os.close(fd)
+    try:
+        onnx.save(model, tmp)
+        session = ort.InferenceSession(tmp, providers=["CPUExecutionProvider"])
+        out = session.run(None, {session.get_inputs()[0].name: np.zeros((1, 3, height_px, width), np.float32)})
+        if out[0].ndim != 3 or out[0].shape[-1] != 6:
+            raise SystemExit(f"{model_path} at height {height_px} gives outputs of shape {out[0].shape}")
+        os.replace(tmp, out_path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m devtools.train.inputsize", description=__doc__.splitlines()[0])
+    ap.add_argument("--model", default=os.path.join(REPO_ROOT, "models", "roadsigns.onnx"))
+    ap.add_argument("--height", type=int, required=True, help="input height in pixels (multiple of 32)")
+    ap.add_argument("--out", required=True)
+    a = ap.parse_args(argv)
+    set_input_height(a.model, a.out, a.height)
+    print(f"wrote {a.out}: input height {a.height}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
