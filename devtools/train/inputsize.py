@@ -6,7 +6,7 @@
 The detector is fully convolutional and its decoder reads the feature map's size from the
 graph (``Shape`` operators), so the same weights run on views of another height at the same
 pixel density. The plugin cuts its views at the model's input size (``imgsz``, height then
-width): 640 x 384 horizon views of 80 degrees span +-26.8 degrees of elevation instead of
+width): 640 x 384 horizon views of 80 degrees span +-26.7 degrees of elevation instead of
 +-40 degrees, leaving out sky and road, and cost about 0.6 of the square views' time
 (``models/README.md``, "Views that skip sky and road"). The file's ``imgsz`` metadata is
 updated and ``input_height`` records the change; a quantised file keeps its calibration.

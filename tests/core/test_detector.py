@@ -361,6 +361,40 @@ def test_the_shipped_int8_detector_is_the_float_one_quantised():
     assert b.scores == pytest.approx(a.scores, abs=0.05)
 
 
+def test_a_detector_set_to_a_lower_input_finds_the_same_boxes_in_the_band(tmp_path, scene_tiny):
+    """devtools.train.inputsize: the float detector set to 640 x 384 (its decoder reads the
+    feature map's size from the graph) runs on the plugin's 640 x 384 views, whose pixels
+    are the middle band of the square views (same focal length), and finds there the boxes
+    and classes the square model finds."""
+    from devtools.train.inputsize import set_input_height
+    from roadsigns.algorithms.paths import BUNDLED_FLOAT_MODEL
+    from roadsigns.core.panorama import read_panorama
+    low = str(tmp_path / "low.onnx")
+    set_input_height(BUNDLED_FLOAT_MODEL, low, 384)
+    with pytest.raises(SystemExit):
+        set_input_height(BUNDLED_FLOAT_MODEL, str(tmp_path / "bad.onnx"), 390)   # not a multiple of 32
+    square, banded = Detector(BUNDLED_FLOAT_MODEL, threads=1), Detector(low, threads=1)
+    assert square.input_size == (640, 640) and banded.input_size == (640, 384)
+    views_sq = ViewSet.default(size_px=square.input_size, upward=False)
+    views_lo = ViewSet.default(size_px=banded.input_size, upward=False)
+    assert {(v.width_px, v.height_px) for v in views_lo.views} == {(640, 384)}
+    assert views_lo.views[0].vfov_deg == pytest.approx(53.45, abs=0.01)      # +-26.7 deg, not +-40
+    folder, _ = scene_tiny
+    images = sorted(f for f in os.listdir(os.path.join(folder, "images")) if f.endswith(".jpg"))
+    compared = 0
+    for name in images[::3]:
+        pano = read_panorama(os.path.join(folder, "images", name))
+        for v_sq, v_lo in zip(views_sq.views, views_lo.views):
+            a = square.detect(v_sq.cut(pano), 0.4)
+            b = banded.detect(v_lo.cut(pano), 0.4)
+            inside = (a.boxes_xyxy[:, 1] >= 128 + 16) & (a.boxes_xyxy[:, 3] <= 512 - 16)
+            for box, klass in zip(a.boxes_xyxy[inside], a.class_ids[inside]):
+                d = np.abs(b.boxes_xyxy - (box - [0, 128, 0, 128])).max(axis=1) if len(b.scores) else [np.inf]
+                assert np.min(d) <= 4.0 and b.class_ids[int(np.argmin(d))] == klass, (name, box)
+                compared += 1
+    assert compared >= 5
+
+
 # --- a drive: decoding the next panorama while this one is detected ----------------------
 
 class MeanGreyDetector:
