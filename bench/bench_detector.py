@@ -9,7 +9,8 @@ measures several models in one run, on the same images, timed alternately.
    signs are reported separately and a detection on them is no false alarm. A detection
    on a back face is a false alarm. A second figure leaves out counted signs seen edge-on
    (under 8 px wide).
-2. GTSDB images 500-599 (held out from training) on 640 x 640 tiles at full resolution
+2. GTSDB images 500-599 (held out from training) on tiles of the model's input size (640 x 640
+   for a square model) at full resolution
    (6 per frame): per class, signs >= 20 px, the precision/recall curve and the best-F1
    threshold (where the plugin's default ``CONFIDENCE`` should sit).
 3. Per size band (box height 14-20, 20-35, 35-70, > 70 px) on both: recall of the signs of
@@ -236,24 +237,28 @@ def bench_panoramas(detectors, scene_dirs, confidence, max_images=None, min_box_
 
 # --- GTSDB ------------------------------------------------------------------------------------
 
-def tiles(width, height, size=TILE_PX):
+def tiles(width, height, tile_w=TILE_PX, tile_h=TILE_PX):
     """Tile origins covering the image, and each tile's core (a partition of the image):
     a detection is kept by the tile whose core holds its centre."""
-    def starts(n):
+    def starts(n, size):
         k = max(1, int(np.ceil((n - size) / (size * 0.6))) + 1) if n > size else 1
         return [int(round(i * (n - size) / max(k - 1, 1))) for i in range(k)] if n > size else [0]
-    xs, ys = starts(width), starts(height)
+    xs, ys = starts(width, tile_w), starts(height, tile_h)
 
-    def cores(s, n):
+    def cores(s, n, size):
         edges = [0] + [(s[i] + size + s[i + 1]) // 2 for i in range(len(s) - 1)] + [n]
         return list(zip(edges[:-1], edges[1:]))
-    return [(x, y, cx, cy) for x, cx in zip(xs, cores(xs, width)) for y, cy in zip(ys, cores(ys, height))]
+    return [(x, y, cx, cy) for x, cx in zip(xs, cores(xs, width, tile_w))
+            for y, cy in zip(ys, cores(ys, height, tile_h))]
 
 
 def detect_tiled(detector, image, confidence):
+    """Tiles of the model's input size (width x height) at full resolution, as the plugin
+    cuts its views at the model's input size."""
     h, w = image.shape[:2]
-    plan = tiles(w, h)
-    found = detector.detect_many([image[y:y + TILE_PX, x:x + TILE_PX] for x, y, _, _ in plan], confidence)
+    tile_w, tile_h = getattr(detector, "input_size", (TILE_PX, TILE_PX))
+    plan = tiles(w, h, tile_w, tile_h)
+    found = detector.detect_many([image[y:y + tile_h, x:x + tile_w] for x, y, _, _ in plan], confidence)
     boxes, scores, ids = [], [], []
     for (x, y, (cx0, cx1), (cy0, cy1)), det in zip(plan, found):
         b = det.boxes_xyxy + [x, y, x, y]
