@@ -250,9 +250,11 @@ class ViewSet:
 
     @classmethod
     def default(cls, size_px=640, upward: bool = True) -> "ViewSet":
-        """Horizon ring: 8 views of 80 deg (35 deg overlap, elevations -40..+40 deg at their
-        centres, about +-33 deg at their edges); upward ring for overhead and gantry signs:
-        6 views of 90 deg at pitch +35 deg (elevations -10..+80 deg at their centres)."""
+        """Horizon ring: 8 views of 80 deg across (35 deg overlap; square views span
+        elevations -40..+40 deg at their centres, about +-33 deg at their edges, 640 x 384
+        views +-26.7 deg); upward ring for overhead and gantry signs: 6 views of 90 deg at
+        pitch +35 deg (square: elevations -10..+80 deg at their centres). ``size_px``: the
+        detector's input size, an int or ``(width, height)``."""
         views = cls.ring(8, 0.0, 80.0, size_px)
         return views + cls.ring(6, 35.0, 90.0, size_px) if upward else views
 

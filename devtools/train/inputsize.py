@@ -57,6 +57,9 @@ def set_input_height(model_path: str, out_path: str, height_px: int) -> None:
         out = session.run(None, {session.get_inputs()[0].name: np.zeros((1, 3, height_px, width), np.float32)})
         if out[0].ndim != 3 or out[0].shape[-1] != 6:
             raise SystemExit(f"{model_path} at height {height_px} gives outputs of shape {out[0].shape}")
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)          # mkstemp makes it private
         os.replace(tmp, out_path)
     finally:
         if os.path.exists(tmp):

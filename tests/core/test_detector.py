@@ -346,14 +346,16 @@ def test_the_shipped_int8_detector_is_the_float_one_quantised():
     from roadsigns.algorithms.paths import BUNDLED_FLOAT_MODEL, BUNDLED_MODEL
     assert os.path.basename(BUNDLED_MODEL) == "roadsigns-int8.onnx"
     meta = [{p.key: p.value for p in onnx.load(path).metadata_props} for path in (BUNDLED_FLOAT_MODEL, BUNDLED_MODEL)]
-    for key in ("names", "training", "score_calibration", "imgsz"):
+    for key in ("names", "training", "score_calibration", "imgsz", "input_height"):
         assert meta[0][key] == meta[1][key], key
+    assert Detector(BUNDLED_MODEL, threads=1).input_size == (640, 384)   # views that skip sky and road
     assert "int8 static" in meta[1]["quantization"] and "quantization" not in meta[0]
     assert os.path.getsize(BUNDLED_MODEL) < 0.35 * os.path.getsize(BUNDLED_FLOAT_MODEL)
-    photo = os.path.join(REPO_ROOT, "..", "shared", "data", "gtsdb-train", "images", "00501.jpg")
+    photo = os.path.join(REPO_ROOT, "..", "shared", "data", "gtsdb-train", "images", "00505.jpg")
     if not os.path.isfile(photo):
         (pytest.fail if os.environ.get("CI", "").lower() == "true" else pytest.skip)(f"{photo} is not there")
-    image = np.ascontiguousarray(cv2.cvtColor(cv2.imread(photo), cv2.COLOR_BGR2RGB)[200:840, :640])
+    # a band of the photograph at the model's input size (640 x 384) holding two mandatory signs
+    image = np.ascontiguousarray(cv2.cvtColor(cv2.imread(photo), cv2.COLOR_BGR2RGB)[288:672, 240:880])
     f, q = Detector(BUNDLED_FLOAT_MODEL, threads=1), Detector(BUNDLED_MODEL, threads=1)
     a, b = f.detect(image, 0.3), q.detect(image, 0.3)
     assert len(a.scores) >= 2 and b.class_ids.tolist() == a.class_ids.tolist()
@@ -363,17 +365,18 @@ def test_the_shipped_int8_detector_is_the_float_one_quantised():
 
 def test_a_detector_set_to_a_lower_input_finds_the_same_boxes_in_the_band(tmp_path, scene_tiny):
     """devtools.train.inputsize: the float detector set to 640 x 384 (its decoder reads the
-    feature map's size from the graph) runs on the plugin's 640 x 384 views, whose pixels
-    are the middle band of the square views (same focal length), and finds there the boxes
-    and classes the square model finds."""
+    feature map's size from the graph; the bundled files are) runs on the plugin's 640 x 384
+    views, whose pixels are the middle band of the square views (same focal length), and
+    finds there the boxes and classes the square model (640 x 640, as trained) finds."""
     from devtools.train.inputsize import set_input_height
     from roadsigns.algorithms.paths import BUNDLED_FLOAT_MODEL
     from roadsigns.core.panorama import read_panorama
-    low = str(tmp_path / "low.onnx")
-    set_input_height(BUNDLED_FLOAT_MODEL, low, 384)
+    square_path, low = str(tmp_path / "square.onnx"), str(tmp_path / "low.onnx")
+    set_input_height(BUNDLED_FLOAT_MODEL, square_path, 640)   # as trained
+    set_input_height(square_path, low, 384)                   # as shipped
     with pytest.raises(SystemExit):
         set_input_height(BUNDLED_FLOAT_MODEL, str(tmp_path / "bad.onnx"), 390)   # not a multiple of 32
-    square, banded = Detector(BUNDLED_FLOAT_MODEL, threads=1), Detector(low, threads=1)
+    square, banded = Detector(square_path, threads=1), Detector(low, threads=1)
     assert square.input_size == (640, 640) and banded.input_size == (640, 384)
     views_sq = ViewSet.default(size_px=square.input_size, upward=False)
     views_lo = ViewSet.default(size_px=banded.input_size, upward=False)
