@@ -15,7 +15,7 @@ Everything runs through the plugin's own engine (``core.signcodes``: ``CodeClass
   and under 30 % occluded, cut from the panorama with ``cut_crop`` around its true box; and
   the same for boxes of at least 14 px, the smallest detection the chain reads (detectsigns'
   MIN_SIZE default);
-- **GTSDB 500-599, through the detector**: the bundled detector on 640-px tiles of each
+- **GTSDB 500-599, through the detector**: the bundled detector on tiles of its input size of each
   photograph (as ``bench_detector``); each detection matching a true sign (IoU >= 0.5) is cut
   with the model's margin and read; accuracy among them against the sign's GTSRB code;
 - **speed**: crops per second on ``--threads`` threads for crops of 12-120 px (cutting from a
