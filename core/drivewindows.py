@@ -229,7 +229,8 @@ class Spool:
     temporary folder, and read back whole.
 
     ``dtypes``: the dtype of each kind. At most ``flush_rows`` rows wait in memory (then
-    they are appended to their files); :meth:`read` flushes first. Use as a context manager
+    they are appended to their files); :meth:`read` flushes first, so once everything is
+    appended and flushed, reads may run in several threads. Use as a context manager
     (the folder is deleted on exit, or by :meth:`close`).
     """
 
@@ -254,6 +255,8 @@ class Spool:
                 self.flush()
 
     def flush(self) -> None:
+        if not self._pending:                 # nothing waits: reads may run in threads
+            return
         for (kind, k), parts in self._pending.items():
             with open(self._path(kind, k), "ab") as f:
                 for part in parts:
