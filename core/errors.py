@@ -8,7 +8,7 @@ translate the same way.
 """
 from __future__ import annotations
 
-from typing import Callable, Optional
+from typing import Any, Callable, List, Optional, Tuple
 
 
 class InputError(ValueError):
@@ -90,6 +90,23 @@ class Progress:
         if self._on_warning is not None:
             self._on_warning(message)
         return message
+
+    def recorder(self) -> Tuple["Progress", List[Tuple[str, Message]]]:
+        """A Progress for work in another thread and the list its log goes to: it reports no
+        progress, keeps its messages as ``(kind, message)`` (``info`` or ``warning``) for
+        :meth:`replay` in this thread, and checks this one's cancel."""
+        kept: List[Tuple[str, Message]] = []
+
+        def keep(kind: str) -> Callable[[Any], None]:
+            return lambda message: kept.append((kind, message))
+        return Progress(None, self._is_cancelled, keep("info"), keep("warning")), kept
+
+    def replay(self, kept: List[Tuple[str, Message]]) -> None:
+        """Log the messages a :meth:`recorder` kept, in their order."""
+        for kind, message in kept:
+            callback = self._on_info if kind == "info" else self._on_warning
+            if callback is not None:
+                callback(message)
 
 
 #: A Progress that reports nothing and never cancels.

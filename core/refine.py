@@ -52,7 +52,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, field
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 from scipy.cluster.hierarchy import fcluster, linkage
@@ -64,7 +64,7 @@ from scipy.spatial.distance import squareform
 from . import geometry, signcodes
 from .cloudsource import CloudSource, conform, open_cloud
 from .detections import Detections
-from .drivewindows import DriveAxis, Spool, Track, make_windows
+from .drivewindows import DriveAxis, Spool, Track, make_windows, map_in_order
 from .errors import SILENT, InputError, Message, Progress
 from .pointcloud import (
     GROUND_CLASS,
@@ -171,6 +171,7 @@ class RefineParams:
     """Tuning of :func:`refine_signs`; lengths in metres, angles in degrees."""
 
     normal_agreement_deg: float = 30.0
+    block_threads: int = 2               # blocks refined at once (numpy and scipy release the GIL)
     cross_class_factor: float = 0.5      # different classes merge within this share of the limits
     box_margin_deg: float = 0.12         # box grown for the point vote
     box_margin_frac: float = 0.03
@@ -1213,22 +1214,37 @@ class CloudBlocks:
 
     def extract_signs(self, params: RefineParams, progress: Progress = SILENT) -> List[SignDraft]:
         """:func:`extract_signs` block by block (drafts in the order of the groups), each
-        draft with the ground under its placement (:func:`ground_from_cloud`)."""
+        draft with the ground under its placement (:func:`ground_from_cloud`). Blocks are
+        read here and refined ``params.block_threads`` at a time; their log comes in block
+        order."""
         drafts: List[Optional[SignDraft]] = [None] * len(self.groups)
         has_cloud = self.index is not None or self.source is not None
-        done = 0
-        for b, gs in enumerate(self.blocks):
-            index = self._block(b) if has_cloud else None
+
+        def read_blocks() -> Iterator[Tuple[np.ndarray, Optional[TiledIndex]]]:
+            for b, gs in enumerate(self.blocks):
+                index = self._block(b) if has_cloud else None
+                self._cached = None
+                yield gs, index
+
+        def refine_block(block: Tuple[np.ndarray, Optional[TiledIndex]]):
+            gs, index = block
+            log, kept = progress.recorder()
+            out = []
             for g in gs:
-                draft = extract_draft(self.cand, self.groups[g], index, self.bright, params, progress)
+                draft = extract_draft(self.cand, self.groups[g], index, self.bright, params, log)
                 if draft is not None:
                     place = placement(self.cand, draft)
                     draft.ground = ground_from_cloud(index, place.centre, place.bottom_z, params)
+                out.append((int(g), draft))
+            return out, kept
+
+        done = 0
+        for out, kept in map_in_order(refine_block, read_blocks(), params.block_threads, progress.check):
+            progress.replay(kept)
+            for g, draft in out:
                 drafts[g] = draft
-                done += 1
-                progress.report(done / len(self.groups))
-            del index
-            self._cached = None
+            done += len(out)
+            progress.report(done / len(self.groups))
         return [d for d in drafts if d is not None]
 
     def ground_of(self, drafts: Sequence[SignDraft], params: RefineParams) -> None:

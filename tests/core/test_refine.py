@@ -773,6 +773,18 @@ def test_refining_block_by_block_gives_the_one_block_result(scene, candidates, i
     assert len(one.signs) == len(scene.signs)
 
 
+def test_blocks_refined_in_threads_give_the_same_signs_and_log_in_order(candidates, index):
+    runs = {}
+    for threads in (1, 2):
+        log = []
+        params = dataclasses.replace(R.RefineParams(), block_threads=threads)
+        result = R.refine_signs(candidates, index, params=params, block_m=7.0,
+                                progress=Progress(on_info=log.append, on_warning=log.append))
+        runs[threads] = (result, [str(m) for m in log])
+    _same_result(runs[2][0], runs[1][0])
+    assert runs[1][1] and runs[2][1] == runs[1][1]        # the blocks' messages in block order
+
+
 def test_refining_a_las_file_block_by_block_gives_the_one_block_result(scene, candidates, tmp_path):
     las = str(tmp_path / "cloud.las")
     signscene.write_las(scene, las)
