@@ -74,14 +74,19 @@ def bench_gtsrb(classifier):
     return accuracy_report(found, [names[k] for k in labels])
 
 
-def bench_panoramas(classifier, work, min_box_px=train_codes.MIN_PANO_BOX_PX):
+def bench_panoramas(classifier, work):
+    """The held-out panoramas' crops read once: the report on all of them (boxes of at least
+    ``MIN_PANO_BOX_PX``) and on those the chain reads (at least its ``MIN_SIZE``)."""
     names = list(classifier.names)
-    crops, labels = train_codes.heldout_pano(names, train_codes.held_out_scenes(),
-                                             os.path.join(work, "pano-heldout.npz"), min_box_px)
+    crops, labels, sides = train_codes.heldout_pano(names, train_codes.held_out_scenes(),
+                                                    os.path.join(work, "pano-heldout.npz"))
     if not len(labels):
-        return {"n": 0, "note": "no held-out scenes in bench/out (run bench_chain.py --seed 7 first)"}
+        note = {"n": 0, "note": "no held-out scenes in bench/out (run bench_chain.py --seed 7 first)"}
+        return note, note
     found, _ = read(classifier, crops)
-    return accuracy_report(found, [names[k] for k in labels])
+    truth = [names[k] for k in labels]
+    chain = np.flatnonzero(sides >= train_codes.chain_min_box_px())
+    return accuracy_report(found, truth), accuracy_report([found[k] for k in chain], [truth[k] for k in chain])
 
 
 def bench_gtsdb(classifiers, detector_path, confidence):
@@ -169,15 +174,14 @@ def main(argv=None):
     a = ap.parse_args(argv)
     os.makedirs(a.work, exist_ok=True)
     table = signcodes.read_codes_table(a.table)
-    paths = [a.model] + list(a.compare)
+    paths = list(dict.fromkeys(os.path.abspath(p) for p in [a.model] + list(a.compare)))  # each model once
     classifiers = [signcodes.CodeClassifier(p, table, threads=a.threads) for p in paths]
     results = {p: {"model": c.describe()} for p, c in zip(paths, classifiers)}
     for p, c in zip(paths, classifiers):
         train_codes.set_crop_px(c.input_px)  # held-out crops cut at this model's input size, as the chain's are
         results[p]["gtsrb_heldout_tracks"] = bench_gtsrb(c)
-        results[p]["heldout_generated_panoramas"] = bench_panoramas(c, a.work)
-        results[p]["heldout_generated_panoramas_min14px"] = bench_panoramas(c, a.work,
-                                                                           train_codes.CHAIN_MIN_BOX_PX)
+        (results[p]["heldout_generated_panoramas"],
+         results[p]["heldout_generated_panoramas_min14px"]) = bench_panoramas(c, a.work)
         results[p]["speed"] = bench_speed(c, a.threads)
     if not a.skip_gtsdb:
         for p, r in zip(paths, bench_gtsdb(classifiers, a.detector, a.confidence)):

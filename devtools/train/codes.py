@@ -58,9 +58,6 @@ TRAIN_SCENES = tuple(os.path.join(REPO_ROOT, "bench", "out", "train", "scenes", 
                      for name in ("default-100", "tiny-100") + tuple(f"default-{s}" for s in range(101, 107)))
 #: generated signs whose box's shorter side is below this (panorama pixels) give no crop
 MIN_PANO_BOX_PX = 10
-#: the detector's default minimum box (``core.detector.DEFAULT_MIN_BOX_PX``, detectsigns'
-#: MIN_SIZE): the chain reads no code of a smaller detection
-CHAIN_MIN_BOX_PX = 14.0
 #: every this-many-th training track of each class (offset 1) is validation
 VAL_EVERY = 9
 #: share of each source in a batch
@@ -456,19 +453,25 @@ def heldout_gtsrb(names, part: str = "test"):
     return crops, np.array([lab for _, _, lab, _ in items]), [key for *_, key in items]
 
 
-def heldout_pano(names, scene_dirs, cache_path: str, min_box_px: float = MIN_PANO_BOX_PX):
-    """Crops of held-out generated panoramas at the chain's margin (no jitter), of the signs
-    whose box's shorter side is at least ``min_box_px``."""
-    items = pano_crops(scene_dirs, names, cache_path)
-    out, labels = [], []
-    for crop, label, side in items:
-        if side < min_box_px:
-            continue
+def chain_min_box_px() -> float:
+    """detectsigns' ``MIN_SIZE`` default (``core.detector.DEFAULT_MIN_BOX_PX``): the chain
+    reads no code of a smaller detection."""
+    return float(import_roadsigns("roadsigns.core.detector").DEFAULT_MIN_BOX_PX)
+
+
+def heldout_pano(names, scene_dirs, cache_path: str):
+    """Crops of held-out generated panoramas at the chain's margin (no jitter), their labels
+    and the shorter side of each sign's box in panorama pixels (all at least
+    :data:`MIN_PANO_BOX_PX`)."""
+    out, labels, sides = [], [], []
+    for crop, label, side in pano_crops(scene_dirs, names, cache_path):
         n = crop.shape[0]
         inner = n / (1.0 + 2.0 * (CROP_MARGIN + 0.1))
         out.append(crop_square(crop, ((n - inner) / 2, (n - inner) / 2, (n + inner) / 2, (n + inner) / 2)))
         labels.append(int(label))
-    return np.stack(out) if out else np.zeros((0, CROP_PX, CROP_PX, 3), np.uint8), np.array(labels, np.int64)
+        sides.append(float(side))
+    crops = np.stack(out) if out else np.zeros((0, CROP_PX, CROP_PX, 3), np.uint8)
+    return crops, np.array(labels, np.int64), np.array(sides)
 
 
 # --- model ---------------------------------------------------------------------------------
@@ -698,13 +701,15 @@ def evaluate_net(net, names, dev, work, log=print) -> dict:
 def panorama_figures(probabilities, names, work: str) -> dict:
     """Accuracy on the held-out panoramas' crops (``probabilities``: BGR crops -> ``(n, C)``):
     every sign box of at least :data:`MIN_PANO_BOX_PX`, and those of at least
-    :data:`CHAIN_MIN_BOX_PX`, the smallest detection the chain reads a code of."""
+    :func:`chain_min_box_px`, the smallest detection the chain reads a code of."""
+    px, py, sides = heldout_pano(names, held_out_scenes(), os.path.join(work, "pano-heldout.npz"))
+    if not len(py):
+        return {}
+    predicted = np.asarray(probabilities(px)).argmax(axis=1)
     figures = {}
-    for key, min_box_px in (("", MIN_PANO_BOX_PX), ("_min14px", CHAIN_MIN_BOX_PX)):
-        px, py = heldout_pano(names, held_out_scenes(), os.path.join(work, "pano-heldout.npz"), min_box_px)
-        if len(py):
-            figures["heldout_panorama_accuracy" + key] = round(accuracy(probabilities(px), py), 4)
-            figures["heldout_panorama_crops" + key] = int(len(py))
+    for key, keep in (("", np.ones(len(py), bool)), ("_min14px", sides >= chain_min_box_px())):
+        figures["heldout_panorama_accuracy" + key] = round(float(np.mean(predicted[keep] == py[keep])), 4)
+        figures["heldout_panorama_crops" + key] = int(keep.sum())
     return figures
 
 
