@@ -46,7 +46,7 @@ import math
 import os
 import time
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Dict, List, Optional, Tuple, Union
+from typing import TYPE_CHECKING, Dict, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
 import shapely
@@ -55,7 +55,7 @@ from scipy.spatial import cKDTree
 from . import geometry
 from .cloudpanels import PanelCandidate, PanelParams, WindowPoints, find_panels, local_features, panel_frame
 from .cloudsource import CloudSource, open_cloud
-from .drivewindows import DriveAxis, Track, Window, WindowSpool, as_track, make_windows, map_in_order
+from .drivewindows import BLOCK_THREADS, DriveAxis, Track, Window, WindowSpool, as_track, make_windows, map_in_order
 from .errors import SILENT, InputError, Message, Progress
 from .pointcloud import DEFAULT_CHUNK_POINTS, GROUND_CLASS, xyz_of
 from .poles import GANTRY, Pole, PoleParams, classify_pole, find_poles, promote_far_posts
@@ -117,7 +117,7 @@ class CloudSignParams:
     edge_clearance_m: float = 1.0       # objects this close to the corridor's edge are cut by it
     window_m: float = 50.0
     margin_m: float = 10.0
-    window_threads: int = 2             # windows searched at once (numpy and scipy release the GIL)
+    window_threads: int = BLOCK_THREADS  # windows searched at once (numpy and scipy release the GIL)
     ground_cell_m: float = 0.25
     min_height_m: float = 0.1           # candidate points above the ground model
     feature_min_height_m: float = 0.75  # local PCA features only above this (panels, pole heads)
@@ -621,9 +621,12 @@ def find_signs_in_cloud(cloud_path: Union[str, CloudSource], track: Union[Track,
         max_window_points = 0
         win_progress = progress.sub(0.5, 0.98)
 
-        def search(window: Window) -> _WindowResult:
-            rows = spool.read("points", window.index)
-            ground_rows = spool.read("ground", window.index)
+        def read_windows() -> Iterator[Tuple[Window, np.ndarray, np.ndarray]]:
+            for window in windows:            # read in this thread, searched in the pool's
+                yield window, spool.read("points", window.index), spool.read("ground", window.index)
+
+        def search(item: Tuple[Window, np.ndarray, np.ndarray]) -> _WindowResult:
+            window, rows, ground_rows = item
             out = _WindowResult(n_points=len(rows) + len(ground_rows),
                                 diagnostics=[] if diagnostics is not None else None)
             if len(rows) and len(ground_rows):
@@ -631,7 +634,7 @@ def find_signs_in_cloud(cloud_path: Union[str, CloudSource], track: Union[Track,
                                                        params, out.rejected, out.diagnostics)
             return out
 
-        for i, res in enumerate(map_in_order(search, windows, params.window_threads, win_progress.check)):
+        for i, res in enumerate(map_in_order(search, read_windows(), params.window_threads, win_progress.check)):
             max_window_points = max(max_window_points, res.n_points)
             found.extend(res.found)
             poles.extend(res.poles)

@@ -177,6 +177,10 @@ def make_windows(length_m: float, window_m: float) -> List[Window]:
     return [Window(k, float(edges[k]), float(edges[k + 1])) for k in range(n)]
 
 
+#: Windows or blocks worked on at once by the cloud stages (:func:`map_in_order`; the
+#: machines this is measured on have two cores).
+BLOCK_THREADS = 2
+
 _ItemT = TypeVar("_ItemT")
 _ResultT = TypeVar("_ResultT")
 
@@ -229,8 +233,7 @@ class Spool:
     temporary folder, and read back whole.
 
     ``dtypes``: the dtype of each kind. At most ``flush_rows`` rows wait in memory (then
-    they are appended to their files); :meth:`read` flushes first, so once everything is
-    appended and flushed, reads may run in several threads. Use as a context manager
+    they are appended to their files); :meth:`read` flushes first. Use as a context manager
     (the folder is deleted on exit, or by :meth:`close`).
     """
 
@@ -255,8 +258,6 @@ class Spool:
                 self.flush()
 
     def flush(self) -> None:
-        if not self._pending:                 # nothing waits: reads may run in threads
-            return
         for (kind, k), parts in self._pending.items():
             with open(self._path(kind, k), "ab") as f:
                 for part in parts:

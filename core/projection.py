@@ -39,7 +39,7 @@ from scipy.spatial import cKDTree
 from . import geometry
 from .cloudsource import CloudSource, open_cloud
 from .detections import DETECTION_POSE_FIELDS, Detections
-from .drivewindows import DriveAxis, Track, WindowSpool, make_windows, map_in_order
+from .drivewindows import BLOCK_THREADS, DriveAxis, Track, WindowSpool, make_windows, map_in_order
 from .errors import SILENT, InputError, Progress
 from .pointcloud import GROUND_CLASS, CropRegion, TiledIndex, xyz_of
 from .schema import Schema, fields
@@ -249,7 +249,7 @@ class ProjectionParams:
     min_range_m: float = 0.5
     tile_size_m: float = 5.0
     block_m: float = 150.0            # metres of drive indexed at a time (memory follows it)
-    block_threads: int = 2            # blocks searched at once (numpy and scipy release the GIL)
+    block_threads: int = BLOCK_THREADS  # blocks searched at once (numpy and scipy release the GIL)
     cluster_tolerance_m: float = 0.15  # Euclidean clustering: at least this, or
     cluster_tolerance_per_m: float = 0.008  # this x range
     min_points: int = 12              # points a surface needs

@@ -64,7 +64,7 @@ from scipy.spatial.distance import squareform
 from . import geometry, signcodes
 from .cloudsource import CloudSource, conform, open_cloud
 from .detections import Detections
-from .drivewindows import DriveAxis, Spool, Track, make_windows, map_in_order
+from .drivewindows import BLOCK_THREADS, DriveAxis, Spool, Track, make_windows, map_in_order
 from .errors import SILENT, InputError, Message, Progress
 from .pointcloud import (
     GROUND_CLASS,
@@ -171,7 +171,7 @@ class RefineParams:
     """Tuning of :func:`refine_signs`; lengths in metres, angles in degrees."""
 
     normal_agreement_deg: float = 30.0
-    block_threads: int = 2               # blocks refined at once (numpy and scipy release the GIL)
+    block_threads: int = BLOCK_THREADS   # blocks refined at once (numpy and scipy release the GIL)
     cross_class_factor: float = 0.5      # different classes merge within this share of the limits
     box_margin_deg: float = 0.12         # box grown for the point vote
     box_margin_frac: float = 0.03
