@@ -25,7 +25,7 @@ import contextlib
 import os
 import tempfile
 from dataclasses import dataclass, field
-from typing import Any, Iterable, Iterator, List, Optional, Tuple, Union
+from typing import Any, Callable, Iterable, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -220,6 +220,37 @@ class PointSpool:
         self.spool.close()
 
 
+def two_passes(read: Callable[[Progress, bool], Iterable[Any]], grid: GroundGrid, params: Params,
+               reset_classes: bool, writer: CloudWriter, spool_folder: Optional[str], progress: Progress,
+               add_to_grid: Optional[Callable[[GroundGrid], None]] = None) -> Tuple[int, int]:
+    """The built-in engine's two passes over one cloud (or tile) into ``writer``:
+    ``(eligible points, ground points)``.
+
+    Pass 1 reads ``read(progress, again)`` (chunks of laspy records, cropped) into ``grid``,
+    then ``add_to_grid(grid)`` (a tile's halo), and keeps the points in a :class:`PointSpool`
+    in ``spool_folder`` (None: no room on the disk, and ``again`` tells ``read`` that the
+    cloud is read a second time); pass 2 classifies them (from the spool, or ``read`` again)
+    and writes them. :class:`~.lattice.OutsideGridError` comes from pass 1 only."""
+    with PointSpool(writer.header, spool_folder) if spool_folder else contextlib.nullcontext() as spool:
+        n_eligible = n_ground = 0
+        for pts in read(progress.sub(0.0, 0.45), spool is None):
+            _, xyz = eligible_xyz(pts, params)
+            n_eligible += len(xyz)
+            grid.accumulate(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+            if spool is not None:
+                spool.add(pts)
+        if add_to_grid is not None:
+            add_to_grid(grid)
+        grid.finish(progress.sub(0.45, 0.55))
+        second = spool.chunks(progress.sub(0.55, 1.0)) if spool is not None else read(progress.sub(0.55, 1.0), True)
+        for pts in second:
+            if len(pts):
+                pts, n = classified(pts, grid, params, reset_classes, classify=n_eligible > 0)
+                writer.write(conform(pts, writer.header))
+                n_ground += n
+    return n_eligible, n_ground
+
+
 def _builtin_engine(source: CloudSource, output_path: str, params: Params,
                     region: Optional[CropRegion], header: Any, out_crs_wkt: Optional[str],
                     reset_classes: bool, chunk_points: int, tile_size_m: Optional[float],
@@ -233,53 +264,35 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
 
     masks: List[np.ndarray] = []  # the crop of each chunk, when the cloud is read a second time
 
-    def kept(chunk: Any, k: int, again: bool) -> Any:
-        """The chunk's points inside the region; with ``again``, its mask is kept for (or
+    def read(reading: Progress, again: bool) -> Iterator[Any]:
+        """The chunks inside the region; with ``again``, each chunk's mask is kept for (or
         taken from) the second read."""
-        if region is None:
-            return chunk
-        if not again:
-            return chunk[region.mask(chunk.x, chunk.y)]
-        if len(masks) <= k:
-            masks.append(np.packbits(region.mask(chunk.x, chunk.y)))
-        return chunk[np.unpackbits(masks[k], count=len(chunk)).astype(bool)]
+        for k, chunk in enumerate(source.iter_chunks(chunk_points, reading, area=area)):
+            if region is None:
+                yield chunk
+            elif not again:
+                yield chunk[region.mask(chunk.x, chunk.y)]
+            else:
+                if len(masks) <= k:
+                    masks.append(np.packbits(region.mask(chunk.x, chunk.y)))
+                yield chunk[np.unpackbits(masks[k], count=len(chunk)).astype(bool)]
 
     out_header = output_header(header, out_crs_wkt)
     spool_folder = os.path.dirname(output_path)
-    spooling = grid is not None and room_to_spool(source.point_count, header.point_format.size, spool_folder)
-    if grid is not None and not spooling:
+    room = grid is not None and room_to_spool(source.point_count, header.point_format.size, spool_folder)
+    if grid is not None and not room:
         progress.info("Not enough free disk space in {folder} to keep the points between the two passes: "
                       "the cloud is read twice", folder=spool_folder)
-    n_eligible = 0
-    with PointSpool(out_header, spool_folder) if spooling else contextlib.nullcontext() as spool:
-        try:
-            if grid is not None:
-                for k, chunk in enumerate(source.iter_chunks(chunk_points, progress.sub(0.0, 0.45), area=area)):
-                    pts = kept(chunk, k, again=spool is None)
-                    _, xyz = eligible_xyz(pts, params)
-                    n_eligible += len(xyz)
-                    grid.accumulate(xyz[:, 0], xyz[:, 1], xyz[:, 2])
-                    if spool is not None:
-                        spool.add(pts)
-                grid.finish(progress.sub(0.45, 0.55))
-        except OutsideGridError as e:
-            raise InputError("Cannot read {path}: the file is corrupt ({detail})",
-                             path=source.path, detail=str(e))
-        n_out = n_ground = 0
-        with CloudWriter(output_path, out_header) as writer:
-            if grid is not None:
-                if spool is not None:
-                    second = spool.chunks(progress.sub(0.55, 1.0))
-                else:
-                    second = (kept(chunk, k, again=True) for k, chunk in
-                              enumerate(source.iter_chunks(chunk_points, progress.sub(0.55, 1.0), area=area)))
-                for pts in second:
-                    if len(pts) == 0:
-                        continue
-                    pts, n = classified(pts, grid, params, reset_classes, classify=n_eligible > 0)
-                    writer.write(conform(pts, writer.header))
-                    n_ground += n
-            n_out = writer.point_count
+    n_eligible = n_ground = 0
+    with CloudWriter(output_path, out_header) as writer:
+        if grid is not None:
+            try:
+                n_eligible, n_ground = two_passes(read, grid, params, reset_classes, writer,
+                                                  spool_folder if room else None, progress)
+            except OutsideGridError as e:
+                raise InputError("Cannot read {path}: the file is corrupt ({detail})",
+                                 path=source.path, detail=str(e))
+        n_out = writer.point_count
     if n_out and not n_eligible:
         warnings.append(Message("No point of {path} has the returns '{returns}': nothing was "
                                 "classified", path=source.path, returns=params.returns))

@@ -29,10 +29,9 @@ each tile goes through PDAL alone with its neighbours' points around it (:mod:`.
 """
 from __future__ import annotations
 
-import contextlib
 import os
 import tempfile
-from typing import Any, Dict, Iterable, List, Optional, Tuple, Union
+from typing import Any, Dict, Iterable, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
 
@@ -43,15 +42,14 @@ from ..pointcloud import DEFAULT_CHUNK_POINTS, CloudWriter, CropRegion, output_h
 from .csf import CsfGrid, CsfParams
 from .engine import (
     GroundResult,
-    PointSpool,
     builtin_available,
-    classified,
     crop_region,
     eligible_xyz,
     grid_bounds,
     make_grid,
     pdal_runner_for,
     room_to_spool,
+    two_passes,
 )
 from .lattice import Lattice, OutsideGridError
 from .params import Params, engine_name, method_name, method_params
@@ -259,51 +257,40 @@ def _spool_halos(source: CloudSource, work: List[int], grown: Dict[int, BBoxXY],
 def _classify_tile(source: CloudSource, k: int, bounds: BBoxXY, spool_path: Optional[str], path: str,
                    region: Optional[CropRegion], params: Params, crs_wkt: Optional[str], reset_classes: bool,
                    chunk_points: int, tile_buffer_m: Optional[float], progress: Progress) -> Tuple[int, int]:
-    """Passes 1 and 2 of one tile into ``path`` (its halo's points in the file ``spool_path``);
-    ``(points written, ground points)``; no file when no point is kept. Pass 1 keeps the
-    tile's points in a :class:`~.engine.PointSpool` beside ``path`` when the disk has room."""
+    """Passes 1 and 2 of one tile into ``path`` (:func:`~.engine.two_passes`, its halo's
+    points from the file ``spool_path`` added to the grid); ``(points written, ground
+    points)``; no file when no point is kept."""
     tile: Tile = source.tiles[k]
     grid = make_grid(params, bounds, float(source.bounds[2]), None, tile_buffer_m)
     header = output_header(template_header(source.tile_header(k)), crs_wkt)
     folder = os.path.dirname(path)
     room = room_to_spool(tile.point_count, header.point_format.size, folder)
-    with PointSpool(header, folder) if room else contextlib.nullcontext() as spool:
-        n_ground = n_eligible = 0
-        try:
-            for chunk in _tile_chunks(source, tile, chunk_points, progress.sub(0.0, 0.45)):
-                pts = _kept(chunk, region)
-                _, xyz = eligible_xyz(pts, params)
-                n_eligible += len(xyz)
-                grid.accumulate(xyz[:, 0], xyz[:, 1], xyz[:, 2])
-                if spool is not None:
-                    spool.add(pts)
-            if spool_path is not None:
-                halo = np.fromfile(spool_path, dtype=_HALO_DTYPE)
-                on = _on_grid(grid, halo["x"], halo["y"], isinstance(params, CsfParams))
-                grid.accumulate(halo["x"][on], halo["y"][on], halo["z"][on])
-                del halo
-            grid.finish(progress.sub(0.45, 0.55))
-        except OutsideGridError as e:
-            raise InputError("Cannot read {path}: the file is corrupt ({detail})", path=tile.path, detail=str(e))
-        writer = CloudWriter(path, header)
-        try:
-            reading = progress.sub(0.55, 1.0)
-            second = (spool.chunks(reading) if spool is not None else
-                      (_kept(chunk, region) for chunk in _tile_chunks(source, tile, chunk_points, reading)))
-            for pts in second:
-                if len(pts):
-                    pts, n = classified(pts, grid, params, reset_classes, classify=n_eligible > 0)
-                    writer.write(pts)
-                    n_ground += n
-        except BaseException:
-            writer.abort()
-            raise
-        n_out = writer.point_count
-        if n_out:
-            writer.commit()
-        else:
-            writer.abort()
-        return n_out, n_ground
+
+    def read(reading: Progress, again: bool) -> Iterator[Any]:
+        return (_kept(chunk, region) for chunk in _tile_chunks(source, tile, chunk_points, reading))
+
+    def add_halo(grid: Any) -> None:
+        if spool_path is not None:
+            halo = np.fromfile(spool_path, dtype=_HALO_DTYPE)
+            on = _on_grid(grid, halo["x"], halo["y"], isinstance(params, CsfParams))
+            grid.accumulate(halo["x"][on], halo["y"][on], halo["z"][on])
+
+    writer = CloudWriter(path, header)
+    try:
+        _, n_ground = two_passes(read, grid, params, reset_classes, writer, folder if room else None, progress,
+                                 add_to_grid=add_halo)
+    except OutsideGridError as e:
+        writer.abort()
+        raise InputError("Cannot read {path}: the file is corrupt ({detail})", path=tile.path, detail=str(e))
+    except BaseException:
+        writer.abort()
+        raise
+    n_out = writer.point_count
+    if n_out:
+        writer.commit()
+    else:
+        writer.abort()
+    return n_out, n_ground
 
 
 def _on_grid(grid: Any, x: np.ndarray, y: np.ndarray, nodes: bool) -> np.ndarray:
