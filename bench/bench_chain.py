@@ -42,7 +42,7 @@ def load_scene(args):
         return scene_dir, json.load(f)
 
 
-def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=0.0, upward_views=True, classifier=None):
+def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=None, upward_views=None, classifier=None):
     """(stage id, parameters, output key, what it needs) in chain order."""
     p = lambda name: os.path.join(scene_dir, name)  # noqa: E731
     w = lambda name: os.path.join(work, name)  # noqa: E731
@@ -56,7 +56,8 @@ def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=0.0, upward_
                                   BORESIGHT_ROLL=bore[0], BORESIGHT_PITCH=bore[1], BORESIGHT_YAW=bore[2],
                                   OUTPUT=w("stations.gpkg")), "OUTPUT", []),
         ("detectsigns", dict(STATIONS=w("stations.gpkg"), CONFIDENCE=0.4, OUTPUT=w("detections.gpkg"),
-                             MIN_STATION_SPACING_M=station_spacing_m, UPWARD_VIEWS=upward_views,
+                             **({"MIN_STATION_SPACING_M": station_spacing_m} if station_spacing_m is not None else {}),
+                             **({"UPWARD_VIEWS": upward_views} if upward_views is not None else {}),
                              **({"MODEL": model} if model else {}),
                              **({"CLASSIFIER": classifier} if classifier else {})),
          "OUTPUT", ["importtrajectory"]),
@@ -110,11 +111,15 @@ def main(argv=None):
                         help="the detector (bundled or --model), or the scene's true boxes")
     parser.add_argument("--model", help="an ONNX model instead of the bundled one")
     parser.add_argument("--classifier", help="a sign-code classifier (ONNX) instead of the bundled one")
-    parser.add_argument("--station-spacing", type=float, default=0.0, metavar="M",
+    parser.add_argument("--station-spacing", type=float, metavar="M",
                         help="detectsigns' MIN_STATION_SPACING_M: detect only on stations at least M metres "
-                             "apart (0: every station)")
-    parser.add_argument("--no-upward", action="store_true",
-                        help="detectsigns without its upward views (UPWARD_VIEWS false: the 8 horizon views only)")
+                             "apart (0: every station; default: the algorithm's)")
+    upward = parser.add_mutually_exclusive_group()
+    upward.add_argument("--no-upward", dest="upward", action="store_false", default=None,
+                        help="detectsigns without its upward views (UPWARD_VIEWS false: the 8 horizon views only; "
+                             "the algorithm's default)")
+    upward.add_argument("--upward", dest="upward", action="store_true", default=None,
+                        help="detectsigns with its upward views (UPWARD_VIEWS true)")
     parser.add_argument("--from", dest="from_stage", metavar="STAGE",
                         help="reuse the outputs of the stages before STAGE from an earlier run "
                              "(e.g. --from refinesigns while tuning the refinement)")
@@ -123,7 +128,8 @@ def main(argv=None):
     scene_dir, meta = load_scene(args)
     work = os.path.join(REPO_ROOT, "bench", "out", "chain-{}-{}-{}{}".format(
         os.path.basename(os.path.normpath(scene_dir)), args.detections, args.seed,
-        f"-spacing{args.station_spacing:g}" if args.station_spacing else "") + ("-noupward" if args.no_upward else "")
+        f"-spacing{args.station_spacing:g}" if args.station_spacing is not None else "")
+        + {None: "", False: "-noupward", True: "-upward"}[args.upward]
         + ("-classifier-" + os.path.splitext(os.path.basename(args.classifier))[0] if args.classifier else ""))
     os.makedirs(work, exist_ok=True)
     qgis = QgisProcess()
@@ -132,9 +138,9 @@ def main(argv=None):
 
     figures = {"scene": scene_dir, "preset": args.preset, "seed": args.seed,
                "detections": args.detections, "station_spacing_m": args.station_spacing,
-               "upward_views": not args.no_upward, "classifier": args.classifier, "stages": {}}
+               "upward_views": args.upward, "classifier": args.classifier, "stages": {}}
     done = set()
-    plan = stage_plan(scene_dir, meta, work, args.model, args.station_spacing, not args.no_upward, args.classifier)
+    plan = stage_plan(scene_dir, meta, work, args.model, args.station_spacing, args.upward, args.classifier)
     if args.from_stage and args.from_stage not in [p[0] for p in plan]:
         parser.error(f"--from: no stage {args.from_stage}")
     reuse = args.from_stage is not None

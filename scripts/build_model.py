@@ -76,6 +76,7 @@ def static(value):
 
 def build():
     from roadsigns.core.detector import DEFAULT_MIN_STATION_SPACING_M  # after import_roadsigns()
+    from roadsigns.core.signcodes import DEFAULT_CODE_CONFIDENCE
     model = QgsProcessingModelAlgorithm("Sign inventory (whole chain)", "Road sign inventory", "roadsigns")
     model.setName("signinventory")
     model.setHelpContent({"ALG_DESC": (
@@ -122,7 +123,8 @@ def build():
                                     optional=True),
          "The codes table of your classifier (code;name;class, format in models/README.md), or empty for the "
          "bundled German table."),
-        (QgsProcessingParameterNumber("CODE_CONFIDENCE", "Minimum code confidence", DOUBLE, 0.5, False, 0, 1),
+        (QgsProcessingParameterNumber("CODE_CONFIDENCE", "Minimum code confidence", DOUBLE, DEFAULT_CODE_CONFIDENCE,
+                                      False, 0, 1),
          "A sign's voted code whose support (code_score) is below this is left empty."),
     ]
     for name, default, help_text in (("LEVER_ARM_X", 0.0, "Lever arm x, forward (m)."),
