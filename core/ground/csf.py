@@ -126,10 +126,10 @@ def run_csf_cloth(xyz: np.ndarray, params: CsfParams) -> np.ndarray:
     csf.params.cloth_resolution = float(params.resolution)
     csf.params.rigidness = int(params.rigidness)
     csf.params.interations = int(params.iterations)
-    ground, off_ground = CSF.VecInt(), CSF.VecInt()
+    # do_cloth_export runs the whole simulation itself (do_filtering would run it a second
+    # time only to classify the points, which CsfGrid.classify does): the same cloth
     with _native_stdout_silenced():
         csf.setPointCloud(np.ascontiguousarray(xyz, dtype=np.float64))
-        csf.do_filtering(ground, off_ground, False)
         cloth = csf.do_cloth_export()
     return np.asarray(cloth, dtype=np.float64).reshape(-1, 3)
 

@@ -123,6 +123,45 @@ def test_csf_thinning_gives_the_full_cloth():
     np.testing.assert_allclose(thinned, full, atol=1e-5)
 
 
+def test_csf_cloth_is_the_library_cloth_after_its_filtering():
+    """run_csf_cloth simulates once (``do_cloth_export`` alone); the cloth is the one the
+    library exports after its own full filtering run, and the library's ground points are
+    those within the threshold of it, as CsfGrid.classify reads it."""
+    import CSF
+
+    rng = np.random.default_rng(3)
+    n = 30000
+    xyz = np.column_stack([rng.uniform(0, 40, n), rng.uniform(0, 25, n), np.zeros(n)])
+    xyz[:, 2] = 0.05 * xyz[:, 0] + 0.3 * np.sin(xyz[:, 1] / 4) + rng.normal(0, 0.02, n)
+    xyz[0, :2] = 0.0  # the bounding-box corner on a node of the world grid
+    off = rng.random(n) < 0.25
+    xyz[off, 2] += rng.uniform(0.5, 4.0, off.sum())  # cars, walls, vegetation
+    params = ground.CsfParams(resolution=0.5, threshold=0.2)
+    ours = ground.run_csf_cloth(xyz, params)
+
+    lib = CSF.CSF()
+    lib.params.bSloopSmooth = params.smooth
+    lib.params.time_step = params.step
+    lib.params.class_threshold = params.threshold
+    lib.params.cloth_resolution = params.resolution
+    lib.params.rigidness = params.rigidness
+    lib.params.interations = params.iterations
+    lib.setPointCloud(xyz)
+    on, _ = CSF.VecInt(), CSF.VecInt()
+    lib.do_filtering(on, _, False)
+    theirs = np.asarray(lib.do_cloth_export()).reshape(-1, 3)
+    np.testing.assert_array_equal(ours, theirs)
+
+    grid = ground.CsfGrid((0, 0, 40, 25), 0.0, params, tile_size_m=1000)
+    grid.accumulate(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+    grid.finish()
+    classes = grid.classify(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+    library_ground = np.zeros(n, bool)
+    library_ground[np.asarray(on, dtype=np.int64)] = True
+    assert 0.6 < library_ground.mean() < 0.8
+    assert (classes == library_ground).mean() > 0.999
+
+
 def test_classes_kept_or_reset(tmp_path):
     scene = cloudgen.road_scene(length_m=40.0, density_per_m2=60.0, seed=7)
     initial = np.where(scene.semantic == 6, 6, 0).astype(np.uint8)
