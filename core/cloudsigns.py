@@ -11,11 +11,11 @@ One streaming read of the cloud, then one pass over the windows; memory is bound
 window's points at any drive length:
 
 1. **Read** (:meth:`.cloudsource.CloudSource.iter_chunks`: one file, or of a folder of tiles
-   or a virtual point cloud only the tiles, or COPC nodes, that the corridor meets): each
-   point is located on the drive
-   (:mod:`.drivewindows`); ground points (class 2) in the corridor are kept thinned to one
-   per ``ground_cell_m`` cell and chunk, non-ground points within ``corridor_m`` of the
-   track and in a height band around the sensor are kept; all are appended to files per
+   or a virtual point cloud only the tiles, or COPC nodes, that the corridor meets): points
+   are located on the drive (:mod:`.drivewindows`); ground points (class 2) in the corridor
+   are kept thinned to one per ``ground_cell_m`` cell and chunk (the first in the corridor;
+   only as many ground points are located as that needs), non-ground points within
+   ``corridor_m`` of the track and in a height band around the sensor are kept; all are appended to files per
    window of ``window_m`` of drive (plus ``margin_m`` on each side). An intensity histogram
    by range (:class:`.retroreflectivity.IntensityHistogram`) gives, after the pass, the
    range exponent and the adaptive bright threshold (both stated in the log).
@@ -46,7 +46,7 @@ import math
 import os
 import time
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Dict, Iterator, List, Optional, Tuple, Union
+from typing import TYPE_CHECKING, Callable, Dict, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
 import shapely
@@ -293,14 +293,47 @@ def _check_dimensions(path: str, header) -> bool:
 # Pass 1: read and spool
 # --------------------------------------------------------------------------------------
 
-def _thin_ground(xyz: np.ndarray, cell_m: float) -> np.ndarray:
-    """One ground point per ``cell_m`` cell (the first of each)."""
+#: Slack (metres) beyond a ground cell's diagonal for the corridor test's bends along the
+#: drive axis: a cell whose first point is farther outside than both has no point inside.
+AXIS_SLACK_M = 0.5
+
+
+def _cell_keys(xy: np.ndarray, cell_m: float) -> np.ndarray:
+    """One integer per ``cell_m`` square cell of the points ``xy`` ``(n, 2)``."""
+    cells = np.floor(xy / cell_m).astype(np.int64)
+    cells -= cells.min(axis=0)
+    return cells[:, 0] * (int(cells[:, 1].max()) + 1) + cells[:, 1]
+
+
+def cell_reach_m(cell_m: float) -> float:
+    """How far outside the corridor the first ground point of a ``cell_m`` cell may lie
+    while another point of the cell is inside (its diagonal and :data:`AXIS_SLACK_M`)."""
+    return math.sqrt(2.0) * cell_m + AXIS_SLACK_M
+
+
+def _thin_ground(xyz: np.ndarray, cell_m: float,
+                 inside: Callable[[np.ndarray], Tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
+    """Ground points ``xyz`` (in reading order) thinned to one per ``cell_m`` cell: the
+    first point of each cell inside the corridor, in reading order.
+
+    ``inside(rows)`` gives two masks over ``rows``: inside the corridor, and within
+    :func:`cell_reach_m` of it. It needs the points located on the drive, so it sees each
+    cell's first point, and the other points only of the cells whose first point is outside
+    but that near: most ground points are never located. (A cell whose first point is
+    farther out lies wholly outside: the corridor test moves by no more than a point does.)"""
     if len(xyz) == 0:
         return np.zeros(0, np.int64)
-    cells = np.floor(xyz[:, :2] / cell_m).astype(np.int64)
-    cells -= cells.min(axis=0)
-    _, first = np.unique(cells[:, 0] * (int(cells[:, 1].max()) + 1) + cells[:, 1], return_index=True)
-    return np.sort(first)
+    keys = _cell_keys(xyz[:, :2], cell_m)
+    _, first = np.unique(keys, return_index=True)
+    ok, near = inside(first)
+    kept = [first[ok]]
+    rest = np.flatnonzero(np.isin(keys, keys[first[near & ~ok]]))
+    rest = rest[~np.isin(rest, first)]
+    if len(rest):
+        rest = rest[inside(rest)[0]]
+        _, first_inside = np.unique(keys[rest], return_index=True)
+        kept.append(rest[first_inside])
+    return np.sort(np.concatenate(kept))
 
 
 def _spool_cloud(source: CloudSource, axis: DriveAxis, spool: WindowSpool, hist: IntensityHistogram,
@@ -315,21 +348,28 @@ def _spool_cloud(source: CloudSource, axis: DriveAxis, spool: WindowSpool, hist:
     for chunk in source.iter_chunks(chunk_points, progress, area=corridor):
         n_read += len(chunk)
         xyz = xyz_of(chunk)
-        s, offset, idx = axis.locate(xyz)
-        z_rel = xyz[:, 2] - axis.xyz_world[idx, 2]
-        inside = (np.abs(offset) <= params.corridor_m) & (s >= lo_s) & (s <= hi_s)
-        cls = np.asarray(chunk.classification)
-        ground = inside & (cls == GROUND_CLASS)
-        cand = (inside & (cls != GROUND_CLASS) & (z_rel >= params.sensor_band_m[0])
-                & (z_rel <= params.sensor_band_m[1]))
-        g_rows = np.flatnonzero(ground)
-        g_rows = g_rows[_thin_ground(xyz[g_rows], params.ground_cell_m)]
+        is_ground = np.asarray(chunk.classification) == GROUND_CLASS
+        g_all = np.flatnonzero(is_ground)
+        reach_m = cell_reach_m(params.ground_cell_m)
+
+        def inside(rows: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+            s_r, offset_r, _ = axis.locate(xyz[g_all[rows]])
+            out_by = np.maximum(np.abs(offset_r) - params.corridor_m, np.maximum(lo_s - s_r, s_r - hi_s))
+            return out_by <= 0.0, out_by <= reach_m
+
+        g_rows = g_all[_thin_ground(xyz[g_all], params.ground_cell_m, inside)]
         if len(g_rows):
             g = np.zeros(len(g_rows), GROUND_DTYPE)
             g["x"], g["y"], g["z"] = xyz[g_rows, 0], xyz[g_rows, 1], xyz[g_rows, 2]
-            spool.add("ground", s[g_rows], g)
+            spool.add("ground", axis.locate(xyz[g_rows])[0], g)
             n_ground += len(g_rows)
-        rows = np.flatnonzero(cand)
+        # the other points: located on the drive, kept in the corridor and the sensor's band
+        above = np.flatnonzero(~is_ground)
+        s, offset, idx = axis.locate(xyz[above])
+        z_rel = xyz[above, 2] - axis.xyz_world[idx, 2]
+        cand = ((np.abs(offset) <= params.corridor_m) & (s >= lo_s) & (s <= hi_s)
+                & (z_rel >= params.sensor_band_m[0]) & (z_rel <= params.sensor_band_m[1]))
+        rows, s, offset, idx, z_rel = above[cand], s[cand], offset[cand], idx[cand], z_rel[cand]
         if len(rows) == 0:
             continue
         intensity = np.asarray(chunk.intensity)[rows].astype(np.float32)
@@ -339,11 +379,11 @@ def _spool_cloud(source: CloudSource, axis: DriveAxis, spool: WindowSpool, hist:
         rec = np.zeros(len(rows), POINT_DTYPE)
         rec["x"], rec["y"], rec["z"] = xyz[rows, 0], xyz[rows, 1], xyz[rows, 2]
         rec["intensity"], rec["time"] = intensity, times
-        rec["s"], rec["offset"] = s[rows], offset[rows]
-        rec["tx"], rec["ty"] = axis.tangent_xy[idx[rows], 0], axis.tangent_xy[idx[rows], 1]
-        spool.add("points", s[rows], rec)
+        rec["s"], rec["offset"] = s, offset
+        rec["tx"], rec["ty"] = axis.tangent_xy[idx, 0], axis.tangent_xy[idx, 1]
+        spool.add("points", s, rec)
         n_cand += len(rows)
-        band = (z_rel[rows] >= params.histogram_band_m[0]) & (z_rel[rows] <= params.histogram_band_m[1])
+        band = (z_rel >= params.histogram_band_m[0]) & (z_rel <= params.histogram_band_m[1])
         if band.any():
             sensor = axis.sensor_positions(xyz[rows][band], times[band] if has_time else None)
             hist.add(intensity[band], np.linalg.norm(xyz[rows][band] - sensor, axis=1))

@@ -271,6 +271,29 @@ def test_window_spool_bounds_memory_and_duplicates_margins(tmp_path):
     assert not os.path.exists(spool.folder)
 
 
+def test_ground_thinned_to_the_first_point_in_the_corridor_of_each_cell():
+    """The ground kept is the first point inside the corridor of every cell, as thinning
+    the inside points would give, while the corridor test sees far fewer points."""
+    rng = np.random.default_rng(5)
+    n = 60000
+    xyz = np.column_stack([rng.uniform(0, 20, n), rng.uniform(-8, 8, n), rng.normal(0, 0.05, n)])
+    out_by = np.abs(xyz[:, 1] + 0.3 * np.sin(xyz[:, 0])) - 5.0   # a wavy corridor edge
+    asked = []
+
+    def inside(rows):
+        asked.append(len(rows))
+        return out_by[rows] <= 0, out_by[rows] <= CS.cell_reach_m(0.25)
+
+    got = CS._thin_ground(xyz, 0.25, inside)
+    # brute force: thin the inside points, first of each cell in reading order
+    rows_in = np.flatnonzero(out_by <= 0)
+    keys = CS._cell_keys(xyz[:, :2], 0.25)[rows_in]
+    _, first = np.unique(keys, return_index=True)
+    want = np.sort(rows_in[first])
+    assert np.array_equal(got, want)
+    assert len(got) > 1000 and sum(asked) < 0.25 * n
+
+
 def test_records_follow_the_schemas(built_result):
     records = built_result.sign_records()
     assert records and all(tuple(r) == names(CS.CLOUD_SIGN_FIELDS) for r in records)
