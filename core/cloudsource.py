@@ -28,8 +28,11 @@ Conventions:
 * **Restricted reads.** ``bbox_xy`` ``(minx, miny, maxx, maxy)`` and ``area`` (a shapely
   geometry, or a sequence of them) select the tiles whose header bounds meet them; other
   tiles are not opened. A COPC tile is read by the octree nodes that meet them (laspy's COPC
-  hierarchy and lazrs), a plain LAS/LAZ tile whole. Points outside the box or area may still
-  come: callers filter.
+  hierarchy and lazrs), a plain LAS/LAZ tile whole, except where this :class:`CloudSource`
+  has read it whole before: it remembers the bounds of every chunk it read (``_ChunkBox``)
+  and then reads only the chunks that meet them, seeking past the others (a drive's
+  cloud is stored in acquisition order, so a chunk is a short stretch of road). Points
+  outside the box or area may still come: callers filter.
 * Errors are :class:`~.errors.InputError` naming the file (and the tile) and saying what was
   expected.
 """
@@ -56,6 +59,7 @@ from .pointcloud import (
     iter_chunks,
     open_reader,
     read_header,
+    read_points_at,
 )
 
 #: The file name ending of a virtual point cloud.
@@ -200,6 +204,8 @@ class CloudSource:
         self._headers = headers
         self.crs_wkt = crs_wkt
         self.header = template_header(headers[0])
+        #: the chunks of each plain tile read whole by this source: {tile path: chunks}
+        self._chunk_boxes: Dict[str, List[_ChunkBox]] = {}
 
     def __repr__(self) -> str:
         return f"CloudSource({self.path!r}, {self.kind}, {len(self.tiles)} tiles, {self.point_count} points)"
@@ -295,17 +301,27 @@ class CloudSource:
         restricted = bbox_xy is not None or area is not None
         chosen = list(tiles) if tiles is not None else self.tiles_in(bbox_xy, area)
         number = {t.path: k for k, t in enumerate(self.tiles)}
-        plans: List[Tuple[Tile, Optional[List[_Node]]]] = []
+        plans: List[Tuple[Tile, Optional[List[Any]]]] = []
         for tile in chosen:
-            nodes = _copc_nodes(tile, bbox_xy, area) if tile.copc and restricted else None
-            plans.append((tile, nodes))
-        total = sum(t.point_count if nodes is None else sum(n.point_count for n in nodes)
-                    for t, nodes in plans)
+            parts: Optional[List[Any]] = None
+            if restricted and tile.copc:
+                parts = _copc_nodes(tile, bbox_xy, area)
+            elif restricted and tile.path in self._chunk_boxes:
+                boxes = self._chunk_boxes[tile.path]
+                keep = _boxes_meet(np.array([b.bounds_xy for b in boxes]).reshape(-1, 4), bbox_xy, area)
+                parts = [b for b, k in zip(boxes, keep) if k]
+            plans.append((tile, parts))
+        total = sum(t.point_count if parts is None else sum(n.point_count for n in parts)
+                    for t, parts in plans)
         done = 0
         progress.report(0.0)
-        for tile, nodes in plans:
-            chunks = (_plain_chunks(tile, chunk_points) if nodes is None
-                      else _copc_chunks(tile, nodes, self._headers[number[tile.path]]))
+        for tile, parts in plans:
+            if parts is None:
+                chunks = _plain_chunks(tile, chunk_points, None if tile.copc else self._chunk_boxes)
+            elif tile.copc:
+                chunks = _copc_chunks(tile, parts, self._headers[number[tile.path]])
+            else:
+                chunks = _chosen_chunks(tile, parts)
             for index, chunk in chunks:
                 done += len(chunk)
                 yield index, chunk
@@ -363,12 +379,52 @@ def _boxes_meet(boxes: np.ndarray, bbox_xy: Optional[BBoxXY], area: Optional[Are
     return keep
 
 
-def _plain_chunks(tile: Tile, chunk_points: int) -> Iterator[Tuple[np.ndarray, laspy.ScaleAwarePointRecord]]:
+@dataclass
+class _ChunkBox:
+    """A chunk of a plain tile as it was read: ``first`` (its first point's position in the
+    file), ``point_count`` and the 2D bounds of its points."""
+    first: int
+    point_count: int
+    bounds_xy: BBoxXY
+
+
+def _chunk_bounds(chunk: laspy.ScaleAwarePointRecord) -> BBoxXY:
+    """The 2D bounds of a chunk's points, from the stored integers (no scaled copies)."""
+    X, Y = np.asarray(chunk.X), np.asarray(chunk.Y)
+    sx, sy = (float(v) for v in chunk.scales[:2])
+    ox, oy = (float(v) for v in chunk.offsets[:2])
+    xs = sorted((int(X.min()) * sx + ox, int(X.max()) * sx + ox))
+    ys = sorted((int(Y.min()) * sy + oy, int(Y.max()) * sy + oy))
+    return (xs[0], ys[0], xs[1], ys[1])
+
+
+def _plain_chunks(tile: Tile, chunk_points: int, memo: Optional[Dict[str, List[_ChunkBox]]] = None
+                  ) -> Iterator[Tuple[np.ndarray, laspy.ScaleAwarePointRecord]]:
+    """The points of a plain tile, whole, in chunks; with ``memo``, the chunks' bounds are
+    stored in it under the tile's path once the last chunk has been read."""
     offset = tile.first_index
+    boxes: List[_ChunkBox] = []
     for chunk in iter_chunks(tile.path, chunk_points):
         n = len(chunk)
+        if memo is not None and n:
+            boxes.append(_ChunkBox(offset - tile.first_index, n, _chunk_bounds(chunk)))
         yield np.arange(offset, offset + n, dtype=np.int64), chunk
         offset += n
+    if memo is not None:
+        memo[tile.path] = boxes
+
+
+def _chosen_chunks(tile: Tile, chosen: List[_ChunkBox]
+                   ) -> Iterator[Tuple[np.ndarray, laspy.ScaleAwarePointRecord]]:
+    """The chunks ``chosen`` of a plain tile read whole before: each read after a seek to it
+    (lazrs decompresses from the LAZ chunk that holds its first point)."""
+    if not chosen:
+        return
+    with open_reader(tile.path) as reader:
+        for box in chosen:
+            chunk = read_points_at(reader, tile.path, box.first, box.point_count)
+            start = tile.first_index + box.first
+            yield np.arange(start, start + len(chunk), dtype=np.int64), chunk
 
 
 # --------------------------------------------------------------------------------------

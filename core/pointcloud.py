@@ -186,6 +186,26 @@ def iter_chunks(path: str, chunk_points: int = DEFAULT_CHUNK_POINTS,
                              detail=f"header announces {total} points, {done} could be read")
 
 
+def read_points_at(reader: laspy.LasReader, path: str, first: int, count: int
+                   ) -> laspy.ScaleAwarePointRecord:
+    """``count`` points from position ``first`` of the file ``path`` open in ``reader``
+    (seeking there unless the reader is there already; a LAZ is decompressed from the start
+    of the LAZ chunk holding ``first``); :class:`InputError` naming the file when it is
+    damaged or shorter."""
+    try:
+        if reader.points_read != first:
+            reader.seek(first)
+        chunk = reader.read_points(count)
+    except _READ_ERRORS as e:
+        if isinstance(e, _NOT_READ_ERRORS):
+            raise
+        raise InputError(_CORRUPT, path=path, detail=f"{type(e).__name__}: {e}")
+    if len(chunk) != count:
+        raise InputError(_CORRUPT, path=path, detail=f"{count} points expected from point {first}, "
+                         f"{len(chunk)} could be read")
+    return chunk
+
+
 def xyz_of(points) -> np.ndarray:
     """World coordinates ``(n, 3)`` float64 of a laspy point record."""
     return np.column_stack([np.asarray(points.x, dtype=np.float64),

@@ -106,6 +106,49 @@ def test_restricted_read_opens_only_the_tiles_it_needs(street, monkeypatch):
     assert len(source.tiles_in(bbox_xy=(x0, y0, x1, y1))) == len(source.tiles)
 
 
+def test_a_file_read_whole_is_read_again_by_its_chunks_that_meet_the_area(tmp_path):
+    """After one whole read, a CloudSource reads an area by the chunks that meet it (a
+    drive's points come in acquisition order): the same points and indices as a fresh
+    source's whole read gives there, from far fewer points decompressed."""
+    rng = np.random.default_rng(2)
+    n = 60000
+    x = np.sort(rng.uniform(0.0, 300.0, n))            # along the drive, in acquisition order
+    y = rng.uniform(-15.0, 15.0, n)
+    header = laspy.LasHeader(point_format=6, version="1.4")
+    header.scales, header.offsets = [0.001] * 3, [500000.0, 5400000.0, 0.0]
+    header.add_crs(pyproj.CRS.from_epsg(25833))
+    las = laspy.LasData(header)
+    las.x, las.y, las.z = x + 500000.0, y + 5400000.0, rng.normal(0.0, 0.1, n)
+    las.intensity = np.arange(n) % 65536
+    path = str(tmp_path / "drive.laz")
+    las.write(path)
+    area = shapely.box(500120.0, 5399990.0, 500140.0, 5400010.0)
+
+    def read(source, **kw):
+        got = [(i, pc.xyz_of(c)) for i, c in source.iter_indexed_chunks(chunk_points=4000, **kw)]
+        return np.concatenate([i for i, _ in got]), np.concatenate([p for _, p in got])
+
+    fresh_index, fresh_xyz = read(cs.open_cloud(path), area=area)
+    assert len(fresh_index) == n                       # never read: the whole file
+    source = cs.open_cloud(path)
+    read(source)                                       # read whole once
+    reports = []
+    index, xyz = read(source, area=area, progress=Progress(on_progress=reports.append))
+    assert len(index) <= 3 * 4000                      # the chunks around x 120-140 m only
+    assert reports[-1] == 100.0
+    inside = shapely.contains_xy(area, fresh_xyz[:, 0], fresh_xyz[:, 1])
+    mine = shapely.contains_xy(area, xyz[:, 0], xyz[:, 1])
+    assert inside.sum() > 1000
+    np.testing.assert_array_equal(index[mine], fresh_index[inside])
+    np.testing.assert_array_equal(xyz[mine], fresh_xyz[inside])
+    # a cancelled whole read remembers nothing
+    other = cs.open_cloud(path)
+    it = other.iter_indexed_chunks(chunk_points=4000)
+    next(it)
+    it.close()
+    assert len(read(other, area=area)[0]) == n
+
+
 def test_index_of_tiles_equals_index_of_the_file(street):
     region = pc.CropRegion(shapely.box(street_x(street) + 15, -20 + 5.4e6, street_x(street) + 45, 5.4e6 + 20))
     single = cs.open_cloud(street["single"]).index(region, ("intensity", "classification"), 5.0)
