@@ -97,9 +97,11 @@ def model_children(path=MODEL_PATH):
     return children
 
 
-def model_parameters(drive_dir, meta, work, cloud=None):
+def model_parameters(drive_dir, meta, work, cloud=None, ground_format="laz"):
     """The shipped model's inputs for the drive (``cloud``: the point cloud, default its
-    ``cloud.laz``), and its outputs in ``work``."""
+    ``cloud.laz``), and its outputs in ``work`` (the ground-classified cloud as
+    ``ground.GROUND_FORMAT``: LAZ, or LAS, which the three stages after it read without
+    decompressing)."""
     d = lambda name: os.path.join(drive_dir, name)  # noqa: E731
     w = lambda name: os.path.join(work, name)  # noqa: E731
     lever, bore = meta["lever_arm_m"], meta["boresight_deg"]
@@ -109,7 +111,7 @@ def model_parameters(drive_dir, meta, work, cloud=None):
                   LEVER_ARM_Z=lever[2], BORESIGHT_ROLL=bore["roll"], BORESIGHT_PITCH=bore["pitch"],
                   BORESIGHT_YAW=bore["yaw"], CONFIDENCE=0.4)
     outputs = {"stations:Panorama stations": w("stations.gpkg"), "detections:Detections": w("detections.gpkg"),
-               "ground:Ground-classified cloud": w("ground.laz"),
+               "ground:Ground-classified cloud": w("ground." + ground_format),
                "candidates:Sign candidates": w("candidates.gpkg"), "signs:Signs": w("signs.gpkg"),
                "signs:Panel outlines": w("panel_outlines.gpkg"), "signs:Review report": w("review.html"),
                "fused:Signs (fused)": w("inventory.gpkg"), "cloudsigns:Poles": w("poles.gpkg")}
@@ -360,6 +362,9 @@ def main(argv=None):
     parser.add_argument("--tile-m", type=float, default=500.0)
     parser.add_argument("--station-spacing", type=float,
                         help="the model's MIN_STATION_SPACING_M (default: the model's own)")
+    parser.add_argument("--ground-format", choices=["laz", "las"], default="laz",
+                        help="the model's ground-classified cloud as LAZ (the default) or uncompressed LAS "
+                             "(read by three later stages: no decompression, ~30 bytes a point on disk)")
     parser.add_argument("--json", help="also write the figures to this file")
     args = parser.parse_args(argv)
 
@@ -379,7 +384,7 @@ def main(argv=None):
     if args.cloud == "tiles":
         from devtools.scenegen.drive import write_tiles
         cloud = write_tiles(drive_dir, args.tile_m, verbose=True)
-    inputs, outputs = model_parameters(drive_dir, meta, work, cloud)
+    inputs, outputs = model_parameters(drive_dir, meta, work, cloud, args.ground_format)
     if args.station_spacing is not None:
         inputs["MIN_STATION_SPACING_M"] = args.station_spacing
     args_run = ["--verbose", "run", MODEL_ID, "--"] + [f"{k}={v}" for k, v in {**inputs, **outputs}.items()]
@@ -393,6 +398,7 @@ def main(argv=None):
                "panoramas": n_pano, "rendered": drive["rendered"], "reused": drive["reused"],
                "reuse": drive["reuse"], "points": n_points, "cloud": inputs["POINT_CLOUD"],
                "min_station_spacing_m": inputs.get("MIN_STATION_SPACING_M"),
+               "ground_output": outputs["ground:Ground-classified cloud"],
                "pano_width": drive["pano_width"],
                "image_spacing_m": drive["image_spacing_m"], "reference_signs": drive["reference_signs"],
                "generation_s": drive.get("timings_s"), "load_average": [round(load0[0], 2), round(load1[0], 2)],

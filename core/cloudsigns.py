@@ -345,12 +345,12 @@ def _spool_cloud(source: CloudSource, axis: DriveAxis, spool: WindowSpool, hist:
     # the tiles the corridor meets (the track lengthened at its ends is within it)
     reach = params.corridor_m + params.end_margin_m + params.margin_m
     corridor = shapely.linestrings(axis.xyz_world[:, :2]).buffer(reach, quad_segs=4)
+    reach_m = cell_reach_m(params.ground_cell_m)
     for chunk in source.iter_chunks(chunk_points, progress, area=corridor):
         n_read += len(chunk)
         xyz = xyz_of(chunk)
         is_ground = np.asarray(chunk.classification) == GROUND_CLASS
         g_all = np.flatnonzero(is_ground)
-        reach_m = cell_reach_m(params.ground_cell_m)
 
         def inside(rows: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
             s_r, offset_r, _ = axis.locate(xyz[g_all[rows]])

@@ -65,6 +65,11 @@ MIX = {"gtsrb": 0.42, "drawn": 0.13, "pano": 0.20, "other": 0.25}
 #: composites (a drawn sign or a look-alike warped onto a street) are kept in a pool and
 #: re-cut with a new jitter; each draw replaces a pooled one with this probability
 POOL_SIZE, POOL_RENEW = 2000, 0.15
+#: share of GTSRB draws taken from the :data:`FAR_FRAMES` smallest frames of a track (the
+#: far, blurred ones a drive sees first); the rest are drawn from all frames
+FAR_SHARE, FAR_FRAMES = 0.3, 3
+#: share of crops shot against the light or in shade (:func:`exposure`)
+EXPOSURE_SHARE = 0.3
 
 
 # --- labels --------------------------------------------------------------------------------
@@ -117,9 +122,27 @@ def resize_to(crop: np.ndarray, out_px: Optional[int] = None) -> np.ndarray:
     return cv2.resize(crop, (out_px, out_px), interpolation=interp)
 
 
+def exposure(crop: np.ndarray, rng) -> np.ndarray:
+    """A crop washed out by the sun (gain then clipping, colours bleached) or in deep shade
+    (dark, noisy), as real sheeting is photographed; ``colour_jitter`` alone stays milder."""
+    img = crop.astype(np.float32)
+    if rng.random() < 0.5:  # against the light: the sheeting's colours clip towards white
+        img = img * rng.uniform(1.3, 2.0) + rng.uniform(0, 30)
+        grey = img.mean(2, keepdims=True)
+        img = grey + (img - grey) * rng.uniform(0.4, 0.9)
+    else:  # shade or dusk: little light, sensor noise
+        img = img * rng.uniform(0.2, 0.5)
+        img += rng.normal(0, rng.uniform(1, 5), img.shape)
+    img = 255.0 * (np.clip(img, 0, 255) / 255.0) ** rng.uniform(0.7, 1.4)
+    return np.clip(img, 0, 255).astype(np.uint8)
+
+
 def far_camera(crop: np.ndarray, rng, strength: float = 1.0) -> np.ndarray:
-    """A crop as a worse or farther camera sees it: fewer pixels, blur, JPEG, colour."""
+    """A crop as a worse or farther camera sees it: fewer pixels, blur, JPEG, colour,
+    sometimes bad exposure."""
     out = crop
+    if rng.random() < EXPOSURE_SHARE * strength:
+        out = exposure(out, rng)
     if rng.random() < 0.5 * strength:
         f = rng.uniform(0.35, 0.9)
         small = max(6, int(round(CROP_PX * f)))
@@ -294,6 +317,16 @@ def unknown_sign(rng, size_px: int = 128) -> np.ndarray:
     return img
 
 
+def far_frames(items, indices, n: int = FAR_FRAMES):
+    """Of ``items[k]`` (image, box, label, track key) for ``k`` in ``indices``: the indices of
+    the ``n`` frames of each track with the smallest box (the farthest)."""
+    tracks = defaultdict(list)
+    for k in indices:
+        box = items[k][1]
+        tracks[items[k][3]].append((max(box[2] - box[0], box[3] - box[1]), k))
+    return sorted(k for frames in tracks.values() for _, k in sorted(frames)[:n])
+
+
 class Sampler:
     """Draws labelled training crops (``CROP_PX`` square, BGR) from every source."""
 
@@ -308,6 +341,7 @@ class Sampler:
             by_class[item[2]].append(k)
         self.gtsrb_classes = sorted(by_class)
         self.gtsrb_by_class = [np.array(by_class[c]) for c in self.gtsrb_classes]
+        self.gtsrb_far_by_class = [np.array(far_frames(self.gtsrb, by_class[c])) for c in self.gtsrb_classes]
         p = np.sqrt([len(by_class[c]) for c in self.gtsrb_classes])
         self.gtsrb_p = p / p.sum()
         tx = data.import_textures()
@@ -385,7 +419,8 @@ class Sampler:
     # sources
     def from_gtsrb(self):
         c = self.rng.choice(len(self.gtsrb_classes), p=self.gtsrb_p)
-        image, box, label, _ = self.gtsrb[int(self.rng.choice(self.gtsrb_by_class[c]))]
+        pool = self.gtsrb_far_by_class[c] if self.rng.random() < FAR_SHARE else self.gtsrb_by_class[c]
+        image, box, label, _ = self.gtsrb[int(self.rng.choice(pool))]
         return far_camera(crop_square(image, box, **self.jitter()), self.rng), label
 
     def _drawn_composite(self):
