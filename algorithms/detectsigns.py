@@ -14,6 +14,7 @@ from qgis.core import (
 
 from ..core.detections import DETECTION_FIELDS, drive_detections
 from ..core.detector import DEFAULT_MIN_BOX_PX, DEFAULT_MIN_STATION_SPACING_M, spaced_stations
+from ..core.panorama import DEFAULT_UPWARD_VIEWS
 from ..core.signcodes import OTHER_CODE
 from ..core.trajectory import STATION_FIELDS, Stations
 from .base import RoadSignsAlgorithm
@@ -91,7 +92,7 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
             self.tr("Length of each detection ray from the panorama centre, in metres."),
             minimum=1.0, advanced=True)
         self.add_boolean(
-            self.UPWARD_VIEWS, self.tr("Also look upwards (overhead and gantry signs)"), False,
+            self.UPWARD_VIEWS, self.tr("Also look upwards (overhead and gantry signs)"), DEFAULT_UPWARD_VIEWS,
             self.tr("Adds a ring of 6 views tilted 35° up to the 8 horizon views, for signs high above the road "
                     "close to the vehicle. Off by default: a sign overhead is in the horizon views from every "
                     "station more than a few metres away, and on two held-out test streets (panoramas every "

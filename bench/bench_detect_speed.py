@@ -94,13 +94,15 @@ def main(argv=None):
     ap.add_argument("--threads", type=int, default=2, help="onnxruntime intra-op threads")
     ap.add_argument("--rounds", type=int, default=2, help="rounds of the prefetch off/on comparison")
     ap.add_argument("--confidence", type=float, default=0.4)
+    ap.add_argument("--upward", action="store_true",
+                    help="also the upward ring (detectsigns' UPWARD_VIEWS; default: the plugin's default)")
     args = ap.parse_args(argv)
 
     paths = sorted(glob.glob(os.path.join(args.scene, "images", "*.jpg")))[:args.max_images]
     if not paths:
         sys.exit(f"no panoramas in {args.scene}/images")
     detector = detector_mod.Detector(args.model, threads=args.threads)
-    views = panorama_mod.ViewSet.default(size_px=detector.input_size)
+    views = panorama_mod.ViewSet.default(size_px=detector.input_size, upward=True if args.upward else None)
     classifier = None
     if not args.no_codes:
         table = signcodes_mod.read_codes_table(args.codes_table)

@@ -2,8 +2,9 @@
 measures several models in one run, on the same images, timed alternately.
 
 1. Held-out generated panoramas (default: ``default`` preset seed 7 and ``tiny`` seed 3,
-   seeds never used in training), run exactly as ``roadsigns:detectsigns`` runs them:
-   ``Detector`` + ``ViewSet.default`` + ``detect_panorama`` with its ``MIN_SIZE``. Truth:
+   seeds never used in training), run exactly as ``roadsigns:detectsigns`` runs them with
+   its defaults: ``Detector`` + ``ViewSet.default`` + ``detect_panorama`` with its
+   ``MIN_SIZE``; ``--views`` measures other view sets (:data:`VIEW_SETS`) in the same run. Truth:
    front faces of ``scene.json`` (``visible_box``; a detection also matches the amodal
    ``box``). Counted: signs >= 20 px tall with occlusion <= 0.5; smaller or more hidden
    signs are reported separately and a detection on them is no false alarm. A detection
@@ -205,12 +206,31 @@ class PanoramaBench:
                 "curve": curve(self.matches)}
 
 
-def bench_panoramas(detectors, scene_dirs, confidence, max_images=None, min_box_px=0.0):
-    """Every detector on every panorama, alternating which goes first."""
+#: View sets ``--views`` can measure (each a function of the detector's input size):
+#: ``default`` is what ``detectsigns`` cuts with its defaults (``ViewSet.default``, the
+#: upward ring as ``DEFAULT_UPWARD_VIEWS`` says); the others add views at a higher pixel
+#: density for small signs (issue 15): 53.3 deg across is 1.5 x the pixels per degree of the
+#: 80 deg horizon views (12 against 8 px/deg at 640 px; a 4096 px panorama has 11.4).
+DENSE_HFOV_DEG = 80.0 / 1.5
+VIEW_SETS = {
+    "default": lambda size: panorama_mod.ViewSet.default(size_px=size),
+    "horizon": lambda size: panorama_mod.ViewSet.default(size_px=size, upward=False),
+    "upward": lambda size: panorama_mod.ViewSet.default(size_px=size, upward=True),
+    # a second pass over the horizon band at 1.5 x the density: 8 more views
+    "horizon+dense": lambda size: (panorama_mod.ViewSet.default(size_px=size, upward=False)
+                                   + panorama_mod.ViewSet.ring(8, 0.0, DENSE_HFOV_DEG, size)),
+    # narrower views for the forward and rear sectors, where far signs are: 2 more views
+    "horizon+fore-aft": lambda size: (panorama_mod.ViewSet.default(size_px=size, upward=False)
+                                      + panorama_mod.ViewSet.ring(2, 0.0, DENSE_HFOV_DEG, size)),
+}
+
+
+def bench_panoramas(entries, scene_dirs, confidence, max_images=None, min_box_px=0.0):
+    """Every ``(detector, view set name)`` of ``entries`` on every panorama, alternating
+    which goes first."""
     benches = []
-    for d in detectors:
-        views = panorama_mod.ViewSet.default(size_px=d.input_size)
-        benches.append(PanoramaBench(d, views, confidence, min_box_px))
+    for d, views_name in entries:
+        benches.append(PanoramaBench(d, VIEW_SETS[views_name](d.input_size), confidence, min_box_px))
     decode_s, n = 0.0, 0
     warm = False
     for scene_dir in scene_dirs:
@@ -378,6 +398,8 @@ def main(argv=None):
     ap.add_argument("--skip-gtsdb", action="store_true")
     ap.add_argument("--gtsdb-images", type=int, default=None, help="only the first N of GTSDB 500-599 (quick checks)")
     ap.add_argument("--whole-frame", action="store_true", help="also GTSDB whole frames letterboxed to 640 px")
+    ap.add_argument("--views", nargs="+", default=["default"], choices=sorted(VIEW_SETS),
+                    help="view sets, each measured with every model in the same run (default: the plugin's)")
     ap.add_argument("--json", default=os.path.join(REPO_ROOT, "bench", "out", "detector.json"))
     a = ap.parse_args(argv)
 
@@ -392,22 +414,25 @@ def main(argv=None):
     detectors = [detector_mod.Detector(m, threads=a.threads) for m in models]
     for d in detectors:
         print(d.info().describe())
-    results = [{"model": os.path.relpath(m, REPO_ROOT), "model_mb": os.path.getsize(m) / 1e6, "threads": a.threads,
+    entries = [(k, v) for k in range(len(models)) for v in a.views]
+    results = [{"model": os.path.relpath(models[k], REPO_ROOT), "model_mb": os.path.getsize(models[k]) / 1e6,
+                "views": v, "n_views": len(VIEW_SETS[v](detectors[k].input_size)), "threads": a.threads,
                 "cpus": os.cpu_count(), "load_average_at_start": os.getloadavg()[0],
-                "confidence": a.confidence, "scenes": scenes, "min_size_px": a.min_size} for m in models]
-    for r, p in zip(results, bench_panoramas(detectors, scenes, a.confidence, a.max_images, a.min_size)):
+                "confidence": a.confidence, "scenes": scenes, "min_size_px": a.min_size} for k, v in entries]
+    for r, p in zip(results, bench_panoramas([(detectors[k], v) for k, v in entries], scenes, a.confidence,
+                                             a.max_images, a.min_size)):
         r["panoramas"] = p
         r["panoramas_per_second"] = p["panoramas_per_second"]
-    if not a.skip_gtsdb:
-        for r, g in zip(results, bench_gtsdb(detectors, a.confidence, whole_frame=a.whole_frame,
-                                          ids=GTSDB_HELDOUT_IDS[:a.gtsdb_images])):
-            r["gtsdb_500_599"] = g
+    if not a.skip_gtsdb:  # tiles of the photographs: the view set plays no part
+        gtsdb = bench_gtsdb(detectors, a.confidence, whole_frame=a.whole_frame, ids=GTSDB_HELDOUT_IDS[:a.gtsdb_images])
+        for r, (k, _) in zip(results, entries):
+            r["gtsdb_500_599"] = gtsdb[k]
     for r in results:
-        print_model(r["model"], r, a.confidence)
+        print_model(f"{r['model']}, views {r['views']} ({r['n_views']})", r, a.confidence)
     print("\n===== summary (confidence %.2f) =====" % a.confidence)
     heads = [headline(r) for r in results]
     keys = list(heads[0])
-    print(f"{'':<26}" + "".join(f"{os.path.basename(r['model'])[:22]:>24}" for r in results))
+    print(f"{'':<26}" + "".join(f"{(os.path.basename(r['model']) + ' ' + r['views'])[-22:]:>24}" for r in results))
     for k in keys:
         print(f"{k:<26}" + "".join(f"{_f(h.get(k)):>24}" for h in heads))
     out = results[0] if len(results) == 1 else {"compare": results, "summary": heads}

@@ -23,6 +23,10 @@ from .errors import InputError
 #: exceed (20000 x 10000 is 200 Mpx): the plugin raises Pillow's limit deliberately to this
 #: bound when it reads panoramas (never lowers it) and refuses larger images with a message.
 MAX_PANORAMA_PIXELS = 32768 * 16384
+#: Whether detection also looks upwards by default (``detectsigns``' ``UPWARD_VIEWS``): no,
+#: the horizon ring alone found every sign on the held-out streets (bench/README.md, "Fewer
+#: views"); training cuts both rings.
+DEFAULT_UPWARD_VIEWS = False
 MAX_PANORAMA_SIZE = "32768 x 16384"
 
 
@@ -249,13 +253,16 @@ class ViewSet:
                                          float(hfov_deg), int(w), int(h)) for k in range(n_views)))
 
     @classmethod
-    def default(cls, size_px=640, upward: bool = True) -> "ViewSet":
+    def default(cls, size_px=640, upward: Optional[bool] = None) -> "ViewSet":
         """Horizon ring: 8 views of 80 deg across (35 deg overlap; square views span
         elevations -40..+40 deg at their centres, about +-33 deg at their edges, 640 x 384
         views +-26.7 deg); upward ring for overhead and gantry signs: 6 views of 90 deg at
         pitch +35 deg (square: elevations -10..+80 deg at their centres). ``size_px``: the
-        detector's input size, an int or ``(width, height)``."""
+        detector's input size, an int or ``(width, height)``; ``upward`` None:
+        :data:`DEFAULT_UPWARD_VIEWS`."""
         views = cls.ring(8, 0.0, 80.0, size_px)
+        if upward is None:
+            upward = DEFAULT_UPWARD_VIEWS
         return views + cls.ring(6, 35.0, 90.0, size_px) if upward else views
 
     def __add__(self, other: "ViewSet") -> "ViewSet":

@@ -12,7 +12,7 @@ from helpers.synthpano import paint_discs as _paint_discs
 from helpers.synthpano import ray
 
 from roadsigns.core.errors import InputError
-from roadsigns.core.panorama import PerspectiveView, ViewSet, read_panorama
+from roadsigns.core.panorama import DEFAULT_UPWARD_VIEWS, PerspectiveView, ViewSet, read_panorama
 
 W, H = 2048, 1024
 RED = (0, 0, 255)  # BGR
@@ -120,14 +120,15 @@ def test_maps_are_cached_per_view_and_size():
 
 
 def test_view_sets():
-    views = ViewSet.default(640)
+    views = ViewSet.default(640, upward=True)
     assert len(views) == 14 and [v.yaw_deg for v in views][:8] == [k * 45.0 for k in range(8)]
     assert len(ViewSet.default(640, upward=False)) == 8
     hfov = views[0].hfov_deg
     assert hfov - 45.0 >= 20.0  # neighbours overlap by at least 20 deg
     assert views.working_width(4096) == 4096
     assert 4000 <= views.working_width(8192) < 4200
-    assert hash(views) == hash(ViewSet.default(640))
+    assert hash(views) == hash(ViewSet.default(640, upward=True))
+    assert len(ViewSet.default(640)) == (14 if DEFAULT_UPWARD_VIEWS else 8)  # the plugin's default
 
 
 def test_large_panorama_is_reduced_before_cutting_and_boxes_stay_in_its_pixels(pano):
