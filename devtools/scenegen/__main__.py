@@ -7,6 +7,7 @@ import sys
 import time
 
 from . import PRESETS, generate_scene
+from .render import LOOKS
 
 
 def main(argv=None):
@@ -22,11 +23,14 @@ def main(argv=None):
     ap.add_argument("--pano-width", type=int, default=None, help="equirectangular width (height = width / 2)")
     ap.add_argument("--image-spacing", type=float, default=None,
                     help="metres between panorama exposures (default: the preset's)")
+    ap.add_argument("--look", default="training", choices=sorted(LOOKS),
+                    help="light and camera of the panoramas: training (every training and bench scene), or a "
+                         "held-out look whose ranges the training never saw (dusk, glare)")
     a = ap.parse_args(argv)
     t0 = time.perf_counter()
     paths = generate_scene(a.preset, a.seed, a.out, crs=a.crs, panoramas=not a.no_panoramas, lidar=not a.no_lidar,
                            pano_width=a.pano_width, masks=not a.no_masks, verbose=True,
-                           image_spacing_m=a.image_spacing)
+                           image_spacing_m=a.image_spacing, look=a.look)
     peak_mib = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     print(f"[scenegen] wrote {a.out} in {time.perf_counter() - t0:.1f} s (peak memory {peak_mib:.0f} MiB)")
     for k, v in sorted(paths.items()):

@@ -21,7 +21,7 @@ from . import textures as tx
 from .layout import CLASS_CODES, REFLECTANCE, build_scene
 from .lidar import LazWriter, ScannerMount, scan
 from .presets import get_preset
-from .render import PanoramaRenderer, finish_image, sign_boxes
+from .render import LOOKS, PanoramaRenderer, finish_image, sign_boxes
 from .road import Motion
 
 TARGET_CRS = "EPSG:32633"
@@ -115,8 +115,11 @@ def _write_sbet(path, frames, motion, tau):
 
 
 def generate_scene(preset="tiny", seed=1, out_dir="scene", crs="projected", panoramas=True, lidar=True,
-                   pano_width=None, masks=True, verbose=False, image_spacing_m=None):
+                   pano_width=None, masks=True, verbose=False, image_spacing_m=None, look="training"):
     """Write one synthetic scene into ``out_dir``; returns a dict of the written paths.
+
+    ``look``: the light and camera of the panoramas, a name of :data:`.render.LOOKS`
+    (``training`` for every training and bench scene; the others are held out).
 
     ``crs``: ``projected`` (trajectory, poses in EPSG:32633) or ``geographic`` (EPSG:4326 lon/lat,
     ellipsoidal height). The world (cloud, reference signs) is always EPSG:32633. Same
@@ -125,6 +128,8 @@ def generate_scene(preset="tiny", seed=1, out_dir="scene", crs="projected", pano
     if crs not in ("projected", "geographic"):
         raise ValueError("crs must be 'projected' or 'geographic'")
     p = get_preset(preset, pano_width=pano_width, image_spacing_m=image_spacing_m)
+    if look not in LOOKS:
+        raise ValueError(f"unknown look {look!r}; choose one of {sorted(LOOKS)}")
     g = roadsigns_geometry()
     os.makedirs(out_dir, exist_ok=True)
     timings = {}
@@ -227,11 +232,11 @@ def generate_scene(preset="tiny", seed=1, out_dir="scene", crs="projected", pano
         if masks:
             paths["masks"] = os.path.join(out_dir, "masks")
             os.makedirs(paths["masks"], exist_ok=True)
-        renderer = PanoramaRenderer(scene, p.pano_width, _rng(seed, "render"))
+        renderer = PanoramaRenderer(scene, p.pano_width, _rng(seed, "render"), LOOKS[look])
         centres = {s.sign_id: s.panel.centre for s in scene.signs}
         for i, name in enumerate(names):
             img, mask, stats = renderer.render(C_pano[i], R_wp[i])
-            rgb, quality, camera = finish_image(img, _rng(seed, "images", i))
+            rgb, quality, camera = finish_image(img, _rng(seed, "images", i), LOOKS[look])
             cv2.imwrite(os.path.join(paths["images"], name), cv2.cvtColor(rgb, cv2.COLOR_RGB2BGR),
                         [cv2.IMWRITE_JPEG_QUALITY, quality])
             if masks:
@@ -257,7 +262,7 @@ def generate_scene(preset="tiny", seed=1, out_dir="scene", crs="projected", pano
         "lever_arm_m": list(LEVER_ARM_BODY_M),
         "boresight_deg": dict(zip(("roll", "pitch", "yaw"), BORESIGHT_DEG)),
         "sbet_wander_angle_rad": {"offset": WANDER_RAD[0], "rate_per_s": WANDER_RAD[1]},
-        "image_width": p.pano_width, "image_height": p.pano_width // 2,
+        "image_width": p.pano_width, "image_height": p.pano_width // 2, "look": look,
         "mask_encoding": "uint16 PNG: sign_id on a panel's front face, sign_id | 0x8000 on its back, 0 elsewhere",
         "class_codes": CLASS_CODES, "reflectance": REFLECTANCE,
         "intensity_scale": "intensity = reflectance * incidence factor * range factor * (1 + 6% noise) * 65535",

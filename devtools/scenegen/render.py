@@ -9,12 +9,44 @@ per-sign pixel statistics.
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+from typing import Tuple
+
 import cv2
 import numpy as np
 
 from . import road as rd
 from .primitives import Panel
 from .textures import noise_tile
+
+
+@dataclass(frozen=True)
+class Look:
+    """The light and the camera of a scene's panoramas: the ranges the sun's elevation (per
+    scene) and each image's camera effects (:func:`finish_image`) are drawn from."""
+
+    name: str
+    sun_elevation_deg: Tuple[float, float] = (35.0, 60.0)
+    gain: Tuple[float, float] = (0.75, 1.3)          # exposure
+    white_balance: float = 0.05                      # per channel, +-
+    blur_sigma_px: Tuple[float, float] = (0.5, 1.1)
+    motion_blur_share: float = 0.3                   # images with a little horizontal blur
+    noise_sd: Tuple[float, float] = (1.5, 4.0)       # sensor noise, 8-bit levels
+    jpeg_quality: Tuple[int, int] = (75, 94)         # [lo, hi)
+
+
+#: ``training``: every training and bench scene until now. The others are held-out looks
+#: whose every range lies outside the training one (issue 15): scenes rendered with them
+#: test whether the detector learned signs or our renderer.
+LOOKS = {
+    "training": Look("training"),
+    # low sun, under-exposed, noisy, strongly compressed
+    "dusk": Look("dusk", sun_elevation_deg=(6.0, 15.0), gain=(0.42, 0.62), white_balance=0.12,
+                 blur_sigma_px=(1.15, 1.6), motion_blur_share=0.6, noise_sd=(4.5, 8.0), jpeg_quality=(50, 68)),
+    # high sun, over-exposed, a colour cast, strongly compressed
+    "glare": Look("glare", sun_elevation_deg=(65.0, 80.0), gain=(1.35, 1.75), white_balance=0.12,
+                  blur_sigma_px=(0.2, 0.45), motion_blur_share=0.0, noise_sd=(0.5, 1.4), jpeg_quality=(55, 72)),
+}
 
 SKY_ZENITH = np.array([0.30, 0.48, 0.80])
 SKY_HORIZON = np.array([0.80, 0.86, 0.92])
@@ -34,12 +66,12 @@ MAX_WINDOW_PIXELS = 600_000
 class PanoramaRenderer:
     """Renders the scene's panoramas; one instance per scene (noise tiles, sun)."""
 
-    def __init__(self, scene, width: int, rng: np.random.Generator):
+    def __init__(self, scene, width: int, rng: np.random.Generator, look: Look = LOOKS["training"]):
         self.scene = scene
         self.W, self.H = int(width), int(width) // 2
         self.ground_noise = noise_tile(rng, 256, 2.0)
         self.cloud_noise = noise_tile(rng, 256, 6.0)
-        sun_az, sun_el = rng.uniform(0, 2 * np.pi), np.radians(rng.uniform(35, 60))
+        sun_az, sun_el = rng.uniform(0, 2 * np.pi), np.radians(rng.uniform(*look.sun_elevation_deg))
         self.sun = np.array([np.sin(sun_az) * np.cos(sun_el), np.cos(sun_az) * np.cos(sun_el), np.sin(sun_el)])
         u = np.arange(self.W) + 0.5
         v = np.arange(self.H) + 0.5
@@ -218,18 +250,19 @@ def sign_boxes(mask, stats, width):
     return out
 
 
-def finish_image(img_linear, rng):
-    """Camera effects: exposure and white balance, blur, sensor noise -> uint8 RGB; and a JPEG quality."""
-    gain = rng.uniform(0.75, 1.3)
-    wb = rng.uniform(0.95, 1.05, 3).astype(np.float32)
+def finish_image(img_linear, rng, look: Look = LOOKS["training"]):
+    """Camera effects (ranges of ``look``): exposure and white balance, blur, sensor noise ->
+    uint8 RGB; and a JPEG quality."""
+    gain = rng.uniform(*look.gain)
+    wb = rng.uniform(1.0 - look.white_balance, 1.0 + look.white_balance, 3).astype(np.float32)
     out = img_linear * np.float32(gain * 255.0) * wb
-    sigma = rng.uniform(0.5, 1.1)
+    sigma = rng.uniform(*look.blur_sigma_px)
     out = cv2.GaussianBlur(out, (0, 0), sigma)
-    if rng.random() < 0.3:  # a little horizontal motion blur
+    if rng.random() < look.motion_blur_share:  # a little horizontal motion blur
         k = np.full((1, 3), 1 / 3.0, np.float32)
         out = cv2.filter2D(out, -1, k)
-    noise_sd = rng.uniform(1.5, 4.0)
+    noise_sd = rng.uniform(*look.noise_sd)
     out += rng.standard_normal(out.shape, dtype=np.float32) * np.float32(noise_sd)
-    quality = int(rng.integers(75, 94))
+    quality = int(rng.integers(*look.jpeg_quality))
     return np.clip(out, 0, 255).astype(np.uint8), quality, {"gain": round(gain, 4), "blur_sigma_px": round(sigma, 3),
                                                               "noise_sd": round(noise_sd, 3), "jpeg_quality": quality}

@@ -222,3 +222,25 @@ def test_same_seed_same_files(projected, geographic, tmp_path):
     assert len(first.points) == len(again.points) > 100_000
     for dim in ("X", "Y", "Z", "intensity", "classification", "gps_time"):
         assert np.array_equal(np.asarray(first[dim]), np.asarray(again[dim])), dim
+
+
+def test_held_out_looks_draw_outside_the_training_ranges():
+    """Held-out looks (dusk, glare) draw every camera effect and the sun from ranges the
+    training look never reaches; the training look's draws are unchanged by their option."""
+    from devtools.scenegen.render import LOOKS, finish_image
+
+    train = LOOKS["training"]
+    linear = np.full((8, 16, 3), 0.5, np.float32)
+    for name in ("dusk", "glare"):
+        look = LOOKS[name]
+        for lo_hi, t in ((look.sun_elevation_deg, train.sun_elevation_deg), (look.gain, train.gain),
+                         (look.jpeg_quality, train.jpeg_quality)):
+            assert lo_hi[1] < t[0] or lo_hi[0] > t[1]          # disjoint from training's range
+        for seed in range(5):
+            _, quality, camera = finish_image(linear, np.random.default_rng(seed), look)
+            assert look.gain[0] <= camera["gain"] <= look.gain[1]
+            assert look.jpeg_quality[0] <= quality < look.jpeg_quality[1]
+            assert not train.gain[0] <= camera["gain"] <= train.gain[1]
+    a = finish_image(linear, np.random.default_rng(3))
+    b = finish_image(linear, np.random.default_rng(3), train)
+    assert np.array_equal(a[0], b[0]) and a[1:] == b[1:]
