@@ -14,7 +14,7 @@ from qgis.core import (
 
 from ..core.detections import DETECTION_FIELDS, drive_detections
 from ..core.detector import DEFAULT_MIN_BOX_PX, DEFAULT_MIN_STATION_SPACING_M, spaced_stations
-from ..core.panorama import DEFAULT_UPWARD_VIEWS
+from ..core.panorama import DEFAULT_FORE_AFT_VIEWS, DEFAULT_UPWARD_VIEWS
 from ..core.signcodes import OTHER_CODE
 from ..core.trajectory import STATION_FIELDS, Stations
 from .base import RoadSignsAlgorithm
@@ -33,6 +33,7 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
     LABELS = "LABELS"
     MAX_RANGE = "MAX_RANGE"
     UPWARD_VIEWS = "UPWARD_VIEWS"
+    FORE_AFT_VIEWS = "FORE_AFT_VIEWS"
     THREADS = "THREADS"
     MIN_STATION_SPACING = "MIN_STATION_SPACING_M"
     OUTPUT = "OUTPUT"
@@ -99,6 +100,17 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
                     "5 m, 6 gantry panels each) the horizon views alone found every sign, as many as with "
                     "the upward ring, in 1.3 to 1.6 times less detection time. Check it for drives with "
                     "panoramas far apart."), advanced=True)
+        self.add_boolean(
+            self.FORE_AFT_VIEWS, self.tr("Look ahead and behind more closely (small, far signs)"),
+            DEFAULT_FORE_AFT_VIEWS,
+            self.tr("Adds two views of 53° straight ahead and behind, with 1.5 times the pixels per degree of "
+                    "the horizon views, for signs far along the road. On 130 held-out generated panoramas they "
+                    "found 0.907 of the signs per panorama instead of 0.878, at the same precision (signs "
+                    "14-20 px tall: 0.72 instead of 0.60; 20-35 px: 0.97 instead of 0.90), in 1.26 times the "
+                    "detection time. Off by default: the chain sees a sign from several stations, and with "
+                    "panoramas every 5 m it found every sign of two held-out streets without them; with "
+                    "panoramas 10 m apart they found 44 instead of 43 of 46 signs on one street and the same 41 "
+                    "of 45 on the other. Check it for drives with panoramas far apart."), advanced=True)
         self.add_number(
             self.MIN_STATION_SPACING, self.tr("Skip stations closer than (m)"), DEFAULT_MIN_STATION_SPACING_M,
             self.tr("Detects only in panoramas whose station stands at least this far from the last station "
@@ -149,7 +161,8 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
                                 threads=self.parameterAsInt(parameters, self.THREADS, context))
             feedback.pushInfo(detector.info().describe())
             views = ViewSet.default(size_px=detector.input_size,
-                                    upward=self.parameterAsBoolean(parameters, self.UPWARD_VIEWS, context))
+                                    upward=self.parameterAsBoolean(parameters, self.UPWARD_VIEWS, context),
+                                    fore_aft=self.parameterAsBoolean(parameters, self.FORE_AFT_VIEWS, context))
             feedback.pushInfo(self.tr("{} panoramas, {} views each").format(len(stations), len(views)))
             classifier = self.code_classifier(parameters, context, feedback,
                                               self.parameterAsInt(parameters, self.THREADS, context))

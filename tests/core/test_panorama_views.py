@@ -12,7 +12,14 @@ from helpers.synthpano import paint_discs as _paint_discs
 from helpers.synthpano import ray
 
 from roadsigns.core.errors import InputError
-from roadsigns.core.panorama import DEFAULT_UPWARD_VIEWS, PerspectiveView, ViewSet, read_panorama
+from roadsigns.core.panorama import (
+    DEFAULT_FORE_AFT_VIEWS,
+    DEFAULT_UPWARD_VIEWS,
+    FORE_AFT_HFOV_DEG,
+    PerspectiveView,
+    ViewSet,
+    read_panorama,
+)
 
 W, H = 2048, 1024
 RED = (0, 0, 255)  # BGR
@@ -128,7 +135,13 @@ def test_view_sets():
     assert views.working_width(4096) == 4096
     assert 4000 <= views.working_width(8192) < 4200
     assert hash(views) == hash(ViewSet.default(640, upward=True))
-    assert len(ViewSet.default(640)) == (14 if DEFAULT_UPWARD_VIEWS else 8)  # the plugin's default
+    assert len(ViewSet.default(640)) == 8 + 6 * DEFAULT_UPWARD_VIEWS + 2 * DEFAULT_FORE_AFT_VIEWS  # the plugin's
+    # fore and aft: two narrower views straight ahead and behind, after the horizon ring
+    fa = ViewSet.default(640, upward=False, fore_aft=True)
+    assert len(fa) == 10 and fa[:8] == ViewSet.default(640, upward=False, fore_aft=False)[:8]
+    assert [(v.yaw_deg, v.pitch_deg) for v in fa[8:]] == [(0.0, 0.0), (180.0, 0.0)]
+    assert all(v.hfov_deg == FORE_AFT_HFOV_DEG < 0.7 * views[0].hfov_deg for v in fa[8:])
+    assert len(ViewSet.default(640, upward=True, fore_aft=True)) == 16
 
 
 def test_large_panorama_is_reduced_before_cutting_and_boxes_stay_in_its_pixels(pano):
