@@ -23,6 +23,7 @@ from .errors import InputError
 #: exceed (20000 x 10000 is 200 Mpx): the plugin raises Pillow's limit deliberately to this
 #: bound when it reads panoramas (never lowers it) and refuses larger images with a message.
 MAX_PANORAMA_PIXELS = 32768 * 16384
+MAX_PANORAMA_SIZE = "32768 x 16384"
 #: Whether detection also looks upwards by default (``detectsigns``' ``UPWARD_VIEWS``): no,
 #: the horizon ring alone found every sign on the held-out streets (bench/README.md, "Fewer
 #: views"); training cuts both rings.
@@ -32,7 +33,6 @@ DEFAULT_UPWARD_VIEWS = False
 FORE_AFT_HFOV_DEG = 80.0 / 1.5
 #: Whether detection adds them by default: no (bench/README.md, "Denser views for small signs").
 DEFAULT_FORE_AFT_VIEWS = False
-MAX_PANORAMA_SIZE = "32768 x 16384"
 
 
 def allow_large_panoramas() -> None:
