@@ -202,15 +202,17 @@ def read_codes(classifier, pano: np.ndarray, found):
 
     ``classifier``: a :class:`.signcodes.CodeClassifier` (or any object with
     ``classify(crops) -> (names, probabilities)`` and ``crop_margin``). One rectified crop
-    per box is cut at the panorama's native resolution (:func:`.signcodes.cut_crop`, with
-    the classifier's margin) and all are classified in batches; ``found.code`` and
+    per box is cut at the panorama's native resolution (the classifier's ``cut_crop``, up to
+    twice its input side, or :func:`.signcodes.cut_crop`, with the classifier's margin) and
+    all are classified in batches; ``found.code`` and
     ``found.code_score`` are set in place (``other`` when the classifier knows no code) and
     ``found`` is returned. Use it as :func:`.detector.detect_drive`'s ``on_panorama``.
     """
     if len(found) == 0:
         return found
     margin = float(getattr(classifier, "crop_margin", DEFAULT_CROP_MARGIN))
-    crops = [cut_crop(pano, box, margin) for box in found.boxes()]
+    cut = getattr(classifier, "cut_crop", None) or (lambda p, box: cut_crop(p, box, margin))
+    crops = [cut(pano, box) for box in found.boxes()]
     codes, probabilities = classifier.classify(crops)
     found.code = [str(c) for c in codes]
     found.code_score = np.asarray(probabilities, float).reshape(-1)

@@ -334,6 +334,14 @@ class CodeClassifier:
         best = probs.argmax(axis=1) if len(probs) else np.zeros(0, np.int64)
         return [self.names[i] for i in best], probs[np.arange(len(best)), best].astype(float)
 
+    def cut_crop(self, pano_bgr: np.ndarray, box_px) -> np.ndarray:
+        """The crop of a panorama box this classifier reads (:func:`cut_crop` with its margin):
+        sampled at the panorama's density up to :data:`READ_SAMPLE_FACTOR` x its input side,
+        which :meth:`classify` then shrinks to the input side with ``INTER_AREA``; sampling
+        big signs at their full native density would cost more and give the same picture."""
+        side = READ_SAMPLE_FACTOR * self.input_px
+        return cut_crop(pano_bgr, box_px, self.crop_margin, max_side_px=side, max_sample_px=side)
+
     def describe(self) -> str:
         """One line for the log: file, number of codes, input size, output kind, providers."""
         n_codes = sum(1 for n in self.names if n != OTHER_CODE)
@@ -351,6 +359,9 @@ class CodeClassifier:
 MAX_CROP_FOV_DEG = 120.0
 #: Supersampling limit when a crop is cut smaller than its native size (anti-aliasing).
 MAX_SUPERSAMPLE = 4
+#: The crops the chain reads are sampled at most this many times the classifier's input
+#: side (:meth:`CodeClassifier.cut_crop`).
+READ_SAMPLE_FACTOR = 2
 
 
 def square_view(yaw_deg: float, pitch_deg: float, size_deg: float, width_px: int,
@@ -405,17 +416,18 @@ def view_box_crop_view(view: PerspectiveView, box_xyxy, width_px: int, margin: f
 
 
 def cut_crop(pano_bgr: np.ndarray, box_px, margin: float = DEFAULT_CROP_MARGIN,
-             max_side_px: int = 256) -> np.ndarray:
+             max_side_px: int = 256, max_sample_px: Optional[int] = None) -> np.ndarray:
     """A square **RGB** uint8 crop of the panorama (``H x W x 3`` **BGR**) around a box.
 
     ``box_px``: ``(u0, v0, u1, v1)`` in panorama pixels, detections layer form (``u1`` past
     ``W`` across the seam). The crop is a rectified perspective view centred on the box
     centre's ray (:func:`crop_view`: field of view the box's larger angular side x
     ``(1 + 2 margin)``, side in panorama pixels at the native density, clamped to
-    ``[8, max_side_px]``), cut by :func:`cut_square_view`.
+    ``[8, max_side_px]``), cut by :func:`cut_square_view` (``max_sample_px``: see there).
     """
     pano = _bgr_panorama(pano_bgr)
-    return cut_square_view(pano, *crop_view(box_px, pano.shape[1], pano.shape[0], margin, max_side_px))
+    return cut_square_view(pano, *crop_view(box_px, pano.shape[1], pano.shape[0], margin, max_side_px),
+                           max_sample_px=max_sample_px)
 
 
 def _bgr_panorama(pano_bgr: np.ndarray) -> np.ndarray:
@@ -425,28 +437,61 @@ def _bgr_panorama(pano_bgr: np.ndarray) -> np.ndarray:
     return pano
 
 
-def cut_square_view(pano_bgr: np.ndarray, view: PerspectiveView, native_px: int) -> np.ndarray:
+def cut_square_view(pano_bgr: np.ndarray, view: PerspectiveView, native_px: int,
+                    max_sample_px: Optional[int] = None) -> np.ndarray:
     """The **RGB** uint8 picture of a crop ``view`` (:func:`square_view`) of the panorama
     (``H x W x 3`` **BGR**). Columns wrap across the +-180 deg seam. A view cut smaller than
     its ``native_px`` side is sampled up to :data:`MAX_SUPERSAMPLE` x finer and shrunk with
-    ``INTER_AREA``, so that fine print does not alias."""
+    ``INTER_AREA``, so that fine print does not alias. With ``max_sample_px``, at most that
+    many samples a side are taken; where that is coarser than the panorama, the panorama's
+    patch under the view is first shrunk to the samples' density with ``INTER_AREA`` (the
+    same anti-aliasing, from fewer rays)."""
     import cv2
 
     pano = _bgr_panorama(pano_bgr)
     H, W = pano.shape[:2]
     side = view.width_px
     factor = int(min(max(math.ceil(native_px / side), 1), MAX_SUPERSAMPLE))
+    if max_sample_px is not None:
+        factor = max(1, min(factor, int(max_sample_px) // side))
     n = side * factor
     sample = PerspectiveView(view.yaw_deg, view.pitch_deg, view.hfov_deg, n, n)
     ys, xs = np.mgrid[0:n, 0:n].astype(float) + 0.5
     u, v = geometry.ray_to_pixel(sample.pixel_to_ray(xs, ys), W, H)
     map_x = (u - 0.5).astype(np.float32)  # cv2 samples pixel centres at integer coordinates
     map_y = np.clip(v - 0.5, 0.0, H - 1.0).astype(np.float32)
+    shrink = native_px / n
+    if max_sample_px is not None and shrink > 1.0:
+        crop = _remap_shrunk(pano, map_x, map_y, shrink)
+        if crop is not None:
+            return np.ascontiguousarray(crop[:, :, ::-1])
     # BORDER_WRAP joins the columns across the seam; rows never leave the image (clamped).
     crop = cv2.remap(pano, map_x, map_y, cv2.INTER_LINEAR, borderMode=cv2.BORDER_WRAP)
     if factor > 1:
         crop = cv2.resize(crop, (side, side), interpolation=cv2.INTER_AREA)
     return np.ascontiguousarray(crop[:, :, ::-1])
+
+
+def _remap_shrunk(pano: np.ndarray, map_x: np.ndarray, map_y: np.ndarray,
+                  shrink: float) -> Optional[np.ndarray]:
+    """``cv2.remap`` of the panorama at maps sampling it ``shrink`` (> 1) x coarser than its
+    pixels, from its patch under the maps shrunk by ``shrink`` with ``INTER_AREA``; None
+    when the patch crosses the seam (the caller samples the panorama itself)."""
+    import cv2
+
+    H, W = pano.shape[:2]
+    x0, x1 = int(math.floor(float(map_x.min()))) - 2, int(math.ceil(float(map_x.max()))) + 3
+    y0, y1 = max(int(math.floor(float(map_y.min()))) - 2, 0), min(int(math.ceil(float(map_y.max()))) + 3, H)
+    if x0 < 0 or x1 > W or x1 - x0 > W // 2:
+        return None
+    patch = pano[y0:y1, x0:x1]
+    w_small = max(1, int(round((x1 - x0) / shrink)))
+    h_small = max(1, int(round((y1 - y0) / shrink)))
+    small = cv2.resize(patch, (w_small, h_small), interpolation=cv2.INTER_AREA)
+    sx, sy = w_small / (x1 - x0), h_small / (y1 - y0)
+    mx = ((map_x + 0.5 - x0) * sx - 0.5).astype(np.float32)
+    my = ((map_y + 0.5 - y0) * sy - 0.5).astype(np.float32)
+    return cv2.remap(small, mx, my, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
 
 
 # --- the vote ---------------------------------------------------------------------------

@@ -4,6 +4,7 @@ synthetic equirectangular panoramas (``helpers.synthpano``) and the vote across 
 import json
 import os
 
+import cv2
 import numpy as np
 import pytest
 from helpers.synthpano import disc_pano_box, paint_discs
@@ -335,6 +336,31 @@ def test_crop_feeds_the_classifier(tmp_path, table):
     crops = [sc.cut_crop(pano, disc_pano_box(a, 5.0, 5.0, W), margin=0.0) for a in (30.0, -150.0)]
     clf = sc.CodeClassifier(make_classifier(tmp_path / "tiny.onnx"), table)
     assert clf.classify(crops)[0] == ["DE:206", "DE:215"]
+
+
+def test_the_classifier_cuts_big_signs_at_twice_its_input_side(tmp_path, table):
+    """What the chain reads: a big sign is sampled at twice the classifier's input side (not
+    its native 130 px), a small one at its native side, and after the shrink to the input
+    side the picture is the native crop's; fine print still does not alias."""
+    clf = sc.CodeClassifier(make_classifier(tmp_path / "tiny.onnx"), table)
+    s = clf.input_px
+    rng = np.random.default_rng(4)
+    texture = cv2.GaussianBlur(rng.integers(0, 255, (W // 2, W, 3), np.uint8), (0, 0), 1.5)
+    pano = paint_discs([(20.0, 0.0, 8.0, RED_BGR), (-60.0, 2.0, 1.2, BLUE_BGR)], W)
+    grey = (pano == 90).all(axis=2)
+    pano[grey] = texture[grey]                      # a textured street around the signs
+    big, small = disc_pano_box(20.0, 0.0, 8.0, W), disc_pano_box(-60.0, 2.0, 1.2, W)
+    native_big = sc.cut_crop(pano, big, clf.crop_margin)
+    assert native_big.shape[0] > 2 * s
+    read_big = clf.cut_crop(pano, big)
+    assert read_big.shape == (2 * s, 2 * s, 3)
+    a, b = (cv2.resize(c, (s, s), interpolation=cv2.INTER_AREA).astype(int) for c in (native_big, read_big))
+    assert np.abs(a - b).mean() < 2.0 and np.abs(a - b).max() < 40
+    assert np.array_equal(clf.cut_crop(pano, small), sc.cut_crop(pano, small, clf.crop_margin))
+    stripes = np.zeros((W // 2, W, 3), np.uint8)
+    stripes[:, ::2] = 255
+    crop = clf.cut_crop(stripes, (900.0, 400.0, 1100.0, 600.0))
+    assert crop.mean() == pytest.approx(127.5, abs=3) and crop.std() < 12
 
 
 def test_a_box_found_in_a_view_crops_as_its_panorama_box():
