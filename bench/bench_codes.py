@@ -19,7 +19,8 @@ Everything runs through the plugin's own engine (``core.signcodes``: ``CodeClass
   photograph (as ``bench_detector``); each detection matching a true sign (IoU >= 0.5) is cut
   with the model's margin and read; accuracy among them against the sign's GTSRB code;
 - **speed**: crops per second on ``--threads`` threads for crops of 12-120 px (cutting from a
-  panorama, resizing and inference), and the inference alone.
+  panorama as the chain does, ``CodeClassifier.cut_crop``; resizing and inference), and the
+  inference alone.
 """
 from __future__ import annotations
 
