@@ -269,6 +269,13 @@ def choose_providers(available: Sequence[str]) -> List[str]:
     return chosen or list(available)
 
 
+#: Whether onnxruntime's intra-op threads spin while they wait for work. No: on two cores a
+#: spinning thread holds the core that decoding the next panorama and cutting the sign-code
+#: crops need (bench/README.md, "Threads that do not spin": ``detect_drive`` 1.4 x faster,
+#: the same detections).
+SPIN_WAIT = False
+
+
 def open_session(model_path: str, threads: int = 0, providers: Optional[Sequence[str]] = None):
     """An onnxruntime session; :class:`InputError` naming the file when it is missing or
     not a model onnxruntime loads."""
@@ -279,6 +286,7 @@ def open_session(model_path: str, threads: int = 0, providers: Optional[Sequence
     options = ort.SessionOptions()
     options.intra_op_num_threads = int(threads)
     options.log_severity_level = 3
+    options.add_session_config_entry("session.intra_op.allow_spinning", "1" if SPIN_WAIT else "0")
     try:
         return ort.InferenceSession(
             model_path, sess_options=options,

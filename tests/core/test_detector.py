@@ -53,6 +53,15 @@ def test_yolov8_layout(tmp_path):
     assert len(d.detect(image(), confidence=0.25, iou_threshold=0.99)) == 4  # no suppression
 
 
+def test_sessions_do_not_spin(tmp_path):
+    """onnxruntime's threads wait without spinning (core.detector.SPIN_WAIT): on two cores a
+    spinning thread holds the core that decoding and cutting crops need."""
+    d = Detector(make_model(tmp_path / "v8.onnx", v8_output(V8_ROWS), meta={"names": NAMES2}), threads=2)
+    options = d.session.get_session_options()
+    assert options.get_session_config_entry("session.intra_op.allow_spinning") == ("1" if det.SPIN_WAIT else "0")
+    assert det.SPIN_WAIT is False
+
+
 def test_letterbox_is_undone_on_a_wide_image(tmp_path):
     d = Detector(make_model(tmp_path / "v8.onnx", v8_output(V8_ROWS), meta={"names": NAMES2}))
     found = d.detect(image(128, 64))  # scale 0.5, 16 px of padding above and below
