@@ -56,6 +56,7 @@ from .pointcloud import (
     CropRegion,
     TiledIndex,
     crs_wkt_of_header,
+    damage_named,
     iter_chunks,
     open_reader,
     read_header,
@@ -74,8 +75,6 @@ Area = Union[Any, Sequence[Any]]
 _VPC_EXPECTED = ("expected a virtual point cloud: a JSON FeatureCollection (STAC ItemCollection) whose "
                  "features each have assets.data.href (the tile's file, relative to the .vpc) and properties, "
                  "as QGIS's Build virtual point cloud writes it")
-#: the message of a file cut short (as core/pointcloud.py words it)
-_CORRUPT = "Cannot read {path}: the file is truncated or corrupt ({detail})"
 _STAC_EXTENSIONS = ["https://stac-extensions.github.io/pointcloud/v1.0.0/schema.json",
                     "https://stac-extensions.github.io/projection/v1.1.0/schema.json"]
 
@@ -475,16 +474,12 @@ def _copc_chunks(tile: Tile, nodes: List[_Node], header: laspy.LasHeader
     with laspy.CopcReader.open(tile.path) as reader:
         laszip = reader.laszip_vlr.record_data
         for node in nodes:
-            try:
+            with damage_named(tile.path):
                 reader.source.seek(node.offset)
                 data = reader.source.read(node.byte_size)
                 raw = np.zeros(node.point_count * point_size, dtype=np.uint8)
                 lazrs.decompress_points_with_chunk_table(data, laszip, raw, [(node.point_count, node.byte_size)],
                                                          selection)
-            except BaseException as e:
-                if isinstance(e, (KeyboardInterrupt, SystemExit, GeneratorExit)):
-                    raise
-                raise InputError(_CORRUPT, path=tile.path, detail=f"{type(e).__name__}: {e}")
             packed = laspy.PackedPointRecord.from_buffer(raw, header.point_format)
             points = laspy.ScaleAwarePointRecord(packed.array, header.point_format, header.scales, header.offsets)
             first = tile.first_index + node.first

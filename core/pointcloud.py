@@ -14,6 +14,7 @@ Conventions:
 """
 from __future__ import annotations
 
+import contextlib
 import copy
 import math
 import os
@@ -112,6 +113,20 @@ def _check_vlr_count(path: str) -> None:
         raise InputError(_CORRUPT, path=path, detail="the header is cut short")
 
 
+@contextlib.contextmanager
+def damage_named(path: str) -> Iterator[None]:
+    """What damaged files make laspy and lazrs raise inside the block (any Exception, and
+    lazrs's Rust panics) as :class:`InputError` naming ``path``."""
+    try:
+        yield
+    except InputError:
+        raise
+    except _READ_ERRORS as e:  # laspy raises LaspyException, ValueError, struct.error, ...
+        if isinstance(e, _NOT_READ_ERRORS):
+            raise
+        raise InputError(_CORRUPT, path=path, detail=f"{type(e).__name__}: {e}")
+
+
 def open_reader(path: str) -> laspy.LasReader:
     """Open a LAS/LAZ file for chunked reading; :class:`InputError` when it is not one.
 
@@ -119,12 +134,8 @@ def open_reader(path: str) -> laspy.LasReader:
     """
     path = os.fspath(path)
     _check_signature(path)
-    try:
+    with damage_named(path):
         return laspy.open(path, mode="r", laz_backend=laz_backends())
-    except _READ_ERRORS as e:  # laspy raises LaspyException, ValueError, struct.error, ...
-        if isinstance(e, _NOT_READ_ERRORS):
-            raise
-        raise InputError(_CORRUPT, path=path, detail=f"{type(e).__name__}: {e}")
 
 
 def read_header(path: str) -> laspy.LasHeader:
@@ -168,15 +179,9 @@ def iter_chunks(path: str, chunk_points: int = DEFAULT_CHUNK_POINTS,
         progress.report(0.0)
         iterator = reader.chunk_iterator(max(1, int(chunk_points)))
         while True:
-            try:
-                chunk = next(iterator)
-            except StopIteration:
-                break
-            except _READ_ERRORS as e:
-                if isinstance(e, _NOT_READ_ERRORS):
-                    raise
-                raise InputError(_CORRUPT, path=path, detail=f"{type(e).__name__}: {e}")
-            if len(chunk) == 0:
+            with damage_named(path):
+                chunk = next(iterator, None)
+            if chunk is None or len(chunk) == 0:
                 break
             done += len(chunk)
             yield chunk
@@ -192,14 +197,10 @@ def read_points_at(reader: laspy.LasReader, path: str, first: int, count: int
     (seeking there unless the reader is there already; a LAZ is decompressed from the start
     of the LAZ chunk holding ``first``); :class:`InputError` naming the file when it is
     damaged or shorter."""
-    try:
+    with damage_named(path):
         if reader.points_read != first:
             reader.seek(first)
         chunk = reader.read_points(count)
-    except _READ_ERRORS as e:
-        if isinstance(e, _NOT_READ_ERRORS):
-            raise
-        raise InputError(_CORRUPT, path=path, detail=f"{type(e).__name__}: {e}")
     if len(chunk) != count:
         raise InputError(_CORRUPT, path=path, detail=f"{count} points expected from point {first}, "
                          f"{len(chunk)} could be read")

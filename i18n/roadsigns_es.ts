@@ -2177,144 +2177,124 @@
         <translation>El {share:.0%} de los puntos cercanos a la vía tiene la intensidad saturada: el umbral de brillo {thr:.3f} del fondo de escala y el estado de las señales pueden carecer de sentido</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="565" />
-        <location filename="../core/cloudsource.py" line="563" />
+        <location filename="../core/cloudsource.py" line="560" />
+        <location filename="../core/cloudsource.py" line="558" />
         <source>expected a virtual point cloud: a JSON FeatureCollection (STAC ItemCollection) whose features each have assets.data.href (the tile's file, relative to the .vpc) and properties, as QGIS's Build virtual point cloud writes it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>se esperaba una nube de puntos virtual: una FeatureCollection JSON (ItemCollection de STAC) cuyas entidades tengan cada una assets.data.href (el archivo de la tesela, relativo al .vpc) y properties, tal como la escribe «Construir nube de puntos virtual» de QGIS</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="157" />
+        <location filename="../core/cloudsource.py" line="156" />
         <source>no CRS</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>sin SRC</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="524" />
+        <location filename="../core/cloudsource.py" line="519" />
         <source>The folder {path} holds no LAS or LAZ file (*.las, *.laz); expected a point cloud file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La carpeta {path} no contiene ningún archivo LAS ni LAZ (*.las, *.laz); se esperaba un archivo de nube de puntos, una carpeta de teselas LAS/LAZ o una nube de puntos virtual (.vpc)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="567" />
+        <location filename="../core/cloudsource.py" line="562" />
         <source>Cannot read {path}: the JSON is not an object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el JSON no es un objeto; {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="570" />
+        <location filename="../core/cloudsource.py" line="565" />
         <source>Cannot read {path}: it is not a 'FeatureCollection' with a 'features' list; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: no es una 'FeatureCollection' con una lista 'features'; {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="573" />
+        <location filename="../core/cloudsource.py" line="568" />
         <source>The virtual point cloud {path} lists no tile</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} no enumera ninguna tesela</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="246" />
-        <location filename="../core/pointcloud.py" line="544" />
+        <location filename="../core/cloudsource.py" line="245" />
+        <location filename="../core/pointcloud.py" line="545" />
         <source>{path} has no dimension {names} (point format {fmt})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene la dimensión {names} (formato de punto {fmt})</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="517" />
+        <location filename="../core/cloudsource.py" line="512" />
         <source>Cannot read the folder {path}: {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer la carpeta {path}: {detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="556" />
-        <location filename="../core/pointcloud.py" line="65" />
+        <location filename="../core/cloudsource.py" line="551" />
+        <location filename="../core/pointcloud.py" line="66" />
         <source>Cannot read {path}: the file does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo no existe</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="558" />
+        <location filename="../core/cloudsource.py" line="553" />
         <location filename="../core/ground/pdal.py" line="306" />
-        <location filename="../core/pointcloud.py" line="67" />
-        <location filename="../core/pointcloud.py" line="110" />
+        <location filename="../core/pointcloud.py" line="68" />
+        <location filename="../core/pointcloud.py" line="111" />
         <source>Cannot read {path}: {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: {detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="562" />
+        <location filename="../core/cloudsource.py" line="557" />
         <source>Cannot read {path}: it is not valid JSON ({detail}); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: no es un JSON válido ({detail}); {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="580" />
+        <location filename="../core/cloudsource.py" line="575" />
         <source>Cannot read {path}: feature {feature} has no 'assets' object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: la entidad {feature} no tiene objeto 'assets'; {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="588" />
+        <location filename="../core/cloudsource.py" line="583" />
         <source>Cannot read {path}: feature {feature} has no asset with an 'href' (assets.data.href); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: la entidad {feature} no tiene ningún asset con 'href' (assets.data.href); {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="592" />
+        <location filename="../core/cloudsource.py" line="587" />
         <source>The virtual point cloud {path} lists the remote tile {href}: only local files are read; download the tiles and build the virtual point cloud again</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} enumera la tesela remota {href}: solo se leen archivos locales; descargue las teselas y vuelva a construir la nube de puntos virtual</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="598" />
+        <location filename="../core/cloudsource.py" line="593" />
         <source>The virtual point cloud {path} lists the tile {tile} twice (features {first} and {second})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} enumera la tesela {tile} dos veces (entidades {first} y {second})</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="602" />
+        <location filename="../core/cloudsource.py" line="597" />
         <source>The virtual point cloud {path} lists the tile {tile} (feature {feature}), which does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} enumera la tesela {tile} (entidad {feature}), que no existe</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="617" />
+        <location filename="../core/cloudsource.py" line="612" />
         <source>The tiles of {path} cannot be read as one cloud: {tile_a} has point format {fmt_a}, {tile_b} point format {fmt_b}; every tile needs the same point format (convert them to one, e.g. with PDAL's translate)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Las teselas de {path} no se pueden leer como una sola nube: {tile_a} tiene el formato de punto {fmt_a}, {tile_b} el formato de punto {fmt_b}; todas las teselas necesitan el mismo formato de punto (conviértalas a uno solo, p. ej. con translate de PDAL)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="623" />
+        <location filename="../core/cloudsource.py" line="618" />
         <source>The tiles of {path} are in different CRSs: {tile_a} in {crs_a}, {tile_b} in {crs_b}; every tile must be in the same CRS (reproject them to one first)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Las teselas de {path} están en SRC distintos: {tile_a} en {crs_a}, {tile_b} en {crs_b}; todas las teselas deben estar en el mismo SRC (reproyéctelas antes a uno solo)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="652" />
+        <location filename="../core/cloudsource.py" line="647" />
         <source>The points cannot be written with the first tile's scale {scale} and offset {offset} in {axis}: their coordinates are too far from it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Los puntos no se pueden escribir con la escala {scale} y el desplazamiento {offset} de la primera tesela en {axis}: sus coordenadas están demasiado lejos de ellos</translation>
-    </message>
-    <message>
-        <location filename="../core/cloudsource.py" line="487" />
-        <location filename="../core/ground/pdal.py" line="310" />
-        <location filename="../core/ground/pdal.py" line="312" />
-        <location filename="../core/ground/pdal.py" line="308" />
-        <location filename="../core/ground/pdal.py" line="293" />
-        <location filename="../core/ground/pdal.py" line="302" />
-        <location filename="../core/pointcloud.py" line="204" />
-        <location filename="../core/pointcloud.py" line="112" />
-        <location filename="../core/pointcloud.py" line="127" />
-        <location filename="../core/pointcloud.py" line="185" />
-        <location filename="../core/pointcloud.py" line="202" />
-        <location filename="../core/pointcloud.py" line="88" />
-        <location filename="../core/pointcloud.py" line="91" />
-        <location filename="../core/pointcloud.py" line="107" />
-        <location filename="../core/pointcloud.py" line="178" />
-        <source>Cannot read {path}: the file is truncated or corrupt ({detail})</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No se puede leer {path}: el archivo está truncado o dañado ({detail})</translation>
     </message>
     <message>
         <location filename="../core/crs.py" line="19" />
@@ -2478,13 +2458,13 @@
         <translation>El modelo {path} tiene una salida de forma {shape}, que no encaja con la disposición {layout} con {n_classes} nombres de clase</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="278" />
+        <location filename="../core/detector.py" line="285" />
         <source>Model not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró el modelo: {path}</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="361" />
+        <location filename="../core/detector.py" line="369" />
         <source>The model {path} names no classes: its metadata has no readable 'names' and there is no labels file ({labels}, one class name per line)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} no nombra ninguna clase: sus metadatos no tienen 'names' legibles y no hay archivo de etiquetas ({labels}, un nombre de clase por línea)</translation>
@@ -2496,31 +2476,31 @@
         <translation>No se puede leer el archivo de etiquetas {path}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="288" />
+        <location filename="../core/detector.py" line="296" />
         <source>{path} is not an ONNX model onnxruntime can load: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no es un modelo ONNX que onnxruntime pueda cargar: {error}</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="314" />
+        <location filename="../core/detector.py" line="322" />
         <source>The model {path} is a {task} model; sign detection needs a detection model</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} es un modelo de {task}; la detección de señales necesita un modelo de detección</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="320" />
+        <location filename="../core/detector.py" line="328" />
         <source>The model {path} takes an input of shape {shape}; an image model takes [batch, 3, height, width]</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} recibe una entrada de forma {shape}; un modelo de imagen recibe [batch, 3, height, width]</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="326" />
+        <location filename="../core/detector.py" line="334" />
         <source>The model {path} has a fixed batch of {batch}; use a batch of 1 or a dynamic batch</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} tiene un lote fijo de {batch}; use un lote de 1 o un lote dinámico</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="342" />
+        <location filename="../core/detector.py" line="350" />
         <source>The model {path} failed on a blank {w} x {h} image: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} falló con una imagen en blanco de {w} x {h}: {error}</translation>
@@ -2641,7 +2621,7 @@
     </message>
     <message>
         <location filename="../core/ground/engine.py" line="328" />
-        <location filename="../core/pointcloud.py" line="264" />
+        <location filename="../core/pointcloud.py" line="265" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la salida debe terminar en .las o .laz</translation>
@@ -2765,6 +2745,23 @@
         <translation>El ejecutable de PDAL {path} no existe o no es ejecutable</translation>
     </message>
     <message>
+        <location filename="../core/ground/pdal.py" line="310" />
+        <location filename="../core/ground/pdal.py" line="312" />
+        <location filename="../core/ground/pdal.py" line="308" />
+        <location filename="../core/ground/pdal.py" line="293" />
+        <location filename="../core/ground/pdal.py" line="302" />
+        <location filename="../core/pointcloud.py" line="205" />
+        <location filename="../core/pointcloud.py" line="113" />
+        <location filename="../core/pointcloud.py" line="127" />
+        <location filename="../core/pointcloud.py" line="190" />
+        <location filename="../core/pointcloud.py" line="89" />
+        <location filename="../core/pointcloud.py" line="92" />
+        <location filename="../core/pointcloud.py" line="108" />
+        <source>Cannot read {path}: the file is truncated or corrupt ({detail})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No se puede leer {path}: el archivo está truncado o dañado ({detail})</translation>
+    </message>
+    <message>
         <location filename="../core/ground/tiled.py" line="217" />
         <source>{n} tiles written to {folder}, listed in {vpc}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -2878,7 +2875,7 @@
         <location filename="../core/outputs.py" line="147" />
         <location filename="../core/outputs.py" line="209" />
         <location filename="../core/outputs.py" line="178" />
-        <location filename="../core/pointcloud.py" line="275" />
+        <location filename="../core/pointcloud.py" line="276" />
         <source>Cannot write {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: {error}</translation>
@@ -2933,49 +2930,49 @@
         <translation>No se puede leer el panorama {path}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="345" />
+        <location filename="../core/pointcloud.py" line="346" />
         <source>Cannot use {item!r} as a crop geometry: expected a shapely geometry, WKB or WKT</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede usar {item!r} como geometría de recorte: se esperaba una geometría de shapely, WKB o WKT</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="69" />
+        <location filename="../core/pointcloud.py" line="70" />
         <source>Cannot read {path}: expected a LAS or LAZ file ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: se esperaba un archivo LAS o LAZ ({detail})</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="453" />
+        <location filename="../core/pointcloud.py" line="454" />
         <source>{path} has no coordinate reference system and none was given</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene sistema de referencia de coordenadas y no se indicó ninguno</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="268" />
+        <location filename="../core/pointcloud.py" line="269" />
         <source>Cannot write {path}: the folder does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la carpeta no existe</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="368" />
+        <location filename="../core/pointcloud.py" line="369" />
         <source>The crop layer has no geometry</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La capa de recorte no tiene geometría</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="379" />
+        <location filename="../core/pointcloud.py" line="380" />
         <source>A corridor needs a positive buffer, got {buffer_m} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un corredor necesita un búfer positivo; se recibió {buffer_m} m</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="389" />
+        <location filename="../core/pointcloud.py" line="390" />
         <source>A corridor needs stations or lines</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un corredor necesita estaciones o líneas</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="463" />
+        <location filename="../core/pointcloud.py" line="464" />
         <source>No point of {path} lies inside the crop area; {output} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} está dentro del área de recorte; {output} está vacío</translation>
@@ -3162,7 +3159,7 @@
         <translation>La tabla de códigos de señal {path} no contiene códigos: se esperaba una fila por código tras la cabecera {expected}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="383" />
+        <location filename="../core/signcodes.py" line="394" />
         <source>The box {box} is not four finite pixel coordinates u0, v0, u1, v1</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El recuadro {box} no son cuatro coordenadas de píxel finitas u0, v0, u1, v1</translation>

@@ -2177,144 +2177,124 @@
         <translation>道路附近 {share:.0%} 的点强度饱和：满量程的亮度阈值 {thr:.3f} 以及标志的状态可能没有意义</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="565" />
-        <location filename="../core/cloudsource.py" line="563" />
+        <location filename="../core/cloudsource.py" line="560" />
+        <location filename="../core/cloudsource.py" line="558" />
         <source>expected a virtual point cloud: a JSON FeatureCollection (STAC ItemCollection) whose features each have assets.data.href (the tile's file, relative to the .vpc) and properties, as QGIS's Build virtual point cloud writes it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>应为虚拟点云：一个 JSON FeatureCollection（STAC ItemCollection），其每个要素都有 assets.data.href（分块文件，相对于 .vpc 的路径）和 properties，即 QGIS 的“构建虚拟点云”写出的格式</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="157" />
+        <location filename="../core/cloudsource.py" line="156" />
         <source>no CRS</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="524" />
+        <location filename="../core/cloudsource.py" line="519" />
         <source>The folder {path} holds no LAS or LAZ file (*.las, *.laz); expected a point cloud file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>文件夹 {path} 中没有 LAS 或 LAZ 文件（*.las、*.laz）；应为点云文件、LAS/LAZ 分块文件夹或虚拟点云（.vpc）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="567" />
+        <location filename="../core/cloudsource.py" line="562" />
         <source>Cannot read {path}: the JSON is not an object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：该 JSON 不是对象；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="570" />
+        <location filename="../core/cloudsource.py" line="565" />
         <source>Cannot read {path}: it is not a 'FeatureCollection' with a 'features' list; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：不是带有 'features' 列表的 'FeatureCollection'；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="573" />
+        <location filename="../core/cloudsource.py" line="568" />
         <source>The virtual point cloud {path} lists no tile</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 未列出任何分块</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="246" />
-        <location filename="../core/pointcloud.py" line="544" />
+        <location filename="../core/cloudsource.py" line="245" />
+        <location filename="../core/pointcloud.py" line="545" />
         <source>{path} has no dimension {names} (point format {fmt})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有维度 {names}（点格式 {fmt}）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="517" />
+        <location filename="../core/cloudsource.py" line="512" />
         <source>Cannot read the folder {path}: {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取文件夹 {path}：{detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="556" />
-        <location filename="../core/pointcloud.py" line="65" />
+        <location filename="../core/cloudsource.py" line="551" />
+        <location filename="../core/pointcloud.py" line="66" />
         <source>Cannot read {path}: the file does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件不存在</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="558" />
+        <location filename="../core/cloudsource.py" line="553" />
         <location filename="../core/ground/pdal.py" line="306" />
-        <location filename="../core/pointcloud.py" line="67" />
-        <location filename="../core/pointcloud.py" line="110" />
+        <location filename="../core/pointcloud.py" line="68" />
+        <location filename="../core/pointcloud.py" line="111" />
         <source>Cannot read {path}: {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：{detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="562" />
+        <location filename="../core/cloudsource.py" line="557" />
         <source>Cannot read {path}: it is not valid JSON ({detail}); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：不是有效的 JSON（{detail}）；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="580" />
+        <location filename="../core/cloudsource.py" line="575" />
         <source>Cannot read {path}: feature {feature} has no 'assets' object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：要素 {feature} 没有 'assets' 对象；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="588" />
+        <location filename="../core/cloudsource.py" line="583" />
         <source>Cannot read {path}: feature {feature} has no asset with an 'href' (assets.data.href); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：要素 {feature} 没有带 'href' 的 asset（assets.data.href）；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="592" />
+        <location filename="../core/cloudsource.py" line="587" />
         <source>The virtual point cloud {path} lists the remote tile {href}: only local files are read; download the tiles and build the virtual point cloud again</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 列出了远程分块 {href}：只读取本地文件；请下载这些分块并重新构建虚拟点云</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="598" />
+        <location filename="../core/cloudsource.py" line="593" />
         <source>The virtual point cloud {path} lists the tile {tile} twice (features {first} and {second})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 两次列出分块 {tile}（要素 {first} 和 {second}）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="602" />
+        <location filename="../core/cloudsource.py" line="597" />
         <source>The virtual point cloud {path} lists the tile {tile} (feature {feature}), which does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 列出的分块 {tile}（要素 {feature}）不存在</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="617" />
+        <location filename="../core/cloudsource.py" line="612" />
         <source>The tiles of {path} cannot be read as one cloud: {tile_a} has point format {fmt_a}, {tile_b} point format {fmt_b}; every tile needs the same point format (convert them to one, e.g. with PDAL's translate)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 的分块无法作为一个点云读取：{tile_a} 的点格式为 {fmt_a}，{tile_b} 的点格式为 {fmt_b}；所有分块必须使用相同的点格式（请将其转换为同一格式，例如使用 PDAL 的 translate）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="623" />
+        <location filename="../core/cloudsource.py" line="618" />
         <source>The tiles of {path} are in different CRSs: {tile_a} in {crs_a}, {tile_b} in {crs_b}; every tile must be in the same CRS (reproject them to one first)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 的分块位于不同的坐标参考系中：{tile_a} 为 {crs_a}，{tile_b} 为 {crs_b}；所有分块必须位于同一坐标参考系中（请先将其重投影到同一坐标参考系）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="652" />
+        <location filename="../core/cloudsource.py" line="647" />
         <source>The points cannot be written with the first tile's scale {scale} and offset {offset} in {axis}: their coordinates are too far from it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法以第一个分块在 {axis} 方向的缩放 {scale} 和偏移 {offset} 写入这些点：其坐标离偏移太远</translation>
-    </message>
-    <message>
-        <location filename="../core/cloudsource.py" line="487" />
-        <location filename="../core/ground/pdal.py" line="310" />
-        <location filename="../core/ground/pdal.py" line="312" />
-        <location filename="../core/ground/pdal.py" line="308" />
-        <location filename="../core/ground/pdal.py" line="293" />
-        <location filename="../core/ground/pdal.py" line="302" />
-        <location filename="../core/pointcloud.py" line="204" />
-        <location filename="../core/pointcloud.py" line="112" />
-        <location filename="../core/pointcloud.py" line="127" />
-        <location filename="../core/pointcloud.py" line="185" />
-        <location filename="../core/pointcloud.py" line="202" />
-        <location filename="../core/pointcloud.py" line="88" />
-        <location filename="../core/pointcloud.py" line="91" />
-        <location filename="../core/pointcloud.py" line="107" />
-        <location filename="../core/pointcloud.py" line="178" />
-        <source>Cannot read {path}: the file is truncated or corrupt ({detail})</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>无法读取 {path}：文件被截断或已损坏（{detail}）</translation>
     </message>
     <message>
         <location filename="../core/crs.py" line="19" />
@@ -2478,13 +2458,13 @@
         <translation>模型 {path} 的输出形状为 {shape}，与具有 {n_classes} 个类别名称的布局 {layout} 不符</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="278" />
+        <location filename="../core/detector.py" line="285" />
         <source>Model not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到模型：{path}</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="361" />
+        <location filename="../core/detector.py" line="369" />
         <source>The model {path} names no classes: its metadata has no readable 'names' and there is no labels file ({labels}, one class name per line)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 未给出类别名称：其元数据中没有可读的 'names'，也没有标签文件（{labels}，每行一个类别名称）</translation>
@@ -2496,31 +2476,31 @@
         <translation>无法读取标签文件 {path}：{error}</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="288" />
+        <location filename="../core/detector.py" line="296" />
         <source>{path} is not an ONNX model onnxruntime can load: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 不是 onnxruntime 可以加载的 ONNX 模型：{error}</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="314" />
+        <location filename="../core/detector.py" line="322" />
         <source>The model {path} is a {task} model; sign detection needs a detection model</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 是 {task} 模型；标志检测需要检测模型</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="320" />
+        <location filename="../core/detector.py" line="328" />
         <source>The model {path} takes an input of shape {shape}; an image model takes [batch, 3, height, width]</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 的输入形状为 {shape}；图像模型的输入应为 [batch, 3, height, width]</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="326" />
+        <location filename="../core/detector.py" line="334" />
         <source>The model {path} has a fixed batch of {batch}; use a batch of 1 or a dynamic batch</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 的批大小固定为 {batch}；请使用批大小 1 或动态批大小</translation>
     </message>
     <message>
-        <location filename="../core/detector.py" line="342" />
+        <location filename="../core/detector.py" line="350" />
         <source>The model {path} failed on a blank {w} x {h} image: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 在一张 {w} x {h} 的空白图像上运行失败：{error}</translation>
@@ -2641,7 +2621,7 @@
     </message>
     <message>
         <location filename="../core/ground/engine.py" line="328" />
-        <location filename="../core/pointcloud.py" line="264" />
+        <location filename="../core/pointcloud.py" line="265" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：输出文件必须以 .las 或 .laz 结尾</translation>
@@ -2765,6 +2745,23 @@
         <translation>PDAL 可执行文件 {path} 不存在或不可执行</translation>
     </message>
     <message>
+        <location filename="../core/ground/pdal.py" line="310" />
+        <location filename="../core/ground/pdal.py" line="312" />
+        <location filename="../core/ground/pdal.py" line="308" />
+        <location filename="../core/ground/pdal.py" line="293" />
+        <location filename="../core/ground/pdal.py" line="302" />
+        <location filename="../core/pointcloud.py" line="205" />
+        <location filename="../core/pointcloud.py" line="113" />
+        <location filename="../core/pointcloud.py" line="127" />
+        <location filename="../core/pointcloud.py" line="190" />
+        <location filename="../core/pointcloud.py" line="89" />
+        <location filename="../core/pointcloud.py" line="92" />
+        <location filename="../core/pointcloud.py" line="108" />
+        <source>Cannot read {path}: the file is truncated or corrupt ({detail})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>无法读取 {path}：文件被截断或已损坏（{detail}）</translation>
+    </message>
+    <message>
         <location filename="../core/ground/tiled.py" line="217" />
         <source>{n} tiles written to {folder}, listed in {vpc}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -2878,7 +2875,7 @@
         <location filename="../core/outputs.py" line="147" />
         <location filename="../core/outputs.py" line="209" />
         <location filename="../core/outputs.py" line="178" />
-        <location filename="../core/pointcloud.py" line="275" />
+        <location filename="../core/pointcloud.py" line="276" />
         <source>Cannot write {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：{error}</translation>
@@ -2933,49 +2930,49 @@
         <translation>无法读取全景图 {path}：{error}</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="345" />
+        <location filename="../core/pointcloud.py" line="346" />
         <source>Cannot use {item!r} as a crop geometry: expected a shapely geometry, WKB or WKT</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法将 {item!r} 用作裁剪几何：应为 shapely 几何、WKB 或 WKT</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="69" />
+        <location filename="../core/pointcloud.py" line="70" />
         <source>Cannot read {path}: expected a LAS or LAZ file ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：应为 LAS 或 LAZ 文件（{detail}）</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="453" />
+        <location filename="../core/pointcloud.py" line="454" />
         <source>{path} has no coordinate reference system and none was given</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有坐标参考系，也未提供坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="268" />
+        <location filename="../core/pointcloud.py" line="269" />
         <source>Cannot write {path}: the folder does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：文件夹不存在</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="368" />
+        <location filename="../core/pointcloud.py" line="369" />
         <source>The crop layer has no geometry</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>裁剪图层没有几何</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="379" />
+        <location filename="../core/pointcloud.py" line="380" />
         <source>A corridor needs a positive buffer, got {buffer_m} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>走廊需要正的缓冲距离，实际为 {buffer_m} m</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="389" />
+        <location filename="../core/pointcloud.py" line="390" />
         <source>A corridor needs stations or lines</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>走廊需要站点或线</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="463" />
+        <location filename="../core/pointcloud.py" line="464" />
         <source>No point of {path} lies inside the crop area; {output} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中没有点位于裁剪区域内；{output} 为空</translation>
@@ -3162,7 +3159,7 @@
         <translation>标志代码表 {path} 中没有代码：表头 {expected} 之后应每个代码一行</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="383" />
+        <location filename="../core/signcodes.py" line="394" />
         <source>The box {box} is not four finite pixel coordinates u0, v0, u1, v1</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测框 {box} 不是四个有限的像素坐标 u0、v0、u1、v1</translation>
