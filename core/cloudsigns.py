@@ -59,6 +59,7 @@ from .drivewindows import BLOCK_THREADS, DriveAxis, Track, Window, WindowSpool, 
 from .errors import SILENT, InputError, Message, Progress
 from .pointcloud import DEFAULT_CHUNK_POINTS, GROUND_CLASS, xyz_of
 from .poles import GANTRY, Pole, PoleParams, classify_pole, find_poles, promote_far_posts
+from .projection import cell_keys
 from .retroreflectivity import (
     GOOD_RATIO,
     MIN_RANGE_BINS,
@@ -298,13 +299,6 @@ def _check_dimensions(path: str, header) -> bool:
 AXIS_SLACK_M = 0.5
 
 
-def _cell_keys(xy: np.ndarray, cell_m: float) -> np.ndarray:
-    """One integer per ``cell_m`` square cell of the points ``xy`` ``(n, 2)``."""
-    cells = np.floor(xy / cell_m).astype(np.int64)
-    cells -= cells.min(axis=0)
-    return cells[:, 0] * (int(cells[:, 1].max()) + 1) + cells[:, 1]
-
-
 def cell_reach_m(cell_m: float) -> float:
     """How far outside the corridor the first ground point of a ``cell_m`` cell may lie
     while another point of the cell is inside (its diagonal and :data:`AXIS_SLACK_M`)."""
@@ -312,28 +306,35 @@ def cell_reach_m(cell_m: float) -> float:
 
 
 def _thin_ground(xyz: np.ndarray, cell_m: float,
-                 inside: Callable[[np.ndarray], Tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
-    """Ground points ``xyz`` (in reading order) thinned to one per ``cell_m`` cell: the
-    first point of each cell inside the corridor, in reading order.
+                 inside: Callable[[np.ndarray], Tuple[np.ndarray, np.ndarray, np.ndarray]]
+                 ) -> Tuple[np.ndarray, np.ndarray]:
+    """Ground points ``xyz`` (in reading order) thinned to one per ``cell_m`` cell
+    (:func:`.projection.cell_keys`): the first point of each cell inside the corridor, in
+    reading order, and its arc length on the drive: ``(rows, s_m)``.
 
-    ``inside(rows)`` gives two masks over ``rows``: inside the corridor, and within
-    :func:`cell_reach_m` of it. It needs the points located on the drive, so it sees each
-    cell's first point, and the other points only of the cells whose first point is outside
-    but that near: most ground points are never located. (A cell whose first point is
-    farther out lies wholly outside: the corridor test moves by no more than a point does.)"""
+    ``inside(rows)`` gives two masks over ``rows``, inside the corridor and within
+    :func:`cell_reach_m` of it, and the rows' arc lengths. It needs the points located on the
+    drive, so it sees each cell's first point, and the other points only of the cells whose
+    first point is outside but that near: most ground points are never located. (A cell whose
+    first point is farther out lies wholly outside: the corridor test moves by no more than a
+    point does.)"""
     if len(xyz) == 0:
-        return np.zeros(0, np.int64)
-    keys = _cell_keys(xyz[:, :2], cell_m)
+        return np.zeros(0, np.int64), np.zeros(0)
+    keys = cell_keys(xyz[:, 0], xyz[:, 1], cell_m)
     _, first = np.unique(keys, return_index=True)
-    ok, near = inside(first)
-    kept = [first[ok]]
+    ok, near, s_first = inside(first)
+    kept, kept_s = [first[ok]], [s_first[ok]]
     rest = np.flatnonzero(np.isin(keys, keys[first[near & ~ok]]))
     rest = rest[~np.isin(rest, first)]
     if len(rest):
-        rest = rest[inside(rest)[0]]
+        ok_rest, _, s_rest = inside(rest)
+        rest, s_rest = rest[ok_rest], s_rest[ok_rest]
         _, first_inside = np.unique(keys[rest], return_index=True)
         kept.append(rest[first_inside])
-    return np.sort(np.concatenate(kept))
+        kept_s.append(s_rest[first_inside])
+    rows, s_m = np.concatenate(kept), np.concatenate(kept_s)
+    order = np.argsort(rows)
+    return rows[order], s_m[order]
 
 
 def _spool_cloud(source: CloudSource, axis: DriveAxis, spool: WindowSpool, hist: IntensityHistogram,
@@ -352,16 +353,17 @@ def _spool_cloud(source: CloudSource, axis: DriveAxis, spool: WindowSpool, hist:
         is_ground = np.asarray(chunk.classification) == GROUND_CLASS
         g_all = np.flatnonzero(is_ground)
 
-        def inside(rows: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+        def inside(rows: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
             s_r, offset_r, _ = axis.locate(xyz[g_all[rows]])
             out_by = np.maximum(np.abs(offset_r) - params.corridor_m, np.maximum(lo_s - s_r, s_r - hi_s))
-            return out_by <= 0.0, out_by <= reach_m
+            return out_by <= 0.0, out_by <= reach_m, s_r
 
-        g_rows = g_all[_thin_ground(xyz[g_all], params.ground_cell_m, inside)]
+        thinned, g_s = _thin_ground(xyz[g_all], params.ground_cell_m, inside)
+        g_rows = g_all[thinned]
         if len(g_rows):
             g = np.zeros(len(g_rows), GROUND_DTYPE)
             g["x"], g["y"], g["z"] = xyz[g_rows, 0], xyz[g_rows, 1], xyz[g_rows, 2]
-            spool.add("ground", axis.locate(xyz[g_rows])[0], g)
+            spool.add("ground", g_s, g)
             n_ground += len(g_rows)
         # the other points: located on the drive, kept in the corridor and the sensor's band
         above = np.flatnonzero(~is_ground)

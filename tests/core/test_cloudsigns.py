@@ -20,6 +20,7 @@ from roadsigns.core import retroreflectivity as RR
 from roadsigns.core.drivewindows import DriveAxis, Track, Window, WindowSpool, make_windows
 from roadsigns.core.errors import Cancelled, InputError, Progress
 from roadsigns.core.poles import POLE_FIELDS
+from roadsigns.core.projection import cell_keys
 from roadsigns.core.schema import names, typed_record
 
 FULL = 65535
@@ -282,12 +283,13 @@ def test_ground_thinned_to_the_first_point_in_the_corridor_of_each_cell():
 
     def inside(rows):
         asked.append(len(rows))
-        return out_by[rows] <= 0, out_by[rows] <= CS.cell_reach_m(0.25)
+        return out_by[rows] <= 0, out_by[rows] <= CS.cell_reach_m(0.25), xyz[rows, 0]  # "arc length": x
 
-    got = CS._thin_ground(xyz, 0.25, inside)
+    got, got_s = CS._thin_ground(xyz, 0.25, inside)
+    assert np.array_equal(got_s, xyz[got, 0])           # each kept point's own arc length
     # brute force: thin the inside points, first of each cell in reading order
     rows_in = np.flatnonzero(out_by <= 0)
-    keys = CS._cell_keys(xyz[:, :2], 0.25)[rows_in]
+    keys = cell_keys(xyz[:, 0], xyz[:, 1], 0.25)[rows_in]
     _, first = np.unique(keys, return_index=True)
     want = np.sort(rows_in[first])
     assert np.array_equal(got, want)
