@@ -463,8 +463,9 @@ def cut_square_view(pano_bgr: np.ndarray, view: PerspectiveView, native_px: int,
     shrink = native_px / n
     if max_sample_px is not None and shrink > 1.0:
         crop = _remap_shrunk(pano, map_x, map_y, shrink)
-        if crop is not None:
-            return np.ascontiguousarray(crop[:, :, ::-1])
+        if crop is None:  # a view wider than the panorama's patches: supersampled as usual
+            return cut_square_view(pano, view, native_px)
+        return np.ascontiguousarray(crop[:, :, ::-1])
     # BORDER_WRAP joins the columns across the seam; rows never leave the image (clamped).
     crop = cv2.remap(pano, map_x, map_y, cv2.INTER_LINEAR, borderMode=cv2.BORDER_WRAP)
     if factor > 1:
@@ -475,16 +476,20 @@ def cut_square_view(pano_bgr: np.ndarray, view: PerspectiveView, native_px: int,
 def _remap_shrunk(pano: np.ndarray, map_x: np.ndarray, map_y: np.ndarray,
                   shrink: float) -> Optional[np.ndarray]:
     """``cv2.remap`` of the panorama at maps sampling it ``shrink`` (> 1) x coarser than its
-    pixels, from its patch under the maps shrunk by ``shrink`` with ``INTER_AREA``; None
-    when the patch crosses the seam (the caller samples the panorama itself)."""
+    pixels, from its patch under the maps shrunk by ``shrink`` with ``INTER_AREA``; columns
+    are taken around the view's centre, across the seam too. None when the patch would be
+    wider than half the panorama."""
     import cv2
 
     H, W = pano.shape[:2]
+    n = map_x.shape[0]
+    centre = float(map_x[n // 2, n // 2])
+    map_x = (centre + np.mod(map_x - centre + 0.5 * W, W) - 0.5 * W).astype(np.float32)  # no jump at the seam
     x0, x1 = int(math.floor(float(map_x.min()))) - 2, int(math.ceil(float(map_x.max()))) + 3
     y0, y1 = max(int(math.floor(float(map_y.min()))) - 2, 0), min(int(math.ceil(float(map_y.max()))) + 3, H)
-    if x0 < 0 or x1 > W or x1 - x0 > W // 2:
+    if x1 - x0 > W // 2:
         return None
-    patch = pano[y0:y1, x0:x1]
+    patch = pano[y0:y1].take(np.arange(x0, x1), axis=1, mode="wrap")
     w_small = max(1, int(round((x1 - x0) / shrink)))
     h_small = max(1, int(round((y1 - y0) / shrink)))
     small = cv2.resize(patch, (w_small, h_small), interpolation=cv2.INTER_AREA)

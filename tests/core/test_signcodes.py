@@ -357,6 +357,14 @@ def test_the_classifier_cuts_big_signs_at_twice_its_input_side(tmp_path, table):
     a, b = (cv2.resize(c, (s, s), interpolation=cv2.INTER_AREA).astype(int) for c in (native_big, read_big))
     assert np.abs(a - b).mean() < 2.0 and np.abs(a - b).max() < 40
     assert np.array_equal(clf.cut_crop(pano, small), sc.cut_crop(pano, small, clf.crop_margin))
+    # a big sign across the seam reads as the same sign turned to the front
+    seam = paint_discs([(180.0, 0.0, 8.0, RED_BGR)], W)
+    seam[(seam == 90).all(axis=2)] = texture[(seam == 90).all(axis=2)]
+    front = np.roll(seam, W // 2, axis=1)
+    at_seam, at_front = (clf.cut_crop(p, disc_pano_box(a, 0.0, 8.0, W)).astype(int)
+                         for p, a in ((seam, 180.0), (front, 0.0)))
+    assert at_seam.shape == at_front.shape == (2 * s, 2 * s, 3)
+    assert np.abs(at_seam - at_front).mean() < 1.0
     stripes = np.zeros((W // 2, W, 3), np.uint8)
     stripes[:, ::2] = 255
     crop = clf.cut_crop(stripes, (900.0, 400.0, 1100.0, 600.0))
