@@ -25,7 +25,7 @@ import contextlib
 import os
 import tempfile
 from dataclasses import dataclass, field
-from typing import Any, Callable, Iterable, Iterator, List, Optional, Tuple, Union
+from typing import Any, Callable, Dict, Iterable, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -262,20 +262,23 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
     if bounds is not None and source.point_count > 0:
         grid = make_grid(params, bounds, float(source.bounds[2]), tile_size_m, tile_buffer_m)
 
-    masks: List[np.ndarray] = []  # the crop of each chunk, when the cloud is read a second time
+    # the crop of each chunk by its first point's cloud index, when the cloud is read a second
+    # time (which may skip chunks wholly outside the area: CloudSource remembers chunk bounds)
+    masks: Dict[int, np.ndarray] = {}
 
     def read(reading: Progress, again: bool) -> Iterator[Any]:
         """The chunks inside the region; with ``again``, each chunk's mask is kept for (or
         taken from) the second read."""
-        for k, chunk in enumerate(source.iter_chunks(chunk_points, reading, area=area)):
+        for index, chunk in source.iter_indexed_chunks(chunk_points, reading, area=area):
             if region is None:
                 yield chunk
             elif not again:
                 yield chunk[region.mask(chunk.x, chunk.y)]
             else:
-                if len(masks) <= k:
-                    masks.append(np.packbits(region.mask(chunk.x, chunk.y)))
-                yield chunk[np.unpackbits(masks[k], count=len(chunk)).astype(bool)]
+                key = int(index[0]) if len(index) else -1
+                if key not in masks:
+                    masks[key] = np.packbits(region.mask(chunk.x, chunk.y))
+                yield chunk[np.unpackbits(masks[key], count=len(chunk)).astype(bool)]
 
     out_header = output_header(header, out_crs_wkt)
     spool_folder = os.path.dirname(output_path)

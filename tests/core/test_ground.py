@@ -189,35 +189,42 @@ def test_classes_kept_or_reset(tmp_path):
 def test_one_read_with_the_spool_same_points_as_two(tmp_path, monkeypatch, method):
     """The built-in engine keeps pass 1's points in an uncompressed spool beside the output
     and reads the cloud once; without room for it, it reads the cloud twice. Same output
-    either way (crop included), and the spool is gone afterwards."""
+    either way (crop included), and the spool is gone afterwards. Also for a cloud stored
+    along the road, whose second read skips the chunks wholly outside the crop."""
     from roadsigns.core.cloudsource import CloudSource
     from roadsigns.core.ground import engine
 
     scene = cloudgen.road_scene(length_m=40.0, density_per_m2=40.0, seed=9)
     src = str(tmp_path / "in.laz")
     cloudgen.write_scene(src, scene)
+    along = str(tmp_path / "along.laz")          # acquisition order: along the road
+    las = laspy.read(src)
+    las.points = las.points[np.argsort(np.asarray(las.x), kind="stable")]
+    las.write(along)
     o = cloudgen.ORIGIN
     crop = [shapely.to_wkb(box(o[0] + 5, o[1] - 3, o[0] + 30, o[1] + 3))]
+    late = [shapely.to_wkb(box(o[0] + 18, o[1] - 3, o[0] + 30, o[1] + 3))]  # chunks before and after it
     reads = []
-    original = CloudSource.iter_chunks
+    original = CloudSource.iter_indexed_chunks
 
     def counted(self, *args, **kwargs):
         reads.append(self.path)
         return original(self, *args, **kwargs)
 
-    monkeypatch.setattr(CloudSource, "iter_chunks", counted)
-    outputs = {}
-    for room in (True, False):
-        monkeypatch.setattr(engine, "room_to_spool", lambda n, size, folder, room=room: room)
-        reads.clear()
-        out = str(tmp_path / f"out-{room}.laz")
-        res = ground.run_ground_filter(src, out, method, "builtin", crop_polygons=crop, crop_buffer_m=1.0,
-                                       chunk_points=3000)
-        assert len(reads) == (1 if room else 2)
-        outputs[room] = laspy.read(out)
-        assert res.n_output == len(outputs[room].points) > 0
-        assert not [p for p in tmp_path.iterdir() if p.name.startswith(".roadsigns")]
-    assert np.array_equal(outputs[True].points.array, outputs[False].points.array)
+    monkeypatch.setattr(CloudSource, "iter_indexed_chunks", counted)
+    for name, cloud, area in (("file", src, crop), ("along", along, late)):
+        outputs = {}
+        for room in (True, False):
+            monkeypatch.setattr(engine, "room_to_spool", lambda n, size, folder, room=room: room)
+            reads.clear()
+            out = str(tmp_path / f"out-{name}-{room}.laz")
+            res = ground.run_ground_filter(cloud, out, method, "builtin", crop_polygons=area, crop_buffer_m=1.0,
+                                           chunk_points=3000)
+            assert len(reads) == (1 if room else 2)
+            outputs[room] = laspy.read(out)
+            assert res.n_output == len(outputs[room].points) > 0
+            assert not [p for p in tmp_path.iterdir() if p.name.startswith(".roadsigns")]
+        assert np.array_equal(outputs[True].points.array, outputs[False].points.array)
 
 
 def test_room_to_spool_counts_the_uncompressed_points(tmp_path, monkeypatch):
