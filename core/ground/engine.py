@@ -147,21 +147,24 @@ def grid_bounds(bounds_xy: BoundsXY, region: Optional[CropRegion]) -> Optional[B
     return None if out[0] > out[2] or out[1] > out[3] else out
 
 
-def eligible_xyz(pts: Any, params: Params) -> Tuple[np.ndarray, np.ndarray]:
-    """The returns the method classifies (a mask) and their ``(n, 3)`` coordinates."""
+def eligible_xyz(pts: Any, params: Params) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The returns the method classifies (a mask) and their coordinates ``x, y, z``
+    (contiguous float64 arrays; the chunk's own when every point is eligible)."""
     eligible = returns_mask(pts.return_number, pts.number_of_returns, params.returns)
-    xyz = np.column_stack([np.asarray(pts.x)[eligible], np.asarray(pts.y)[eligible],
-                           np.asarray(pts.z)[eligible]])
-    return eligible, xyz
+    coords = (np.asarray(pts.x), np.asarray(pts.y), np.asarray(pts.z))
+    if eligible.all():
+        return (eligible, *coords)
+    x, y, z = (c[eligible] for c in coords)
+    return eligible, x, y, z
 
 
 def classified(pts: Any, grid: GroundGrid, params: Params, reset_classes: bool,
                classify: bool = True) -> Tuple[Any, int]:
     """``pts`` with their new classes (ground from ``grid``), and their number of ground points."""
-    eligible, xyz = eligible_xyz(pts, params)
+    eligible, x, y, z = eligible_xyz(pts, params)
     ground = np.zeros(len(pts), dtype=bool)
-    if classify and len(xyz):
-        ground[eligible] = grid.classify(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+    if classify and len(x):
+        ground[eligible] = grid.classify(x, y, z)
     pts.classification = _new_classes(pts.classification, eligible, ground, reset_classes)
     return pts, int(ground.sum())
 
@@ -234,9 +237,9 @@ def two_passes(read: Callable[[Progress, bool], Iterable[Any]], grid: GroundGrid
     with PointSpool(writer.header, spool_folder) if spool_folder else contextlib.nullcontext() as spool:
         n_eligible = n_ground = 0
         for pts in read(progress.sub(0.0, 0.45), spool is None):
-            _, xyz = eligible_xyz(pts, params)
-            n_eligible += len(xyz)
-            grid.accumulate(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+            _, x, y, z = eligible_xyz(pts, params)
+            n_eligible += len(x)
+            grid.accumulate(x, y, z)
             if spool is not None:
                 spool.add(pts)
         if add_to_grid is not None:

@@ -99,8 +99,9 @@ def inner_window(core: Window, ext: Window) -> Window:
 
 def group_first(keys: np.ndarray, order_by: np.ndarray) -> np.ndarray:
     """Indices of the element with the smallest ``order_by`` for each distinct key (one
-    index per key, in the order of the sorted keys)."""
-    order = np.argsort(keys)
+    index per key, in the order of the sorted keys); of equal smallest ones, the first (as
+    the reference CSF, which keeps a node's first nearest point)."""
+    order = np.argsort(keys, kind="stable")
     k = keys[order]
     v = order_by[order]
     starts = np.flatnonzero(np.r_[True, k[1:] != k[:-1]])

@@ -244,10 +244,10 @@ def _spool_halos(source: CloudSource, work: List[int], grown: Dict[int, BBoxXY],
     boxes = {k: grown_box(grown[k], 3.0 * step) for k in work}
     spools: Dict[int, str] = {}
     for _, t, pts in source.points_near_tiles(boxes, chunk_points, progress):
-        _, xyz = eligible_xyz(_kept(pts, region), params)
-        if len(xyz):
-            rows = np.zeros(len(xyz), _HALO_DTYPE)
-            rows["x"], rows["y"], rows["z"] = xyz[:, 0], xyz[:, 1], xyz[:, 2]
+        _, x, y, z = eligible_xyz(_kept(pts, region), params)
+        if len(x):
+            rows = np.zeros(len(x), _HALO_DTYPE)
+            rows["x"], rows["y"], rows["z"] = x, y, z
             path = spools.setdefault(t, os.path.join(folder, f"halo_{t}.bin"))
             with open(path, "ab") as f:
                 rows.tofile(f)

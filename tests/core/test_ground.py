@@ -16,7 +16,7 @@ from shapely.geometry import box
 from roadsigns.core import ground
 from roadsigns.core import pointcloud as pc
 from roadsigns.core.errors import InputError, Progress
-from roadsigns.core.ground import lattice
+from roadsigns.core.ground import csf, lattice
 from roadsigns.core.ground import pdal as ground_pdal
 
 #: Options every stage takes (pdal.io "Pipeline": tag, inputs).
@@ -630,6 +630,47 @@ def test_group_first_picks_the_smallest_per_key():
     assert sorted(keys[picked].tolist()) == sorted(set(keys.tolist()))
     for i in picked:
         assert order_by[i] == order_by[keys == keys[i]].min()
+
+
+def test_group_first_keeps_the_first_of_equal_smallest():
+    """As the reference CSF keeps a node's first nearest point: ties go to the lower index,
+    whatever the sort does with the rest (many equal keys, many equal values)."""
+    rng = np.random.default_rng(11)
+    keys = rng.integers(0, 30, 50_000)
+    order_by = rng.integers(0, 4, 50_000).astype(np.float32)
+    picked = lattice.group_first(keys, order_by)
+    for i in picked:
+        same = np.flatnonzero(keys == keys[i])
+        assert i == same[order_by[same] == order_by[same].min()][0]
+
+
+def test_csf_accumulate_near_points_first_picks_what_a_full_sort_picks():
+    """CsfGrid.accumulate sorts the points near their node first and the other nodes' points
+    after: the same point per node as group_first over all (dense nodes, sparse nodes, ties
+    from points stacked at one spot), chunk after chunk, with its scratch left clear."""
+    rng = np.random.default_rng(3)
+    dense = rng.uniform(0, 20, (200_000, 2))
+    sparse = np.column_stack([rng.uniform(20, 40, 300), rng.uniform(0, 20, 300)])
+    stacked = np.repeat(dense[:500], 3, axis=0)          # a pole: the same x, y, other heights
+    xy = np.vstack([dense, sparse, stacked])
+    z = rng.normal(0, 1, len(xy))
+    grid = ground.CsfGrid((0, 0, 40, 20), 0.0, ground.CsfParams(), tile_size_m=1000)
+    lat = grid.lattice
+    u, v = lat.local(xy[:, 0], xy[:, 1])
+    col, row = np.floor(u + 0.5).astype(np.int64), np.floor(v + 0.5).astype(np.int64)
+    du, dv = (u - col).astype(np.float32), (v - row).astype(np.float32)
+    d2 = du * du + dv * dv
+    flat = row * lat.nx + col
+    want = lattice.group_first(flat, d2)
+    assert (d2 < csf.NEAR_NODE_STEPS ** 2).mean() < 0.25            # the near-first path is taken
+    for _ in range(2):
+        got = grid._nearest_per_node(flat, d2)
+        np.testing.assert_array_equal(np.sort(got), np.sort(want))
+        assert not grid._seen.any()
+    whole = ground.CsfGrid((0, 0, 40, 20), 0.0, ground.CsfParams(), tile_size_m=1000)
+    whole.accumulate(xy[:, 0], xy[:, 1], z)
+    nodes = flat[want]
+    np.testing.assert_array_equal(whole.rep_z.ravel()[nodes], (z[want] - 0.0).astype(np.float32))
 
 
 @pytest.mark.parametrize("params", [ground.CsfParams(), ground.SmrfParams()])
