@@ -23,7 +23,7 @@ from typing import Any, Callable, Iterator, List, Optional
 import numpy as np
 
 from ..errors import SILENT, InputError, Progress
-from .lattice import BoundsXY, Lattice, Window, finished, group_first, tiles
+from .lattice import MAX_PAGED_CELLS, BoundsXY, Lattice, PagedArray, Window, finished, group_first, tiles
 
 #: CSF tiles (core, buffer) in metres. The cloth is a global simulation: on slopes it
 #: hangs off the ground more the larger the area (smoothing fixes most), so tiles are
@@ -31,6 +31,9 @@ from .lattice import BoundsXY, Lattice, Window, finished, group_first, tiles
 CSF_TILE_M, CSF_BUFFER_M = 32.0, 20.0
 #: ``accumulate`` sorts the points within this distance of their node first (cloth steps)
 NEAR_NODE_STEPS = 0.1
+#: ``classify`` gathers the cloth from a dense copy of the chunk's window when it has at most
+#: this many nodes (8 bytes each), else node by node from the pages
+CLASSIFY_WINDOW_NODES = 4_000_000
 
 
 @dataclass(frozen=True)
@@ -150,18 +153,18 @@ class CsfGrid:
     def __init__(self, bounds_xy: BoundsXY, z_ref: float, params: CsfParams,
                  tile_size_m: float = CSF_TILE_M, tile_buffer_m: float = CSF_BUFFER_M):
         self.params = params
-        self.lattice = Lattice.covering(bounds_xy, params.resolution)
-        shape = (self.lattice.ny, self.lattice.nx)
+        self.lattice = Lattice.covering(bounds_xy, params.resolution, max_cells=MAX_PAGED_CELLS)
+        shape = self.lattice.shape
         self.z_ref = float(z_ref)
-        # nearest point per node: offset from the node (in steps) and height above z_ref
-        self.rep_du = np.full(shape, np.nan, dtype=np.float32)
-        self.rep_dv = np.full(shape, np.nan, dtype=np.float32)
-        self.rep_z = np.full(shape, np.nan, dtype=np.float32)
+        # nearest point per node: offset from the node (in steps) and height above z_ref; paged,
+        # so that a long drive's grid holds its corridor and not its bounding box
+        self.rep_du = PagedArray(shape, np.float32, np.nan)
+        self.rep_dv = PagedArray(shape, np.float32, np.nan)
+        self.rep_z = PagedArray(shape, np.float32, np.nan)
         self.tile_nodes = max(8, int(round(tile_size_m / params.resolution)))
         self.halo_nodes = max(2, int(math.ceil(tile_buffer_m / params.resolution)))
-        self.cloth: Optional[np.ndarray] = None
+        self.cloth: Optional[PagedArray] = None
         self.tiles_run = 0
-        self._seen: Optional[np.ndarray] = None  # scratch for accumulate, all False between calls
 
     def accumulate(self, x: np.ndarray, y: np.ndarray, z: np.ndarray) -> None:
         if len(x) == 0:
@@ -179,15 +182,14 @@ class CsfGrid:
         flat += col
         del col, row
         pick = self._nearest_per_node(flat, d2)
-        nodes = flat[pick]
-        old_du = self.rep_du.ravel()[nodes]
-        old_dv = self.rep_dv.ravel()[nodes]
+        rows, cols = np.divmod(flat[pick], self.lattice.nx)
+        old_du = self.rep_du.get(rows, cols)
+        old_dv = self.rep_dv.get(rows, cols)
         better = np.isnan(old_du) | (d2[pick] < old_du * old_du + old_dv * old_dv)
-        nodes, pick = nodes[better], pick[better]
-        self.rep_du.ravel()[nodes] = du[pick]
-        self.rep_dv.ravel()[nodes] = dv[pick]
-        self.rep_z.ravel()[nodes] = (np.asarray(z, dtype=np.float64)[pick]
-                                     - self.z_ref).astype(np.float32)
+        rows, cols, pick = rows[better], cols[better], pick[better]
+        self.rep_du.set(rows, cols, du[pick])
+        self.rep_dv.set(rows, cols, dv[pick])
+        self.rep_z.set(rows, cols, (np.asarray(z, dtype=np.float64)[pick] - self.z_ref).astype(np.float32))
 
     def _nearest_per_node(self, flat: np.ndarray, d2: np.ndarray) -> np.ndarray:
         """:func:`group_first` of ``(flat, d2)``: a node's nearest point is among its points
@@ -197,23 +199,22 @@ class CsfGrid:
         if len(near) * 4 > len(d2):
             return group_first(flat, d2)
         pick = near[group_first(flat[near], d2[near])]
-        seen = np.zeros(len(self.rep_du.ravel()), dtype=bool) if self._seen is None else self._seen
-        seen[flat[pick]] = True
-        rest = np.flatnonzero(~seen[flat])
-        seen[flat[pick]] = False
-        self._seen = seen
+        covered = flat[pick]  # sorted: group_first answers in the order of the sorted keys
+        at = np.minimum(np.searchsorted(covered, flat), len(covered) - 1)
+        rest = np.flatnonzero(covered[at] != flat) if len(covered) else np.arange(len(flat))
         if len(rest):
             pick = np.concatenate([pick, rest[group_first(flat[rest], d2[rest])]])
         return pick
 
     def _tile_points(self, ext: Window) -> np.ndarray:
-        have = ~np.isnan(self.rep_du[ext])
+        du = self.rep_du.window(ext)
+        have = ~np.isnan(du)
         rows, cols = np.nonzero(have)
         r_ext, c_ext = ext[0].start, ext[1].start
         step = self.lattice.step
-        xs = (cols + c_ext + self.rep_du[ext][have].astype(np.float64)) * step
-        ys = (rows + r_ext + self.rep_dv[ext][have].astype(np.float64)) * step
-        zs = self.rep_z[ext][have].astype(np.float64)
+        xs = (cols + c_ext + du[have].astype(np.float64)) * step
+        ys = (rows + r_ext + self.rep_dv.window(ext)[have].astype(np.float64)) * step
+        zs = self.rep_z.window(ext)[have].astype(np.float64)
         # sentinel on the node below-left of the tile: CSF's bbox corner = a world node
         sx, sy = (c_ext - 1) * step, (r_ext - 1) * step
         nearest = int(np.argmin((xs - sx) ** 2 + (ys - sy) ** 2))
@@ -221,11 +222,11 @@ class CsfGrid:
 
     def finish(self, progress: Progress = SILENT) -> None:
         lat = self.lattice
-        self.cloth = cloth_all = np.full(lat.shape, np.nan)
+        self.cloth = cloth_all = PagedArray(lat.shape, np.float64, np.nan)
         windows = list(tiles(lat.shape, self.tile_nodes, self.halo_nodes))
         for i, (core, ext) in enumerate(windows):
             progress.report(i / len(windows))
-            if not (~np.isnan(self.rep_du[core])).any():
+            if not self.rep_du.has_pages(core) or not (~np.isnan(self.rep_du.window(core))).any():
                 continue
             pts = self._tile_points(ext)
             cloth = run_csf_cloth(pts, self.params)
@@ -243,10 +244,27 @@ class CsfGrid:
             in_core = ((rows >= core[0].start) & (rows < core[0].stop)
                        & (cols >= core[1].start) & (cols < core[1].stop))
             fill = ring & ~in_core
-            fill[fill] = np.isnan(cloth_all[rows[fill], cols[fill]])
-            cloth_all[rows[in_core], cols[in_core]] = cloth[in_core, 2]
-            cloth_all[rows[fill], cols[fill]] = cloth[fill, 2]
+            fill[fill] = np.isnan(cloth_all.get(rows[fill], cols[fill]))
+            cloth_all.set(rows[in_core], cols[in_core], cloth[in_core, 2])
+            cloth_all.set(rows[fill], cols[fill], cloth[fill, 2])
+        cloth_all.trim()
         progress.report(1.0)
+
+    def _cloth_corners(self, r0: np.ndarray, c0: np.ndarray) -> List[np.ndarray]:
+        """The cloth at the nodes (r0, c0), (r0+1, c0), (r0+1, c0+1) and (r0, c0+1)."""
+        cloth = finished(self.cloth)
+        if not len(r0):
+            return [np.zeros(0)] * 4
+        win = (slice(int(r0.min()), int(r0.max()) + 2), slice(int(c0.min()), int(c0.max()) + 2))
+        nx = win[1].stop - win[1].start
+        if (win[0].stop - win[0].start) * nx > CLASSIFY_WINDOW_NODES:  # a chunk spread far: by pages
+            return [cloth.get(r0, c0), cloth.get(r0 + 1, c0), cloth.get(r0 + 1, c0 + 1), cloth.get(r0, c0 + 1)]
+        cz = cloth.window(win).ravel()
+        at = r0 - win[0].start
+        at *= nx
+        at += c0
+        at -= win[1].start
+        return [cz[at], cz[at + nx], cz[at + (nx + 1)], cz[at + 1]]
 
     def classify(self, x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.ndarray:
         lat = self.lattice
@@ -255,22 +273,20 @@ class CsfGrid:
         r0 = np.clip(np.floor(sv).astype(np.int64), 0, lat.ny - 2)
         su -= c0
         sv -= r0
-        cz = finished(self.cloth).ravel()
-        at = r0 * lat.nx
-        at += c0
+        a, b, c, d = self._cloth_corners(r0, c0)
         del c0, r0
         # the cloth bilinearly at (su, sv) in the cell: ((a*(1-su))*(1-sv) + (b*(1-su))*sv)
         # + (c*su)*sv + (d*su)*(1-sv), in this order (the reference's arithmetic, bit for bit)
         osu, osv = 1 - su, 1 - sv
-        surface = cz[at] * osu
+        surface = a * osu
         surface *= osv
-        term = cz[at + lat.nx] * osu
+        term = b * osu
         term *= sv
         surface += term
-        np.multiply(cz[at + (lat.nx + 1)], su, out=term)
+        np.multiply(c, su, out=term)
         term *= sv
         surface += term
-        np.multiply(cz[at + 1], su, out=term)
+        np.multiply(d, su, out=term)
         term *= osv
         surface += term
         surface += self.z_ref

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Iterator, Optional, Protocol, Tuple
+from typing import Iterator, Optional, Protocol, Tuple, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -27,6 +27,7 @@ from ..errors import SILENT, InputError, Progress
 Window = Tuple[slice, slice]
 #: A grid's bounds ``(xmin, ymin, xmax, ymax)`` in metres.
 BoundsXY = Tuple[float, float, float, float]
+_T = TypeVar("_T")
 
 
 class OutsideGridError(ValueError):
@@ -79,6 +80,106 @@ class Lattice:
             raise OutsideGridError("points outside the bounds in the file header")
 
 
+#: Side of a :class:`PagedArray`'s pages (cells).
+PAGE_CELLS = 64
+#: The most cells a lattice of :class:`PagedArray` may span (its page table: 4 bytes a page,
+#: 64 MB at most): a bounding box of 128 km x 128 km at 0.5 m. A dense grid stops at
+#: :meth:`Lattice.covering`'s default.
+MAX_PAGED_CELLS = 16_000_000 * PAGE_CELLS * PAGE_CELLS
+
+
+class PagedArray:
+    """A 2-D array of ``shape`` over a lattice, stored in square pages of ``page`` cells that
+    are allocated when first written: its memory follows the cells that have data (a drive's
+    corridor), not their bounding box. Cells of pages never written read as ``fill``.
+
+    Cells are addressed by ``(rows, cols)`` index arrays (:meth:`get`, :meth:`set`) or by a
+    :data:`Window` (:meth:`window`, :meth:`has_pages`). ``slot[page_row, page_col]`` is the
+    page's place in the store (-1: none).
+    """
+
+    def __init__(self, shape: Tuple[int, int], dtype, fill, page: int = PAGE_CELLS):
+        self.shape = (int(shape[0]), int(shape[1]))
+        self.dtype = np.dtype(dtype)
+        self.fill = fill
+        self.page = int(page)
+        self.slot = np.full((-(-self.shape[0] // self.page), -(-self.shape[1] // self.page)), -1, np.int32)
+        self._store = np.empty((0, self.page, self.page), self.dtype)
+        self.n_pages = 0
+
+    @property
+    def nbytes(self) -> int:
+        """Bytes held: the pages (with the room reserved for more) and the page table."""
+        return int(self._store.nbytes + self.slot.nbytes)
+
+    def _allocate(self, page_rows: np.ndarray, page_cols: np.ndarray) -> None:
+        """Pages for the (unique) page coordinates given that have none yet."""
+        missing = self.slot[page_rows, page_cols] < 0
+        if not missing.any():
+            return
+        keys = np.unique(page_rows[missing] * self.slot.shape[1] + page_cols[missing])
+        n_new = len(keys)
+        if self.n_pages + n_new > len(self._store):  # grow by half
+            grown = np.empty((max(len(self._store) * 3 // 2, self.n_pages + n_new, 16), self.page, self.page),
+                             self.dtype)
+            grown[:self.n_pages] = self._store[:self.n_pages]
+            self._store = grown
+        self._store[self.n_pages:self.n_pages + n_new] = self.fill
+        self.slot.ravel()[keys] = np.arange(self.n_pages, self.n_pages + n_new)
+        self.n_pages += n_new
+
+    def _locate(self, rows, cols, create: bool) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+        rows = np.asarray(rows, np.int64)
+        cols = np.asarray(cols, np.int64)
+        page_rows, page_cols = rows // self.page, cols // self.page
+        if create and rows.size:
+            self._allocate(page_rows, page_cols)
+        return self.slot[page_rows, page_cols], rows - page_rows * self.page, cols - page_cols * self.page
+
+    def trim(self) -> None:
+        """Give back the room reserved for more pages."""
+        if len(self._store) > self.n_pages:
+            self._store = self._store[:self.n_pages].copy()
+
+    def get(self, rows, cols) -> np.ndarray:
+        """The values at cells ``(rows, cols)`` (``fill`` where no page is)."""
+        slots, r, c = self._locate(rows, cols, create=False)
+        out = np.full(slots.shape, self.fill, self.dtype)
+        have = slots >= 0
+        out[have] = self._store[slots[have], r[have], c[have]]
+        return out
+
+    def set(self, rows, cols, values) -> None:
+        """Write ``values`` at cells ``(rows, cols)`` (pages allocated as needed)."""
+        slots, r, c = self._locate(rows, cols, create=True)
+        self._store[slots, r, c] = values
+
+    def has_pages(self, win: Window) -> bool:
+        """Whether any page meets the window (else all of it reads ``fill``)."""
+        p = self.page
+        return bool((self.slot[win[0].start // p:-(-win[0].stop // p), win[1].start // p:-(-win[1].stop // p)]
+                     >= 0).any())
+
+    def window(self, win: Window) -> np.ndarray:
+        """The window's cells as a dense array (a copy)."""
+        r0, r1, c0, c1 = win[0].start, win[0].stop, win[1].start, win[1].stop
+        out = np.full((r1 - r0, c1 - c0), self.fill, self.dtype)
+        p = self.page
+        for pr in range(r0 // p, -(-r1 // p)):
+            for pc in range(c0 // p, -(-c1 // p)):
+                k = self.slot[pr, pc]
+                if k < 0:
+                    continue
+                a0, a1 = max(r0, pr * p), min(r1, (pr + 1) * p)
+                b0, b1 = max(c0, pc * p), min(c1, (pc + 1) * p)
+                out[a0 - r0:a1 - r0, b0 - c0:b1 - c0] = self._store[k, a0 - pr * p:a1 - pr * p, b0 - pc * p:b1 - pc * p]
+        return out
+
+    def dense(self) -> np.ndarray:
+        """The whole array, dense (small grids: tests, checks)."""
+        return self.window((slice(0, self.shape[0]), slice(0, self.shape[1])))
+
+
 def tiles(shape: Tuple[int, int], core: int, halo: int) -> Iterator[Tuple[Window, Window]]:
     """Yield ``(core_window, ext_window)`` covering a grid with squares of ``core`` cells,
     each extended by ``halo`` cells (clipped at the grid edge)."""
@@ -112,7 +213,7 @@ def group_first(keys: np.ndarray, order_by: np.ndarray) -> np.ndarray:
     return order[at_min[first]]
 
 
-def finished(array: Optional[np.ndarray]) -> np.ndarray:
+def finished(array: Optional[_T]) -> _T:
     """A grid's result array, which exists once ``finish`` has run."""
     if array is None:
         raise RuntimeError("the ground grid is classified before finish() ran")

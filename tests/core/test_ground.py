@@ -110,12 +110,13 @@ def test_csf_thinning_gives_the_full_cloth():
     full = ground.run_csf_cloth(xyz, params)
     grid = ground.CsfGrid((0, 0, 30, 20), 0.0, params, tile_size_m=1000)
     grid.accumulate(xyz[:, 0], xyz[:, 1], xyz[:, 2])
-    have = ~np.isnan(grid.rep_du)
+    rep_du, rep_dv, rep_z = grid.rep_du.dense(), grid.rep_dv.dense(), grid.rep_z.dense()
+    have = ~np.isnan(rep_du)
     rows, cols = np.nonzero(have)
     lat = grid.lattice
-    reps = np.column_stack([lat.x0 + (cols + grid.rep_du[have]) * lat.step,
-                            lat.y0 + (rows + grid.rep_dv[have]) * lat.step,
-                            grid.rep_z[have] + grid.z_ref])
+    reps = np.column_stack([lat.x0 + (cols + rep_du[have]) * lat.step,
+                            lat.y0 + (rows + rep_dv[have]) * lat.step,
+                            rep_z[have] + grid.z_ref])
     # keep the extremes that set CSF's bounding box
     ext = [xyz[:, k].argmin() for k in range(3)] + [xyz[:, k].argmax() for k in range(3)]
     thinned = ground.run_csf_cloth(np.vstack([reps, xyz[ext]]), params)
@@ -632,6 +633,53 @@ def test_group_first_picks_the_smallest_per_key():
         assert order_by[i] == order_by[keys == keys[i]].min()
 
 
+def test_paged_array_reads_and_writes_like_a_dense_one():
+    rng = np.random.default_rng(2)
+    shape = (300, 200)
+    paged = lattice.PagedArray(shape, np.float32, np.nan, page=16)
+    dense = np.full(shape, np.nan, np.float32)
+    assert paged.n_pages == 0 and not paged.has_pages((slice(0, 300), slice(0, 200)))
+    for _ in range(5):  # scattered writes near a band, repeated cells included
+        rows = rng.integers(100, 140, 500)
+        cols = rng.integers(0, 200, 500)
+        values = rng.random(500).astype(np.float32)
+        paged.set(rows, cols, values)
+        dense[rows, cols] = values  # numpy and the pages both keep the last write of a cell
+    rows, cols = rng.integers(0, 300, 2000), rng.integers(0, 200, 2000)
+    np.testing.assert_array_equal(paged.get(rows, cols), dense[rows, cols])
+    for win in [(slice(90, 150), slice(5, 199)), (slice(0, 17), slice(0, 200)), (slice(131, 132), slice(7, 8))]:
+        np.testing.assert_array_equal(paged.window(win), dense[win])
+    np.testing.assert_array_equal(paged.dense(), dense)
+    assert paged.has_pages((slice(100, 101), slice(0, 1))) and not paged.has_pages((slice(0, 90), slice(0, 200)))
+    assert paged.n_pages == 3 * 13  # rows 96-143: pages 6-8 of 16 cells; all 13 page columns
+
+
+def test_csf_grid_holds_a_long_drive_by_its_corridor():
+    """A drive 14 km along a diagonal: its bounding box (10 km x 10 km, 400 M nodes at 0.5 m)
+    is far past a dense grid's limit; the paged grid holds the corridor's pages only, and
+    classifies ground and objects along it."""
+    rng = np.random.default_rng(8)
+    n = 400_000
+    s = rng.uniform(0, 14_000, n)
+    across = rng.uniform(-15, 15, n)
+    x, y = s / np.sqrt(2) - across / np.sqrt(2), s / np.sqrt(2) + across / np.sqrt(2)
+    z = 100.0 + 0.002 * s + rng.normal(0, 0.02, n)
+    car = (np.abs(across - 5) < 1.0) & (np.abs((s % 500) - 250) < 2.0)
+    z[car] += 1.5
+    params = ground.CsfParams(resolution=0.5)
+    with pytest.raises(InputError, match="grid cells"):
+        lattice.Lattice.covering((x.min(), y.min(), x.max(), y.max()), 0.5)
+    grid = ground.CsfGrid((x.min(), y.min(), x.max(), y.max()), float(z.min()), params)
+    grid.accumulate(x, y, z)
+    grid.finish()
+    is_ground = grid.classify(x, y, z)
+    assert (is_ground == ~car).mean() > 0.995
+    nodes = grid.lattice.nx * grid.lattice.ny
+    assert nodes > 350_000_000
+    dense_bytes = nodes * (4 + 8)  # the node offsets and the cloth as dense arrays
+    assert grid.rep_du.nbytes + grid.cloth.nbytes < 0.05 * dense_bytes
+
+
 def test_group_first_keeps_the_first_of_equal_smallest():
     """As the reference CSF keeps a node's first nearest point: ties go to the lower index,
     whatever the sort does with the rest (many equal keys, many equal values)."""
@@ -647,7 +695,7 @@ def test_group_first_keeps_the_first_of_equal_smallest():
 def test_csf_accumulate_near_points_first_picks_what_a_full_sort_picks():
     """CsfGrid.accumulate sorts the points near their node first and the other nodes' points
     after: the same point per node as group_first over all (dense nodes, sparse nodes, ties
-    from points stacked at one spot), chunk after chunk, with its scratch left clear."""
+    from points stacked at one spot), and stores it."""
     rng = np.random.default_rng(3)
     dense = rng.uniform(0, 20, (200_000, 2))
     sparse = np.column_stack([rng.uniform(20, 40, 300), rng.uniform(0, 20, 300)])
@@ -663,14 +711,12 @@ def test_csf_accumulate_near_points_first_picks_what_a_full_sort_picks():
     flat = row * lat.nx + col
     want = lattice.group_first(flat, d2)
     assert (d2 < csf.NEAR_NODE_STEPS ** 2).mean() < 0.25            # the near-first path is taken
-    for _ in range(2):
-        got = grid._nearest_per_node(flat, d2)
-        np.testing.assert_array_equal(np.sort(got), np.sort(want))
-        assert not grid._seen.any()
+    got = grid._nearest_per_node(flat, d2)
+    np.testing.assert_array_equal(np.sort(got), np.sort(want))
     whole = ground.CsfGrid((0, 0, 40, 20), 0.0, ground.CsfParams(), tile_size_m=1000)
     whole.accumulate(xy[:, 0], xy[:, 1], z)
     nodes = flat[want]
-    np.testing.assert_array_equal(whole.rep_z.ravel()[nodes], (z[want] - 0.0).astype(np.float32))
+    np.testing.assert_array_equal(whole.rep_z.dense().ravel()[nodes], (z[want] - 0.0).astype(np.float32))
 
 
 @pytest.mark.parametrize("params", [ground.CsfParams(), ground.SmrfParams()])
