@@ -6,6 +6,7 @@ import pyproj
 import pytest
 import shapely
 from helpers import cloudgen  # noqa: E402
+from scipy.spatial import cKDTree
 from shapely.geometry import Polygon, box
 
 from roadsigns.core import pointcloud as pc  # noqa: E402
@@ -179,6 +180,28 @@ def test_corridor_around_stations_and_rays():
                                   [True, True, False, True, False, False, True])
     with pytest.raises(InputError):
         pc.CropRegion.corridor(0.0, points_xy=stations)
+
+
+def test_buffered_union_in_blocks_is_the_buffer_of_the_union():
+    """Stations of a winding 3 km drive (more than one block), a polygon and a line: the
+    blockwise buffer is the buffer of the whole union (up to rounding), and the crop from
+    station points keeps what lies within the buffer of any station."""
+    s = np.linspace(0.0, 3000.0, 2000)
+    stations = np.column_stack([s, 200.0 * np.sin(s / 300.0)])
+    extra = [box(500.0, 400.0, 520.0, 430.0), shapely.linestrings([[0.0, -300.0], [50.0, -250.0]])]
+    geometries = list(shapely.points(stations)) + extra
+    assert len(geometries) > 10 * pc.BUFFER_BLOCK
+    blockwise = pc.buffered_union(geometries, 25.0)
+    whole = shapely.union_all(geometries).buffer(25.0)
+    assert shapely.symmetric_difference(blockwise, whole).area < 1e-6 * whole.area
+    assert pc.buffered_union(geometries, 0.0).equals(shapely.union_all(geometries))
+    region = pc.CropRegion.corridor(25.0, points_xy=stations)
+    rng = np.random.default_rng(3)
+    x = rng.uniform(-50.0, 3050.0, 20000)
+    y = rng.uniform(-260.0, 260.0, 20000)
+    d, _ = cKDTree(stations).query(np.column_stack([x, y]))
+    sure = (d < 24.8) | (d > 25.0)  # away from the buffer's polygonal edge (32 segments a circle)
+    np.testing.assert_array_equal(region.mask(x, y)[sure], (d < 25.0)[sure])
 
 
 def test_empty_crop_warns_and_writes_valid_file(tmp_path):
