@@ -43,7 +43,7 @@ def load_scene(args):
 
 
 def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=None, upward_views=None, classifier=None,
-               fore_aft_views=None):
+               fore_aft_views=None, rescue_confidence=None):
     """(stage id, parameters, output key, what it needs) in chain order."""
     p = lambda name: os.path.join(scene_dir, name)  # noqa: E731
     w = lambda name: os.path.join(work, name)  # noqa: E731
@@ -60,6 +60,7 @@ def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=None, upward
                              **({"MIN_STATION_SPACING_M": station_spacing_m} if station_spacing_m is not None else {}),
                              **({"UPWARD_VIEWS": upward_views} if upward_views is not None else {}),
                              **({"FORE_AFT_VIEWS": fore_aft_views} if fore_aft_views is not None else {}),
+                             **({"RESCUE_CONFIDENCE": rescue_confidence} if rescue_confidence is not None else {}),
                              **({"MODEL": model} if model else {}),
                              **({"CLASSIFIER": classifier} if classifier else {})),
          "OUTPUT", ["importtrajectory"]),
@@ -124,6 +125,8 @@ def main(argv=None):
                         help="detectsigns with its upward views (UPWARD_VIEWS true)")
     parser.add_argument("--fore-aft", action="store_true", default=None,
                         help="detectsigns with its fore-and-aft views (FORE_AFT_VIEWS true)")
+    parser.add_argument("--rescue-confidence", type=float, metavar="S",
+                        help="detectsigns' RESCUE_CONFIDENCE (its second look; 0.4 or more: off)")
     parser.add_argument("--from", dest="from_stage", metavar="STAGE",
                         help="reuse the outputs of the stages before STAGE from an earlier run "
                              "(e.g. --from refinesigns while tuning the refinement)")
@@ -135,6 +138,7 @@ def main(argv=None):
         f"-spacing{args.station_spacing:g}" if args.station_spacing is not None else "")
         + {None: "", False: "-noupward", True: "-upward"}[args.upward]
         + ("-foreaft" if args.fore_aft else "")
+        + (f"-rescue{args.rescue_confidence:g}" if args.rescue_confidence is not None else "")
         + ("-classifier-" + os.path.splitext(os.path.basename(args.classifier))[0] if args.classifier else ""))
     os.makedirs(work, exist_ok=True)
     qgis = QgisProcess()
@@ -144,10 +148,11 @@ def main(argv=None):
     figures = {"scene": scene_dir, "preset": args.preset, "seed": args.seed,
                "detections": args.detections, "station_spacing_m": args.station_spacing,
                "upward_views": args.upward, "fore_aft_views": args.fore_aft, "classifier": args.classifier,
+               "rescue_confidence": args.rescue_confidence,
                "stages": {}}
     done = set()
     plan = stage_plan(scene_dir, meta, work, args.model, args.station_spacing, args.upward, args.classifier,
-                      args.fore_aft)
+                      args.fore_aft, args.rescue_confidence)
     if args.from_stage and args.from_stage not in [p[0] for p in plan]:
         parser.error(f"--from: no stage {args.from_stage}")
     reuse = args.from_stage is not None

@@ -19,9 +19,14 @@ measures several models in one run, on the same images, timed alternately.
 4. Panoramas per second at 4096 x 2048 on ``--threads`` (2) threads, decoding apart; with
    several models each panorama is run by every model in turn (alternating order), so
    the machine's load falls alike on all of them.
+5. ``--second-look`` (default ``both``): each model without and with detectsigns' second look
+   (``RESCUE_CONFIDENCE``, ``core/rescue.py``): boxes from 0.05 under the confidence kept where
+   the sign-code classifier (``--classifier``, the bundled one) confirms a code; on panoramas
+   the codes are read in both runs, as detectsigns reads them, so the speeds compare the
+   plugin's two paths. Kept candidates count as detections at the confidence.
 
     .venv/bin/python bench/bench_detector.py [--model M | --compare A.onnx B.onnx ...]
-        [--scene DIR ...] [--threads 2] [--json bench/out/detector.json]
+        [--scene DIR ...] [--threads 2] [--second-look off|on|both] [--json bench/out/detector.json]
 """
 from __future__ import annotations
 
@@ -42,6 +47,9 @@ from devtools.train.metrics import iou_matrix, match_image, summarise  # noqa: E
 
 detector_mod = import_roadsigns("roadsigns.core.detector")
 panorama_mod = import_roadsigns("roadsigns.core.panorama")
+detections_mod = import_roadsigns("roadsigns.core.detections")
+rescue_mod = import_roadsigns("roadsigns.core.rescue")
+signcodes_mod = import_roadsigns("roadsigns.core.signcodes")
 
 MIN_HEIGHT_PX = 20.0
 EDGE_ON_MAX_WIDTH_PX = 8.0  # a counted sign seen this narrow is a sliver (edge-on): reported apart
@@ -152,21 +160,29 @@ def curve(matches, thresholds=CURVE_THRESHOLDS):
 # --- generated panoramas ---------------------------------------------------------------------
 
 class PanoramaBench:
-    def __init__(self, detector, views, confidence, min_box_px):
+    """One detector and view set on the panoramas; with a ``classifier``, as detectsigns runs
+    with its defaults: the codes read, and with ``second_look`` the candidates from the
+    plugin's ``RESCUE_CONFIDENCE`` kept when the classifier confirms them (they count as
+    detections at the confidence: the curve then only spans what the plugin keeps)."""
+
+    def __init__(self, detector, views, confidence, min_box_px, classifier=None, second_look=False):
         self.d, self.views, self.confidence, self.min_box_px = detector, views, confidence, min_box_px
+        self.classifier, self.second_look = classifier, second_look
         self.matches, self.small, self.hidden, self.face_on = [], [], [], []
         self.back_hits, self.detect_s, self.cpu_s, self.n = 0, 0.0, 0.0, 0
         self.bands = BandCounter(width=8)
 
     def run(self, pano, meta, sign_class):
         t0, c0 = time.perf_counter(), time.process_time()
-        found = detector_mod.detect_panorama(self.d, pano, self.views, confidence=0.05, min_box_px=self.min_box_px)
+        found = self.detect(pano)
         self.detect_s += time.perf_counter() - t0
         self.cpu_s += time.process_time() - c0
         self.n += 1
         iou = seam_iou(pano.shape[1])
         counted, classes, small, hidden, back = scene_truth(meta, sign_class)
         boxes, scores, ids = found.boxes(), found.score, found.class_id
+        if self.second_look:
+            scores = np.maximum(scores, self.confidence)
         uncounted = np.array([b for b, _ in small + hidden]).reshape(-1, 8)
         self.matches.append(match_image(boxes, scores, ids, counted, classes, 0.5, ignore_boxes=uncounted,
                                         iou_fn=iou))
@@ -185,6 +201,20 @@ class PanoramaBench:
         hidden_b = np.array([b for b, _ in hidden]).reshape(-1, 8)
         self.bands.add(boxes, scores, ids, np.concatenate([counted, small_b]), np.concatenate([classes, small_c]),
                        self.confidence, ignore=hidden_b, iou_fn=iou)
+
+    def detect(self, pano):
+        """What the bench counts: every box from 0.05 (the curve), or what the plugin keeps."""
+        if self.classifier is None:
+            return detector_mod.detect_panorama(self.d, pano, self.views, confidence=0.05, min_box_px=self.min_box_px)
+        if not self.second_look:  # the curve needs the boxes from 0.05; the plugin reads the codes of its own
+            found = detector_mod.detect_panorama(self.d, pano, self.views, confidence=0.05,
+                                                 min_box_px=self.min_box_px)
+            detections_mod.read_codes(self.classifier, pano, found.subset(found.score >= self.confidence))
+            return found
+        found = detector_mod.detect_panorama(self.d, pano, self.views, confidence=self.confidence,
+                                             min_box_px=self.min_box_px,
+                                             candidate_confidence=rescue_mod.DEFAULT_RESCUE_CONFIDENCE)
+        return rescue_mod.second_look(self.classifier, pano, found, self.d.class_names)
 
     def result(self):
         c = self.confidence
@@ -224,12 +254,14 @@ VIEW_SETS = {
 }
 
 
-def bench_panoramas(entries, scene_dirs, confidence, max_images=None, min_box_px=0.0):
-    """Every ``(detector, view set name)`` of ``entries`` on every panorama, alternating
-    which goes first."""
+def bench_panoramas(entries, scene_dirs, confidence, max_images=None, min_box_px=0.0, classifier=None):
+    """Every ``(detector, view set name, second look)`` of ``entries`` on every panorama,
+    alternating which goes first; with a ``classifier`` the codes are read as detectsigns
+    reads them."""
     benches = []
-    for d, views_name in entries:
-        benches.append(PanoramaBench(d, VIEW_SETS[views_name](d.input_size), confidence, min_box_px))
+    for d, views_name, look in entries:
+        benches.append(PanoramaBench(d, VIEW_SETS[views_name](d.input_size), confidence, min_box_px,
+                                     classifier, look))
     decode_s, n = 0.0, 0
     warm = False
     for scene_dir in scene_dirs:
@@ -287,8 +319,49 @@ def detect_tiled(detector, image, confidence):
     return np.concatenate(boxes), np.concatenate(scores), np.concatenate(ids)
 
 
-def bench_gtsdb(detectors, confidence, ids=GTSDB_HELDOUT_IDS, whole_frame=False):
-    """Each detector on GTSDB 500-599 tiles (and whole letterboxed frames if asked)."""
+def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, class_names):
+    """:func:`roadsigns.core.rescue.second_look` on a photograph's boxes (from 0.05): the
+    boxes from ``DEFAULT_RESCUE_CONFIDENCE`` under ``confidence`` that lie on no detection
+    (overlap of the smaller box >= 0.5) are merged across classes (the best-scored kept) and
+    kept when the rule and the classifier confirm them, with their code's class, counted at
+    ``confidence``. Returns the plugin's boxes, scores and class ids."""
+    from devtools.train.codes import crop_square
+
+    sure = scores >= confidence
+    low = np.flatnonzero((scores >= rescue_mod.DEFAULT_RESCUE_CONFIDENCE) & ~sure)
+    low = low[np.argsort(-scores[low], kind="stable")]
+    far = 1e12  # seam_aware_overlap without a seam
+    taken = [b for b in boxes[sure]]
+    cands = []
+    for j in low:
+        if taken and detector_mod.seam_aware_overlap(boxes[j], np.array(taken), far).max() >= 0.5:
+            continue
+        taken.append(boxes[j])
+        cands.append(j)
+    cands = np.array(cands, np.int64)
+    if len(cands):
+        sheeting = np.array([rescue_mod.sheeting_fraction(image_bgr, boxes[j]) for j in cands])
+        cands = cands[rescue_mod.worth_reading(boxes[cands], sheeting)]
+    kept_ids = ids.copy()
+    rescued = np.zeros(len(boxes), bool)
+    if len(cands):
+        rgb = image_bgr[..., ::-1]
+        crops = [crop_square(rgb, boxes[j], margin=classifier.crop_margin, out_px=classifier.input_px)
+                 for j in cands]
+        codes, code_scores = classifier.classify(crops)
+        for j, code, ok in zip(cands, codes, rescue_mod.confirmed(codes, code_scores)):
+            if ok:
+                rescued[j] = True
+                name = rescue_mod.class_of_code(code, classifier.table, class_names)
+                if name is not None:
+                    kept_ids[j] = list(class_names).index(name)
+    keep = sure | rescued
+    return boxes[keep], np.maximum(scores[keep], np.where(rescued[keep], confidence, 0.0)), kept_ids[keep]
+
+
+def bench_gtsdb(detectors, confidence, ids=GTSDB_HELDOUT_IDS, whole_frame=False, classifier=None):
+    """Each detector on GTSDB 500-599 tiles (and whole letterboxed frames if asked);
+    ``detectors``: ``(detector, second look)`` pairs (the second look with ``classifier``)."""
     import cv2
 
     rows = read_gtsdb(ids)
@@ -298,7 +371,7 @@ def bench_gtsdb(detectors, confidence, ids=GTSDB_HELDOUT_IDS, whole_frame=False)
         image = cv2.imread(path)
         big = (gt[:, 3] - gt[:, 1]) >= MIN_HEIGHT_PX
         order = list(enumerate(detectors)) if k % 2 == 0 else list(enumerate(detectors))[::-1]
-        for i, d in order:
+        for i, (d, look) in order:
             for mode in modes:
                 t0 = time.perf_counter()
                 if mode == "tiles_640":
@@ -306,6 +379,9 @@ def bench_gtsdb(detectors, confidence, ids=GTSDB_HELDOUT_IDS, whole_frame=False)
                 else:
                     r = d.detect(image, 0.05)
                     boxes, scores, found_ids = r.boxes_xyxy, r.scores, r.class_ids
+                if look:
+                    boxes, scores, found_ids = second_look_image(classifier, image, boxes, scores, found_ids,
+                                                                 confidence, d.class_names)
                 a = acc[i][mode]
                 a["s"] += time.perf_counter() - t0
                 a["all"].append(match_image(boxes, scores, found_ids, gt, classes, 0.5))
@@ -399,6 +475,11 @@ def main(argv=None):
     ap.add_argument("--whole-frame", action="store_true", help="also GTSDB whole frames letterboxed to 640 px")
     ap.add_argument("--views", nargs="+", default=["default"], choices=sorted(VIEW_SETS),
                     help="view sets, each measured with every model in the same run (default: the plugin's)")
+    ap.add_argument("--second-look", choices=("off", "on", "both"), default="both",
+                    help="detectsigns' second look (RESCUE_CONFIDENCE, core/rescue.py): off (the detector alone, "
+                         "the codes read on panoramas), on (the plugin's default) or both, in the same run")
+    ap.add_argument("--classifier", default=os.path.join(REPO_ROOT, "models", "signcodes.onnx"),
+                    help="the sign-code classifier of the second look (and of the codes read on panoramas)")
     ap.add_argument("--json", default=os.path.join(REPO_ROOT, "bench", "out", "detector.json"))
     a = ap.parse_args(argv)
 
@@ -413,25 +494,33 @@ def main(argv=None):
     detectors = [detector_mod.Detector(m, threads=a.threads) for m in models]
     for d in detectors:
         print(d.info().describe())
-    entries = [(k, v) for k in range(len(models)) for v in a.views]
+    looks = {"off": [False], "on": [True], "both": [False, True]}[a.second_look]
+    table = signcodes_mod.read_codes_table(os.path.join(REPO_ROOT, "models", "sign-codes-de.csv"))
+    classifier = signcodes_mod.CodeClassifier(a.classifier, table, threads=a.threads)
+    entries = [(k, v, look) for k in range(len(models)) for v in a.views for look in looks]
     results = [{"model": os.path.relpath(models[k], REPO_ROOT), "model_mb": os.path.getsize(models[k]) / 1e6,
-                "views": v, "n_views": len(VIEW_SETS[v](detectors[k].input_size)), "threads": a.threads,
+                "views": v, "n_views": len(VIEW_SETS[v](detectors[k].input_size)), "second_look": look,
+                "classifier": os.path.relpath(a.classifier, REPO_ROOT), "threads": a.threads,
                 "cpus": os.cpu_count(), "load_average_at_start": os.getloadavg()[0],
-                "confidence": a.confidence, "scenes": scenes, "min_size_px": a.min_size} for k, v in entries]
-    for r, p in zip(results, bench_panoramas([(detectors[k], v) for k, v in entries], scenes, a.confidence,
-                                             a.max_images, a.min_size)):
+                "confidence": a.confidence, "scenes": scenes, "min_size_px": a.min_size} for k, v, look in entries]
+    for r, p in zip(results, bench_panoramas([(detectors[k], v, look) for k, v, look in entries], scenes,
+                                             a.confidence, a.max_images, a.min_size, classifier)):
         r["panoramas"] = p
         r["panoramas_per_second"] = p["panoramas_per_second"]
     if not a.skip_gtsdb:  # tiles of the photographs: the view set plays no part
-        gtsdb = bench_gtsdb(detectors, a.confidence, whole_frame=a.whole_frame, ids=GTSDB_HELDOUT_IDS[:a.gtsdb_images])
-        for r, (k, _) in zip(results, entries):
-            r["gtsdb_500_599"] = gtsdb[k]
+        pairs = [(k, look) for k in range(len(models)) for look in looks]
+        gtsdb = bench_gtsdb([(detectors[k], look) for k, look in pairs], a.confidence, whole_frame=a.whole_frame,
+                            ids=GTSDB_HELDOUT_IDS[:a.gtsdb_images], classifier=classifier)
+        for r, (k, _, look) in zip(results, entries):
+            r["gtsdb_500_599"] = gtsdb[pairs.index((k, look))]
     for r in results:
-        print_model(f"{r['model']}, views {r['views']} ({r['n_views']})", r, a.confidence)
+        print_model(f"{r['model']}, views {r['views']} ({r['n_views']}), second look "
+                    f"{'on' if r['second_look'] else 'off'}", r, a.confidence)
     print("\n===== summary (confidence %.2f) =====" % a.confidence)
     heads = [headline(r) for r in results]
     keys = list(heads[0])
-    print(f"{'':<26}" + "".join(f"{(os.path.basename(r['model']) + ' ' + r['views'])[-22:]:>24}" for r in results))
+    labels = [os.path.basename(r["model"]) + " " + r["views"] + (" +2nd" if r["second_look"] else "") for r in results]
+    print(f"{'':<26}" + "".join(f"{label[-22:]:>24}" for label in labels))
     for k in keys:
         print(f"{k:<26}" + "".join(f"{_f(h.get(k)):>24}" for h in heads))
     out = results[0] if len(results) == 1 else {"compare": results, "summary": heads}

@@ -447,7 +447,9 @@ class PanoramaDetections:
     past W across the +-180 deg seam). ``view_index``: the view the box comes from;
     ``n_views``: how many view detections were merged into it. ``code`` and ``code_score``:
     the sign code a classifier read in the box and its probability
-    (:func:`.detections.read_codes`; ``""`` and NaN without a classifier).
+    (:func:`.detections.read_codes`; ``""`` and NaN without a classifier). ``candidate``:
+    a box scored under the confidence, kept only for a second look (:mod:`.rescue`);
+    :func:`detect_drive` drops the candidates that are left after it.
     """
 
     class_id: np.ndarray
@@ -461,6 +463,7 @@ class PanoramaDetections:
     n_views: np.ndarray
     code: List[str] = field(default_factory=list)
     code_score: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    candidate: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))
 
     def __post_init__(self) -> None:
         n = len(self.score)
@@ -468,9 +471,29 @@ class PanoramaDetections:
             self.code = [""] * n
         if len(self.code_score) != n:
             self.code_score = np.full(n, np.nan)
+        if len(self.candidate) != n:
+            self.candidate = np.zeros(n, bool)
 
     def __len__(self) -> int:
         return len(self.score)
+
+    def subset(self, rows) -> "PanoramaDetections":
+        """The rows ``rows`` (a mask or indices), in that order."""
+        rows = np.flatnonzero(rows) if np.asarray(rows).dtype == bool else np.asarray(rows, np.int64)
+        return PanoramaDetections(
+            self.class_id[rows], [self.class_name[k] for k in rows], self.score[rows], self.u0[rows],
+            self.v0[rows], self.u1[rows], self.v1[rows], self.view_index[rows], self.n_views[rows],
+            [self.code[k] for k in rows], self.code_score[rows], self.candidate[rows])
+
+    @staticmethod
+    def concatenate(parts: Sequence["PanoramaDetections"]) -> "PanoramaDetections":
+        """The rows of ``parts`` one after the other."""
+        def cat(name):
+            return np.concatenate([getattr(p, name) for p in parts])
+        return PanoramaDetections(
+            cat("class_id"), [n for p in parts for n in p.class_name], cat("score"), cat("u0"), cat("v0"),
+            cat("u1"), cat("v1"), cat("view_index"), cat("n_views"), [c for p in parts for c in p.code],
+            cat("code_score"), cat("candidate"))
 
     def boxes(self) -> np.ndarray:
         return np.stack([self.u0, self.v0, self.u1, self.v1], axis=1).reshape(-1, 4)
@@ -564,9 +587,26 @@ def merge_view_detections(boxes: np.ndarray, scores: np.ndarray, class_ids: np.n
 DEFAULT_MIN_BOX_PX = 14.0
 
 
+def _merged(detector, rows: Sequence[np.ndarray], W: int, overlap_threshold: float, min_box_px: float,
+            class_agnostic: bool = False) -> PanoramaDetections:
+    """:func:`merge_view_detections` of the view boxes ``rows`` = (boxes in panorama pixels,
+    scores, class ids, views, complete, central) as rows; merged boxes whose shorter side is
+    under ``min_box_px`` are dropped. ``class_agnostic``: boxes of any class merge (the kept
+    one gives the class)."""
+    boxes, scores, ids, views, complete, central = rows
+    kept, merged, counts = merge_view_detections(
+        boxes, scores, np.zeros_like(ids) if class_agnostic else ids, complete, central, W, overlap_threshold)
+    big_enough = np.minimum(merged[:, 2] - merged[:, 0], merged[:, 3] - merged[:, 1]) >= min_box_px
+    kept, merged, counts = kept[big_enough], merged[big_enough], counts[big_enough]
+    names = list(detector.class_names)
+    return PanoramaDetections(ids[kept], [names[c] for c in ids[kept]], scores[kept],
+                              merged[:, 0], merged[:, 1], merged[:, 2], merged[:, 3], views[kept], counts)
+
+
 def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: float = 0.25,
                     iou_threshold: float = 0.45, overlap_threshold: float = 0.5,
-                    min_box_px: float = 0.0, progress: Progress = SILENT) -> PanoramaDetections:
+                    min_box_px: float = 0.0, candidate_confidence: Optional[float] = None,
+                    progress: Progress = SILENT) -> PanoramaDetections:
     """Run ``detector`` on each view of ``pano`` (BGR array) and merge the results.
 
     ``detector``: a :class:`Detector`, or any object with ``class_names`` and
@@ -574,18 +614,23 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
     used when present, to batch views). Boxes are mapped to panorama pixels through each
     view and merged by :func:`merge_view_detections`; merged boxes whose shorter side is
     under ``min_box_px`` panorama pixels are dropped.
+
+    ``candidate_confidence`` (under ``confidence``): the boxes scoring from it up to
+    ``confidence`` are merged apart (across classes) and added as rows marked ``candidate``,
+    except where they overlap a detection; the detections are the same as without it.
     """
     H, W = pano.shape[:2]
     work = views.prepare(pano)
+    lowest = confidence if candidate_confidence is None else min(confidence, candidate_confidence)
     batch = max(1, int(getattr(detector, "max_batch", 1)))
     all_boxes, all_scores, all_ids, all_views, all_complete, all_central = [], [], [], [], [], []
     for start in range(0, len(views), batch):
         chunk = list(range(start, min(start + batch, len(views))))
         images = [views[k].cut(work) for k in chunk]
         if hasattr(detector, "detect_many"):
-            found = detector.detect_many(images, confidence, iou_threshold)
+            found = detector.detect_many(images, lowest, iou_threshold)
         else:
-            found = [detector.detect(image, confidence, iou_threshold) for image in images]
+            found = [detector.detect(image, lowest, iou_threshold) for image in images]
         for k, det in zip(chunk, found):
             if len(det) == 0:
                 continue
@@ -601,16 +646,17 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
         z = np.zeros(0)
         return PanoramaDetections(np.zeros(0, np.int64), [], z, z, z, z, z,
                                   np.zeros(0, np.int64), np.zeros(0, np.int64))
-    scores, ids = np.concatenate(all_scores), np.concatenate(all_ids)
-    kept, boxes, counts = merge_view_detections(
-        np.concatenate(all_boxes), scores, ids, np.concatenate(all_complete),
-        np.concatenate(all_central), W, overlap_threshold)
-    big_enough = np.minimum(boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1]) >= min_box_px
-    kept, boxes, counts = kept[big_enough], boxes[big_enough], counts[big_enough]
-    names = list(detector.class_names)
-    return PanoramaDetections(ids[kept], [names[c] for c in ids[kept]], scores[kept],
-                              boxes[:, 0], boxes[:, 1], boxes[:, 2], boxes[:, 3],
-                              np.concatenate(all_views)[kept], counts)
+    rows = [np.concatenate(a) for a in (all_boxes, all_scores, all_ids, all_views, all_complete, all_central)]
+    sure = rows[1] >= confidence
+    found = _merged(detector, [a[sure] for a in rows], W, overlap_threshold, min_box_px)
+    if lowest >= confidence or sure.all():
+        return found
+    low = _merged(detector, [a[~sure] for a in rows], W, overlap_threshold, min_box_px, class_agnostic=True)
+    on_sign = np.array([len(found) > 0 and seam_aware_overlap(box, found.boxes(), W).max() >= overlap_threshold
+                        for box in low.boxes()], bool).reshape(-1)
+    low = low.subset(~on_sign)
+    low.candidate[:] = True
+    return PanoramaDetections.concatenate([found, low])
 
 
 # --- a drive ------------------------------------------------------------------------------
@@ -655,12 +701,15 @@ def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidenc
                  iou_threshold: float = 0.45, min_box_px: float = 0.0,
                  progress: Progress = SILENT,
                  on_panorama: Optional[Callable[[np.ndarray, PanoramaDetections], object]] = None,
-                 prefetch: bool = True) -> DriveDetections:
+                 prefetch: bool = True, candidate_confidence: Optional[float] = None) -> DriveDetections:
     """:func:`detect_panorama` on each panorama file; missing or corrupt files are skipped.
 
     ``on_panorama(pano, found)`` is called after each panorama is detected, while it is in
     memory (so that it is read once): reading the sign codes of its detections, say
-    (:func:`.detections.read_codes`). Progress advances per view; cancel stops between
+    (:func:`.detections.read_codes`); when it returns a :class:`PanoramaDetections`, that
+    replaces ``found``. ``candidate_confidence``: boxes from this score up are kept as
+    candidates for ``on_panorama`` (:func:`detect_panorama`, :func:`.rescue.second_look`);
+    those still marked candidate after it are dropped. Progress advances per view; cancel stops between
     views. A skipped file adds ``(path, reason)`` to ``skipped`` and a warning to
     ``progress``. ``prefetch``: decode the next panorama in a background thread while this
     one is detected (OpenCV's decoder releases the GIL; two panoramas are in memory at once);
@@ -693,10 +742,15 @@ def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidenc
                 per_image.append(None)
                 continue
             found = detect_panorama(detector, pano, views, confidence, iou_threshold,
-                                    min_box_px=min_box_px, progress=progress.sub(k / n, (k + 1) / n))
+                                    min_box_px=min_box_px, candidate_confidence=candidate_confidence,
+                                    progress=progress.sub(k / n, (k + 1) / n))
             if on_panorama is not None:
                 progress.check()
-                on_panorama(pano, found)
+                answer = on_panorama(pano, found)
+                if isinstance(answer, PanoramaDetections):
+                    found = answer
+            if found.candidate.any():
+                found = found.subset(~found.candidate)
             per_image.append(found)
             del pano
     finally:

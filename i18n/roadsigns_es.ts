@@ -107,189 +107,204 @@
 <context>
     <name>DetectSigns</name>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="44" />
+        <location filename="../algorithms/detectsigns.py" line="46" />
         <source>Detect signs in panoramas</source>
         <translation>Detectar señales en panoramas</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="47" />
+        <location filename="../algorithms/detectsigns.py" line="49" />
         <source>Runs an ONNX sign detector on each panorama; one ray per detected sign.</source>
         <translation>Ejecuta un detector de señales ONNX en cada panorama; un rayo por señal detectada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="158" />
+        <location filename="../algorithms/detectsigns.py" line="174" />
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="70" />
+        <location filename="../algorithms/detectsigns.py" line="72" />
         <source>The output of Import trajectory: one point per panorama with its pose and path.</source>
         <translation>La salida de «Importar trayectoria y panoramas»: un punto por panorama con su pose y su ruta.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="73" />
+        <location filename="../algorithms/detectsigns.py" line="75" />
         <source>ONNX model (empty: the bundled model)</source>
         <translation>Modelo ONNX (vacío: el modelo incluido)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="73" />
+        <location filename="../algorithms/detectsigns.py" line="75" />
         <source>A YOLO-family ONNX detector. Empty uses the model bundled with the plugin.</source>
         <translation>Un detector ONNX de la familia YOLO. Vacío usa el modelo incluido con el complemento.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="73" />
+        <location filename="../algorithms/detectsigns.py" line="75" />
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>Modelos ONNX (*.onnx);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="77" />
+        <location filename="../algorithms/detectsigns.py" line="79" />
         <source>Minimum confidence</source>
         <translation>Confianza mínima</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="77" />
+        <location filename="../algorithms/detectsigns.py" line="79" />
         <source>Detections scoring below this (0-1) are dropped.</source>
         <translation>Se descartan las detecciones con una puntuación inferior a este valor (0-1).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="80" />
+        <location filename="../algorithms/detectsigns.py" line="95" />
         <source>Smallest sign kept (panorama pixels)</source>
         <translation>Señal más pequeña conservada (píxeles de panorama)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="80" />
+        <location filename="../algorithms/detectsigns.py" line="95" />
         <source>Detections whose box is shorter than this on its shorter side are dropped: signs that small are boxed a few pixels off and their class is unsure, and the drive sees them again, larger, from the next stations. 0 keeps every detection.</source>
         <translation>Se descartan las detecciones cuyo recuadro tiene el lado menor por debajo de este valor: en señales tan pequeñas el recuadro se desvía unos píxeles y la clase es dudosa, y el recorrido las vuelve a ver, más grandes, desde las estaciones siguientes. 0 conserva todas las detecciones.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="86" />
+        <location filename="../algorithms/detectsigns.py" line="101" />
         <source>Class names file (optional)</source>
         <translation>Archivo de nombres de clase (opcional)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="86" />
+        <location filename="../algorithms/detectsigns.py" line="101" />
         <source>One class name per line, in the model's class order; needed when the model has no names in its metadata and no labels file beside it.</source>
         <translation>Un nombre de clase por línea, en el orden de clases del modelo; necesario cuando el modelo no tiene nombres en sus metadatos ni un archivo de etiquetas a su lado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="86" />
+        <location filename="../algorithms/detectsigns.py" line="101" />
         <source>Text files (*.txt);;All files (*.*)</source>
         <translation>Archivos de texto (*.txt);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="91" />
+        <location filename="../algorithms/detectsigns.py" line="106" />
         <source>Ray length (m)</source>
         <translation>Longitud del rayo (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="91" />
+        <location filename="../algorithms/detectsigns.py" line="106" />
         <source>Length of each detection ray from the panorama centre, in metres.</source>
         <translation>Longitud de cada rayo de detección desde el centro del panorama, en metros.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="95" />
+        <location filename="../algorithms/detectsigns.py" line="110" />
         <source>Also look upwards (overhead and gantry signs)</source>
         <translation>Mirar también hacia arriba (señales elevadas y de pórtico)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="127" />
+        <location filename="../algorithms/detectsigns.py" line="142" />
         <source>CPU threads (0: all)</source>
         <translation>Hilos de CPU (0: todos)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="127" />
+        <location filename="../algorithms/detectsigns.py" line="142" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>Hilos que onnxruntime puede usar en la CPU; 0 le permite usar todos los núcleos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="133" />
+        <location filename="../algorithms/detectsigns.py" line="148" />
         <source>Detections</source>
         <translation>Detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="137" />
+        <location filename="../algorithms/detectsigns.py" line="152" />
         <source>Number of detections</source>
         <translation>Número de detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="138" />
+        <location filename="../algorithms/detectsigns.py" line="153" />
         <source>Panoramas skipped</source>
         <translation>Panoramas omitidos</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="151" />
+        <location filename="../algorithms/detectsigns.py" line="167" />
         <source>ONNX model not found: {}</source>
         <translation>No se encontró el modelo ONNX: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="166" />
+        <location filename="../algorithms/detectsigns.py" line="182" />
         <source>{} panoramas, {} views each</source>
         <translation>{} panoramas, {} vistas cada uno</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="180" />
+        <location filename="../algorithms/detectsigns.py" line="206" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>Se omitieron {} panorama(s) que no se pudieron leer.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="196" />
+        <location filename="../algorithms/detectsigns.py" line="222" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} detecciones en {} panoramas ({} omitidos).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="188" />
+        <location filename="../algorithms/detectsigns.py" line="214" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>No se detectó ninguna señal: la capa de detecciones está vacía.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="133" />
+        <location filename="../algorithms/detectsigns.py" line="148" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>Capa LineStringZ, un rayo por detección, con det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views y los campos de pose de la estación.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="200" />
+        <location filename="../algorithms/detectsigns.py" line="226" />
         <source>Sign codes read in {} of the {} detections (the others: other).</source>
         <translation>Códigos de señal leídos en {} de las {} detecciones (las demás: other).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="114" />
+        <location filename="../algorithms/detectsigns.py" line="129" />
         <source>Skip stations closer than (m)</source>
         <translation>Omitir estaciones a menos de (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="172" />
+        <location filename="../algorithms/detectsigns.py" line="188" />
         <source>Detecting in {} of the {} panoramas: stations closer than {} m to the last one detected in are skipped.</source>
         <translation>Detectando en {} de los {} panoramas: se omiten las estaciones a menos de {} m de la última en la que se detectó.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="50" />
+        <location filename="../algorithms/detectsigns.py" line="52" />
         <source>Cuts each station's equirectangular panorama into overlapping perspective views (a horizon ring, and optionally an upward ring for overhead signs), runs the ONNX detector on each view, maps the boxes back to panorama pixels and merges the same sign found in two views.&lt;br&gt;&lt;br&gt;The &lt;b&gt;model&lt;/b&gt; is the bundled one when left empty, or your own ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model with NMS built in ([1, N, 6]). Class names come from the model's metadata (Ultralytics &lt;i&gt;names&lt;/i&gt;) or a labels file (one name per line).&lt;br&gt;&lt;br&gt;Output: one line per detection from the panorama centre along the ray through the box centre, &lt;i&gt;Ray length&lt;/i&gt; long, with the box (u0, v0, u1, v1 in panorama pixels; across the ±180° seam u1 exceeds the width) and the station's pose. A panorama that cannot be read is skipped with a warning and counted.&lt;br&gt;&lt;br&gt;&lt;b&gt;Sign codes&lt;/b&gt;: a second, small ONNX model (the bundled sign-code classifier, or your own) reads what each detected sign says, from a rectified crop of the panorama around its box at the panorama's own resolution: &lt;i&gt;code&lt;/i&gt; (such as DE:274[50], speed limit 50, from the codes table; &lt;i&gt;other&lt;/i&gt; when it knows none) and &lt;i&gt;code_score&lt;/i&gt; (its probability). Refine signs votes them across the views of each sign. The classifier's format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</source>
         <translation>Corta el panorama equirrectangular de cada estación en vistas en perspectiva superpuestas (un anillo horizontal y, opcionalmente, un anillo hacia arriba para las señales elevadas), ejecuta el detector ONNX en cada vista, devuelve los recuadros a píxeles del panorama y fusiona la misma señal encontrada en dos vistas.&lt;br&gt;&lt;br&gt;El &lt;b&gt;modelo&lt;/b&gt; es el incluido si se deja vacío, o su propia exportación ONNX: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) o un modelo con NMS integrado ([1, N, 6]). Los nombres de clase provienen de los metadatos del modelo (&lt;i&gt;names&lt;/i&gt; de Ultralytics) o de un archivo de etiquetas (un nombre por línea).&lt;br&gt;&lt;br&gt;Salida: una línea por detección desde el centro del panorama a lo largo del rayo que pasa por el centro del recuadro, de &lt;i&gt;Longitud del rayo&lt;/i&gt; de largo, con el recuadro (u0, v0, u1, v1 en píxeles del panorama; a través de la costura de ±180°, u1 supera el ancho) y la pose de la estación. Un panorama que no se puede leer se omite con una advertencia y se contabiliza.&lt;br&gt;&lt;br&gt;&lt;b&gt;Códigos de señal&lt;/b&gt;: un segundo modelo ONNX, pequeño (el clasificador de códigos de señal incluido, o el suyo propio), lee lo que dice cada señal detectada a partir de un recorte rectificado del panorama alrededor de su recuadro, con la resolución propia del panorama: &lt;i&gt;code&lt;/i&gt; (como DE:274[50], límite de velocidad 50, de la tabla de códigos; &lt;i&gt;other&lt;/i&gt; cuando no conoce ninguno) y &lt;i&gt;code_score&lt;/i&gt; (su probabilidad). «Refinar y fusionar señales» los somete a votación entre las vistas de cada señal. El formato del clasificador está en models/README.md (sección &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="95" />
+        <location filename="../algorithms/detectsigns.py" line="110" />
         <source>Adds a ring of 6 views tilted 35° up to the 8 horizon views, for signs high above the road close to the vehicle. Off by default: a sign overhead is in the horizon views from every station more than a few metres away, and on two held-out test streets (panoramas every 5 m, 6 gantry panels each) the horizon views alone found every sign, as many as with the upward ring, in 1.3 to 1.6 times less detection time. Check it for drives with panoramas far apart.</source>
         <translation>Añade un anillo de 6 vistas inclinadas 35° hacia arriba a las 8 vistas horizontales, para las señales situadas muy por encima de la calzada cerca del vehículo. Desactivado por defecto: una señal elevada aparece en las vistas horizontales desde cualquier estación situada a más de unos pocos metros, y en dos calles de prueba no usadas en el ajuste (panoramas cada 5 m, 6 paneles de pórtico en cada una) las vistas horizontales por sí solas encontraron todas las señales, tantas como con el anillo hacia arriba, en un tiempo de detección de 1,3 a 1,6 veces menor. Márquelo para recorridos con panoramas muy separados entre sí.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="131" />
+        <location filename="../algorithms/detectsigns.py" line="146" />
         <source>in a crop around each detection, voted later across the views of each sign by Refine and merge signs</source>
         <translation>en un recorte alrededor de cada detección; «Refinar y fusionar señales» vota después entre las vistas de cada señal</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="114" />
+        <location filename="../algorithms/detectsigns.py" line="129" />
         <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so skipping saves detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. The default, 2.5 m, keeps a detected panorama at least every 5 m on any drive (every second one of a drive with a panorama every 1.25 m) and skips nothing on drives with panoramas 2.5 m or more apart. 0 detects in every panorama.</source>
         <translation>Detecta solo en las panorámicas cuya estación está al menos a esta distancia de la última estación en la que se detectó; las intermedias se omiten (no se leen, sin detecciones). Una señal permanece visible desde muchas estaciones, así que omitir ahorra tiempo de detección en proporción, pero cada señal se ve entonces desde menos estaciones: menos rayos para situarla, y una señal visible solo desde pocas estaciones (pequeña, u oculta tras árboles o vehículos) puede perderse. Medido en dos calles de prueba reservadas con una panorámica cada 5 m: todas las panorámicas encontraron las 46 y 45 señales; 10 m (una de cada dos) perdió 2 en cada una, 15 m perdió 11 de 46. El valor por defecto, 2,5 m, mantiene una panorámica detectada al menos cada 5 m en cualquier recorrido (una de cada dos en un recorrido con una panorámica cada 1,25 m) y no omite nada en recorridos con panorámicas a 2,5 m o más. 0 detecta en todas las panorámicas.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="103" />
+        <location filename="../algorithms/detectsigns.py" line="118" />
         <source>Look ahead and behind more closely (small, far signs)</source>
         <translation>Mirar hacia delante y hacia atrás con más detalle (señales pequeñas y lejanas)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="103" />
+        <location filename="../algorithms/detectsigns.py" line="118" />
         <source>Adds two views of 53° straight ahead and behind, with 1.5 times the pixels per degree of the horizon views, for signs far along the road. On 130 held-out generated panoramas they found 0.907 of the signs per panorama instead of 0.878, at the same precision (signs 14-20 px tall: 0.72 instead of 0.60; 20-35 px: 0.97 instead of 0.90), in 1.26 times the detection time. Off by default: the chain sees a sign from several stations, and with panoramas every 5 m it found every sign of two held-out streets without them; with panoramas 10 m apart they found 44 instead of 43 of 46 signs on one street and the same 41 of 45 on the other. Check it for drives with panoramas far apart.</source>
         <translation>Añade dos vistas de 53° hacia delante y hacia atrás, con 1,5 veces los píxeles por grado de las vistas del horizonte, para las señales lejanas a lo largo de la vía. En 130 panoramas generados reservados encontraron 0,907 de las señales por panorama en lugar de 0,878, con la misma precisión (señales de 14-20 px de alto: 0,72 en lugar de 0,60; de 20-35 px: 0,97 en lugar de 0,90), en 1,26 veces el tiempo de detección. Desactivado por defecto: la cadena ve cada señal desde varias estaciones y, con panoramas cada 5 m, encontró todas las señales de dos calles reservadas sin ellas; con panoramas separados 10 m encontraron 44 en lugar de 43 de 46 señales en una calle y las mismas 41 de 45 en la otra. Actívelo para recorridos con panoramas muy separados.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="82" />
+        <source>Second look from confidence</source>
+        <translation>Segunda mirada desde la confianza</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="82" />
+        <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a sign code in it with a probability of at least {score}, its box is at least {px} px on its shorter side and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes the class of its code and keeps its own score. On held-out real street photographs (GTSDB 500-599) this found 0.901 of the signs instead of 0.803, at a precision of 0.901 instead of 0.891, for about 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
+        <translation>Los recuadros que el detector puntúa desde este valor hasta la confianza mínima reciben una segunda mirada: se conserva uno cuando el clasificador de códigos de señal lee en él un código de señal con una probabilidad de al menos {score}, su recuadro mide al menos {px} px en su lado más corto y al menos un {share:.0%} de él son colores de señal (rojo, azul o amarillo saturados); entonces toma la clase de su código y conserva su propia puntuación. En fotografías reales de calles no usadas en el entrenamiento (GTSDB 500-599) encontró 0,901 de las señales en lugar de 0,803, con una precisión de 0,901 en lugar de 0,891, por cerca de un 5 % del tiempo de detección. Necesita que se lean los códigos de señal; un valor igual o superior a la confianza mínima la desactiva.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="197" />
+        <source>Second look: boxes scored from {} to {} are kept where the sign-code classifier reads a code.</source>
+        <translation>Segunda mirada: los recuadros puntuados de {} a {} se conservan donde el clasificador de códigos de señal lee un código.</translation>
     </message>
 </context>
 <context>
@@ -2105,73 +2120,73 @@
 <context>
     <name>RoadSigns</name>
     <message>
-        <location filename="../core/cloudsigns.py" line="271" />
+        <location filename="../core/cloudsigns.py" line="272" />
         <source>The stations do not overlap the cloud {path}: the track passes {gap:.1f} m from the cloud's extent ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}), more than the corridor of {corridor} m; are the cloud and the stations in the same CRS and of the same drive?</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Las estaciones no se solapan con la nube {path}: el trayecto pasa a {gap:.1f} m de la extensión de la nube ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}), más que el corredor de {corridor} m; ¿están la nube y las estaciones en el mismo SRC y son del mismo recorrido?</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="284" />
+        <location filename="../core/cloudsigns.py" line="285" />
         <source>{path} has no intensity dimension (point format {fmt}): signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene dimensión de intensidad (formato de punto {fmt}): sin imágenes no se pueden encontrar señales en ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="287" />
+        <location filename="../core/cloudsigns.py" line="288" />
         <source>{path} has no classification dimension: run roadsigns:groundfilter on it first</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene dimensión de clasificación: ejecute primero roadsigns:groundfilter sobre ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="690" />
+        <location filename="../core/cloudsigns.py" line="692" />
         <source>Found {signs} sign panels ({bright} retroreflective) and {poles} poles in {n} points ({cand} kept near the road, {windows} windows of {w} m); condition reference {ref:.3f} ({src})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se encontraron {signs} paneles de señal ({bright} retrorreflectantes) y {poles} postes en {n} puntos ({cand} conservados cerca de la vía, {windows} ventanas de {w} m); referencia de estado {ref:.3f} ({src})</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="621" />
+        <location filename="../core/cloudsigns.py" line="623" />
         <source>No point of {path} lies within {corridor} m of the stations' track ({n} points read)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} está a menos de {corridor} m del trayecto de las estaciones ({n} puntos leídos)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="624" />
+        <location filename="../core/cloudsigns.py" line="626" />
         <source>{path} has no ground points (class 2) along the track: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene puntos de suelo (clase 2) a lo largo del trayecto: ejecute primero roadsigns:groundfilter sobre ella (o clasifique el suelo con otra herramienta)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="628" />
+        <location filename="../core/cloudsigns.py" line="630" />
         <source>{path} has no intensity: all {n} points near the track have intensity 0; signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene intensidad: los {n} puntos cercanos al trayecto tienen intensidad 0; sin imágenes no se pueden encontrar señales en ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="639" />
+        <location filename="../core/cloudsigns.py" line="641" />
         <source>Intensity: range exponent {alpha:.2f} ({source}), bright threshold {thr:.3f} of full scale at 10 m ({method}; background level {bg:.3f}, bright mode {mode:.3f}; {n} non-ground points near the road)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Intensidad: exponente de distancia {alpha:.2f} ({source}), umbral de brillo {thr:.3f} del fondo de escala a 10 m ({method}; nivel de fondo {bg:.3f}, moda brillante {mode:.3f}; {n} puntos que no son de suelo cerca de la vía)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="759" />
+        <location filename="../core/cloudsigns.py" line="761" />
         <source>{n} gantry posts</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} postes de pórtico</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="631" />
+        <location filename="../core/cloudsigns.py" line="633" />
         <source>The cloud's GPS times [{t0:.1f}, {t1:.1f}] do not meet the stations' times: ranges are taken from the nearest track position instead (is one of them in GPS week seconds and the other in adjusted standard GPS time?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Los tiempos GPS de la nube [{t0:.1f}, {t1:.1f}] no coinciden con los de las estaciones: las distancias se toman en su lugar desde la posición más cercana del trayecto (¿está uno en segundos de la semana GPS y el otro en tiempo GPS estándar ajustado?)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="650" />
+        <location filename="../core/cloudsigns.py" line="652" />
         <source>{share:.0%} of the points near the road have intensity 0: the bright threshold {thr:.3f} of full scale may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El {share:.0%} de los puntos cercanos a la vía tiene intensidad 0: el umbral de brillo {thr:.3f} del fondo de escala puede carecer de sentido</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="655" />
+        <location filename="../core/cloudsigns.py" line="657" />
         <source>{share:.0%} of the points near the road have saturated intensity: the bright threshold {thr:.3f} of full scale and the condition of the signs may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El {share:.0%} de los puntos cercanos a la vía tiene la intensidad saturada: el umbral de brillo {thr:.3f} del fondo de escala y el estado de las señales pueden carecer de sentido</translation>
@@ -2215,7 +2230,7 @@
     </message>
     <message>
         <location filename="../core/cloudsource.py" line="245" />
-        <location filename="../core/pointcloud.py" line="545" />
+        <location filename="../core/pointcloud.py" line="561" />
         <source>{path} has no dimension {names} (point format {fmt})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene la dimensión {names} (formato de punto {fmt})</translation>
@@ -2602,7 +2617,7 @@
         <translation>{what} {index}: sin posición (x, y, z)</translation>
     </message>
     <message>
-        <location filename="../core/ground/csf.py" line="103" />
+        <location filename="../core/ground/csf.py" line="108" />
         <source>The built-in CSF needs the Python package cloth-simulation-filter (module CSF): {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El CSF integrado necesita el paquete de Python cloth-simulation-filter (módulo CSF): {detail}</translation>
@@ -2614,102 +2629,102 @@
         <translation>Tipo de retorno desconocido {kinds} en '{returns}'</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="284" />
+        <location filename="../core/ground/engine.py" line="290" />
         <source>Not enough free disk space in {folder} to keep the points between the two passes: the cloud is read twice</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay espacio libre suficiente en el disco en {folder} para guardar los puntos entre las dos pasadas: la nube se lee dos veces</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="328" />
+        <location filename="../core/ground/engine.py" line="334" />
         <location filename="../core/pointcloud.py" line="265" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la salida debe terminar en .las o .laz</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="340" />
+        <location filename="../core/ground/engine.py" line="346" />
         <location filename="../core/ground/tiled.py" line="151" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SRC de la nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="413" />
+        <location filename="../core/ground/engine.py" line="419" />
         <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró PDAL: se usa el motor integrado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="463" />
+        <location filename="../core/ground/engine.py" line="469" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay polígonos de recorte: se ignora el búfer de recorte</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="297" />
+        <location filename="../core/ground/engine.py" line="303" />
         <source>No point of {path} has the returns '{returns}': nothing was classified</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} tiene los retornos '{returns}': no se clasificó nada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="334" />
+        <location filename="../core/ground/engine.py" line="340" />
         <source>The output {path} must not be the input file</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La salida {path} no puede ser el archivo de entrada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="342" />
+        <location filename="../core/ground/engine.py" line="348" />
         <location filename="../core/ground/tiled.py" line="153" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene sistema de referencia de coordenadas: indique el SRC de la nube (nunca se adivina)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="400" />
+        <location filename="../core/ground/engine.py" line="406" />
         <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: el motor integrado, más rápido que PDAL en las mediciones para {method} (y procesa la nube en flujo continuo con memoria acotada)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="405" />
+        <location filename="../core/ground/engine.py" line="411" />
         <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, porque el {method} integrado necesita el paquete de Python cloth-simulation-filter, que no está instalado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="411" />
+        <location filename="../core/ground/engine.py" line="417" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se pidió PDAL, pero no se encontró ni el módulo de Python pdal ni un ejecutable pdal (PATH, carpeta bin de QGIS)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="415" />
+        <location filename="../core/ground/engine.py" line="421" />
         <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, más rápido que el motor integrado en las mediciones para {method}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="450" />
+        <location filename="../core/ground/engine.py" line="456" />
         <source>No point of {path} is left after the crop: {output} has no points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No queda ningún punto de {path} tras el recorte: {output} no tiene puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="293" />
+        <location filename="../core/ground/engine.py" line="299" />
         <location filename="../core/ground/tiled.py" line="284" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo está dañado ({detail})</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="365" />
+        <location filename="../core/ground/engine.py" line="371" />
         <location filename="../core/ground/tiled.py" line="184" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>PDAL falló; se usó el motor integrado en su lugar: {error}</translation>
     </message>
     <message>
-        <location filename="../core/ground/lattice.py" line="59" />
+        <location filename="../core/ground/lattice.py" line="60" />
         <source>The area to classify ({w:.0f} m x {h:.0f} m) needs {cells} grid cells of {step} m, more than {limit}: crop the cloud or use a larger cell/resolution</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El área que se va a clasificar ({w:.0f} m x {h:.0f} m) necesita {cells} celdas de {step} m, más de {limit}: recorte la nube o use una celda/resolución mayor</translation>
@@ -2930,7 +2945,7 @@
         <translation>No se puede leer el panorama {path}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="346" />
+        <location filename="../core/pointcloud.py" line="365" />
         <source>Cannot use {item!r} as a crop geometry: expected a shapely geometry, WKB or WKT</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede usar {item!r} como geometría de recorte: se esperaba una geometría de shapely, WKB o WKT</translation>
@@ -2942,7 +2957,7 @@
         <translation>No se puede leer {path}: se esperaba un archivo LAS o LAZ ({detail})</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="454" />
+        <location filename="../core/pointcloud.py" line="470" />
         <source>{path} has no coordinate reference system and none was given</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene sistema de referencia de coordenadas y no se indicó ninguno</translation>
@@ -2954,25 +2969,25 @@
         <translation>No se puede escribir {path}: la carpeta no existe</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="369" />
+        <location filename="../core/pointcloud.py" line="388" />
         <source>The crop layer has no geometry</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La capa de recorte no tiene geometría</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="380" />
+        <location filename="../core/pointcloud.py" line="396" />
         <source>A corridor needs a positive buffer, got {buffer_m} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un corredor necesita un búfer positivo; se recibió {buffer_m} m</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="390" />
+        <location filename="../core/pointcloud.py" line="406" />
         <source>A corridor needs stations or lines</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un corredor necesita estaciones o líneas</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="464" />
+        <location filename="../core/pointcloud.py" line="480" />
         <source>No point of {path} lies inside the crop area; {output} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} está dentro del área de recorte; {output} está vacío</translation>

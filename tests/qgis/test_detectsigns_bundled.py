@@ -37,7 +37,8 @@ def seam_iou(a, b, width):
 
 def read_detections(path):
     dataset = ogr.Open(path)
-    rows = [{k: f[k] for k in ("image", "class", "score", "u0", "v0", "u1", "v1")} for f in dataset.GetLayer(0)]
+    rows = [{k: f[k] for k in ("image", "class", "score", "code", "code_score", "u0", "v0", "u1", "v1")}
+            for f in dataset.GetLayer(0)]
     dataset = None
     return rows
 
@@ -95,4 +96,37 @@ def test_bundled_model_detections_lie_on_signs(detections, scene_tiny):
             off.append((d["image"], d["class"], round(d["score"], 2), [round(v) for v in box]))
     assert len(off) <= (1 - MIN_ON_SIGN_SHARE) * len(detections), \
         f"{len(off)} of {len(detections)} detections on no sign: {off}"
-    assert np.all(np.array([d["score"] for d in detections]) >= 0.4)  # the default CONFIDENCE
+    # the default CONFIDENCE, or kept by the second look (a code read with >= 0.9)
+    assert all(d["score"] >= 0.4 or (d["code"] not in ("", "other") and d["code_score"] >= 0.9) for d in detections)
+
+
+def test_second_look_adds_only_boxes_the_classifier_reads(qgis_process, scene_tiny_stations, scene_tiny, tmp_path):
+    """With CONFIDENCE 0.9 the boxes scored from RESCUE_CONFIDENCE (default 0.05) to 0.9 get the
+    second look: the detections from 0.9 up are those of a run without it, and each box it adds
+    has a sign code read with >= 0.9 and lies on a sign."""
+    _, scene = scene_tiny
+    runs = {}
+    for name, rescue in (("off", 0.9), ("on", None)):
+        out = str(tmp_path / f"{name}.gpkg")
+        extra = {} if rescue is None else {"RESCUE_CONFIDENCE": rescue}
+        run = qgis_process.run("roadsigns:detectsigns", STATIONS=scene_tiny_stations, CONFIDENCE=0.9, OUTPUT=out,
+                               **extra)
+        assert run.returncode == 0, run.text
+        assert ("Second look" in run.text) == (rescue is None)
+        runs[name] = read_detections(out)
+
+    def sure(rows):
+        return sorted((r["image"], r["class"], round(r["u0"], 2), round(r["v0"], 2), round(r["u1"], 2),
+                       round(r["v1"], 2), r["code"]) for r in rows if r["score"] >= 0.9)
+    assert sure(runs["on"]) == sure(runs["off"])
+    assert all(r["score"] >= 0.9 for r in runs["off"])
+    added = [r for r in runs["on"] if r["score"] < 0.9]
+    assert len(added) >= 3, "the second look kept nothing: the test shows nothing"
+    assert all(r["code"] not in ("", "other") and r["code_score"] >= 0.9 for r in added)
+    width = scene["image_width"]
+    fronts = {m["image"]: [s for s in m["signs"] if s["facing"] == "front" and s.get("visible_box")]
+              for m in scene["images"]}
+    on_sign = [any(max(seam_iou([r["u0"], r["v0"], r["u1"], r["v1"]], s["visible_box"], width),
+                       seam_iou([r["u0"], r["v0"], r["u1"], r["v1"]], s["box"], width)) >= 0.3
+                   for s in fronts[r["image"]]) for r in added]
+    assert np.mean(on_sign) >= MIN_ON_SIGN_SHARE, f"{on_sign.count(False)} of {len(added)} added boxes on no sign"

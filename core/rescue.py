@@ -1,0 +1,134 @@
+"""Signs the detector scores low but the sign-code classifier reads: the second look.
+
+The detector learned real signs from few photographs; on real streets it scores many
+small or unusual signs under its threshold (GTSDB 500-599: 14 of 71 signs, most of them
+17-31 px, at scores 0.05-0.4) while still putting a box on them. The sign-code classifier
+was trained on 11,000 real sign crops and on look-alikes labelled ``other``. The second
+look keeps such a low-scoring box (a *candidate*) when the classifier reads a sign code in
+it with a high probability and the box shows sign sheeting colours.
+
+Conventions: boxes ``(u0, v0, u1, v1)`` in image (or panorama) pixels, ``u1`` past the
+width across a panorama's seam; colours in OpenCV's BGR and 8-bit HSV (hue 0-179).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Optional, Sequence
+
+import numpy as np
+
+from .signcodes import OTHER_CODE
+
+#: Default of detectsigns' RESCUE_CONFIDENCE: the lowest detector score of a candidate.
+DEFAULT_RESCUE_CONFIDENCE = 0.05
+#: Saturation (8-bit HSV) from which a pixel counts as coloured sheeting.
+SHEETING_MIN_SATURATION = 80
+#: Hue ranges (8-bit HSV, inclusive) of the sheeting colours: red (both ends), blue, yellow.
+SHEETING_HUES = ((0, 10), (160, 179), (95, 130), (15, 35))
+
+
+@dataclass(frozen=True)
+class RescueRule:
+    """When a candidate is kept: the classifier reads a code (not ``other``) with at least
+    ``min_code_score``, its box is at least ``min_box_px`` on its shorter side, and at least
+    ``min_sheeting`` of its pixels are sheeting colours (red, blue or yellow: grey and dark
+    shapes such as pylon insulators are not signs).
+
+    Chosen on GTSDB 500-599 (models/README.md, "The second look"): the results hardly move
+    for a code score from 0.8 to 0.95 and a sheeting share from 0.02 to 0.1.
+    """
+    min_code_score: float = 0.9
+    min_box_px: float = 16.0
+    min_sheeting: float = 0.05
+
+
+DEFAULT_RULE = RescueRule()
+
+
+def sheeting_fraction(image_bgr: np.ndarray, box, wrap: bool = False) -> float:
+    """The share of the pixels of ``box`` in ``image_bgr`` whose colour is sign sheeting
+    (saturated red, blue or yellow). ``wrap``: columns wrap around the width (a panorama's
+    seam); else the box is clipped to the image. 0 for an empty box."""
+    import cv2
+
+    h, w = image_bgr.shape[:2]
+    u0, v0, u1, v1 = (int(round(float(c))) for c in box)
+    v0, v1 = max(v0, 0), min(v1, h)
+    if v1 <= v0 or u1 <= u0:
+        return 0.0
+    if wrap:
+        patch = np.take(image_bgr[v0:v1], np.arange(u0, u1) % w, axis=1)
+    else:
+        u0, u1 = max(u0, 0), min(u1, w)
+        if u1 <= u0:
+            return 0.0
+        patch = image_bgr[v0:v1, u0:u1]
+    hsv = cv2.cvtColor(np.ascontiguousarray(patch), cv2.COLOR_BGR2HSV).reshape(-1, 3)
+    hue, saturated = hsv[:, 0], hsv[:, 1] >= SHEETING_MIN_SATURATION
+    coloured = np.zeros(len(hsv), bool)
+    for lo, hi in SHEETING_HUES:
+        coloured |= (hue >= lo) & (hue <= hi)
+    return float(np.mean(saturated & coloured))
+
+
+def worth_reading(box_px: np.ndarray, sheeting: np.ndarray, rule: RescueRule = DEFAULT_RULE) -> np.ndarray:
+    """Which candidates (``box_px`` (n, 4), their :func:`sheeting_fraction`) may be kept if the
+    classifier reads them: the checks that need no classifier, done first to read fewer."""
+    box_px = np.asarray(box_px, float).reshape(-1, 4)
+    side = np.minimum(box_px[:, 2] - box_px[:, 0], box_px[:, 3] - box_px[:, 1])
+    return (side >= rule.min_box_px) & (np.asarray(sheeting, float) >= rule.min_sheeting)
+
+
+def confirmed(codes: Sequence[str], code_scores, rule: RescueRule = DEFAULT_RULE) -> np.ndarray:
+    """Which read candidates the classifier confirms: a code other than ``other`` with at
+    least ``rule.min_code_score``."""
+    scores = np.asarray(code_scores, float).reshape(-1)
+    known = np.array([bool(c) and c != OTHER_CODE for c in codes], bool).reshape(-1)
+    with np.errstate(invalid="ignore"):
+        return known & (scores >= rule.min_code_score)
+
+
+def class_of_code(code: str, table, class_names: Sequence[str]) -> Optional[str]:
+    """The class a confirmed code gives its box: the codes table's class for it when the
+    detector has that class, else None (the detector's own class stays)."""
+    if table is None or code not in table:
+        return None
+    name = table.entry(code).class_name
+    return name if name in class_names else None
+
+
+def second_look(classifier, pano: np.ndarray, found, class_names: Sequence[str],
+                rule: RescueRule = DEFAULT_RULE):
+    """Read the sign codes of a panorama's detections and candidates and keep the candidates
+    the classifier confirms: :func:`.detector.detect_drive`'s ``on_panorama``.
+
+    ``found``: a :class:`.detector.PanoramaDetections` of ``pano`` (BGR) with candidate rows;
+    ``class_names``: the detector's classes. The candidates that fail :func:`worth_reading`
+    are dropped unread; the codes of the rest and of every detection are read
+    (:func:`.detections.read_codes`); a candidate :func:`confirmed` becomes a detection with
+    the class of its code (:func:`class_of_code`) and keeps its detector score; the others
+    are dropped. Returns the new :class:`~.detector.PanoramaDetections`.
+    """
+    from .detections import read_codes
+
+    candidate = found.candidate
+    if candidate.any():
+        boxes = found.boxes()
+        sheeting = np.zeros(len(found))
+        for k in np.flatnonzero(candidate):
+            sheeting[k] = sheeting_fraction(pano, boxes[k], wrap=True)
+        readable = ~candidate | worth_reading(boxes, sheeting, rule)
+        found = found.subset(readable)
+    read_codes(classifier, pano, found)
+    if not found.candidate.any():
+        return found
+    names = list(class_names)
+    kept = ~found.candidate | confirmed(found.code, found.code_score, rule)
+    for k in np.flatnonzero(found.candidate & kept):
+        name = class_of_code(found.code[k], getattr(classifier, "table", None), names)
+        if name is not None:
+            found.class_name[k] = name
+            found.class_id[k] = names.index(name)
+    found = found.subset(kept)
+    found.candidate[:] = False
+    return found

@@ -1,0 +1,140 @@
+"""The second look (core.rescue): boxes the detector scores under its confidence are kept
+when the sign-code classifier reads a code in them (and they are big and coloured enough);
+the detections themselves stay as they were. The classifier is the tiny real ONNX model of
+tests/helpers/tinyclassifier.py (red crop: DE:206 stop, blue: DE:215 roundabout, grey: other)."""
+import cv2
+import numpy as np
+import pytest
+from helpers.synthpano import paint_discs
+from helpers.tinyclassifier import make_classifier
+
+from roadsigns.core import detector as DT  # noqa: N812 (the tests' short module names)
+from roadsigns.core import rescue
+from roadsigns.core import signcodes as SC  # noqa: N812
+from roadsigns.core.panorama import ViewSet
+
+RED, BLUE, DARK = (30, 30, 230), (230, 40, 30), (40, 40, 40)  # BGR
+CLASSES = ("warning", "prohibitory", "mandatory", "information", "stop", "yield")
+TABLE_TEXT = "code;name;class\nDE:206;stop;stop\nDE:215;roundabout;mandatory\n"
+#: the tiny classifier's probabilities on a disc's crop are ~0.7: the rule's bar is set under them
+RULE = rescue.RescueRule(min_code_score=0.6, min_box_px=16.0, min_sheeting=0.05)
+
+
+@pytest.fixture(scope="module")
+def classifier(tmp_path_factory):
+    path = tmp_path_factory.mktemp("table") / "codes.csv"
+    path.write_text(TABLE_TEXT)
+    table = SC.read_codes_table(str(path))
+    return SC.CodeClassifier(make_classifier(tmp_path_factory.mktemp("clf") / "c.onnx"), table)
+
+
+class ColourBlobDetector:
+    """Boxes the blobs of each colour in a view: red ones sure (0.9, class stop), blue and dark
+    ones low (0.2, class stop: the detector's class is wrong for blue)."""
+    class_names = list(CLASSES)
+    SCORES = {RED: 0.9, BLUE: 0.2, DARK: 0.2}
+
+    def detect(self, image, confidence, iou_threshold):
+        boxes, scores = [], []
+        for colour, score in self.SCORES.items():
+            mask = np.all(np.abs(image.astype(int) - colour) < 25, axis=2).astype(np.uint8)
+            n, _, stats, _ = cv2.connectedComponentsWithStats(mask)
+            for x, y, w, h, area in stats[1:]:
+                if area >= 4 and score >= confidence:
+                    boxes.append([x, y, x + w, y + h])
+                    scores.append(score)
+        return DT.ImageDetections(np.array(boxes, float).reshape(-1, 4), np.array(scores, float),
+                                  np.full(len(scores), CLASSES.index("stop"), np.int64))
+
+
+def _panorama(width=1024):
+    # red (sure), big blue (read as a roundabout), dark grey (other), small blue (under 16 px)
+    return paint_discs([(0.0, 0.0, 4.0, RED), (90.0, 0.0, 4.0, BLUE), (-90.0, 0.0, 4.0, DARK),
+                        (45.0, 0.0, 1.2, BLUE)], width)
+
+
+def test_sheeting_fraction_counts_sign_colours_and_wraps_the_seam():
+    pano = np.full((100, 200, 3), 120, np.uint8)
+    pano[20:40, 10:30] = RED
+    pano[20:40, 190:200] = BLUE
+    pano[20:40, 0:10] = BLUE
+    pano[60:80, 50:70] = DARK
+    assert rescue.sheeting_fraction(pano, (10, 20, 30, 40)) == 1.0
+    assert rescue.sheeting_fraction(pano, (0, 20, 40, 40)) == pytest.approx(0.75)  # 20 red + 10 blue of 40
+    assert rescue.sheeting_fraction(pano, (50, 60, 70, 80)) == 0.0                 # dark grey is no sheeting
+    assert rescue.sheeting_fraction(pano, (190, 20, 210, 40), wrap=True) == 1.0    # blue on both sides
+    assert rescue.sheeting_fraction(pano, (190, 20, 210, 40)) == 1.0               # clipped: the right part
+    assert rescue.sheeting_fraction(pano, (180, 20, 210, 40), wrap=True) == pytest.approx(20 / 30)
+    assert rescue.sheeting_fraction(pano, (30, 20, 30, 40)) == 0.0                 # empty box
+
+
+def test_the_rule_needs_size_colour_and_a_confident_code():
+    boxes = np.array([[0, 0, 20, 20], [0, 0, 15, 40], [0, 0, 20, 20]], float)
+    np.testing.assert_array_equal(rescue.worth_reading(boxes, [0.5, 0.5, 0.01]), [True, False, False])
+    np.testing.assert_array_equal(
+        rescue.confirmed(["DE:206", "other", "DE:206", "", "DE:215"], [0.95, 0.99, 0.5, 0.99, np.nan]),
+        [True, False, False, False, False])
+
+
+def test_class_of_a_code(classifier):
+    assert rescue.class_of_code("DE:215", classifier.table, CLASSES) == "mandatory"
+    assert rescue.class_of_code("DE:215", classifier.table, ["sign"]) is None   # a detector without it
+    assert rescue.class_of_code("DE:999", classifier.table, CLASSES) is None
+    assert rescue.class_of_code("DE:206", None, CLASSES) is None
+
+
+def test_candidates_leave_the_detections_as_they_were():
+    pano = _panorama()
+    views = ViewSet.default(size_px=128, upward=False)
+    plain = DT.detect_panorama(ColourBlobDetector(), pano, views, 0.5)
+    both = DT.detect_panorama(ColourBlobDetector(), pano, views, 0.5, candidate_confidence=0.1)
+    assert len(plain) == 1 and not plain.candidate.any()
+    sure = both.subset(~both.candidate)
+    for name in ("class_id", "score", "u0", "v0", "u1", "v1", "view_index", "n_views"):
+        np.testing.assert_array_equal(getattr(sure, name), getattr(plain, name))
+    cands = both.subset(both.candidate)
+    assert len(cands) == 3  # blue, dark, small blue: each once, merged across overlapping views
+    centres = ((cands.u0 + cands.u1) / 2) % 1024
+    np.testing.assert_allclose(np.sort(centres), [256.0, 640.0, 768.0], atol=3.0)
+    # a low box on a detection (another class) is no candidate
+    over = DT.detect_panorama(ColourBlobDetector(), paint_discs([(0.0, 0.0, 4.0, RED)], 1024), views, 0.5,
+                              candidate_confidence=0.1)
+    assert not over.candidate.any()
+    # a panorama with low boxes only: candidates only
+    low_only = DT.detect_panorama(ColourBlobDetector(), paint_discs([(90.0, 0.0, 4.0, BLUE)], 1024), views, 0.5,
+                                  candidate_confidence=0.1)
+    assert len(low_only) == 1 and low_only.candidate.all()
+
+
+def test_second_look_keeps_the_read_candidates_with_their_codes_class(tmp_path, classifier):
+    path = str(tmp_path / "p.png")
+    cv2.imwrite(path, _panorama())
+    views = ViewSet.default(size_px=128, upward=False)
+    read = []
+
+    class Counting:
+        table, crop_margin = classifier.table, classifier.crop_margin
+
+        def cut_crop(self, pano, box):
+            return classifier.cut_crop(pano, box)
+
+        def classify(self, crops):
+            read.append(len(crops))
+            return classifier.classify(crops)
+
+    def look(pano, found):
+        return rescue.second_look(Counting(), pano, found, CLASSES, RULE)
+
+    drive = DT.detect_drive(ColourBlobDetector(), [path], views, 0.5, on_panorama=look, candidate_confidence=0.1)
+    found = drive.per_image[0]
+    assert read == [2]  # the red detection and the big blue candidate; the dark one (no sign colours)
+    # and the small one (under 16 px) are dropped unread
+    assert found.class_name == ["stop", "mandatory"] and found.code == ["DE:206", "DE:215"]
+    np.testing.assert_allclose(found.score, [0.9, 0.2])   # the candidate keeps its own score
+    assert found.class_id[1] == CLASSES.index("mandatory") and not found.candidate.any()
+    # with a stricter bar the blue candidate is not kept; without a second look none is
+    strict = DT.detect_drive(ColourBlobDetector(), [path], views, 0.5, candidate_confidence=0.1,
+                             on_panorama=lambda p, f: rescue.second_look(classifier, p, f, CLASSES))
+    assert strict.per_image[0].class_name == ["stop"]
+    bare = DT.detect_drive(ColourBlobDetector(), [path], views, 0.5, candidate_confidence=0.1)
+    assert bare.per_image[0].class_name == ["stop"] and not bare.per_image[0].candidate.any()
