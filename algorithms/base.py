@@ -20,7 +20,10 @@ or leaves nothing behind:
 * every exception becomes a ``QgsProcessingException`` with a one-line cause: a core
   :class:`InputError` its translated message, a cancel "Cancelled: nothing was written.",
   anything else a short "Unexpected error" line, its traceback going to the QGIS message
-  log (tab :data:`LOG_TAG`) only.
+  log (tab :data:`LOG_TAG`) only;
+* when it ends, the memory it freed is given back to the system
+  (:func:`~roadsigns.core.memory.release_freed_memory`), so the next algorithm of a model
+  does not start on top of the last one's freed heap.
 """
 import functools
 import traceback
@@ -43,6 +46,7 @@ from qgis.core import (
 from qgis.PyQt.QtGui import QIcon
 
 from ..core.errors import Cancelled, InputError, Message, Progress
+from ..core.memory import release_freed_memory
 from ..dependencies import missing_message, shapely_geos_conflict
 from .i18n import Translatable, tr_core
 from .layers import RunOutputs
@@ -76,6 +80,7 @@ def _boundary(process):
             raise self.failure(error, left) from None
         finally:
             self._run_outputs = None
+            release_freed_memory()    # the next algorithm of a model starts from what is live
 
     processAlgorithm.roadsigns_boundary = True
     return processAlgorithm

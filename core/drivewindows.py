@@ -29,6 +29,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from .errors import InputError
+from .memory import release_freed_memory
 
 #: Spacing of the densified track used to locate points on the drive, metres.
 AXIS_STEP_M = 0.5
@@ -192,12 +193,16 @@ def map_in_order(work: Callable[[_ItemT], _ResultT], items: Iterable[_ItemT], th
     and ``items`` (which may read its blocks lazily) is advanced in this thread. For work
     whose time is spent in numpy and scipy, which release the GIL. ``check`` (raising
     :class:`~.errors.Cancelled`) runs before each item is started and while waiting: on
-    cancel, items not started are dropped and the running ones are waited for."""
+    cancel, items not started are dropped and the running ones are waited for. The memory
+    freed by each item is given back to the system (:func:`.memory.release_freed_memory`)."""
     todo = iter(items)
     if threads <= 1:
         for item in todo:
             check()
-            yield work(item)
+            result = work(item)
+            del item
+            release_freed_memory()
+            yield result
         return
     with ThreadPoolExecutor(max_workers=threads, thread_name_prefix="roadsigns-block") as pool:
         pending: Deque[Future] = deque()
@@ -219,7 +224,10 @@ def map_in_order(work: Callable[[_ItemT], _ResultT], items: Iterable[_ItemT], th
                     check()
                     wait([head], timeout=0.2)
                 pending.popleft()
-                yield head.result()
+                result = head.result()
+                del head
+                release_freed_memory()
+                yield result
         finally:
             for f in pending:
                 f.cancel()

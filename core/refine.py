@@ -1036,7 +1036,7 @@ class CloudBlocks:
     blocks, a histogram of the non-ground intensities, each point counted in the block of
     its nearest ``ok`` candidate (exact; the one-index read samples 200 000 points, so
     above that size the level may differ slightly). Image-only signs take their ground from
-    a last spatial query around them (:meth:`ground_of`).
+    spatial queries around them, one per block (:meth:`ground_of`).
 
     The cloud is read once: a single block is read and kept; several blocks are spooled
     first, in one pass over the tiles they meet, each block's points (coordinates, cloud
@@ -1064,12 +1064,12 @@ class CloudBlocks:
         self.centres = np.array([np.median(cand.xyz_world[g], axis=0) for g in self.groups]
                                 ).reshape(-1, 3)
         self.reach = np.array([self.reach_m(cand, g, params) for g in self.groups])
-        block_of_group = np.zeros(len(self.groups), np.int64)
-        axis = drive_axis_of(cand) if math.isfinite(block_m) and len(self.groups) else None
-        if axis is not None:
-            windows = make_windows(axis.length_m, block_m)
-            edges = np.array([w.s1_m for w in windows[:-1]])
-            block_of_group = np.searchsorted(edges, axis.locate(self.centres)[0], side="right")
+        self._axis = drive_axis_of(cand) if math.isfinite(block_m) and len(self.groups) else None
+        self._block_edges_m = np.zeros(0)
+        if self._axis is not None:
+            windows = make_windows(self._axis.length_m, block_m)
+            self._block_edges_m = np.array([w.s1_m for w in windows[:-1]])
+        block_of_group = self._block_of(self.centres)
         self.blocks = [np.flatnonzero(block_of_group == b) for b in np.unique(block_of_group)]
         self._cached: Optional[Tuple[int, TiledIndex]] = None
         if self.source is not None and len(self.blocks) > 1:
@@ -1088,6 +1088,12 @@ class CloudBlocks:
         if self._spool is not None:
             self._spool.close()
             self._spool = None
+
+    def _block_of(self, xyz_world: np.ndarray) -> np.ndarray:
+        """The block (window number along the drive) holding each point ``(n, 3)``."""
+        if self._axis is None or not len(xyz_world):
+            return np.zeros(len(xyz_world), np.int64)
+        return np.searchsorted(self._block_edges_m, self._axis.locate(xyz_world)[0], side="right")
 
     def _block_read(self, b: int) -> Tuple[np.ndarray, float]:
         """Where block ``b``'s points are read around (centres ``(n, 2)``) and how far."""
@@ -1249,7 +1255,9 @@ class CloudBlocks:
 
     def ground_of(self, drafts: Sequence[SignDraft], params: RefineParams) -> None:
         """Set the ground (:func:`ground_from_cloud`) of ``drafts`` (image-only signs) from
-        the points around them (one spatial query)."""
+        the points around them: one spatial query per block holding some of them, so the
+        points held grow with a block's signs, not with the drive's (each sign's query sees
+        the same points as in one read of them all)."""
         if not drafts:
             return
         places = [placement(self.cand, d) for d in drafts]
@@ -1263,9 +1271,16 @@ class CloudBlocks:
                 return
             dist, _ = cKDTree(self.ok_xy).query(centres[:, :2])
             near = dist <= self.corridor_m + radius
-        index = self._read(centres[near, :2], radius) if near.any() else None
-        for d, p, n in zip(drafts, places, near):
-            d.ground = ground_from_cloud(index, p.centre, p.bottom_z, params) if n else NO_CLOUD_GROUND
+        for d in np.flatnonzero(~near):
+            drafts[d].ground = NO_CLOUD_GROUND
+        rows = np.flatnonzero(near)
+        block_of_row = self._block_of(centres[rows])
+        for b in np.unique(block_of_row):
+            mine = rows[block_of_row == b]
+            index = self._read(centres[mine, :2], radius)
+            for k in mine:
+                drafts[k].ground = ground_from_cloud(index, places[k].centre, places[k].bottom_z, params)
+            del index
 
 
 def extract_signs(cand: ProjectionResult, groups: Sequence[np.ndarray], index: Optional[TiledIndex],

@@ -797,6 +797,37 @@ def test_refining_a_las_file_block_by_block_gives_the_one_block_result(scene, ca
     _same_result(R.refine_signs(candidates, old, block_m=float("inf")), one)
 
 
+@pytest.mark.parametrize("cloud", ["index", "las"])
+def test_image_only_ground_is_read_block_by_block_with_the_one_read_result(scene, candidates, index,
+                                                                          tmp_path, monkeypatch, cloud):
+    """CloudBlocks.ground_of reads the points around image-only signs one block at a time
+    (on a long drive one read of them all held 0.4 GB), each sign's ground as from one read."""
+    if cloud == "las":
+        index = str(tmp_path / "cloud.las")
+        signscene.write_las(scene, index)
+    params, groups = R.RefineParams(), R.merge_candidates(candidates, 1.0)
+    ids = sorted({p.sign_id for p in scene.panels if len(views_of(scene, candidates, p.sign_id))})
+
+    def drafts():
+        return [R.SignDraft(views_of(scene, candidates, i), x_image=truth(scene, i).centre_world)
+                for i in ids]
+    one, by_block = drafts(), drafts()
+    R.CloudBlocks(candidates, groups, index, 1.0, float("inf"), params).ground_of(one, params)
+    reads = []
+    real = R.CloudBlocks._read
+
+    def counted(self, centres_xy, radius_m, progress=Progress()):
+        reads.append(len(centres_xy))
+        return real(self, centres_xy, radius_m, progress)
+    monkeypatch.setattr(R.CloudBlocks, "_read", counted)
+    with R.CloudBlocks(candidates, groups, index, 1.0, 20.0, params) as blocks:
+        blocks.ground_of(by_block, params)
+    assert len(ids) >= 8 and len(reads) >= 4 and max(reads) < len(ids) and sum(reads) == len(ids)
+    assert [d.ground[1] for d in by_block] == [d.ground[1] for d in one]
+    assert [d.ground[0] for d in by_block] == pytest.approx([d.ground[0] for d in one])
+    assert sum(d.ground[1] == R.GROUND_POINTS for d in one) >= len(ids) - 1
+
+
 def test_a_las_file_is_read_once_for_all_blocks_and_the_spool_removed(scene, candidates, tmp_path,
                                                                       monkeypatch):
     """Several blocks are spooled in one pass over the file (CloudBlocks._spool), not read
