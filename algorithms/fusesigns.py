@@ -2,6 +2,7 @@
 merged into one sign layer that says which sources found each sign."""
 from qgis.core import Qgis, QgsGeometry, QgsPoint, QgsProcessingException, QgsProcessingOutputNumber
 
+from ..core.detector import DEFAULT_CONFIDENCE
 from ..core.review import CHIP_FIELD
 from ..core.signcodes import DEFAULT_CODE_CONFIDENCE
 from ..core.trajectory import STATION_FIELDS
@@ -73,7 +74,7 @@ class FuseSigns(ReadsCodes, RoadSignsAlgorithm):
             self.tr("The detector that reads the class of panels found in the cloud alone."),
             file_filter=self.tr("ONNX models (*.onnx);;All files (*.*)"), optional=True, advanced=True)
         self.add_number(
-            self.CONFIDENCE, self.tr("Minimum confidence"), 0.4,
+            self.CONFIDENCE, self.tr("Minimum confidence"), DEFAULT_CONFIDENCE,
             self.tr("A class read from the panoramas is kept when the detector scores it at least this "
                     "(0-1)."), minimum=0.0, maximum=1.0, advanced=True)
         self.add_number(

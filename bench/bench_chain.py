@@ -43,7 +43,7 @@ def load_scene(args):
 
 
 def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=None, upward_views=None, classifier=None,
-               fore_aft_views=None, rescue_confidence=None):
+               fore_aft_views=None, rescue_confidence=None, confidence=None):
     """(stage id, parameters, output key, what it needs) in chain order."""
     p = lambda name: os.path.join(scene_dir, name)  # noqa: E731
     w = lambda name: os.path.join(work, name)  # noqa: E731
@@ -56,7 +56,8 @@ def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=None, upward
                                   LEVER_ARM_X=lever[0], LEVER_ARM_Y=lever[1], LEVER_ARM_Z=lever[2],
                                   BORESIGHT_ROLL=bore[0], BORESIGHT_PITCH=bore[1], BORESIGHT_YAW=bore[2],
                                   OUTPUT=w("stations.gpkg")), "OUTPUT", []),
-        ("detectsigns", dict(STATIONS=w("stations.gpkg"), CONFIDENCE=0.4, OUTPUT=w("detections.gpkg"),
+        ("detectsigns", dict(STATIONS=w("stations.gpkg"), OUTPUT=w("detections.gpkg"),
+                             **({"CONFIDENCE": confidence} if confidence is not None else {}),
                              **({"MIN_STATION_SPACING_M": station_spacing_m} if station_spacing_m is not None else {}),
                              **({"UPWARD_VIEWS": upward_views} if upward_views is not None else {}),
                              **({"FORE_AFT_VIEWS": fore_aft_views} if fore_aft_views is not None else {}),
@@ -126,7 +127,9 @@ def main(argv=None):
     parser.add_argument("--fore-aft", action="store_true", default=None,
                         help="detectsigns with its fore-and-aft views (FORE_AFT_VIEWS true)")
     parser.add_argument("--rescue-confidence", type=float, metavar="S",
-                        help="detectsigns' RESCUE_CONFIDENCE (its second look; 0.4 or more: off)")
+                        help="detectsigns' RESCUE_CONFIDENCE (its second look; the confidence or more: off)")
+    parser.add_argument("--confidence", type=float, metavar="S",
+                        help="detectsigns' CONFIDENCE (default: the algorithm's default)")
     parser.add_argument("--from", dest="from_stage", metavar="STAGE",
                         help="reuse the outputs of the stages before STAGE from an earlier run "
                              "(e.g. --from refinesigns while tuning the refinement)")
@@ -139,6 +142,7 @@ def main(argv=None):
         + {None: "", False: "-noupward", True: "-upward"}[args.upward]
         + ("-foreaft" if args.fore_aft else "")
         + (f"-rescue{args.rescue_confidence:g}" if args.rescue_confidence is not None else "")
+        + (f"-conf{args.confidence:g}" if args.confidence is not None else "")
         + ("-classifier-" + os.path.splitext(os.path.basename(args.classifier))[0] if args.classifier else ""))
     os.makedirs(work, exist_ok=True)
     qgis = QgisProcess()
@@ -148,11 +152,11 @@ def main(argv=None):
     figures = {"scene": scene_dir, "preset": args.preset, "seed": args.seed,
                "detections": args.detections, "station_spacing_m": args.station_spacing,
                "upward_views": args.upward, "fore_aft_views": args.fore_aft, "classifier": args.classifier,
-               "rescue_confidence": args.rescue_confidence,
+               "rescue_confidence": args.rescue_confidence, "confidence": args.confidence,
                "stages": {}}
     done = set()
     plan = stage_plan(scene_dir, meta, work, args.model, args.station_spacing, args.upward, args.classifier,
-                      args.fore_aft, args.rescue_confidence)
+                      args.fore_aft, args.rescue_confidence, args.confidence)
     if args.from_stage and args.from_stage not in [p[0] for p in plan]:
         parser.error(f"--from: no stage {args.from_stage}")
     reuse = args.from_stage is not None

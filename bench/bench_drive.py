@@ -109,7 +109,7 @@ def model_parameters(drive_dir, meta, work, cloud=None, ground_format="laz"):
                   TRAJECTORY_CRS=meta["trajectory_crs"], TARGET_CRS=meta["target_crs"],
                   POINT_CLOUD=cloud or d("cloud.laz"), LEVER_ARM_X=lever[0], LEVER_ARM_Y=lever[1],
                   LEVER_ARM_Z=lever[2], BORESIGHT_ROLL=bore["roll"], BORESIGHT_PITCH=bore["pitch"],
-                  BORESIGHT_YAW=bore["yaw"], CONFIDENCE=0.4)
+                  BORESIGHT_YAW=bore["yaw"])
     outputs = {"stations:Panorama stations": w("stations.gpkg"), "detections:Detections": w("detections.gpkg"),
                "ground:Ground-classified cloud": w("ground." + ground_format),
                "candidates:Sign candidates": w("candidates.gpkg"), "signs:Signs": w("signs.gpkg"),

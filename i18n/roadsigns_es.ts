@@ -297,14 +297,14 @@
         <translation>Segunda mirada desde la confianza</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="82" />
-        <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a sign code in it with a probability of at least {score}, its box is at least {px} px on its shorter side and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes the class of its code and keeps its own score. On held-out real street photographs (GTSDB 500-599) this found 0.901 of the signs instead of 0.803, at a precision of 0.901 instead of 0.891, for about 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
-        <translation>Los recuadros que el detector puntúa desde este valor hasta la confianza mínima reciben una segunda mirada: se conserva uno cuando el clasificador de códigos de señal lee en él un código de señal con una probabilidad de al menos {score}, su recuadro mide al menos {px} px en su lado más corto y al menos un {share:.0%} de él son colores de señal (rojo, azul o amarillo saturados); entonces toma la clase de su código y conserva su propia puntuación. En fotografías reales de calles no usadas en el entrenamiento (GTSDB 500-599) encontró 0,901 de las señales en lugar de 0,803, con una precisión de 0,901 en lugar de 0,891, por cerca de un 5 % del tiempo de detección. Necesita que se lean los códigos de señal; un valor igual o superior a la confianza mínima la desactiva.</translation>
-    </message>
-    <message>
         <location filename="../algorithms/detectsigns.py" line="197" />
         <source>Second look: boxes scored from {} to {} are kept where the sign-code classifier reads a code.</source>
         <translation>Segunda mirada: los recuadros puntuados de {} a {} se conservan donde el clasificador de códigos de señal lee un código.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="82" />
+        <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a sign code in it with a probability of at least {score}, its box is at least {px} px on its shorter side and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes the class of its code and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.901 of the signs at a precision of 0.970, against 0.718 at 0.981 without it, for about 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
+        <translation>Los recuadros que el detector puntúa desde este valor hasta la confianza mínima reciben una segunda mirada: se conserva uno cuando el clasificador de códigos de señal lee en él un código de señal con una probabilidad de al menos {score}, su recuadro mide al menos {px} px en su lado más corto y al menos un {share:.0%} de él son colores de señal (rojo, azul o amarillo saturados); entonces toma la clase de su código y conserva su propia puntuación. En fotografías reales de calles (GTSDB 500-599), con la confianza mínima por defecto, encuentra 0,901 de las señales con una precisión de 0,970, frente a 0,718 con 0,981 sin ella, por cerca de un 5 % del tiempo de detección. Necesita que se lean los códigos de señal; un valor igual o superior a la confianza mínima la desactiva.</translation>
     </message>
 </context>
 <context>
@@ -879,167 +879,167 @@
 <context>
     <name>FuseSigns</name>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="32" />
+        <location filename="../algorithms/fusesigns.py" line="33" />
         <source>Fuse image and cloud signs</source>
         <translation>Fusionar señales de imagen y de nube</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="35" />
+        <location filename="../algorithms/fusesigns.py" line="36" />
         <source>Merges the signs found in the images with the panels found in the cloud alone: one sign layer that says which sources found each sign.</source>
         <translation>Fusiona las señales encontradas en las imágenes con los paneles encontrados solo en la nube: una capa de señales que indica qué fuentes encontraron cada señal.</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="110" />
+        <location filename="../algorithms/fusesigns.py" line="111" />
         <source>Signs (from the images)</source>
         <translation>Señales (de las imágenes)</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="56" />
+        <location filename="../algorithms/fusesigns.py" line="57" />
         <source>The output of Refine and merge signs.</source>
         <translation>La salida de «Refinar y fusionar señales».</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="112" />
+        <location filename="../algorithms/fusesigns.py" line="113" />
         <source>Sign panels found in the cloud</source>
         <translation>Paneles de señal encontrados en la nube</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="59" />
+        <location filename="../algorithms/fusesigns.py" line="60" />
         <source>The output of Find signs in the point cloud.</source>
         <translation>La salida de «Buscar señales en la nube de puntos (sin imágenes)».</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="62" />
+        <location filename="../algorithms/fusesigns.py" line="63" />
         <source>Panorama stations (to classify panels found in the cloud alone)</source>
         <translation>Estaciones de panorama (para clasificar los paneles encontrados solo en la nube)</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="62" />
+        <location filename="../algorithms/fusesigns.py" line="63" />
         <source>The output of Import trajectory. With the panorama folder, the class of each panel no image sign explains is read from the panoramas in front of it.</source>
         <translation>La salida de «Importar trayectoria y panoramas». Con la carpeta de panoramas, la clase de cada panel que ninguna señal de imagen explica se lee de los panoramas situados frente a él.</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="67" />
+        <location filename="../algorithms/fusesigns.py" line="68" />
         <source>Panorama folder (optional)</source>
         <translation>Carpeta de panoramas (opcional)</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="67" />
+        <location filename="../algorithms/fusesigns.py" line="68" />
         <source>The folder of the panoramas (empty: the paths in the stations layer).</source>
         <translation>La carpeta de los panoramas (vacía: las rutas de la capa de estaciones).</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="71" />
+        <location filename="../algorithms/fusesigns.py" line="72" />
         <source>ONNX model (empty: the bundled model)</source>
         <translation>Modelo ONNX (vacío: el modelo incluido)</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="71" />
+        <location filename="../algorithms/fusesigns.py" line="72" />
         <source>The detector that reads the class of panels found in the cloud alone.</source>
         <translation>El detector que lee la clase de los paneles encontrados solo en la nube.</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="71" />
+        <location filename="../algorithms/fusesigns.py" line="72" />
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>Modelos ONNX (*.onnx);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="75" />
+        <location filename="../algorithms/fusesigns.py" line="76" />
         <source>Minimum confidence</source>
         <translation>Confianza mínima</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="75" />
+        <location filename="../algorithms/fusesigns.py" line="76" />
         <source>A class read from the panoramas is kept when the detector scores it at least this (0-1).</source>
         <translation>Una clase leída de los panoramas se conserva si el detector le da una puntuación de al menos este valor (0-1).</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="79" />
+        <location filename="../algorithms/fusesigns.py" line="80" />
         <source>Match radius (m)</source>
         <translation>Radio de emparejamiento (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="79" />
+        <location filename="../algorithms/fusesigns.py" line="80" />
         <source>An image sign and a cloud panel farther apart than this (3D, metres) are never the same sign.</source>
         <translation>Una señal de imagen y un panel de la nube separados más que esto (3D, metros) nunca son la misma señal.</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="91" />
+        <location filename="../algorithms/fusesigns.py" line="92" />
         <source>Signs (fused)</source>
         <translation>Señales (fusionadas)</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="91" />
+        <location filename="../algorithms/fusesigns.py" line="92" />
         <source>PointZ sign layer: the sign fields, and source (image, lidar, image+lidar), review (1: to be checked), image_sign_id, cloud_sign_id, retro_index, condition and the review chip of the image sign (chip, relative to the layer's folder).</source>
         <translation>Capa de señales PointZ: los campos de señal, y source (image, lidar, image+lidar), review (1: por comprobar), image_sign_id, cloud_sign_id, retro_index, condition y la miniatura de revisión de la señal de imagen (chip, relativa a la carpeta de la capa).</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="96" />
+        <location filename="../algorithms/fusesigns.py" line="97" />
         <source>Signs found by both</source>
         <translation>Señales encontradas por ambas fuentes</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="97" />
+        <location filename="../algorithms/fusesigns.py" line="98" />
         <source>Signs found in the images only</source>
         <translation>Señales encontradas solo en las imágenes</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="98" />
+        <location filename="../algorithms/fusesigns.py" line="99" />
         <source>Signs found in the cloud only</source>
         <translation>Señales encontradas solo en la nube</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="116" />
+        <location filename="../algorithms/fusesigns.py" line="117" />
         <source>The signs are in {}, the panels found in the cloud in {}: both must be in the cloud's CRS</source>
         <translation>Las señales están en {} y los paneles encontrados en la nube en {}: ambas capas deben estar en el SRC de la nube</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="127" />
+        <location filename="../algorithms/fusesigns.py" line="128" />
         <source>No stations given: the {} signs found in the cloud alone keep the class unknown.</source>
         <translation>No se indicaron estaciones: las {} señales encontradas solo en la nube conservan la clase unknown.</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="143" />
+        <location filename="../algorithms/fusesigns.py" line="144" />
         <source>{} signs: {} found by both, {} in the images only ({} of them where the cloud was searched: score lowered, to review), {} in the cloud only.</source>
         <translation>{} señales: {} encontradas por ambas fuentes, {} solo en las imágenes ({} de ellas donde se buscó en la nube: puntuación reducida, por revisar), {} solo en la nube.</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="156" />
+        <location filename="../algorithms/fusesigns.py" line="157" />
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="162" />
+        <location filename="../algorithms/fusesigns.py" line="163" />
         <source>ONNX model not found: {}</source>
         <translation>No se encontró el modelo ONNX: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="178" />
+        <location filename="../algorithms/fusesigns.py" line="179" />
         <source>{} of the {} signs found in the cloud alone were recognised in the panoramas; the others keep the class unknown and are to review.</source>
         <translation>{} de las {} señales encontradas solo en la nube se reconocieron en los panoramas; las demás conservan la clase unknown y quedan por revisar.</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="39" />
+        <location filename="../algorithms/fusesigns.py" line="40" />
         <source>Matches each sign of the image chain (Refine and merge signs) to at most one panel found in the cloud alone (Find signs in the point cloud) by optimal assignment: centres within the match radius and facings within 90°.&lt;br&gt;&lt;br&gt;A matched sign keeps its class and gains the panel's retroreflectivity index and condition (&lt;i&gt;source&lt;/i&gt; = image+lidar). A panel no image sign explains becomes a sign of its own (&lt;i&gt;source&lt;/i&gt; = lidar): with the stations and the panorama folder, the panoramas in front of its face are cut into views centred on it and the detector reads its class there; if none recognises it, its class is &lt;i&gt;unknown&lt;/i&gt; and it is flagged for review. The sign-code classifier reads its code in a crop around each of those detections, and the views vote as Refine and merge signs votes them (code, code_name, code_score, code_views, code_check). An image sign whose place in the cloud holds no retro-reflective panel loses confidence (its score × 0.6) and is flagged for review (&lt;i&gt;source&lt;/i&gt; = image).&lt;br&gt;&lt;br&gt;Output: the sign layer with the fields of Refine and merge signs plus source, review, image_sign_id, cloud_sign_id, retro_index and condition, styled like the sign layer.</source>
         <translation>Empareja cada señal de la cadena de imágenes («Refinar y fusionar señales») con como máximo un panel encontrado solo en la nube («Buscar señales en la nube de puntos (sin imágenes)») mediante asignación óptima: centros dentro del radio de emparejamiento y orientaciones a menos de 90°.&lt;br&gt;&lt;br&gt;Una señal emparejada conserva su clase y recibe el índice de retrorreflexión y el estado del panel (&lt;i&gt;source&lt;/i&gt; = image+lidar). Un panel que ninguna señal de imagen explica se convierte en una señal propia (&lt;i&gt;source&lt;/i&gt; = lidar): con las estaciones y la carpeta de panoramas, los panoramas situados frente a su cara se recortan en vistas centradas en él y el detector lee allí su clase; si en ninguna se reconoce, su clase es &lt;i&gt;unknown&lt;/i&gt; y se marca para revisión. El clasificador de códigos de señal lee su código en un recorte alrededor de cada una de esas detecciones, y las vistas votan como lo hace «Refinar y fusionar señales» (code, code_name, code_score, code_views, code_check). Una señal de imagen en cuyo lugar de la nube no hay ningún panel retrorreflectante pierde confianza (su puntuación × 0,6) y se marca para revisión (&lt;i&gt;source&lt;/i&gt; = image).&lt;br&gt;&lt;br&gt;Salida: la capa de señales con los campos de «Refinar y fusionar señales» más source, review, image_sign_id, cloud_sign_id, retro_index y condition, con el mismo estilo que la capa de señales.</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="83" />
+        <location filename="../algorithms/fusesigns.py" line="84" />
         <source>for each sign found in the cloud alone and recognised in the panoramas, in a crop around each of its detections there</source>
         <translation>para cada señal encontrada solo en la nube y reconocida en los panoramas, en un recorte alrededor de cada una de sus detecciones allí</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="85" />
+        <location filename="../algorithms/fusesigns.py" line="86" />
         <source>Minimum code confidence</source>
         <translation>Confianza mínima de código</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="85" />
+        <location filename="../algorithms/fusesigns.py" line="86" />
         <source>The code voted for a sign found in the cloud alone is kept when its support (its share of the views' weighted vote x the mean probability the classifier gave it, 0-1: the code_score field) is at least this; else the code field stays empty.</source>
         <translation>El código votado para una señal encontrada solo en la nube se conserva cuando su apoyo (su proporción en la votación ponderada de las vistas x la probabilidad media que le dio el clasificador, 0-1: el campo code_score) es al menos este valor; si no, el campo code queda vacío.</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="183" />
+        <location filename="../algorithms/fusesigns.py" line="184" />
         <source>Sign codes read for {} of them.</source>
         <translation>Códigos de señal leídos para {} de ellas.</translation>
     </message>
@@ -2521,19 +2521,19 @@
         <translation>El modelo {path} falló con una imagen en blanco de {w} x {h}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="57" />
+        <location filename="../core/drivewindows.py" line="58" />
         <source>The track needs at least 2 finite positions, got {n}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El trayecto necesita al menos 2 posiciones finitas; se recibieron {n}</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="104" />
+        <location filename="../core/drivewindows.py" line="105" />
         <source>The track does not move: all its positions are at one place</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El trayecto no se desplaza: todas sus posiciones están en el mismo lugar</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="52" />
+        <location filename="../core/drivewindows.py" line="53" />
         <source>The track has {n} positions but {m} times</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El trayecto tiene {n} posiciones pero {m} tiempos</translation>
@@ -3066,13 +3066,13 @@
         <translation>{signs} señales a partir de {candidates} candidatos ({from_images} situadas solo a partir de las imágenes)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1490" />
+        <location filename="../core/refine.py" line="1505" />
         <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{coded} de {signs} señales tienen código de señal; {from_code} tomaron su clase del código, {dropped} códigos se descartaron por la votación de clase (code_check)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1499" />
+        <location filename="../core/refine.py" line="1514" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>la altura de las estaciones menos {height} m</translation>
@@ -3096,19 +3096,19 @@
         <translation>No hay candidatos que refinar; la capa de señales está vacía</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1299" />
+        <location filename="../core/refine.py" line="1314" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids}: {reason}; situados en la mediana de los candidatos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1439" />
+        <location filename="../core/refine.py" line="1454" />
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: un panel de {width:.2f} x {height:.2f} m es demasiado grande para una señal {sign_class} (¿una valla publicitaria?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1444" />
+        <location filename="../core/refine.py" line="1459" />
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: vistos en una sola panorámica, con una puntuación de {score:.2f}</translation>
@@ -3138,25 +3138,25 @@
         <translation>muy pocos puntos planos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1293" />
+        <location filename="../core/refine.py" line="1308" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>sin nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1296" />
+        <location filename="../core/refine.py" line="1311" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: {reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1500" />
+        <location filename="../core/refine.py" line="1515" />
         <source>the lowest points below the sign</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>los puntos más bajos bajo la señal</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1504" />
+        <location filename="../core/refine.py" line="1519" />
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} señal(es) no tienen puntos de suelo (clase 2) a menos de {radius} m: su altura se mide desde {source}</translation>
@@ -3714,42 +3714,42 @@
 <context>
     <name>RoadSignsAlgorithm</name>
     <message>
-        <location filename="../algorithms/base.py" line="106" />
+        <location filename="../algorithms/base.py" line="111" />
         <source>Road sign inventory</source>
         <translation>Inventario de señales viales</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="274" />
+        <location filename="../algorithms/base.py" line="279" />
         <source>Cancelled: nothing was written.</source>
         <translation>Cancelado: no se escribió nada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="280" />
+        <location filename="../algorithms/base.py" line="285" />
         <source>Out of memory: nothing was written. Crop the point cloud (Ground filter with a crop layer) or process the drive in parts.</source>
         <translation>Memoria insuficiente: no se escribió nada. Recorte la nube de puntos (Filtro de suelo con una capa de recorte) o procese el recorrido por partes.</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="283" />
+        <location filename="../algorithms/base.py" line="288" />
         <source>Cannot read or write {}: {}. Nothing was written.</source>
         <translation>No se puede leer o escribir {}: {}. No se escribió nada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="286" />
+        <location filename="../algorithms/base.py" line="291" />
         <source>Unexpected error ({}: {}); nothing was written. The details are in the QGIS message log (Road sign inventory); please report them.</source>
         <translation>Error inesperado ({}: {}); no se escribió nada. Los detalles están en el registro de mensajes de QGIS (Road sign inventory); por favor, notifíquelos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="291" />
+        <location filename="../algorithms/base.py" line="296" />
         <source>{} However, these partial outputs could not be removed: {}</source>
         <translation>{} Sin embargo, estas salidas parciales no se pudieron eliminar: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="170" />
+        <location filename="../algorithms/base.py" line="175" />
         <source>Accepted: one LAS/LAZ file (COPC too), a virtual point cloud (.vpc, e.g. from QGIS's Build virtual point cloud) listing tiles, or a folder of LAS/LAZ tiles (type or paste the folder's path). Tiles must share the point format and the CRS.</source>
         <translation>Se admite: un archivo LAS/LAZ (también COPC), una nube de puntos virtual (.vpc, p. ej. de «Construir nube de puntos virtual» de QGIS) que enumera teselas, o una carpeta de teselas LAS/LAZ (escriba o pegue la ruta de la carpeta). Las teselas deben compartir el formato de punto y el SRC.</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="170" />
+        <location filename="../algorithms/base.py" line="175" />
         <source>Point clouds (*.las *.laz *.vpc *.LAS *.LAZ *.VPC);;LAS/LAZ (*.las *.laz *.LAS *.LAZ);;Virtual point clouds (*.vpc *.VPC);;All files or a folder of tiles (*)</source>
         <translation>Nubes de puntos (*.las *.laz *.vpc *.LAS *.LAZ *.VPC);;LAS/LAZ (*.las *.laz *.LAS *.LAZ);;Nubes de puntos virtuales (*.vpc *.VPC);;Todos los archivos o una carpeta de teselas (*)</translation>
     </message>

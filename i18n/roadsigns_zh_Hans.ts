@@ -297,14 +297,14 @@
         <translation>二次检查起始置信度</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="82" />
-        <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a sign code in it with a probability of at least {score}, its box is at least {px} px on its shorter side and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes the class of its code and keeps its own score. On held-out real street photographs (GTSDB 500-599) this found 0.901 of the signs instead of 0.803, at a precision of 0.901 instead of 0.891, for about 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
-        <translation>检测器评分介于此值与最低置信度之间的框会接受二次检查：当标志代码分类器以至少 {score} 的概率在框中读出一个标志代码、框的短边至少 {px} 像素且至少 {share:.0%} 的像素为标志颜色（饱和的红、蓝或黄色）时，该框被保留；它随后采用其代码的类别并保留自身的评分。在未参与训练的真实街道照片（GTSDB 500-599）上，它找到了 0.901 的标志（原为 0.803），精确率为 0.901（原为 0.891），代价约为检测时间的 5 %。需要读取标志代码；取值等于或高于最低置信度时关闭此功能。</translation>
-    </message>
-    <message>
         <location filename="../algorithms/detectsigns.py" line="197" />
         <source>Second look: boxes scored from {} to {} are kept where the sign-code classifier reads a code.</source>
         <translation>二次检查：评分在 {} 到 {} 之间、且标志代码分类器读出代码的框被保留。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="82" />
+        <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a sign code in it with a probability of at least {score}, its box is at least {px} px on its shorter side and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes the class of its code and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.901 of the signs at a precision of 0.970, against 0.718 at 0.981 without it, for about 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
+        <translation>检测器评分介于此值与最低置信度之间的框会接受二次检查：当标志代码分类器以至少 {score} 的概率在框中读出一个标志代码、框的短边至少 {px} 像素且至少 {share:.0%} 的像素为标志颜色（饱和的红、蓝或黄色）时，该框被保留；它随后采用其代码的类别并保留自身的评分。在真实街道照片（GTSDB 500-599）上，使用默认的最低置信度时，它找到 0.901 的标志，精确率为 0.970；不使用时为 0.718，精确率为 0.981。代价约为检测时间的 5 %。需要读取标志代码；取值等于或高于最低置信度时关闭此功能。</translation>
     </message>
 </context>
 <context>
@@ -879,167 +879,167 @@
 <context>
     <name>FuseSigns</name>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="32" />
+        <location filename="../algorithms/fusesigns.py" line="33" />
         <source>Fuse image and cloud signs</source>
         <translation>融合图像与点云标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="35" />
+        <location filename="../algorithms/fusesigns.py" line="36" />
         <source>Merges the signs found in the images with the panels found in the cloud alone: one sign layer that says which sources found each sign.</source>
         <translation>将在图像中找到的标志与仅在点云中找到的标志牌合并：生成一个标志图层，注明每个标志由哪些来源找到。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="110" />
+        <location filename="../algorithms/fusesigns.py" line="111" />
         <source>Signs (from the images)</source>
         <translation>标志（来自图像）</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="56" />
+        <location filename="../algorithms/fusesigns.py" line="57" />
         <source>The output of Refine and merge signs.</source>
         <translation>“精化与合并标志”的输出。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="112" />
+        <location filename="../algorithms/fusesigns.py" line="113" />
         <source>Sign panels found in the cloud</source>
         <translation>点云中找到的标志牌</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="59" />
+        <location filename="../algorithms/fusesigns.py" line="60" />
         <source>The output of Find signs in the point cloud.</source>
         <translation>“在点云中查找标志（无图像）”的输出。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="62" />
+        <location filename="../algorithms/fusesigns.py" line="63" />
         <source>Panorama stations (to classify panels found in the cloud alone)</source>
         <translation>全景站点（用于对仅在点云中找到的标志牌分类）</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="62" />
+        <location filename="../algorithms/fusesigns.py" line="63" />
         <source>The output of Import trajectory. With the panorama folder, the class of each panel no image sign explains is read from the panoramas in front of it.</source>
         <translation>“导入轨迹和全景图”的输出。若提供全景图文件夹，则从标志牌前方的全景图中识别每个没有图像标志与之对应的标志牌的类别。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="67" />
+        <location filename="../algorithms/fusesigns.py" line="68" />
         <source>Panorama folder (optional)</source>
         <translation>全景图文件夹（可选）</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="67" />
+        <location filename="../algorithms/fusesigns.py" line="68" />
         <source>The folder of the panoramas (empty: the paths in the stations layer).</source>
         <translation>全景图所在的文件夹（留空：使用全景站点图层中的路径）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="71" />
+        <location filename="../algorithms/fusesigns.py" line="72" />
         <source>ONNX model (empty: the bundled model)</source>
         <translation>ONNX 模型（留空：使用内置模型）</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="71" />
+        <location filename="../algorithms/fusesigns.py" line="72" />
         <source>The detector that reads the class of panels found in the cloud alone.</source>
         <translation>用于识别仅在点云中找到的标志牌类别的检测器。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="71" />
+        <location filename="../algorithms/fusesigns.py" line="72" />
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>ONNX 模型 (*.onnx);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="75" />
+        <location filename="../algorithms/fusesigns.py" line="76" />
         <source>Minimum confidence</source>
         <translation>最低置信度</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="75" />
+        <location filename="../algorithms/fusesigns.py" line="76" />
         <source>A class read from the panoramas is kept when the detector scores it at least this (0-1).</source>
         <translation>当检测器给出的得分不低于此值（0-1）时，保留从全景图中识别出的类别。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="79" />
+        <location filename="../algorithms/fusesigns.py" line="80" />
         <source>Match radius (m)</source>
         <translation>匹配半径 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="79" />
+        <location filename="../algorithms/fusesigns.py" line="80" />
         <source>An image sign and a cloud panel farther apart than this (3D, metres) are never the same sign.</source>
         <translation>距离超过此值（三维距离，单位为米）的图像标志与点云标志牌永远不会被视为同一个标志。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="91" />
+        <location filename="../algorithms/fusesigns.py" line="92" />
         <source>Signs (fused)</source>
         <translation>标志（融合）</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="91" />
+        <location filename="../algorithms/fusesigns.py" line="92" />
         <source>PointZ sign layer: the sign fields, and source (image, lidar, image+lidar), review (1: to be checked), image_sign_id, cloud_sign_id, retro_index, condition and the review chip of the image sign (chip, relative to the layer's folder).</source>
         <translation>PointZ 标志图层：标志字段，以及 source（image、lidar、image+lidar）、review（1：待检查）、image_sign_id、cloud_sign_id、retro_index、condition 和图像标志的审核切片（chip，相对于图层所在文件夹的路径）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="96" />
+        <location filename="../algorithms/fusesigns.py" line="97" />
         <source>Signs found by both</source>
         <translation>两者均找到的标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="97" />
+        <location filename="../algorithms/fusesigns.py" line="98" />
         <source>Signs found in the images only</source>
         <translation>仅在图像中找到的标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="98" />
+        <location filename="../algorithms/fusesigns.py" line="99" />
         <source>Signs found in the cloud only</source>
         <translation>仅在点云中找到的标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="116" />
+        <location filename="../algorithms/fusesigns.py" line="117" />
         <source>The signs are in {}, the panels found in the cloud in {}: both must be in the cloud's CRS</source>
         <translation>标志位于 {}，点云中找到的标志牌位于 {}：两者都必须位于点云的坐标参考系中</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="127" />
+        <location filename="../algorithms/fusesigns.py" line="128" />
         <source>No stations given: the {} signs found in the cloud alone keep the class unknown.</source>
         <translation>未提供全景站点：仅在点云中找到的 {} 个标志保留类别 unknown。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="143" />
+        <location filename="../algorithms/fusesigns.py" line="144" />
         <source>{} signs: {} found by both, {} in the images only ({} of them where the cloud was searched: score lowered, to review), {} in the cloud only.</source>
         <translation>{} 个标志：{} 个两者均找到，{} 个仅在图像中找到（其中 {} 个位于点云已搜索的范围内：得分已降低，待审核），{} 个仅在点云中找到。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="156" />
+        <location filename="../algorithms/fusesigns.py" line="157" />
         <source>Panorama stations</source>
         <translation>全景站点</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="162" />
+        <location filename="../algorithms/fusesigns.py" line="163" />
         <source>ONNX model not found: {}</source>
         <translation>未找到 ONNX 模型：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="178" />
+        <location filename="../algorithms/fusesigns.py" line="179" />
         <source>{} of the {} signs found in the cloud alone were recognised in the panoramas; the others keep the class unknown and are to review.</source>
         <translation>有 {} 个（共 {} 个仅在点云中找到的标志）在全景图中被识别；其余标志保留类别 unknown，待审核。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="39" />
+        <location filename="../algorithms/fusesigns.py" line="40" />
         <source>Matches each sign of the image chain (Refine and merge signs) to at most one panel found in the cloud alone (Find signs in the point cloud) by optimal assignment: centres within the match radius and facings within 90°.&lt;br&gt;&lt;br&gt;A matched sign keeps its class and gains the panel's retroreflectivity index and condition (&lt;i&gt;source&lt;/i&gt; = image+lidar). A panel no image sign explains becomes a sign of its own (&lt;i&gt;source&lt;/i&gt; = lidar): with the stations and the panorama folder, the panoramas in front of its face are cut into views centred on it and the detector reads its class there; if none recognises it, its class is &lt;i&gt;unknown&lt;/i&gt; and it is flagged for review. The sign-code classifier reads its code in a crop around each of those detections, and the views vote as Refine and merge signs votes them (code, code_name, code_score, code_views, code_check). An image sign whose place in the cloud holds no retro-reflective panel loses confidence (its score × 0.6) and is flagged for review (&lt;i&gt;source&lt;/i&gt; = image).&lt;br&gt;&lt;br&gt;Output: the sign layer with the fields of Refine and merge signs plus source, review, image_sign_id, cloud_sign_id, retro_index and condition, styled like the sign layer.</source>
         <translation>通过最优分配，将图像流程（“精化与合并标志”）中的每个标志与最多一个仅在点云中找到的标志牌（“在点云中查找标志（无图像）”）进行匹配：中心位于匹配半径内，且朝向相差不超过 90°。&lt;br&gt;&lt;br&gt;匹配上的标志保留其类别，并获得该标志牌的逆反射指数和状态（&lt;i&gt;source&lt;/i&gt; = image+lidar）。没有任何图像标志与之对应的标志牌成为单独的标志（&lt;i&gt;source&lt;/i&gt; = lidar）：若提供全景站点和全景图文件夹，将从其牌面前方的全景图中截取以其为中心的视图，由检测器在其中识别其类别；若均未识别出，其类别为 &lt;i&gt;unknown&lt;/i&gt;，并标记为待审核。标志代码分类器在每个这些检测结果周围的裁剪图中读取其代码，各视图按“精化与合并标志”的方式投票（code、code_name、code_score、code_views、code_check）。若某图像标志在点云中的位置没有逆反射标志牌，则降低其置信度（得分 × 0.6），并标记为待审核（&lt;i&gt;source&lt;/i&gt; = image）。&lt;br&gt;&lt;br&gt;输出：标志图层，包含“精化与合并标志”的字段以及 source、review、image_sign_id、cloud_sign_id、retro_index 和 condition，样式与标志图层相同。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="83" />
+        <location filename="../algorithms/fusesigns.py" line="84" />
         <source>for each sign found in the cloud alone and recognised in the panoramas, in a crop around each of its detections there</source>
         <translation>针对每个仅在点云中找到并在全景图中识别出的标志，在其各检测结果周围的裁剪图中读取</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="85" />
+        <location filename="../algorithms/fusesigns.py" line="86" />
         <source>Minimum code confidence</source>
         <translation>最低代码置信度</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="85" />
+        <location filename="../algorithms/fusesigns.py" line="86" />
         <source>The code voted for a sign found in the cloud alone is kept when its support (its share of the views' weighted vote x the mean probability the classifier gave it, 0-1: the code_score field) is at least this; else the code field stays empty.</source>
         <translation>当仅在点云中找到的标志投票得出的代码的支持度（其在各视图加权投票中的占比 x 分类器给出的平均概率，0-1：即 code_score 字段）不低于此值时保留该代码；否则 code 字段保持为空。</translation>
     </message>
     <message>
-        <location filename="../algorithms/fusesigns.py" line="183" />
+        <location filename="../algorithms/fusesigns.py" line="184" />
         <source>Sign codes read for {} of them.</source>
         <translation>其中 {} 个读取到了标志代码。</translation>
     </message>
@@ -2521,19 +2521,19 @@
         <translation>模型 {path} 在一张 {w} x {h} 的空白图像上运行失败：{error}</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="57" />
+        <location filename="../core/drivewindows.py" line="58" />
         <source>The track needs at least 2 finite positions, got {n}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>轨迹线至少需要 2 个有限位置，实际为 {n} 个</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="104" />
+        <location filename="../core/drivewindows.py" line="105" />
         <source>The track does not move: all its positions are at one place</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>轨迹线没有移动：其所有位置都在同一处</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="52" />
+        <location filename="../core/drivewindows.py" line="53" />
         <source>The track has {n} positions but {m} times</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>轨迹线有 {n} 个位置，但有 {m} 个时间</translation>
@@ -3066,13 +3066,13 @@
         <translation>从 {candidates} 个候选得到 {signs} 个标志（{from_images} 个仅由图像定位）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1490" />
+        <location filename="../core/refine.py" line="1505" />
         <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} 个标志中有 {coded} 个带有标志代码；{from_code} 个的类别取自代码，{dropped} 个代码因类别投票被舍弃（code_check）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1499" />
+        <location filename="../core/refine.py" line="1514" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>站点高度减去 {height} 米</translation>
@@ -3096,19 +3096,19 @@
         <translation>没有要精化的候选；标志图层为空</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1299" />
+        <location filename="../core/refine.py" line="1314" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>候选 {ids}：{reason}；位置取候选的中位数</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1439" />
+        <location filename="../core/refine.py" line="1454" />
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{width:.2f} x {height:.2f} 米的面板对 {sign_class} 标志来说太大（广告牌？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1444" />
+        <location filename="../core/refine.py" line="1459" />
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：只在一张全景图中出现，得分为 {score:.2f}</translation>
@@ -3138,25 +3138,25 @@
         <translation>平面点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1293" />
+        <location filename="../core/refine.py" line="1308" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有点云</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1296" />
+        <location filename="../core/refine.py" line="1311" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1500" />
+        <location filename="../core/refine.py" line="1515" />
         <source>the lowest points below the sign</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志下方的最低点</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1504" />
+        <location filename="../core/refine.py" line="1519" />
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 个标志在 {radius} 米内没有地面点（类别 2）：其高度从{source}起算</translation>
@@ -3714,42 +3714,42 @@
 <context>
     <name>RoadSignsAlgorithm</name>
     <message>
-        <location filename="../algorithms/base.py" line="106" />
+        <location filename="../algorithms/base.py" line="111" />
         <source>Road sign inventory</source>
         <translation>道路标志清查</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="274" />
+        <location filename="../algorithms/base.py" line="279" />
         <source>Cancelled: nothing was written.</source>
         <translation>已取消：未写入任何内容。</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="280" />
+        <location filename="../algorithms/base.py" line="285" />
         <source>Out of memory: nothing was written. Crop the point cloud (Ground filter with a crop layer) or process the drive in parts.</source>
         <translation>内存不足：未写入任何内容。请裁剪点云（使用带裁剪图层的地面滤波），或分段处理行驶采集数据。</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="283" />
+        <location filename="../algorithms/base.py" line="288" />
         <source>Cannot read or write {}: {}. Nothing was written.</source>
         <translation>无法读取或写入 {}：{}。未写入任何内容。</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="286" />
+        <location filename="../algorithms/base.py" line="291" />
         <source>Unexpected error ({}: {}); nothing was written. The details are in the QGIS message log (Road sign inventory); please report them.</source>
         <translation>意外错误（{}：{}）；未写入任何内容。详细信息见 QGIS 消息日志（Road sign inventory）；请报告。</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="291" />
+        <location filename="../algorithms/base.py" line="296" />
         <source>{} However, these partial outputs could not be removed: {}</source>
         <translation>{} 但是，以下部分输出无法删除：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="170" />
+        <location filename="../algorithms/base.py" line="175" />
         <source>Accepted: one LAS/LAZ file (COPC too), a virtual point cloud (.vpc, e.g. from QGIS's Build virtual point cloud) listing tiles, or a folder of LAS/LAZ tiles (type or paste the folder's path). Tiles must share the point format and the CRS.</source>
         <translation>可接受：一个 LAS/LAZ 文件（也支持 COPC）、列出分块的虚拟点云（.vpc，例如由 QGIS 的“构建虚拟点云”生成），或 LAS/LAZ 分块所在的文件夹（输入或粘贴文件夹路径）。各分块的点格式和坐标参考系必须相同。</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="170" />
+        <location filename="../algorithms/base.py" line="175" />
         <source>Point clouds (*.las *.laz *.vpc *.LAS *.LAZ *.VPC);;LAS/LAZ (*.las *.laz *.LAS *.LAZ);;Virtual point clouds (*.vpc *.VPC);;All files or a folder of tiles (*)</source>
         <translation>点云 (*.las *.laz *.vpc *.LAS *.LAZ *.VPC);;LAS/LAZ (*.las *.laz *.LAS *.LAZ);;虚拟点云 (*.vpc *.VPC);;所有文件或分块文件夹 (*)</translation>
     </message>

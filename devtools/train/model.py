@@ -114,7 +114,9 @@ class Exported(nn.Module):
         return torch.cat([out[..., :4], out[..., 4:5].pow(self.score_power), out[..., 5:]], dim=-1)
 
 
-#: The plugin's default CONFIDENCE (roadsigns:detectsigns).
+#: Where an export puts the detector's own best-F1 threshold (its scores are calibrated to
+#: it). The plugin's default CONFIDENCE (core.detector.DEFAULT_CONFIDENCE, 0.5) sits above
+#: it since the second look keeps confirmed boxes under the threshold (models/README.md).
 PLUGIN_DEFAULT_CONFIDENCE = 0.4
 
 

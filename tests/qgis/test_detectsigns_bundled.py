@@ -12,6 +12,7 @@ import pytest
 from osgeo import ogr
 
 from devtools import REPO_ROOT
+from roadsigns.core.detector import DEFAULT_CONFIDENCE
 
 BUNDLED = os.path.join(REPO_ROOT, "models", "roadsigns-int8.onnx")
 MIN_HEIGHT_PX = 20
@@ -97,7 +98,8 @@ def test_bundled_model_detections_lie_on_signs(detections, scene_tiny):
     assert len(off) <= (1 - MIN_ON_SIGN_SHARE) * len(detections), \
         f"{len(off)} of {len(detections)} detections on no sign: {off}"
     # the default CONFIDENCE, or kept by the second look (a code read with >= 0.9)
-    assert all(d["score"] >= 0.4 or (d["code"] not in ("", "other") and d["code_score"] >= 0.9) for d in detections)
+    assert all(d["score"] >= DEFAULT_CONFIDENCE or (d["code"] not in ("", "other") and d["code_score"] >= 0.9)
+               for d in detections)
 
 
 def test_second_look_adds_only_boxes_the_classifier_reads(qgis_process, scene_tiny_stations, scene_tiny, tmp_path):
