@@ -50,6 +50,5 @@ def test_memory_is_given_back_after_each_block(monkeypatch, threads):
 
 
 def test_release_is_a_no_op_without_glibc(monkeypatch):
-    monkeypatch.setattr(memory, "_LOOKED_UP", True)
-    monkeypatch.setattr(memory, "_TRIM", None)
+    monkeypatch.setattr(memory, "_malloc_trim", lambda: None)
     assert memory.release_freed_memory() is False
