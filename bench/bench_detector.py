@@ -13,7 +13,10 @@ measures several models in one run, on the same images, timed alternately.
 2. GTSDB images 500-599 (held out from training) on tiles of the model's input size (640 x 640
    for a square model) at full resolution
    (6 per frame): per class, signs >= 20 px, the precision/recall curve and the best-F1
-   threshold (where the plugin's default ``CONFIDENCE`` should sit).
+   threshold (where the plugin's default ``CONFIDENCE`` should sit). Then, the same way, the
+   held-out gtsrb-train tracks (real signs neither network nor any chosen threshold has seen)
+   pasted into those frames, two per track (14-35 and 35-80 px): :func:`heldout_track_frames`
+   (``--skip-tracks`` leaves them out).
 3. Per size band (box height 14-20, 20-35, 35-70, > 70 px) on both: recall of the signs of
    that height and precision of the detections of that height.
 4. Panoramas per second at 4096 x 2048 on ``--threads`` (2) threads, decoding apart; with
@@ -58,6 +61,10 @@ TILE_PX = 640
 #: Size bands (box height, px): [lo, hi).
 BANDS = ((14.0, 20.0), (20.0, 35.0), (35.0, 70.0), (70.0, float("inf")))
 CURVE_THRESHOLDS = tuple(round(t, 2) for t in np.arange(0.05, 0.96, 0.05))
+#: Heights (px) at which each held-out GTSRB track is pasted, one sign per band (heldout_track_frames).
+TRACK_SIZES_PX = ((14.0, 35.0), (35.0, 80.0))
+#: How many tracks the held-out part has (188): the control with training tracks takes as many.
+HELDOUT_TRACKS = 188
 
 
 def band_name(lo, hi):
@@ -359,17 +366,72 @@ def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, cla
     return boxes[keep], np.maximum(scores[keep], np.where(rescued[keep], confidence, 0.0)), kept_ids[keep]
 
 
-def bench_gtsdb(detectors, confidence, ids=GTSDB_HELDOUT_IDS, whole_frame=False, classifier=None):
-    """Each detector on GTSDB 500-599 tiles (and whole letterboxed frames if asked);
-    ``detectors``: ``(detector, second look)`` pairs (the second look with ``classifier``)."""
+def gtsdb_frames(ids=GTSDB_HELDOUT_IDS):
+    """GTSDB frames with their truth: (image BGR, boxes, classes, ignored boxes: none), read one
+    at a time."""
     import cv2
 
-    rows = read_gtsdb(ids)
+    for path, gt, classes in read_gtsdb(ids):
+        yield cv2.imread(path), gt, classes, np.zeros((0, 4), np.float32)
+
+
+def heldout_track_frames(ids=GTSDB_HELDOUT_IDS, seed: int = 2024, sizes_px=TRACK_SIZES_PX, part: str = "val",
+                         max_tracks=None, half=None):
+    """Real signs that neither network has seen: each held-out ``gtsrb-train`` track (every
+    7th of each class; the detector never pasted them, the sign-code classifier never trained
+    on them, and no threshold or rule was chosen on them) pasted once per band of ``sizes_px``
+    (a height drawn log-uniformly in it, from the track's smallest frame at least that tall),
+    warped obliquely and degraded as a distant sign (``devtools.train.data.paste`` and
+    ``degrade``, as training pastes its own tracks), at a free spot of a GTSDB 500-599 frame.
+    Truth: the pasted signs; the frame's own signs are ignored (a detection on them is no
+    false alarm: they are measured by :func:`gtsdb_frames`). Deterministic for ``seed``;
+    yields (image BGR, boxes, classes, ignored boxes) frame by frame. ``part="train"`` pastes
+    tracks training did paste instead (``max_tracks`` of them, drawn evenly): the control that
+    tells a gap in generalising to new signs from one in the pasting itself. ``half`` (0 or 1):
+    only every other track (sorted), for choosing a rule on one half and testing it on the other."""
+    import cv2
+
+    from devtools.train import data as train_data
+
+    patches, classes, tracks, heights = train_data.read_gtsrb_train(part)
+    by_track = {}
+    for k, key in enumerate(tracks):
+        by_track.setdefault(key, []).append(k)
+    rng = np.random.default_rng(seed)
+    keys = sorted(by_track)
+    if max_tracks is not None and max_tracks < len(keys):
+        keys = [keys[int(i)] for i in np.linspace(0, len(keys) - 1, max_tracks).round()]
+    if half is not None:
+        keys = keys[half::2]
+    jobs = [(key, lo, hi) for key in keys for lo, hi in sizes_px]
+    frame_ids = list(ids)
+    per_frame = [[] for _ in frame_ids]
+    for j in rng.permutation(len(jobs)):
+        per_frame[int(j) % len(frame_ids)].append(jobs[int(j)])
+    for (path, gt, cls), frame_jobs in zip(read_gtsdb(frame_ids), per_frame):
+        sample = train_data.Sample(cv2.imread(path), gt.copy(), cls.copy())
+        n_own = len(gt)
+        for key, lo, hi in frame_jobs:
+            height = float(np.exp(rng.uniform(np.log(lo), np.log(hi))))
+            frames = sorted(by_track[key], key=lambda k: heights[k])
+            tall_enough = [k for k in frames if heights[k] >= height]
+            k = tall_enough[0] if tall_enough else frames[-1]
+            train_data.paste(sample, patches[k], height, int(classes[k]), rng,
+                             post=lambda p: train_data.degrade(p, rng))
+        yield sample.image, sample.boxes[n_own:], sample.classes[n_own:], gt
+
+
+def bench_photographs(detectors, confidence, frames, whole_frame=False, classifier=None):
+    """Each detector on street photographs ``frames`` ((image BGR, boxes, classes, ignored boxes)) cut
+    into tiles of the model's input size (and whole letterboxed frames if asked);
+    ``detectors``: ``(detector, second look)`` pairs (the second look with ``classifier``)."""
     modes = ("tiles_640", "whole_frame_letterboxed") if whole_frame else ("tiles_640",)
     acc = [{m: {"all": [], "20": [], "bands": BandCounter(), "s": 0.0} for m in modes} for _ in detectors]
-    for k, (path, gt, classes) in enumerate(rows):
-        image = cv2.imread(path)
+    n_frames = 0
+    for k, (image, gt, classes, ignore) in enumerate(frames):
+        n_frames += 1
         big = (gt[:, 3] - gt[:, 1]) >= MIN_HEIGHT_PX
+        ignore_20 = np.concatenate([gt[~big], ignore])
         order = list(enumerate(detectors)) if k % 2 == 0 else list(enumerate(detectors))[::-1]
         for i, (d, look) in order:
             for mode in modes:
@@ -384,16 +446,17 @@ def bench_gtsdb(detectors, confidence, ids=GTSDB_HELDOUT_IDS, whole_frame=False,
                                                                  confidence, d.class_names)
                 a = acc[i][mode]
                 a["s"] += time.perf_counter() - t0
-                a["all"].append(match_image(boxes, scores, found_ids, gt, classes, 0.5))
-                a["20"].append(match_image(boxes, scores, found_ids, gt[big], classes[big], 0.5, ignore_boxes=gt[~big]))
-                a["bands"].add(boxes, scores, found_ids, gt, classes, confidence)
+                a["all"].append(match_image(boxes, scores, found_ids, gt, classes, 0.5, ignore_boxes=ignore))
+                a["20"].append(match_image(boxes, scores, found_ids, gt[big], classes[big], 0.5,
+                                           ignore_boxes=ignore_20))
+                a["bands"].add(boxes, scores, found_ids, gt, classes, confidence, ignore=ignore)
     out = []
     for a in acc:
         res = {}
         for mode, v in a.items():
-            res[mode] = {"images": len(rows), "per_class": summarise(v["all"], CLASSES, confidence),
+            res[mode] = {"images": n_frames, "per_class": summarise(v["all"], CLASSES, confidence),
                          "signs_20px_and_up": summarise(v["20"], CLASSES, confidence)["all"],
-                         "per_band": v["bands"].result(), "seconds_per_image": v["s"] / len(rows),
+                         "per_band": v["bands"].result(), "seconds_per_image": v["s"] / max(n_frames, 1),
                          "curve": curve(v["all"]), "curve_20px_and_up": curve(v["20"])}
         out.append(res)
     return out
@@ -437,8 +500,12 @@ def print_model(name, r, confidence):
     print(f"panoramas per second ({r['threads']} threads, decoded): {p['panoramas_per_second']:.2f} "
           f"(+ {p['seconds_per_panorama_decode_jpeg']:.3f} s to decode each JPEG); "
           f"{p['cpu_seconds_per_panorama']:.3f} CPU s per panorama; load average {os.getloadavg()[0]:.1f}")
-    for mode, g in (r.get("gtsdb_500_599") or {}).items():
-        print_table(f"GTSDB 500-599, {mode}, confidence {confidence}", g["per_class"])
+    photo_sets = [(f"GTSDB 500-599, {mode}", g) for mode, g in (r.get("gtsdb_500_599") or {}).items()]
+    if r.get("heldout_tracks"):
+        which = "held-out" if r["heldout_tracks"]["part"] == "val" else "training (control)"
+        photo_sets.append((f"{which} gtsrb-train tracks pasted into GTSDB 500-599", r["heldout_tracks"]["tiles_640"]))
+    for title, g in photo_sets:
+        print_table(f"{title}, confidence {confidence}", g["per_class"])
         print(f"signs >= 20 px: {g['signs_20px_and_up']}")
         print_bands("size bands", g["per_band"])
         print_curve("P/R curve (all signs)", g["curve"])
@@ -456,6 +523,12 @@ def headline(r):
                     "gtsdb_20_P": g["signs_20px_and_up"]["precision"], "gtsdb_20_R": g["signs_20px_and_up"]["recall"],
                     "gtsdb_mandatory_R": g["per_class"]["mandatory"]["recall"],
                     "gtsdb_best_f1_threshold": g["curve"]["best_f1"]["threshold"]})
+    t = (r.get("heldout_tracks") or {}).get("tiles_640")
+    if t:
+        out.update({"tracks_P": t["per_class"]["all"]["precision"], "tracks_R": t["per_class"]["all"]["recall"],
+                    "tracks_20_R": t["signs_20px_and_up"]["recall"],
+                    "tracks_mandatory_R": t["per_class"]["mandatory"]["recall"],
+                    "tracks_best_f1_threshold": t["curve"]["best_f1"]["threshold"]})
     return out
 
 
@@ -466,12 +539,18 @@ def main(argv=None):
     ap.add_argument("--scene", action="append", help="held-out generated scene folder(s); default "
                     "bench/out/scene-default-7 and bench/out/scene-tiny-3, generated when missing")
     ap.add_argument("--threads", type=int, default=2)
-    ap.add_argument("--confidence", type=float, default=0.4, help="the plugin's default CONFIDENCE")
+    ap.add_argument("--confidence", type=float, default=detector_mod.DEFAULT_CONFIDENCE,
+                    help="the plugin's default CONFIDENCE")
     ap.add_argument("--min-size", type=float, default=detector_mod.DEFAULT_MIN_BOX_PX,
                     help="the plugin's MIN_SIZE: merged boxes with a shorter side under this (px) are dropped")
     ap.add_argument("--max-images", type=int, default=None, help="panoramas per scene (default all)")
     ap.add_argument("--skip-gtsdb", action="store_true")
-    ap.add_argument("--gtsdb-images", type=int, default=None, help="only the first N of GTSDB 500-599 (quick checks)")
+    ap.add_argument("--skip-tracks", action="store_true",
+                    help="skip the held-out gtsrb-train tracks pasted into GTSDB 500-599 (heldout_track_frames)")
+    ap.add_argument("--tracks-part", choices=("val", "train"), default="val",
+                    help="val: the held-out tracks; train: as many tracks training pasted (the control)")
+    ap.add_argument("--gtsdb-images", type=int, default=None,
+                    help="only the first N of GTSDB 500-599, for both photograph sets (quick checks)")
     ap.add_argument("--whole-frame", action="store_true", help="also GTSDB whole frames letterboxed to 640 px")
     ap.add_argument("--views", nargs="+", default=["default"], choices=sorted(VIEW_SETS),
                     help="view sets, each measured with every model in the same run (default: the plugin's)")
@@ -509,10 +588,19 @@ def main(argv=None):
         r["panoramas_per_second"] = p["panoramas_per_second"]
     if not a.skip_gtsdb:  # tiles of the photographs: the view set plays no part
         pairs = [(k, look) for k in range(len(models)) for look in looks]
-        gtsdb = bench_gtsdb([(detectors[k], look) for k, look in pairs], a.confidence, whole_frame=a.whole_frame,
-                            ids=GTSDB_HELDOUT_IDS[:a.gtsdb_images], classifier=classifier)
+        gtsdb = bench_photographs([(detectors[k], look) for k, look in pairs], a.confidence,
+                                  gtsdb_frames(GTSDB_HELDOUT_IDS[:a.gtsdb_images]), whole_frame=a.whole_frame,
+                                  classifier=classifier)
         for r, (k, _, look) in zip(results, entries):
             r["gtsdb_500_599"] = gtsdb[pairs.index((k, look))]
+    if not a.skip_tracks:
+        pairs = [(k, look) for k in range(len(models)) for look in looks]
+        tracks = bench_photographs([(detectors[k], look) for k, look in pairs], a.confidence,
+                                   heldout_track_frames(GTSDB_HELDOUT_IDS[:a.gtsdb_images], part=a.tracks_part,
+                                                        max_tracks=HELDOUT_TRACKS), classifier=classifier)
+        for r, (k, _, look) in zip(results, entries):
+            r["heldout_tracks"] = tracks[pairs.index((k, look))]
+            r["heldout_tracks"]["part"] = a.tracks_part
     for r in results:
         print_model(f"{r['model']}, views {r['views']} ({r['n_views']}), second look "
                     f"{'on' if r['second_look'] else 'off'}", r, a.confidence)

@@ -1,0 +1,91 @@
+"""The photograph sets of bench/bench_detector.py and the rule scoring of
+bench/tune_second_look.py: real signs pasted from held-out tracks, and what a rule keeps."""
+import os
+import sys
+
+import numpy as np
+import pytest
+
+from devtools import REPO_ROOT
+from devtools.train import data as train_data
+from devtools.train.metrics import iou_matrix
+
+sys.path.insert(0, os.path.join(REPO_ROOT, "bench"))
+import bench_detector as bd  # noqa: E402
+import tune_second_look as tune  # noqa: E402
+
+pytestmark = pytest.mark.skipif(not os.path.isdir(os.path.join(train_data.DATA_DIR, "gtsrb-train")),
+                                reason="needs the shared data folder beside the checkout")
+
+FRAME_IDS = range(500, 504)
+
+
+def test_heldout_tracks_are_pasted_beside_the_frames_own_signs_and_are_repeatable():
+    frames = list(bd.heldout_track_frames(ids=FRAME_IDS, max_tracks=8))
+    again = list(bd.heldout_track_frames(ids=FRAME_IDS, max_tracks=8))
+    truth = train_data.read_gtsdb(FRAME_IDS)
+    assert len(frames) == len(FRAME_IDS)
+    pasted = 0
+    for (image, boxes, classes, ignore), (_, own, _own_classes), (image2, boxes2, _, _) in zip(frames, truth, again):
+        np.testing.assert_array_equal(ignore, own)  # the frame's own signs: ignored, not counted
+        assert len(boxes) == len(classes)
+        if len(boxes) and len(own):
+            assert iou_matrix(boxes, own).max() == 0.0  # pasted at free spots
+        heights = boxes[:, 3] - boxes[:, 1]
+        assert np.all((heights >= 0.5 * bd.TRACK_SIZES_PX[0][0]) & (heights <= 1.5 * bd.TRACK_SIZES_PX[-1][1]))
+        np.testing.assert_array_equal(image, image2)
+        np.testing.assert_array_equal(boxes, boxes2)
+        pasted += len(boxes)
+    # one sign per track and band, a few may find no free spot
+    assert 0.75 * 8 * len(bd.TRACK_SIZES_PX) <= pasted <= 8 * len(bd.TRACK_SIZES_PX)
+
+
+def test_the_pasted_tracks_are_the_heldout_split_and_each_half_pastes_half_of_them():
+    import csv
+
+    with open(os.path.join(train_data.DATA_DIR, "gtsrb-train", "GT-train.csv")) as f:
+        every_track = {(int(r["ClassId"]), r["Track"]) for r in csv.DictReader(f, delimiter=";")}
+    held = set(train_data.read_gtsrb_train("val")[2])
+    assert held == train_data.gtsrb_track_split(
+        [{"ClassId": c, "Track": t} for c, t in every_track]) and len(held) < len(every_track) / 5
+    a = [len(b) for _, b, _, _ in bd.heldout_track_frames(ids=FRAME_IDS, max_tracks=8, half=0)]
+    b = [len(b) for _, b, _, _ in bd.heldout_track_frames(ids=FRAME_IDS, max_tracks=8, half=1)]
+    assert 0 < sum(a) <= 8 and 0 < sum(b) <= 8
+
+
+def _row(gt, sure, cand_boxes, cand_scores, sides, sheeting, probs):
+    gt = np.asarray(gt, float).reshape(-1, 4)
+    sb = np.asarray(sure, float).reshape(-1, 4)
+    cb = np.asarray(cand_boxes, float).reshape(-1, 4)
+    return {"gt": gt, "classes": np.zeros(len(gt), np.int64), "ignore": np.zeros((0, 4)),
+            "sure": (sb, np.full(len(sb), 0.9), np.zeros(len(sb), np.int64)),
+            "cand_boxes": cb, "cand_scores": np.asarray(cand_scores, float), "cand_ids": np.zeros(len(cb), np.int64),
+            "side": np.asarray(sides, float), "sheeting": np.asarray(sheeting, float),
+            "probs": np.asarray(probs, float)}
+
+
+def test_a_rule_keeps_only_the_candidates_that_pass_every_check():
+    class FakeClassifier:  # codes: one of class 0, and other
+        names = ("DE:101", "other")
+        table = None
+
+    reader = tune.Reader.__new__(tune.Reader)
+    reader.other, reader.class_index, reader.n_classes = 1, np.array([0, -1]), 6
+    assert FakeClassifier.names[reader.other] == "other"
+    two_signs = [[0, 0, 20, 20], [100, 100, 130, 130]]
+    # one sign detected; a candidate on the other sign (read as a code at 0.8) and one on nothing
+    row = _row(two_signs, [[0, 0, 20, 20]], [[100, 100, 130, 130], [300, 300, 330, 330]], [0.3, 0.3],
+               [30, 30], [0.2, 0.2], [[0.8, 0.2], [0.85, 0.15]])
+    reads = [reader.read(row["probs"], row["cand_ids"])]
+    alone = tune.score_rule([row], reads, ("code", 2.0, 0.0, 0.0, 1.0), 0.5)
+    assert (alone["hits"], alone["detections"], alone["P"], alone["R"]) == (1, 1, 1.0, 0.5)
+    both = tune.score_rule([row], reads, ("code", 0.8, 16.0, 0.05, 0.05), 0.5)
+    assert (both["hits"], both["detections"]) == (2, 3)
+    assert both["R"] == 1.0 and both["P"] == pytest.approx(2 / 3)
+    for failing in (("code", 0.9, 16.0, 0.05, 0.05),   # code probability under 0.9
+                    ("code", 0.8, 40.0, 0.05, 0.05),   # boxes shorter than 40 px
+                    ("code", 0.8, 16.0, 0.5, 0.05),    # too little sheeting
+                    ("code", 0.8, 16.0, 0.05, 0.4)):   # scored under the floor
+        assert tune.score_rule([row], reads, failing, 0.5)["detections"] == 1
+    sign = tune.score_rule([row], reads, ("sign", 0.8, 16.0, 0.05, 0.05), 0.5)  # 1 - P(other) >= 0.8
+    assert (sign["hits"], sign["detections"]) == (2, 3)
