@@ -30,6 +30,7 @@ from scipy.spatial import cKDTree
 
 from .errors import InputError
 from .memory import release_freed_memory
+from .writebehind import WriteBehind
 
 #: Spacing of the densified track used to locate points on the drive, metres.
 AXIS_STEP_M = 0.5
@@ -242,17 +243,21 @@ class Spool:
 
     ``dtypes``: the dtype of each kind. At most ``flush_rows`` rows wait in memory (then
     they are appended to their files); :meth:`read` flushes first. Use as a context manager
-    (the folder is deleted on exit, or by :meth:`close`).
+    (the folder is deleted on exit, or by :meth:`close`). ``background``: the files are
+    written on a thread of their own while the caller goes on (:class:`.writebehind.WriteBehind`;
+    one flush at a time, so up to twice ``flush_rows`` rows in memory; a write's error is
+    raised by the next flush, :meth:`read` or :meth:`discard`). Rows given to :meth:`append`
+    must not change after, either way.
     """
 
     def __init__(self, dtypes: Dict[str, np.dtype], folder: Optional[str] = None,
-                 flush_rows: int = SPOOL_FLUSH_ROWS, prefix: str = "roadsigns-spool-"):
+                 flush_rows: int = SPOOL_FLUSH_ROWS, prefix: str = "roadsigns-spool-", background: bool = False):
         self.dtypes = {k: np.dtype(v) for k, v in dtypes.items()}
         self.folder = tempfile.mkdtemp(prefix=prefix, dir=folder)
         self.flush_rows = int(flush_rows)
         self._pending: Dict[Tuple[str, int], List[np.ndarray]] = {}
         self._pending_rows = 0
-        self.rows_written = {k: 0 for k in self.dtypes}
+        self._behind = WriteBehind("roadsigns-spool-write") if background else None
 
     def _path(self, kind: str, index: int) -> str:
         return os.path.join(self.folder, "{}-{:06d}.bin".format(kind, index))
@@ -266,17 +271,30 @@ class Spool:
                 self.flush()
 
     def flush(self) -> None:
-        for (kind, k), parts in self._pending.items():
+        """Append the rows waiting in memory to their files (in the background: start to)."""
+        if not self._pending:
+            return
+        pending, self._pending, self._pending_rows = self._pending, {}, 0
+        if self._behind is not None:
+            self._behind.submit(self._write, pending)
+        else:
+            self._write(pending)
+
+    def _write(self, pending: Dict[Tuple[str, int], List[np.ndarray]]) -> None:
+        for (kind, k), parts in pending.items():
             with open(self._path(kind, k), "ab") as f:
                 for part in parts:
                     part.tofile(f)
-                    self.rows_written[kind] += len(part)
-        self._pending.clear()
-        self._pending_rows = 0
+
+    def _settle(self) -> None:
+        """Flush, and wait until the files hold every row appended."""
+        self.flush()
+        if self._behind is not None:
+            self._behind.wait()
 
     def read(self, kind: str, index: int) -> np.ndarray:
         """All rows of ``kind`` appended to ``index``."""
-        self.flush()
+        self._settle()
         path = self._path(kind, index)
         if not os.path.exists(path):
             return np.zeros(0, dtype=self.dtypes[kind])
@@ -285,10 +303,15 @@ class Spool:
     def discard(self, kind: str, index: int) -> None:
         """Delete the rows of ``(kind, index)`` (read them first)."""
         self._pending.pop((kind, index), None)
+        if self._behind is not None:
+            self._behind.wait()
         with contextlib.suppress(FileNotFoundError):
             os.remove(self._path(kind, index))
 
     def close(self) -> None:
+        """Delete the folder and what it holds (a write under way is waited for, its error dropped)."""
+        if self._behind is not None:
+            self._behind.abandon()
         self._pending.clear()
         shutil.rmtree(self.folder, ignore_errors=True)
 

@@ -30,6 +30,7 @@ from shapely.geometry.base import BaseGeometry
 
 from .errors import SILENT, InputError, Progress
 from .outputs import TEMP_PREFIX, set_default_mode
+from .writebehind import WriteBehind
 
 #: File name endings read and written as point clouds.
 LAS_SUFFIXES = (".las", ".laz")
@@ -255,10 +256,13 @@ class CloudWriter:
     Points go to a temporary file in the destination folder, which ``commit`` moves over
     the destination with ``os.replace`` after giving it the umask's permissions (not
     mkstemp's 0600); ``abort`` (or leaving a ``with`` block by an exception) deletes it.
-    LAZ when the path ends in ``.laz`` (lazrs, parallel).
+    LAZ when the path ends in ``.laz`` (lazrs, parallel). ``background``: each chunk is
+    written (compressed) on a thread of its own while the caller prepares the next
+    (:class:`.writebehind.WriteBehind`: in order, one at a time, errors raised by the next
+    :meth:`write` or by :meth:`commit`); a chunk given to :meth:`write` must not change after.
     """
 
-    def __init__(self, output_path: str, header: laspy.LasHeader):
+    def __init__(self, output_path: str, header: laspy.LasHeader, background: bool = True):
         self.output_path = os.path.abspath(os.fspath(output_path))
         suffix = os.path.splitext(self.output_path)[1].lower()
         if suffix not in LAS_SUFFIXES:
@@ -277,11 +281,14 @@ class CloudWriter:
                              error=e.strerror or str(e))
         self._file = os.fdopen(fd, "wb")
         self.point_count = 0
+        self._behind = WriteBehind("roadsigns-las-write") if background else None
         try:
             self._writer = laspy.LasWriter(
                 self._file, header, do_compress=self.compress,
                 laz_backend=laz_backends() if self.compress else None, closefd=False)
         except Exception:
+            if self._behind is not None:
+                self._behind.abandon()
             self._file.close()
             os.unlink(self.temp_path)
             raise
@@ -293,7 +300,10 @@ class CloudWriter:
     def write(self, points) -> None:
         """Append a point record (same point format as the header)."""
         if len(points):
-            self._writer.write_points(points)
+            if self._behind is not None:
+                self._behind.submit(self._writer.write_points, points)
+            else:
+                self._writer.write_points(points)
             self.point_count += len(points)
 
     def commit(self) -> None:
@@ -301,6 +311,8 @@ class CloudWriter:
         if self._writer is None:
             return
         try:
+            if self._behind is not None:
+                self._behind.close()
             if self._evlrs and self._writer.header.version.minor >= 4:
                 self._writer.write_evlrs(self._evlrs)
             self._writer.close()
@@ -314,6 +326,8 @@ class CloudWriter:
 
     def abort(self) -> None:
         """Drop the temporary file; the destination is left untouched."""
+        if self._behind is not None:
+            self._behind.abandon()
         self._writer = None
         try:
             self._file.close()

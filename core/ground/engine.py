@@ -187,7 +187,8 @@ def room_to_spool(n_points: int, point_size_bytes: int, folder: str) -> bool:
 
 class PointSpool:
     """The points pass 1 of the built-in engine read, kept uncompressed for pass 2 in a hidden
-    temporary folder inside ``folder`` (beside the output), so the cloud is decompressed once.
+    temporary folder inside ``folder`` (beside the output), so the cloud is decompressed once;
+    written in the background while pass 1 decompresses the next chunk.
 
     :meth:`add` takes each chunk (conformed to ``header``'s scales and offsets); :meth:`chunks`
     gives them back in order as laspy records of ``header``'s point format, deleting each file
@@ -198,7 +199,8 @@ class PointSpool:
 
     def __init__(self, header: Any, folder: str):
         self.header = header
-        self.spool = Spool({self.KIND: header.point_format.dtype()}, folder=folder, prefix=".roadsigns-ground-")
+        self.spool = Spool({self.KIND: header.point_format.dtype()}, folder=folder, prefix=".roadsigns-ground-",
+                           background=True)
         self.n_chunks = 0
 
     def add(self, points: Any) -> None:
