@@ -30,7 +30,7 @@ def detections(scene):
 
 @pytest.fixture(scope="module")
 def result(detections, las_path):
-    return P.project_detections(detections, las_path, max_range_m=30.0)
+    return P.project_detections(detections, las_path, max_range_m=30.0, keep_point_index=True)
 
 
 def truth_of(scene, k):
@@ -55,6 +55,17 @@ def test_every_visible_panel_gets_a_candidate_on_its_face(scene, result):
         assert len(result.point_index[k]) == result.n_points[k]
         checked += 1
     assert checked >= 45
+
+
+def test_the_surface_points_are_kept_only_when_asked_for(detections, las_path, result):
+    """The candidates layer does not carry each surface's points: by default they are not kept
+    (on a long drive they would be most of the result), and nothing else changes."""
+    lean = P.project_detections(detections, las_path, max_range_m=30.0)
+    assert lean.status == result.status
+    np.testing.assert_array_equal(lean.n_points, result.n_points)
+    np.testing.assert_array_equal(lean.xyz_world, result.xyz_world)
+    assert all(len(p) == 0 for p in lean.point_index)
+    assert sum(len(p) for p in result.point_index) == result.n_points.sum() > 0
 
 
 def test_the_wall_behind_a_panel_is_not_picked(scene, result):
@@ -160,7 +171,7 @@ def test_block_by_block_projection_equals_one_index(scene, detections, las_path,
     assert sorted(np.concatenate([rows for rows, _ in blocks]).tolist()) == list(range(len(detections)))
     assert max(len(block) for _, block in blocks) < 0.8 * sum(len(block) for _, block in blocks)
     small = P.project_detections(detections, las_path,
-                                 params=dataclasses.replace(P.ProjectionParams(), block_m=20.0))
+                                 params=dataclasses.replace(P.ProjectionParams(), block_m=20.0), keep_point_index=True)
     assert small.status == whole.status == result.status
     np.testing.assert_allclose(small.xyz_world, result.xyz_world, atol=1e-9, equal_nan=True)
     np.testing.assert_allclose(small.xyz_world, whole.xyz_world, atol=0.002, equal_nan=True)  # LAS: mm
