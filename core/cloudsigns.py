@@ -570,6 +570,9 @@ def _process_window(window: Window, rows: np.ndarray, ground_rows: np.ndarray, a
         found.append(_Found(panel, support, support_xy, normal, stats, face_seen, len(panel.rows)))
     owned_poles = [p for p in poles if window.owns(p.s_m) and s_lo <= p.s_m <= s_hi
                    and abs(float(axis.locate(np.array([[p.x, p.y]]))[1][0])) <= edge]
+    for p in owned_poles:  # a head's points serve its window, and a gantry's the drive (promote_far_posts);
+        if not p.is_gantry(params.poles) or p.crown:   # a drive keeps thousands of other poles
+            p.head_xyz = p.head_xyz[:0]
     return found, owned_poles
 
 

@@ -135,7 +135,9 @@ class Pole:
     crown: bool = False           # a crown around its top: a tree unless it carries a sign
     s_m: float = 0.0
     crown_isotropy: float = 0.0
-    #: points of the structure at its top connected to the axis (arm, beam, panels)
+    #: points of the structure at its top connected to the axis (arm, beam, panels); emptied by
+    #: findsignsincloud once the pole's window is searched, but for gantries (the poles of a
+    #: long drive would hold ~50 kB each)
     head_xyz: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     #: its head passes over the road (set by the caller, who knows the track)
     spans_road: bool = False

@@ -160,6 +160,17 @@ def test_built_poles_feet_kinds_and_carried_signs(built_result):
             assert abs(pole.height - top_truth) < 0.1
 
 
+def test_poles_keep_no_head_points_once_their_window_is_searched(built_result):
+    """A pole's head points serve its window (support, a gantry over the road); a long drive
+    finds thousands of poles, so the result keeps them only for gantries (their beams find
+    the far posts, over the whole drive), not for the other poles."""
+    assert built_result.poles
+    params = CS.CloudSignParams().poles
+    assert not any(p.is_gantry(params) for p in built_result.poles)
+    assert all(p.head_xyz.shape == (0, 3) for p in built_result.poles)
+    assert any(p.reach_m > 0 for p in built_result.poles)  # heads were there and measured
+
+
 def test_built_faded_sign_flagged_healthy_not(built_result):
     centres = np.array([s.centre_world for s in built_result.signs])
     for truth in Built.signs:
