@@ -326,16 +326,14 @@ def detect_tiled(detector, image, confidence):
     return np.concatenate(boxes), np.concatenate(scores), np.concatenate(ids)
 
 
-def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, class_names):
-    """:func:`roadsigns.core.rescue.second_look` on a photograph's boxes (from 0.05): the
-    boxes from ``DEFAULT_RESCUE_CONFIDENCE`` under ``confidence`` that lie on no detection
-    (overlap of the smaller box >= 0.5) are merged across classes (the best-scored kept) and
-    kept when the rule and the classifier confirm them, with their code's class, counted at
-    ``confidence``. Returns the plugin's boxes, scores and class ids."""
-    from devtools.train.codes import crop_square
-
+def photo_candidates(boxes, scores, confidence, floor=None):
+    """The second look's candidates on a photograph, as ``core.rescue`` merges them: the
+    boxes scored from ``floor`` (default ``DEFAULT_RESCUE_CONFIDENCE``) under ``confidence``
+    that lie on no detection and no better candidate (overlap of the smaller box >= 0.5),
+    across classes. Returns (mask of the detections, candidate indices, best first)."""
+    floor = rescue_mod.DEFAULT_RESCUE_CONFIDENCE if floor is None else floor
     sure = scores >= confidence
-    low = np.flatnonzero((scores >= rescue_mod.DEFAULT_RESCUE_CONFIDENCE) & ~sure)
+    low = np.flatnonzero((scores >= floor) & ~sure)
     low = low[np.argsort(-scores[low], kind="stable")]
     far = 1e12  # seam_aware_overlap without a seam
     taken = [b for b in boxes[sure]]
@@ -345,7 +343,18 @@ def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, cla
             continue
         taken.append(boxes[j])
         cands.append(j)
-    cands = np.array(cands, np.int64)
+    return sure, np.array(cands, np.int64)
+
+
+def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, class_names):
+    """:func:`roadsigns.core.rescue.second_look` on a photograph's boxes (from 0.05): the
+    boxes from ``DEFAULT_RESCUE_CONFIDENCE`` under ``confidence`` that lie on no detection
+    (overlap of the smaller box >= 0.5) are merged across classes (the best-scored kept) and
+    kept when the rule and the classifier confirm them, with their code's class, counted at
+    ``confidence``. Returns the plugin's boxes, scores and class ids."""
+    from devtools.train.codes import crop_square
+
+    sure, cands = photo_candidates(boxes, scores, confidence)
     if len(cands):
         sheeting = np.array([rescue_mod.sheeting_fraction(image_bgr, boxes[j]) for j in cands])
         cands = cands[rescue_mod.worth_reading(boxes[cands], sheeting)]

@@ -57,17 +57,7 @@ def collect(detector, classifier, frames, confidence):
     rows = []
     for image, gt, classes, ignore in frames:
         boxes, scores, ids = bd.detect_tiled(detector, image, bd.rescue_mod.DEFAULT_RESCUE_CONFIDENCE)
-        sure = scores >= confidence
-        low = np.flatnonzero(~sure)
-        low = low[np.argsort(-scores[low], kind="stable")]
-        taken = [b for b in boxes[sure]]
-        cands = []
-        for j in low:  # as second_look_image: merged across classes, best score first
-            if taken and bd.detector_mod.seam_aware_overlap(boxes[j], np.array(taken), 1e12).max() >= 0.5:
-                continue
-            taken.append(boxes[j])
-            cands.append(j)
-        cands = np.array(cands, np.int64)
+        sure, cands = bd.photo_candidates(boxes, scores, confidence)
         rgb = image[..., ::-1]
         crops = [crop_square(rgb, boxes[j], margin=classifier.crop_margin, out_px=classifier.input_px)
                  for j in cands]
@@ -85,15 +75,20 @@ def collect(detector, classifier, frames, confidence):
 
 class Reader:
     """What a rule reads in the classifier's probabilities: per candidate the best code's
-    probability (``other`` excluded from being best), ``1 - P(other)``, and the class each gives."""
+    probability (``other`` excluded from being best), ``1 - P(other)``, and the class each gives.
+    ``other``: the column of ``other``; ``class_index``: each column's class (detector order,
+    -1 for none); ``n_classes``: the detector's classes."""
 
-    def __init__(self, classifier, class_names):
+    def __init__(self, other: int, class_index: np.ndarray, n_classes: int):
+        self.other, self.class_index, self.n_classes = other, np.asarray(class_index), n_classes
+
+    @classmethod
+    def of(cls, classifier, class_names):
         names = list(classifier.names)
-        self.other = names.index(bd.signcodes_mod.OTHER_CODE)
-        code_class = [bd.rescue_mod.class_of_code(n, classifier.table, class_names) if k != self.other else None
+        other = names.index(bd.signcodes_mod.OTHER_CODE)
+        code_class = [bd.rescue_mod.class_of_code(n, classifier.table, class_names) if k != other else None
                       for k, n in enumerate(names)]
-        self.class_index = np.array([list(class_names).index(c) if c else -1 for c in code_class])
-        self.n_classes = len(class_names)
+        return cls(other, [list(class_names).index(c) if c else -1 for c in code_class], len(class_names))
 
     def read(self, probs, det_ids):
         if not len(probs):
@@ -156,7 +151,7 @@ def main(argv=None):
     detector = bd.detector_mod.Detector(a.model, threads=a.threads)
     table = bd.signcodes_mod.read_codes_table(os.path.join(REPO_ROOT, "models", "sign-codes-de.csv"))
     classifier = bd.signcodes_mod.CodeClassifier(a.classifier, table, threads=a.threads)
-    reader = Reader(classifier, detector.class_names)
+    reader = Reader.of(classifier, detector.class_names)
     sets = {"tracks_A": lambda: bd.heldout_track_frames(half=0, seed=11),
             "tracks_B": lambda: bd.heldout_track_frames(half=1, seed=12),
             "gtsdb": lambda: bd.gtsdb_frames(GTSDB_HELDOUT_IDS)}

@@ -65,13 +65,7 @@ def _row(gt, sure, cand_boxes, cand_scores, sides, sheeting, probs):
 
 
 def test_a_rule_keeps_only_the_candidates_that_pass_every_check():
-    class FakeClassifier:  # codes: one of class 0, and other
-        names = ("DE:101", "other")
-        table = None
-
-    reader = tune.Reader.__new__(tune.Reader)
-    reader.other, reader.class_index, reader.n_classes = 1, np.array([0, -1]), 6
-    assert FakeClassifier.names[reader.other] == "other"
+    reader = tune.Reader(other=1, class_index=[0, -1], n_classes=6)  # codes: one of class 0, and other
     two_signs = [[0, 0, 20, 20], [100, 100, 130, 130]]
     # one sign detected; a candidate on the other sign (read as a code at 0.8) and one on nothing
     row = _row(two_signs, [[0, 0, 20, 20]], [[100, 100, 130, 130], [300, 300, 330, 330]], [0.3, 0.3],
@@ -89,3 +83,18 @@ def test_a_rule_keeps_only_the_candidates_that_pass_every_check():
         assert tune.score_rule([row], reads, failing, 0.5)["detections"] == 1
     sign = tune.score_rule([row], reads, ("sign", 0.8, 16.0, 0.05, 0.05), 0.5)  # 1 - P(other) >= 0.8
     assert (sign["hits"], sign["detections"]) == (2, 3)
+
+
+def test_photo_candidates_are_merged_across_classes_best_first_and_off_the_detections():
+    boxes = np.array([[0, 0, 20, 20],      # a detection
+                      [2, 2, 22, 22],      # on the detection: no candidate
+                      [100, 0, 120, 20],   # a candidate
+                      [101, 1, 121, 21],   # on the better candidate: merged into it
+                      [200, 0, 220, 20],   # a candidate
+                      [300, 0, 320, 20]], float)  # under the floor
+    scores = np.array([0.9, 0.3, 0.2, 0.3, 0.1, 0.01])
+    sure, cands = bd.photo_candidates(boxes, scores, confidence=0.5)
+    assert sure.tolist() == [True, False, False, False, False, False]
+    assert cands.tolist() == [3, 4]
+    _, higher = bd.photo_candidates(boxes, scores, confidence=0.5, floor=0.15)
+    assert higher.tolist() == [3]
