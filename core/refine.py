@@ -1072,10 +1072,14 @@ class CloudBlocks:
         block_of_group = self._block_of(self.centres)
         self.blocks = [np.flatnonzero(block_of_group == b) for b in np.unique(block_of_group)]
         self._cached: Optional[Tuple[int, TiledIndex]] = None
-        if self.source is not None and len(self.blocks) > 1:
-            self._spool_blocks(progress)
-        self.bright = self._bright_level()
-        progress.report(1.0)
+        try:
+            if self.source is not None and len(self.blocks) > 1:
+                self._spool_blocks(progress)
+            self.bright = self._bright_level()
+            progress.report(1.0)
+        except BaseException:   # cancelled or a bad tile while reading: no spool folder left behind
+            self.close()
+            raise
 
     def __enter__(self) -> "CloudBlocks":
         return self
@@ -1111,31 +1115,27 @@ class CloudBlocks:
             regions.append(CropRegion.corridor(radius, points_xy=xy))
             boxes.append((*(xy.min(axis=0) - radius), *(xy.max(axis=0) + radius)))
         self._spool = spool = Spool({"block": BLOCK_SPOOL_DTYPE}, prefix="roadsigns-refine-")
-        try:
-            area = [r.geometry for r in regions]
-            for index, chunk in self.source.iter_indexed_chunks(progress=progress, area=area):
-                x, y = np.asarray(chunk.x), np.asarray(chunk.y)
-                near = np.flatnonzero(self.corridor.mask(x, y))
-                if not len(near):
+        area = [r.geometry for r in regions]
+        for index, chunk in self.source.iter_indexed_chunks(progress=progress, area=area):
+            x, y = np.asarray(chunk.x), np.asarray(chunk.y)
+            near = np.flatnonzero(self.corridor.mask(x, y))
+            if not len(near):
+                continue
+            xn, yn = x[near], y[near]
+            for b, (region, (x0, y0, x1, y1)) in enumerate(zip(regions, boxes)):
+                sub = near[(xn >= x0) & (xn <= x1) & (yn >= y0) & (yn <= y1)]
+                if not len(sub):
                     continue
-                xn, yn = x[near], y[near]
-                for b, (region, (x0, y0, x1, y1)) in enumerate(zip(regions, boxes)):
-                    sub = near[(xn >= x0) & (xn <= x1) & (yn >= y0) & (yn <= y1)]
-                    if not len(sub):
-                        continue
-                    sub = sub[region.mask(x[sub], y[sub])]
-                    if not len(sub):
-                        continue
-                    rows = np.zeros(len(sub), BLOCK_SPOOL_DTYPE)
-                    rows["xyz"] = xyz_of(chunk[sub])
-                    rows["point_index"] = np.asarray(index)[sub]
-                    rows["intensity"] = np.asarray(chunk.intensity)[sub]
-                    rows["classification"] = np.asarray(chunk.classification)[sub]
-                    spool.append("block", b, rows)
-            spool.flush()
-        except BaseException:
-            self.close()
-            raise
+                sub = sub[region.mask(x[sub], y[sub])]
+                if not len(sub):
+                    continue
+                rows = np.zeros(len(sub), BLOCK_SPOOL_DTYPE)
+                rows["xyz"] = xyz_of(chunk[sub])
+                rows["point_index"] = np.asarray(index)[sub]
+                rows["intensity"] = np.asarray(chunk.intensity)[sub]
+                rows["classification"] = np.asarray(chunk.classification)[sub]
+                spool.append("block", b, rows)
+        spool.flush()
 
     def _spooled(self, b: int) -> TiledIndex:
         """Block ``b`` read back from its spool file."""

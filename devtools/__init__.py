@@ -2,21 +2,47 @@
 
 The checkout may sit in a folder of any name, but the plugin is the package ``roadsigns``:
 :func:`plugin_path` makes (once per process) a folder holding a symlink
-``roadsigns -> checkout``, usable as ``QGIS_PLUGINPATH`` and on ``sys.path``.
+``roadsigns -> checkout``, usable as ``QGIS_PLUGINPATH`` and on ``sys.path``. The
+temporary folders the developer tools make (:func:`temp_folder`) are removed when the
+process exits.
 """
+import atexit
 import importlib
 import os
+import shutil
 import sys
 import tempfile
+from typing import List
 
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-_PLUGIN_PATH = []
+_PLUGIN_PATH: List[str] = []
+_TEMP_FOLDERS: List[str] = []
+
+
+def _remove_temp_folders() -> None:
+    while _TEMP_FOLDERS:
+        shutil.rmtree(_TEMP_FOLDERS.pop(), ignore_errors=True)
+
+
+atexit.register(_remove_temp_folders)
+
+
+def temp_folder(prefix: str) -> str:
+    """A new temporary folder, removed (with what it holds) when this process exits."""
+    folder = tempfile.mkdtemp(prefix=prefix)
+    _TEMP_FOLDERS.append(folder)
+    return folder
+
+
+def temp_folders() -> List[str]:
+    """The folders :func:`temp_folder` made that are still there (removed at exit)."""
+    return [f for f in _TEMP_FOLDERS if os.path.isdir(f)]
 
 
 def plugin_path() -> str:
     """A folder holding ``roadsigns`` (a symlink to this checkout), made once per process."""
     if not _PLUGIN_PATH:
-        folder = tempfile.mkdtemp(prefix="roadsigns-pluginpath-")
+        folder = temp_folder("roadsigns-pluginpath-")
         os.symlink(REPO_ROOT, os.path.join(folder, "roadsigns"))
         _PLUGIN_PATH.append(folder)
     return _PLUGIN_PATH[0]

@@ -15,6 +15,7 @@ import tempfile
 from dataclasses import dataclass
 
 from . import plugin_path as default_plugin_path
+from . import temp_folder
 
 
 @dataclass
@@ -53,7 +54,7 @@ class QgisProcess:
         self.executable = shutil.which("qgis_process")
         if self.executable is None:
             raise RuntimeError("qgis_process is not installed: run `make setup` (scripts/setup.sh)")
-        self.profile = profile or tempfile.mkdtemp(prefix="roadsigns-qgis-profile-")
+        self.profile = profile or temp_folder("roadsigns-qgis-profile-")
         env = dict(os.environ)
         site = [p for p in sys.path if p.endswith("site-packages") and os.path.isdir(p)]
         env.update({
@@ -62,7 +63,7 @@ class QgisProcess:
             "QT_QPA_PLATFORM": "offscreen",
             "PYTHONPATH": os.pathsep.join(site + [env.get("PYTHONPATH", "")]).strip(os.pathsep),
             "PROJ_DATA": env.get("PROJ_DATA", "/usr/share/proj"),
-            "XDG_RUNTIME_DIR": env.get("XDG_RUNTIME_DIR") or tempfile.mkdtemp(prefix="roadsigns-xdg-"),
+            "XDG_RUNTIME_DIR": env.get("XDG_RUNTIME_DIR") or temp_folder("roadsigns-xdg-"),
         })
         self.env = env
         enabled = self("plugins", "enable", "roadsigns")

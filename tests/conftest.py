@@ -5,7 +5,9 @@ on ``sys.path`` (core tests import ``roadsigns.core``) and serves as ``QGIS_PLUG
 for the ``qgis_process`` tests (see ``tests/qgis/conftest.py``).
 """
 import os
+import shutil
 import sys
+import tempfile
 
 import pytest
 
@@ -13,11 +15,36 @@ if os.path.isdir("/usr/share/proj"):  # pyproj inside a venv looks under the ven
     os.environ.setdefault("PROJ_DATA", "/usr/share/proj")
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.append(REPO_ROOT)  # dev tools: ``import devtools.trajsample``
+
+#: The session's own temporary folder (``TMPDIR`` for this process and every ``qgis_process``
+#: it starts), so :func:`pytest_sessionfinish` can tell what the tests left behind. Removed at
+#: the end when nothing was left.
+SESSION_TMP = tempfile.mkdtemp(prefix="roadsigns-tests-")
+os.environ["TMPDIR"] = SESSION_TMP
+tempfile.tempdir = None  # gettempdir() reads TMPDIR again
+
 from devtools import plugin_path as _plugin_path  # noqa: E402
+from devtools import temp_folders as _devtools_temp_folders  # noqa: E402
 
 PLUGIN_PATH = _plugin_path()
 sys.path.insert(0, PLUGIN_PATH)
 sys.path.append(os.path.join(REPO_ROOT, "tests"))  # shared test helpers: ``import helpers.contract``
+
+
+def pytest_sessionfinish(session, exitstatus):
+    """Fail the run when the plugin left a temporary folder of its own (``roadsigns-*``: window
+    spools, block spools, half-written outputs) in the temporary folder of the tests or of the
+    ``qgis_process`` runs they started: cancelled and failed runs must clean up too. The dev
+    tools' own folders (plugin path, profiles) are removed when the process exits."""
+    ours = set(_devtools_temp_folders())
+    left = sorted(name for name in os.listdir(SESSION_TMP)
+                  if name.startswith("roadsigns-") and os.path.join(SESSION_TMP, name) not in ours)
+    if left:
+        sys.stderr.write("\nTemporary folders left behind in {}: {}\n".format(SESSION_TMP, ", ".join(left)))
+        session.exitstatus = pytest.ExitCode.TESTS_FAILED
+    elif exitstatus == 0:
+        import atexit
+        atexit.register(shutil.rmtree, SESSION_TMP, True)
 
 
 @pytest.fixture(scope="session")

@@ -9,7 +9,6 @@ sees the same examples every time; the whole module takes well under a minute.
 """
 import os
 import struct
-import tempfile
 
 import numpy as np
 import pytest
@@ -17,6 +16,7 @@ from helpers import cloudgen
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from devtools import temp_folder
 from roadsigns.core import pointcloud
 from roadsigns.core.detections import DETECTION_FIELDS, Detections
 from roadsigns.core.detector import read_labels_file
@@ -38,7 +38,7 @@ from roadsigns.core.trajectory import (
 FUZZ = settings(derandomize=True, deadline=None, max_examples=200, database=None,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 FEW = settings(FUZZ, max_examples=60)
-FOLDER = tempfile.mkdtemp(prefix="roadsigns-fuzz-")
+FOLDER = temp_folder("roadsigns-fuzz-")  # removed when the test process exits
 
 
 def write(name, data):

@@ -766,9 +766,9 @@ def _same_result(a, b):
 @pytest.mark.parametrize("block_m", [20.0, 7.0])
 def test_refining_block_by_block_gives_the_one_block_result(scene, candidates, index, block_m):
     one = R.refine_signs(candidates, index, block_m=float("inf"))
-    blocks = R.CloudBlocks(candidates, R.merge_candidates(candidates, 1.0), index, 1.0, block_m,
-                           R.RefineParams())
-    assert len(blocks.blocks) >= 6      # the 160 m scene spans many blocks
+    with R.CloudBlocks(candidates, R.merge_candidates(candidates, 1.0), index, 1.0, block_m,
+                       R.RefineParams()) as blocks:
+        assert len(blocks.blocks) >= 6      # the 160 m scene spans many blocks
     _same_result(R.refine_signs(candidates, index, block_m=block_m), one)
     assert len(one.signs) == len(scene.signs)
 
@@ -792,8 +792,8 @@ def test_refining_a_las_file_block_by_block_gives_the_one_block_result(scene, ca
     _same_result(R.refine_signs(candidates, las, block_m=20.0), one)
     # and the single index read the old way (all of the cloud near the candidates at once)
     old = R.cloud_around_candidates(candidates, las, R.DEFAULT_MERGE_RADIUS_M)
-    assert R.CloudBlocks(candidates, R.merge_candidates(candidates, 1.0), las, 1.0, 20.0,
-                         R.RefineParams()).bright == pytest.approx(R.bright_level(old))
+    with R.CloudBlocks(candidates, R.merge_candidates(candidates, 1.0), las, 1.0, 20.0, R.RefineParams()) as blocks:
+        assert blocks.bright == pytest.approx(R.bright_level(old))
     _same_result(R.refine_signs(candidates, old, block_m=float("inf")), one)
 
 
@@ -812,7 +812,8 @@ def test_image_only_ground_is_read_block_by_block_with_the_one_read_result(scene
         return [R.SignDraft(views_of(scene, candidates, i), x_image=truth(scene, i).centre_world)
                 for i in ids]
     one, by_block = drafts(), drafts()
-    R.CloudBlocks(candidates, groups, index, 1.0, float("inf"), params).ground_of(one, params)
+    with R.CloudBlocks(candidates, groups, index, 1.0, float("inf"), params) as blocks:
+        blocks.ground_of(one, params)
     reads = []
     real = R.CloudBlocks._read
 
@@ -868,9 +869,9 @@ def test_a_group_across_a_block_seam_is_refined_once_with_all_its_points(candida
             edge = float(s[g] + eps)
             monkeypatch.setattr(R, "make_windows", lambda length_m, block_m, edge=edge: [
                 Window(0, -np.inf, edge), Window(1, edge, np.inf)])
-            blocks = R.CloudBlocks(candidates, groups, index, 1.0, 10.0, R.RefineParams())
-            assert len(blocks.blocks) == 2
-            mine = next(b for b in blocks.blocks if g in b)
+            with R.CloudBlocks(candidates, groups, index, 1.0, 10.0, R.RefineParams()) as blocks:
+                assert len(blocks.blocks) == 2
+                mine = next(b for b in blocks.blocks if g in b)
             assert np.all((s[mine] < edge) == (eps > 0))
             _same_result(R.refine_signs(candidates, index, block_m=10.0), one)
 
