@@ -572,7 +572,7 @@ def _process_window(window: Window, rows: np.ndarray, ground_rows: np.ndarray, a
                    and abs(float(axis.locate(np.array([[p.x, p.y]]))[1][0])) <= edge]
     for p in owned_poles:  # a head's points serve its window, and a gantry's the drive (promote_far_posts);
         if not p.is_gantry(params.poles) or p.crown:   # a drive keeps thousands of other poles
-            p.head_xyz = p.head_xyz[:0]
+            p.head_xyz = np.zeros((0, 3))              # not head_xyz[:0]: a view keeps its base
     return found, owned_poles
 
 

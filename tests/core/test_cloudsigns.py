@@ -167,8 +167,15 @@ def test_poles_keep_no_head_points_once_their_window_is_searched(built_result):
     assert built_result.poles
     params = CS.CloudSignParams().poles
     assert not any(p.is_gantry(params) for p in built_result.poles)
-    assert all(p.head_xyz.shape == (0, 3) for p in built_result.poles)
+    assert all(p.head_xyz.shape == (0, 3) and _held_bytes(p.head_xyz) == 0 for p in built_result.poles)
     assert any(p.reach_m > 0 for p in built_result.poles)  # heads were there and measured
+
+
+def _held_bytes(array: np.ndarray) -> int:
+    """The memory an array keeps alive: its own, or that of the array it is a view of."""
+    while isinstance(array.base, np.ndarray):
+        array = array.base
+    return array.nbytes
 
 
 def test_built_faded_sign_flagged_healthy_not(built_result):
