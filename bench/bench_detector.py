@@ -258,6 +258,9 @@ VIEW_SETS = {
                                    + panorama_mod.ViewSet.ring(8, 0.0, panorama_mod.FORE_AFT_HFOV_DEG, size)),
     # the same density for the forward and rear sectors only, where far signs are: 2 more views
     "horizon+fore-aft": lambda size: panorama_mod.ViewSet.default(size_px=size, upward=False, fore_aft=True),
+    # twice the density ahead and behind (40 deg across: 16 px/deg, 1.4 x a 4096 px panorama's)
+    "horizon+fore-aft-2x": lambda size: (panorama_mod.ViewSet.default(size_px=size, upward=False, fore_aft=False)
+                                         + panorama_mod.ViewSet.ring(2, 0.0, 40.0, size)),
 }
 
 
@@ -324,6 +327,56 @@ def detect_tiled(detector, image, confidence):
         keep = (mx >= cx0) & (mx < cx1) & (my >= cy0) & (my < cy1)
         boxes.append(b[keep]), scores.append(det.scores[keep]), ids.append(det.class_ids[keep])
     return np.concatenate(boxes), np.concatenate(scores), np.concatenate(ids)
+
+
+#: The panorama width the photographs' scales refer to (``view_scales``): the plugin's views
+#: sample a 4096 px panorama (11.4 px a degree) at 0.70 (the 80 deg ring, 8 px a degree) and
+#: 1.05 (the 53.3 deg fore-and-aft views) of its own density.
+REFERENCE_PANORAMA_PX = 4096
+
+
+def view_scales(views, pano_width_px=REFERENCE_PANORAMA_PX):
+    """The distinct pixel densities of ``views`` (at their centres) as multiples of a
+    ``pano_width_px`` panorama's own, rounded to 0.01: the scales at which a photograph shows
+    its signs with as many pixels as those views give the signs of such a panorama."""
+    native_px_per_rad = pano_width_px / (2.0 * np.pi)
+    return tuple(sorted({round(v.focal_px / native_px_per_rad, 2) for v in views}))
+
+
+def parse_scales(spec, input_size=(TILE_PX, TILE_PX)):
+    """``--photo-scales`` item: ``"1"``, ``"0.7+1.05"`` (passes merged) or ``"views:NAME"`` (the
+    densities of view set ``NAME`` for a detector of ``input_size``, :func:`view_scales`)."""
+    if spec.startswith("views:"):
+        return view_scales(VIEW_SETS[spec[len("views:"):]](input_size))
+    scales = tuple(float(x) for x in spec.split("+"))
+    if not scales or min(scales) <= 0:
+        raise ValueError(f"photo scales {spec!r}: positive numbers joined by '+' expected")
+    return scales
+
+
+def detect_scaled(detector, image, confidence, scales=(1.0,)):
+    """:func:`detect_tiled` on the photograph resized by each of ``scales`` (``INTER_AREA``
+    down, ``INTER_LINEAR`` up), the boxes back in its own pixels, and the passes merged as
+    ``detect_panorama`` merges overlapping views (same class, overlap of the smaller box >=
+    0.5: the best-scored box kept, the boxes of a sign fused)."""
+    import cv2
+
+    if tuple(scales) == (1.0,):
+        return detect_tiled(detector, image, confidence)
+    h, w = image.shape[:2]
+    parts = []
+    for scale in scales:
+        sized = image if scale == 1.0 else cv2.resize(
+            image, (max(1, round(w * scale)), max(1, round(h * scale))),
+            interpolation=cv2.INTER_AREA if scale < 1.0 else cv2.INTER_LINEAR)
+        boxes, scores, ids = detect_tiled(detector, sized, confidence)
+        parts.append((boxes / scale, scores, ids))
+    boxes, scores, ids = (np.concatenate([p[i] for p in parts]) for i in range(3))
+    if len(scales) == 1 or not len(boxes):
+        return boxes, scores, ids
+    kept, merged, _ = detector_mod.merge_view_detections(boxes, scores, ids, np.ones(len(boxes), bool),
+                                                         np.zeros(len(boxes)), 10 ** 9)
+    return merged, scores[kept], ids[kept]
 
 
 def photo_candidates(boxes, scores, confidence, floor=None):
@@ -433,7 +486,10 @@ def heldout_track_frames(ids=GTSDB_HELDOUT_IDS, seed: int = 2024, sizes_px=TRACK
 def bench_photographs(detectors, confidence, frames, whole_frame=False, classifier=None):
     """Each detector on street photographs ``frames`` ((image BGR, boxes, classes, ignored boxes)) cut
     into tiles of the model's input size (and whole letterboxed frames if asked);
-    ``detectors``: ``(detector, second look)`` pairs (the second look with ``classifier``)."""
+    ``detectors``: ``(detector, second look)`` pairs (the second look with ``classifier``), or
+    ``(detector, second look, scales)``: the tiles of the photograph resized by each scale,
+    merged (:func:`detect_scaled`)."""
+    detectors = [tuple(e) if len(e) == 3 else (e[0], e[1], (1.0,)) for e in detectors]
     modes = ("tiles_640", "whole_frame_letterboxed") if whole_frame else ("tiles_640",)
     acc = [{m: {"all": [], "20": [], "bands": BandCounter(), "s": 0.0} for m in modes} for _ in detectors]
     n_frames = 0
@@ -442,11 +498,11 @@ def bench_photographs(detectors, confidence, frames, whole_frame=False, classifi
         big = (gt[:, 3] - gt[:, 1]) >= MIN_HEIGHT_PX
         ignore_20 = np.concatenate([gt[~big], ignore])
         order = list(enumerate(detectors)) if k % 2 == 0 else list(enumerate(detectors))[::-1]
-        for i, (d, look) in order:
+        for i, (d, look, scales) in order:
             for mode in modes:
                 t0 = time.perf_counter()
                 if mode == "tiles_640":
-                    boxes, scores, found_ids = detect_tiled(d, image, 0.05)
+                    boxes, scores, found_ids = detect_scaled(d, image, 0.05, scales)
                 else:
                     r = d.detect(image, 0.05)
                     boxes, scores, found_ids = r.boxes_xyxy, r.scores, r.class_ids
@@ -496,6 +552,20 @@ def print_curve(title, c):
     print(f"  best F1 {b['f1']:.3f} at {b['threshold']:.2f} (P {b['precision']:.3f} R {b['recall']:.3f})")
 
 
+def print_scales(title, by_scale):
+    """One line per ``--photo-scales`` item: P / R, mandatory R, R per size band, time."""
+    print(f"\n{title}")
+    print(f"{'scales':<16}{'P':>7}{'R':>7}{'mand R':>8}" + "".join(f"{'R ' + b:>10}" for b in
+                                                               next(iter(by_scale.values()))["tiles_640"]["per_band"])
+          + f"{'s/image':>9}")
+    for spec, res in by_scale.items():
+        g = res["tiles_640"]
+        a = g["per_class"]["all"]
+        print(f"{spec:<16}{_f(a['precision']):>7}{_f(a['recall']):>7}{_f(g['per_class']['mandatory']['recall']):>8}"
+              + "".join(f"{_f(v['recall']):>10}" for v in g["per_band"].values())
+              + f"{g['seconds_per_image']:>9.3f}")
+
+
 def print_model(name, r, confidence):
     print(f"\n===== {name} ({r['model_mb']:.2f} MB) =====")
     p = r["panoramas"]
@@ -519,6 +589,9 @@ def print_model(name, r, confidence):
         print_bands("size bands", g["per_band"])
         print_curve("P/R curve (all signs)", g["curve"])
         print_curve("P/R curve (signs >= 20 px)", g["curve_20px_and_up"])
+    for key, title in (("gtsdb_500_599_by_scale", "GTSDB 500-599"), ("heldout_tracks_by_scale", "held-out tracks")):
+        if r.get(key):
+            print_scales(f"{title} at other pixel densities (--photo-scales), confidence {confidence}", r[key])
 
 
 def headline(r):
@@ -568,6 +641,11 @@ def main(argv=None):
                          "the codes read on panoramas), on (the plugin's default) or both, in the same run")
     ap.add_argument("--classifier", default=os.path.join(REPO_ROOT, "models", "signcodes.onnx"),
                     help="the sign-code classifier of the second look (and of the codes read on panoramas)")
+    ap.add_argument("--photo-scales", nargs="+", default=["1"], metavar="SCALES",
+                    help="the photographs at other pixel densities, each item measured in the same run: a scale "
+                         "(1: as they are), scales joined by '+' (passes merged, e.g. 0.7+1.05), or views:NAME "
+                         "(the densities view set NAME gives a 4096 px panorama: views:default is 0.7, the 80 deg "
+                         "ring); the first item gives the main figures")
     ap.add_argument("--json", default=os.path.join(REPO_ROOT, "bench", "out", "detector.json"))
     a = ap.parse_args(argv)
 
@@ -595,21 +673,28 @@ def main(argv=None):
                                              a.confidence, a.max_images, a.min_size, classifier)):
         r["panoramas"] = p
         r["panoramas_per_second"] = p["panoramas_per_second"]
-    if not a.skip_gtsdb:  # tiles of the photographs: the view set plays no part
-        pairs = [(k, look) for k in range(len(models)) for look in looks]
-        gtsdb = bench_photographs([(detectors[k], look) for k, look in pairs], a.confidence,
-                                  gtsdb_frames(GTSDB_HELDOUT_IDS[:a.gtsdb_images]), whole_frame=a.whole_frame,
-                                  classifier=classifier)
-        for r, (k, _, look) in zip(results, entries):
-            r["gtsdb_500_599"] = gtsdb[pairs.index((k, look))]
+    # photographs: tiles of the model's input size, at each --photo-scales item (the view set plays no part)
+    runs = [(k, look, spec) for k in range(len(models)) for look in looks for spec in a.photo_scales]
+    photo_detectors = [(detectors[k], look, parse_scales(spec, detectors[k].input_size)) for k, look, spec in runs]
+    photo_sets = []
+    if not a.skip_gtsdb:
+        photo_sets.append(("gtsdb_500_599", bench_photographs(
+            photo_detectors, a.confidence, gtsdb_frames(GTSDB_HELDOUT_IDS[:a.gtsdb_images]),
+            whole_frame=a.whole_frame, classifier=classifier)))
     if not a.skip_tracks:
-        pairs = [(k, look) for k in range(len(models)) for look in looks]
-        tracks = bench_photographs([(detectors[k], look) for k, look in pairs], a.confidence,
-                                   heldout_track_frames(GTSDB_HELDOUT_IDS[:a.gtsdb_images], part=a.tracks_part,
-                                                        max_tracks=HELDOUT_TRACKS), classifier=classifier)
+        photo_sets.append(("heldout_tracks", bench_photographs(
+            photo_detectors, a.confidence, heldout_track_frames(GTSDB_HELDOUT_IDS[:a.gtsdb_images], part=a.tracks_part,
+                                                                max_tracks=HELDOUT_TRACKS), classifier=classifier)))
+    for key, measured in photo_sets:
         for r, (k, _, look) in zip(results, entries):
-            r["heldout_tracks"] = tracks[pairs.index((k, look))]
-            r["heldout_tracks"]["part"] = a.tracks_part
+            by_scale = {spec: measured[runs.index((k, look, spec))] for spec in a.photo_scales}
+            for spec, res in by_scale.items():
+                res["tiles_640"]["scales"] = list(photo_detectors[runs.index((k, look, spec))][2])
+            r[key] = by_scale[a.photo_scales[0]]
+            if key == "heldout_tracks":
+                r[key]["part"] = a.tracks_part
+            if len(a.photo_scales) > 1:
+                r[key + "_by_scale"] = by_scale
     for r in results:
         print_model(f"{r['model']}, views {r['views']} ({r['n_views']}), second look "
                     f"{'on' if r['second_look'] else 'off'}", r, a.confidence)

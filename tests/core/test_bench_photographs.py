@@ -98,3 +98,42 @@ def test_photo_candidates_are_merged_across_classes_best_first_and_off_the_detec
     assert cands.tolist() == [3, 4]
     _, higher = bd.photo_candidates(boxes, scores, confidence=0.5, floor=0.15)
     assert higher.tolist() == [3]
+
+
+def test_photo_scales_are_the_view_densities_against_a_4096_px_panorama():
+    panorama = bd.panorama_mod
+    ring = panorama.ViewSet.default(size_px=(640, 384), upward=False, fore_aft=False)
+    native_px_per_deg = bd.REFERENCE_PANORAMA_PX / 360.0
+    centre_px_per_deg = 320.0 / np.tan(np.radians(40.0)) * np.pi / 180.0   # the 80 deg views' centres
+    assert bd.view_scales(ring) == (round(centre_px_per_deg / native_px_per_deg, 2),) == (0.59,)
+    assert bd.parse_scales("views:horizon", (640, 384)) == (0.59,)
+    fore_aft = bd.parse_scales("views:horizon+fore-aft", (640, 384))
+    assert len(fore_aft) == 2 and fore_aft[0] == 0.59 and 0.95 < fore_aft[1] < 1.05
+    assert bd.parse_scales("1") == (1.0,) and bd.parse_scales("0.7+1.05") == (0.7, 1.05)
+    for bad in ("0", "0.7+-1", "x"):
+        with pytest.raises(ValueError):
+            bd.parse_scales(bad)
+
+
+@pytest.fixture(scope="module")
+def detector():
+    return bd.detector_mod.Detector(os.path.join(REPO_ROOT, "models", "roadsigns-int8.onnx"), threads=2)
+
+
+def test_a_photograph_detected_at_several_scales_gives_its_boxes_in_its_own_pixels(detector):
+    image, gt, classes, _ = next(bd.gtsdb_frames(ids=[FRAME_IDS[0]]))
+    h, w = image.shape[:2]
+    one = bd.detect_scaled(detector, image, 0.05)
+    sure = one[1] >= 0.5
+    assert sure.any()
+    # the same pass twice: every box comes back once, the same box, class and score
+    twice = bd.detect_scaled(detector, image, 0.05, (1.0, 1.0))
+    assert len(twice[0]) <= len(one[0])
+    for box, score, cls in zip(one[0][sure], one[1][sure], one[2][sure]):
+        same = (iou_matrix(box[None], twice[0])[0] > 0.99) & (twice[2] == cls)
+        assert same.any() and twice[1][same].max() == pytest.approx(score)
+    # at twice the density the signs found are found again, in the photograph's pixels
+    big = bd.detect_scaled(detector, image, 0.05, (2.0,))
+    assert big[0][:, [0, 2]].max() <= w + 1 and big[0][:, [1, 3]].max() <= h + 1
+    found = gt[iou_matrix(gt, one[0][sure]).max(axis=1) >= 0.5]
+    assert len(found) and (iou_matrix(found, big[0][big[1] >= 0.5]).max(axis=1) >= 0.5).all()
