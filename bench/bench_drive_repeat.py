@@ -1,0 +1,185 @@
+#!/usr/bin/env python3
+"""Each cloud stage alone on a drive and on the same drive repeated N times (issue 14: "a
+drive ten times longer needs no more memory than one of the same kind").
+
+The drive is ``bench_drive``'s (``drive1k`` by default: run ``bench/bench_drive.py --preset
+drive1k`` first, which leaves the chain's layers and ground-classified cloud in
+``DRIVE/chain``). Its copies are laid ``--spacing`` metres apart along X, each as the drive
+itself, so the long drive is N times the same work:
+
+- the cloud: ``chain/ground.laz`` as a folder of N tiles, each the same file with its
+  header's X offset (and X bounds) moved by k x spacing; the points are not rewritten, so
+  making 9 copies of 38 M points takes seconds. The drive alone is a folder of one tile,
+  so both runs read tiles the same way;
+- the layers (stations, detections, candidates): every geometry and every easting field
+  moved the same way, ids renumbered per copy. Times are kept (the cloud's cannot move
+  without rewriting its points), so the long drive's station times repeat and its stages
+  take each point's sensor position from the nearest track position, as for a track
+  without times, where the drive alone uses its times (the output says so).
+
+Each stage then runs through ``qgis_process`` on the drive and on its copies, each in a
+process of its own: wall time, peak RSS and their ratios are printed (memory ratio 1.00:
+flat). Nothing is timed against a threshold: read the ratios.
+
+    .venv/bin/python bench/bench_drive_repeat.py --copies 3
+    .venv/bin/python bench/bench_drive_repeat.py --copies 9 --stages findsignsincloud projectdetections \\
+        refinesigns --json bench/out/drive-repeat.json
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import struct
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(HERE)
+sys.path.insert(0, REPO)
+
+DEFAULT_DRIVE = os.path.join(HERE, "out", "drive-drive1k-4")
+STAGES = ("findsignsincloud", "projectdetections", "refinesigns", "detectsigns")
+#: LAS public header: X offset, max X, min X (little-endian doubles, LAS 1.0-1.4).
+LAS_X_OFFSET_AT, LAS_MAX_X_AT, LAS_MIN_X_AT = 155, 179, 187
+#: Fields holding eastings (moved with the geometry) and ids (renumbered per copy).
+EASTING_FIELDS = ("x", "cand_x")
+ID_FIELDS = ("station_id", "det_id")
+
+
+def shifted_las(src: str, dst: str, dx_m: float) -> None:
+    """``src`` (LAS or LAZ) copied to ``dst`` with every point ``dx_m`` further east: the
+    header's X offset and X bounds moved, the points untouched."""
+    shutil.copyfile(src, dst)
+    with open(dst, "r+b") as f:
+        head = f.read(195)
+        if head[:4] != b"LASF":
+            raise ValueError(f"{src} is not a LAS/LAZ file")
+        for at in (LAS_X_OFFSET_AT, LAS_MAX_X_AT, LAS_MIN_X_AT):
+            (value,) = struct.unpack_from("<d", head, at)
+            f.seek(at)
+            f.write(struct.pack("<d", value + dx_m))
+
+
+def repeated_layer(src: str, dst: str, copies: int, spacing_m: float) -> int:
+    """The first layer of GeoPackage ``src`` repeated ``copies`` times into ``dst``, copy k
+    moved ``k x spacing_m`` east (geometry and :data:`EASTING_FIELDS`) with its
+    :data:`ID_FIELDS` raised by k x the largest id. Returns the features written."""
+    from osgeo import ogr
+
+    source = ogr.Open(src)
+    layer = source.GetLayer(0)
+    defn = layer.GetLayerDefn()
+    names = [defn.GetFieldDefn(i).GetName() for i in range(defn.GetFieldCount())]
+    top = {name: max((f.GetField(name) or 0) for f in layer) for name in ID_FIELDS if name in names}
+    if os.path.exists(dst):
+        os.remove(dst)
+    out_source = ogr.GetDriverByName("GPKG").CreateDataSource(dst)
+    out = out_source.CreateLayer(layer.GetName(), layer.GetSpatialRef(), layer.GetGeomType())
+    for i in range(defn.GetFieldCount()):
+        out.CreateField(defn.GetFieldDefn(i))
+    n = 0
+    out_source.StartTransaction()
+    for k in range(copies):
+        layer.ResetReading()
+        for feature in layer:
+            copy = ogr.Feature(out.GetLayerDefn())
+            for i, name in enumerate(names):
+                value = feature.GetField(i)
+                if value is not None and name in EASTING_FIELDS:
+                    value += k * spacing_m
+                elif value is not None and name in top:
+                    value += k * top[name]
+                copy.SetField(i, value)
+            geometry = feature.GetGeometryRef()
+            if geometry is not None:
+                geometry = geometry.Clone()
+                for j in range(geometry.GetPointCount()):     # points and lines
+                    x, y, z = geometry.GetPoint(j)
+                    geometry.SetPoint(j, x + k * spacing_m, y, z)
+                copy.SetGeometry(geometry)
+            out.CreateFeature(copy)
+            n += 1
+    out_source.CommitTransaction()
+    out_source = None   # closed: written
+    return n
+
+
+def make_drive(chain: str, folder: str, copies: int, spacing_m: float) -> dict:
+    """The chain's layers and ground cloud repeated ``copies`` times in ``folder``."""
+    os.makedirs(os.path.join(folder, "tiles"), exist_ok=True)
+    for k in range(copies):
+        shifted_las(os.path.join(chain, "ground.laz"), os.path.join(folder, "tiles", f"tile_{k}.laz"), k * spacing_m)
+    counts = {}
+    for name in ("stations", "detections", "candidates"):
+        counts[name] = repeated_layer(os.path.join(chain, f"{name}.gpkg"), os.path.join(folder, f"{name}.gpkg"),
+                                      copies, spacing_m)
+    return counts
+
+
+def stage_args(stage: str, folder: str) -> list:
+    cloud, out = os.path.join(folder, "tiles"), os.path.join(folder, "out")
+    os.makedirs(out, exist_ok=True)
+    return {
+        "findsignsincloud": ["STATIONS=" + os.path.join(folder, "stations.gpkg"), "POINT_CLOUD=" + cloud,
+                             "OUTPUT=" + os.path.join(out, "cloudsigns.gpkg"),
+                             "POLES=" + os.path.join(out, "poles.gpkg")],
+        "projectdetections": ["DETECTIONS=" + os.path.join(folder, "detections.gpkg"), "POINT_CLOUD=" + cloud,
+                              "OUTPUT=" + os.path.join(out, "candidates.gpkg")],
+        "refinesigns": ["CANDIDATES=" + os.path.join(folder, "candidates.gpkg"), "POINT_CLOUD=" + cloud,
+                        "OUTPUT=" + os.path.join(out, "signs.gpkg")],
+        "detectsigns": ["STATIONS=" + os.path.join(folder, "stations.gpkg"),
+                        "OUTPUT=" + os.path.join(out, "detections.gpkg")],
+    }[stage]
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--drive", default=DEFAULT_DRIVE, help="a bench_drive folder whose chain/ was run")
+    ap.add_argument("--copies", type=int, default=3)
+    ap.add_argument("--spacing", type=float, default=2000.0, help="metres between the copies (more than the drive)")
+    ap.add_argument("--stages", nargs="+", choices=STAGES, default=list(STAGES[:3]))
+    ap.add_argument("--work", help="where the copies go (default DRIVE/repeat)")
+    ap.add_argument("--json")
+    a = ap.parse_args(argv)
+    from devtools.qgisrun import QgisProcess
+
+    chain = os.path.join(a.drive, "chain")
+    if not os.path.isfile(os.path.join(chain, "candidates.gpkg")):
+        sys.exit(f"{chain} has no chain outputs: run bench/bench_drive.py --preset drive1k first")
+    work = a.work or os.path.join(a.drive, "repeat")
+    drives = {}
+    for copies in (1, a.copies):
+        folder = os.path.join(work, f"x{copies}")
+        drives[copies] = {"folder": folder, "features": make_drive(chain, folder, copies, a.spacing)}
+        print(f"x{copies}: {copies} tile(s) of {os.path.join(chain, 'ground.laz')}, "
+              f"{drives[copies]['features']} in {folder}", flush=True)
+    print("the repeated drive's station times repeat: its stages take sensor positions from the track, "
+          "the drive alone from its times")
+    q = QgisProcess()
+    results = []
+    for stage in a.stages:
+        runs = {}
+        for copies in (1, a.copies):
+            r = q("run", "roadsigns:" + stage, "--", *stage_args(stage, drives[copies]["folder"]), timeout=7200)
+            if r.returncode != 0:
+                print(r.text[-3000:])
+                sys.exit(f"{stage} on x{copies} failed")
+            runs[copies] = {"wall_s": round(r.wall_s, 1), "peak_rss_mb": round(r.peak_rss_mb, 1)}
+            print(f"{stage:<18} x{copies:<3} {r.wall_s:8.1f} s  peak {r.peak_rss_mb:7.0f} MB", flush=True)
+        one, many = runs[1], runs[a.copies]
+        rec = {"stage": stage, "copies": a.copies, "x1": one, f"x{a.copies}": many,
+               "memory_ratio": round(many["peak_rss_mb"] / one["peak_rss_mb"], 3),
+               "time_ratio": round(many["wall_s"] / one["wall_s"], 3)}
+        results.append(rec)
+        print(f"{stage:<18} x{a.copies} / x1: memory {rec['memory_ratio']:.2f}, time {rec['time_ratio']:.2f} "
+              f"(linear: {a.copies:.2f})", flush=True)
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump({"drive": a.drive, "copies": a.copies, "spacing_m": a.spacing, "stages": results,
+                       "features": {k: v["features"] for k, v in drives.items()}}, f, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
