@@ -124,8 +124,12 @@ def main(argv=None):
                              "the algorithm's default)")
     upward.add_argument("--upward", dest="upward", action="store_true", default=None,
                         help="detectsigns with its upward views (UPWARD_VIEWS true)")
-    parser.add_argument("--fore-aft", action="store_true", default=None,
-                        help="detectsigns with its fore-and-aft views (FORE_AFT_VIEWS true)")
+    fore_aft = parser.add_mutually_exclusive_group()
+    fore_aft.add_argument("--fore-aft", dest="fore_aft", action="store_true", default=None,
+                          help="detectsigns with its fore-and-aft views (FORE_AFT_VIEWS true; the algorithm's "
+                               "default)")
+    fore_aft.add_argument("--no-fore-aft", dest="fore_aft", action="store_false", default=None,
+                          help="detectsigns without its fore-and-aft views (FORE_AFT_VIEWS false)")
     parser.add_argument("--rescue-confidence", type=float, metavar="S",
                         help="detectsigns' RESCUE_CONFIDENCE (its second look; the confidence or more: off)")
     parser.add_argument("--confidence", type=float, metavar="S",
@@ -140,7 +144,7 @@ def main(argv=None):
         os.path.basename(os.path.normpath(scene_dir)), args.detections, args.seed,
         f"-spacing{args.station_spacing:g}" if args.station_spacing is not None else "")
         + {None: "", False: "-noupward", True: "-upward"}[args.upward]
-        + ("-foreaft" if args.fore_aft else "")
+        + {None: "", False: "-noforeaft", True: "-foreaft"}[args.fore_aft]
         + (f"-rescue{args.rescue_confidence:g}" if args.rescue_confidence is not None else "")
         + (f"-conf{args.confidence:g}" if args.confidence is not None else "")
         + ("-classifier-" + os.path.splitext(os.path.basename(args.classifier))[0] if args.classifier else ""))

@@ -44,8 +44,7 @@ def split_one(path, detector, views, classifier, confidence, min_box_px, times):
     pano = panorama_mod.read_panorama(path)
     t, times["decode"] = time.perf_counter(), times["decode"] + time.perf_counter() - t
     H, W = pano.shape[:2]
-    work = views.prepare(pano)
-    images = [view.cut(work) for view in views]
+    images = list(views.cut_all(pano))
     t, times["cut"] = time.perf_counter(), times["cut"] + time.perf_counter() - t
     rows = []
     for start in range(0, len(images), detector.max_batch):

@@ -627,13 +627,13 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
     except where they overlap a detection; the detections are the same as without it.
     """
     H, W = pano.shape[:2]
-    work = views.prepare(pano)
+    view_images = list(views.cut_all(pano))
     lowest = confidence if candidate_confidence is None else min(confidence, candidate_confidence)
     batch = max(1, int(getattr(detector, "max_batch", 1)))
     all_boxes, all_scores, all_ids, all_views, all_complete, all_central = [], [], [], [], [], []
     for start in range(0, len(views), batch):
         chunk = list(range(start, min(start + batch, len(views))))
-        images = [views[k].cut(work) for k in chunk]
+        images = [view_images[k] for k in chunk]
         if hasattr(detector, "detect_many"):
             found = detector.detect_many(images, lowest, iou_threshold)
         else:

@@ -287,11 +287,6 @@
         <translation>Mirar hacia delante y hacia atrás con más detalle (señales pequeñas y lejanas)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="118" />
-        <source>Adds two views of 53° straight ahead and behind, with 1.5 times the pixels per degree of the horizon views, for signs far along the road. On 130 held-out generated panoramas they found 0.907 of the signs per panorama instead of 0.878, at the same precision (signs 14-20 px tall: 0.72 instead of 0.60; 20-35 px: 0.97 instead of 0.90), in 1.26 times the detection time. Off by default: the chain sees a sign from several stations, and with panoramas every 5 m it found every sign of two held-out streets without them; with panoramas 10 m apart they found 44 instead of 43 of 46 signs on one street and the same 41 of 45 on the other. Check it for drives with panoramas far apart.</source>
-        <translation>Añade dos vistas de 53° hacia delante y hacia atrás, con 1,5 veces los píxeles por grado de las vistas del horizonte, para las señales lejanas a lo largo de la vía. En 130 panoramas generados reservados encontraron 0,907 de las señales por panorama en lugar de 0,878, con la misma precisión (señales de 14-20 px de alto: 0,72 en lugar de 0,60; de 20-35 px: 0,97 en lugar de 0,90), en 1,26 veces el tiempo de detección. Desactivado por defecto: la cadena ve cada señal desde varias estaciones y, con panoramas cada 5 m, encontró todas las señales de dos calles reservadas sin ellas; con panoramas separados 10 m encontraron 44 en lugar de 43 de 46 señales en una calle y las mismas 41 de 45 en la otra. Actívelo para recorridos con panoramas muy separados.</translation>
-    </message>
-    <message>
         <location filename="../algorithms/detectsigns.py" line="82" />
         <source>Second look from confidence</source>
         <translation>Segunda mirada desde la confianza</translation>
@@ -305,6 +300,11 @@
         <location filename="../algorithms/detectsigns.py" line="82" />
         <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a sign code in it with a probability of at least {score}, its box is at least {px} px on its shorter side and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes the class of its code and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.901 of the signs at a precision of 0.970, against 0.718 at 0.981 without it, for about 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
         <translation>Los recuadros que el detector puntúa desde este valor hasta la confianza mínima reciben una segunda mirada: se conserva uno cuando el clasificador de códigos de señal lee en él un código de señal con una probabilidad de al menos {score}, su recuadro mide al menos {px} px en su lado más corto y al menos un {share:.0%} de él son colores de señal (rojo, azul o amarillo saturados); entonces toma la clase de su código y conserva su propia puntuación. En fotografías reales de calles (GTSDB 500-599), con la confianza mínima por defecto, encuentra 0,901 de las señales con una precisión de 0,970, frente a 0,718 con 0,981 sin ella, por cerca de un 5 % del tiempo de detección. Necesita que se lean los códigos de señal; un valor igual o superior a la confianza mínima la desactiva.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="118" />
+        <source>Adds two views of 53° straight ahead and behind, with 1.5 times the pixels per degree of the horizon views (at a 4096 px panorama's own density), for signs far along the road. Real signs need the pixels: on real street photographs at the horizon views' density the detector found 0.82 of the signs (GTSDB 500-599) and 0.54 of 376 held-out real signs pasted as distant ones; with these views 0.93 and 0.69, precision within 0.01. On held-out generated panoramas: 0.906 of the signs per panorama instead of 0.879. They cost 1.24 times the detection time. On by default; turn it off only for speed on drives with panoramas close together (every sign is then seen from many stations).</source>
+        <translation>Añade dos vistas de 53° justo delante y detrás, con 1,5 veces los píxeles por grado de las vistas del horizonte (la densidad propia de un panorama de 4096 px), para las señales lejanas a lo largo de la vía. Las señales reales necesitan esos píxeles: en fotografías reales de calles, a la densidad de las vistas del horizonte, el detector encontró 0,82 de las señales (GTSDB 500-599) y 0,54 de 376 señales reales reservadas pegadas como señales lejanas; con estas vistas, 0,93 y 0,69, con una precisión que varía menos de 0,01. En panoramas generados reservados: 0,906 de las señales por panorama en lugar de 0,879. Cuestan 1,24 veces el tiempo de detección. Activado por defecto; desactívelo solo por velocidad en recorridos con panoramas muy próximos (cada señal se ve entonces desde muchas estaciones).</translation>
     </message>
 </context>
 <context>
@@ -2138,55 +2138,55 @@
         <translation>{path} no tiene dimensión de clasificación: ejecute primero roadsigns:groundfilter sobre ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="692" />
+        <location filename="../core/cloudsigns.py" line="695" />
         <source>Found {signs} sign panels ({bright} retroreflective) and {poles} poles in {n} points ({cand} kept near the road, {windows} windows of {w} m); condition reference {ref:.3f} ({src})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se encontraron {signs} paneles de señal ({bright} retrorreflectantes) y {poles} postes en {n} puntos ({cand} conservados cerca de la vía, {windows} ventanas de {w} m); referencia de estado {ref:.3f} ({src})</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="623" />
+        <location filename="../core/cloudsigns.py" line="626" />
         <source>No point of {path} lies within {corridor} m of the stations' track ({n} points read)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} está a menos de {corridor} m del trayecto de las estaciones ({n} puntos leídos)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="626" />
+        <location filename="../core/cloudsigns.py" line="629" />
         <source>{path} has no ground points (class 2) along the track: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene puntos de suelo (clase 2) a lo largo del trayecto: ejecute primero roadsigns:groundfilter sobre ella (o clasifique el suelo con otra herramienta)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="630" />
+        <location filename="../core/cloudsigns.py" line="633" />
         <source>{path} has no intensity: all {n} points near the track have intensity 0; signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene intensidad: los {n} puntos cercanos al trayecto tienen intensidad 0; sin imágenes no se pueden encontrar señales en ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="641" />
+        <location filename="../core/cloudsigns.py" line="644" />
         <source>Intensity: range exponent {alpha:.2f} ({source}), bright threshold {thr:.3f} of full scale at 10 m ({method}; background level {bg:.3f}, bright mode {mode:.3f}; {n} non-ground points near the road)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Intensidad: exponente de distancia {alpha:.2f} ({source}), umbral de brillo {thr:.3f} del fondo de escala a 10 m ({method}; nivel de fondo {bg:.3f}, moda brillante {mode:.3f}; {n} puntos que no son de suelo cerca de la vía)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="761" />
+        <location filename="../core/cloudsigns.py" line="764" />
         <source>{n} gantry posts</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} postes de pórtico</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="633" />
+        <location filename="../core/cloudsigns.py" line="636" />
         <source>The cloud's GPS times [{t0:.1f}, {t1:.1f}] do not meet the stations' times: ranges are taken from the nearest track position instead (is one of them in GPS week seconds and the other in adjusted standard GPS time?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Los tiempos GPS de la nube [{t0:.1f}, {t1:.1f}] no coinciden con los de las estaciones: las distancias se toman en su lugar desde la posición más cercana del trayecto (¿está uno en segundos de la semana GPS y el otro en tiempo GPS estándar ajustado?)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="652" />
+        <location filename="../core/cloudsigns.py" line="655" />
         <source>{share:.0%} of the points near the road have intensity 0: the bright threshold {thr:.3f} of full scale may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El {share:.0%} de los puntos cercanos a la vía tiene intensidad 0: el umbral de brillo {thr:.3f} del fondo de escala puede carecer de sentido</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="657" />
+        <location filename="../core/cloudsigns.py" line="660" />
         <source>{share:.0%} of the points near the road have saturated intensity: the bright threshold {thr:.3f} of full scale and the condition of the signs may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El {share:.0%} de los puntos cercanos a la vía tiene la intensidad saturada: el umbral de brillo {thr:.3f} del fondo de escala y el estado de las señales pueden carecer de sentido</translation>
@@ -2230,7 +2230,7 @@
     </message>
     <message>
         <location filename="../core/cloudsource.py" line="245" />
-        <location filename="../core/pointcloud.py" line="561" />
+        <location filename="../core/pointcloud.py" line="575" />
         <source>{path} has no dimension {names} (point format {fmt})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene la dimensión {names} (formato de punto {fmt})</translation>
@@ -2243,7 +2243,7 @@
     </message>
     <message>
         <location filename="../core/cloudsource.py" line="551" />
-        <location filename="../core/pointcloud.py" line="66" />
+        <location filename="../core/pointcloud.py" line="67" />
         <source>Cannot read {path}: the file does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo no existe</translation>
@@ -2251,8 +2251,8 @@
     <message>
         <location filename="../core/cloudsource.py" line="553" />
         <location filename="../core/ground/pdal.py" line="306" />
-        <location filename="../core/pointcloud.py" line="68" />
-        <location filename="../core/pointcloud.py" line="111" />
+        <location filename="../core/pointcloud.py" line="69" />
+        <location filename="../core/pointcloud.py" line="112" />
         <source>Cannot read {path}: {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: {detail}</translation>
@@ -2436,14 +2436,14 @@
     </message>
     <message>
         <location filename="../core/detections.py" line="106" />
-        <location filename="../core/projection.py" line="340" />
+        <location filename="../core/projection.py" line="341" />
         <source>Detection {det_id}: the field {field} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}: el campo {field} está vacío</translation>
     </message>
     <message>
         <location filename="../core/detections.py" line="114" />
-        <location filename="../core/projection.py" line="332" />
+        <location filename="../core/projection.py" line="333" />
         <source>Detection {det_id}, field {field}: expected a number, found '{value}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}, campo {field}: se esperaba un número, se encontró '{value}'</translation>
@@ -2521,19 +2521,19 @@
         <translation>El modelo {path} falló con una imagen en blanco de {w} x {h}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="58" />
+        <location filename="../core/drivewindows.py" line="59" />
         <source>The track needs at least 2 finite positions, got {n}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El trayecto necesita al menos 2 posiciones finitas; se recibieron {n}</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="105" />
+        <location filename="../core/drivewindows.py" line="106" />
         <source>The track does not move: all its positions are at one place</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El trayecto no se desplaza: todas sus posiciones están en el mismo lugar</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="53" />
+        <location filename="../core/drivewindows.py" line="54" />
         <source>The track has {n} positions but {m} times</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El trayecto tiene {n} posiciones pero {m} tiempos</translation>
@@ -2629,95 +2629,95 @@
         <translation>Tipo de retorno desconocido {kinds} en '{returns}'</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="290" />
+        <location filename="../core/ground/engine.py" line="292" />
         <source>Not enough free disk space in {folder} to keep the points between the two passes: the cloud is read twice</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay espacio libre suficiente en el disco en {folder} para guardar los puntos entre las dos pasadas: la nube se lee dos veces</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="334" />
-        <location filename="../core/pointcloud.py" line="265" />
+        <location filename="../core/ground/engine.py" line="336" />
+        <location filename="../core/pointcloud.py" line="269" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la salida debe terminar en .las o .laz</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="346" />
+        <location filename="../core/ground/engine.py" line="348" />
         <location filename="../core/ground/tiled.py" line="151" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SRC de la nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="419" />
+        <location filename="../core/ground/engine.py" line="421" />
         <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró PDAL: se usa el motor integrado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="469" />
+        <location filename="../core/ground/engine.py" line="471" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay polígonos de recorte: se ignora el búfer de recorte</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="303" />
+        <location filename="../core/ground/engine.py" line="305" />
         <source>No point of {path} has the returns '{returns}': nothing was classified</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} tiene los retornos '{returns}': no se clasificó nada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="340" />
+        <location filename="../core/ground/engine.py" line="342" />
         <source>The output {path} must not be the input file</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La salida {path} no puede ser el archivo de entrada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="348" />
+        <location filename="../core/ground/engine.py" line="350" />
         <location filename="../core/ground/tiled.py" line="153" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene sistema de referencia de coordenadas: indique el SRC de la nube (nunca se adivina)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="406" />
+        <location filename="../core/ground/engine.py" line="408" />
         <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: el motor integrado, más rápido que PDAL en las mediciones para {method} (y procesa la nube en flujo continuo con memoria acotada)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="411" />
+        <location filename="../core/ground/engine.py" line="413" />
         <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, porque el {method} integrado necesita el paquete de Python cloth-simulation-filter, que no está instalado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="417" />
+        <location filename="../core/ground/engine.py" line="419" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se pidió PDAL, pero no se encontró ni el módulo de Python pdal ni un ejecutable pdal (PATH, carpeta bin de QGIS)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="421" />
+        <location filename="../core/ground/engine.py" line="423" />
         <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, más rápido que el motor integrado en las mediciones para {method}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="456" />
+        <location filename="../core/ground/engine.py" line="458" />
         <source>No point of {path} is left after the crop: {output} has no points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No queda ningún punto de {path} tras el recorte: {output} no tiene puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="299" />
+        <location filename="../core/ground/engine.py" line="301" />
         <location filename="../core/ground/tiled.py" line="284" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo está dañado ({detail})</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="371" />
+        <location filename="../core/ground/engine.py" line="373" />
         <location filename="../core/ground/tiled.py" line="184" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -2765,13 +2765,13 @@
         <location filename="../core/ground/pdal.py" line="308" />
         <location filename="../core/ground/pdal.py" line="293" />
         <location filename="../core/ground/pdal.py" line="302" />
-        <location filename="../core/pointcloud.py" line="205" />
-        <location filename="../core/pointcloud.py" line="113" />
-        <location filename="../core/pointcloud.py" line="127" />
-        <location filename="../core/pointcloud.py" line="190" />
-        <location filename="../core/pointcloud.py" line="89" />
-        <location filename="../core/pointcloud.py" line="92" />
-        <location filename="../core/pointcloud.py" line="108" />
+        <location filename="../core/pointcloud.py" line="206" />
+        <location filename="../core/pointcloud.py" line="114" />
+        <location filename="../core/pointcloud.py" line="128" />
+        <location filename="../core/pointcloud.py" line="191" />
+        <location filename="../core/pointcloud.py" line="90" />
+        <location filename="../core/pointcloud.py" line="93" />
+        <location filename="../core/pointcloud.py" line="109" />
         <source>Cannot read {path}: the file is truncated or corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo está truncado o dañado ({detail})</translation>
@@ -2890,7 +2890,7 @@
         <location filename="../core/outputs.py" line="147" />
         <location filename="../core/outputs.py" line="209" />
         <location filename="../core/outputs.py" line="178" />
-        <location filename="../core/pointcloud.py" line="276" />
+        <location filename="../core/pointcloud.py" line="280" />
         <source>Cannot write {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: {error}</translation>
@@ -2902,147 +2902,147 @@
         <translation>La salida {path} no se escribió</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="64" />
+        <location filename="../core/panorama.py" line="70" />
         <source>The panorama {path} is {width} x {height} pixels, more than the {limit} the plugin reads</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El panorama {path} tiene {width} x {height} píxeles, más que los {limit} que lee el complemento</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="73" />
+        <location filename="../core/panorama.py" line="79" />
         <source>The panorama {path} is {width} x {height} pixels: an equirectangular panorama must be twice as wide as it is high</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El panorama {path} tiene {width} x {height} píxeles: un panorama equirrectangular debe ser el doble de ancho que de alto</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="105" />
-        <location filename="../core/panorama.py" line="56" />
+        <location filename="../core/panorama.py" line="111" />
+        <location filename="../core/panorama.py" line="62" />
         <source>Panorama not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró el panorama: {path}</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="112" />
+        <location filename="../core/panorama.py" line="118" />
         <source>Cannot read the panorama {path}: the file is not a JPEG or PNG image or is corrupt</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer el panorama {path}: el archivo no es una imagen JPEG o PNG o está dañado</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="58" />
+        <location filename="../core/panorama.py" line="64" />
         <source>The panorama {path} has more pixels than the {limit} the plugin reads</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El panorama {path} tiene más píxeles que los {limit} que lee el complemento</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="61" />
+        <location filename="../core/panorama.py" line="67" />
         <source>Cannot read the panorama {path}: expected a JPEG or PNG image ({error})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer el panorama {path}: se esperaba una imagen JPEG o PNG ({error})</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="110" />
+        <location filename="../core/panorama.py" line="116" />
         <source>Cannot read the panorama {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer el panorama {path}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="365" />
+        <location filename="../core/pointcloud.py" line="379" />
         <source>Cannot use {item!r} as a crop geometry: expected a shapely geometry, WKB or WKT</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede usar {item!r} como geometría de recorte: se esperaba una geometría de shapely, WKB o WKT</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="70" />
+        <location filename="../core/pointcloud.py" line="71" />
         <source>Cannot read {path}: expected a LAS or LAZ file ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: se esperaba un archivo LAS o LAZ ({detail})</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="470" />
+        <location filename="../core/pointcloud.py" line="484" />
         <source>{path} has no coordinate reference system and none was given</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene sistema de referencia de coordenadas y no se indicó ninguno</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="269" />
+        <location filename="../core/pointcloud.py" line="273" />
         <source>Cannot write {path}: the folder does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la carpeta no existe</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="388" />
+        <location filename="../core/pointcloud.py" line="402" />
         <source>The crop layer has no geometry</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La capa de recorte no tiene geometría</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="396" />
+        <location filename="../core/pointcloud.py" line="410" />
         <source>A corridor needs a positive buffer, got {buffer_m} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un corredor necesita un búfer positivo; se recibió {buffer_m} m</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="406" />
+        <location filename="../core/pointcloud.py" line="420" />
         <source>A corridor needs stations or lines</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un corredor necesita estaciones o líneas</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="480" />
+        <location filename="../core/pointcloud.py" line="494" />
         <source>No point of {path} lies inside the crop area; {output} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} está dentro del área de recorte; {output} está vacío</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="540" />
+        <location filename="../core/projection.py" line="544" />
         <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{ok} de {count} detecciones encontraron una superficie en la nube ({no_points} sin puntos, {no_surface} sin superficie plana)</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="361" />
-        <location filename="../core/projection.py" line="602" />
+        <location filename="../core/projection.py" line="362" />
+        <location filename="../core/projection.py" line="606" />
         <source>{source} has no ground points (class 2) where the signs are: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{source} no tiene puntos de suelo (clase 2) donde están las señales: ejecute primero roadsigns:groundfilter sobre ella (o clasifique el suelo con otra herramienta)</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="501" />
+        <location filename="../core/projection.py" line="505" />
         <source>The maximum range must exceed {min} m, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El alcance máximo debe superar {min} m; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="325" />
+        <location filename="../core/projection.py" line="326" />
         <source>The candidates lack the field(s) {fields}; expected the output of Project detections</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>A los candidatos les faltan los campos {fields}; se esperaba la salida de «Proyectar detecciones en la nube de puntos»</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="350" />
+        <location filename="../core/projection.py" line="351" />
         <source>Unknown candidate status {status!r}; expected ok, no_points or no_surface</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Estado de candidato desconocido {status!r}; se esperaba ok, no_points o no_surface</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="354" />
+        <location filename="../core/projection.py" line="355" />
         <source>A candidate with status ok has no position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un candidato con estado ok no tiene posición</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="375" />
+        <location filename="../core/projection.py" line="376" />
         <source>The point index lacks {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Al índice de puntos le falta {names}</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="506" />
+        <location filename="../core/projection.py" line="510" />
         <source>No detections to project; the candidates are empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay detecciones que proyectar; los candidatos están vacíos</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="536" />
+        <location filename="../core/projection.py" line="540" />
         <source>{path} has no point inside the detections' frusta; no candidate found</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene puntos dentro de los troncos de visión de las detecciones; no se encontró ningún candidato</translation>

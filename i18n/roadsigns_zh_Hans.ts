@@ -287,11 +287,6 @@
         <translation>更仔细地向前和向后看（小而远的标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="118" />
-        <source>Adds two views of 53° straight ahead and behind, with 1.5 times the pixels per degree of the horizon views, for signs far along the road. On 130 held-out generated panoramas they found 0.907 of the signs per panorama instead of 0.878, at the same precision (signs 14-20 px tall: 0.72 instead of 0.60; 20-35 px: 0.97 instead of 0.90), in 1.26 times the detection time. Off by default: the chain sees a sign from several stations, and with panoramas every 5 m it found every sign of two held-out streets without them; with panoramas 10 m apart they found 44 instead of 43 of 46 signs on one street and the same 41 of 45 on the other. Check it for drives with panoramas far apart.</source>
-        <translation>在正前方和正后方各增加一个 53° 的视图，每度像素数是水平视图的 1.5 倍，用于道路远处的标志。在 130 张保留的生成全景图上，它们每张全景图找到 0.907 的标志，而不是 0.878，精度相同（高 14-20 像素的标志：0.72 而不是 0.60；20-35 像素：0.97 而不是 0.90），检测时间为 1.26 倍。默认关闭：处理链会从多个站点看到同一个标志，全景图每 5 米一张时，不用它们也找到了两条保留街道上的所有标志；全景图相隔 10 米时，它们在一条街道上找到 46 个标志中的 44 个（而不是 43 个），在另一条街道上找到的同样是 45 个中的 41 个。全景图相距较远的行驶数据请勾选此项。</translation>
-    </message>
-    <message>
         <location filename="../algorithms/detectsigns.py" line="82" />
         <source>Second look from confidence</source>
         <translation>二次检查起始置信度</translation>
@@ -305,6 +300,11 @@
         <location filename="../algorithms/detectsigns.py" line="82" />
         <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a sign code in it with a probability of at least {score}, its box is at least {px} px on its shorter side and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes the class of its code and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.901 of the signs at a precision of 0.970, against 0.718 at 0.981 without it, for about 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
         <translation>检测器评分介于此值与最低置信度之间的框会接受二次检查：当标志代码分类器以至少 {score} 的概率在框中读出一个标志代码、框的短边至少 {px} 像素且至少 {share:.0%} 的像素为标志颜色（饱和的红、蓝或黄色）时，该框被保留；它随后采用其代码的类别并保留自身的评分。在真实街道照片（GTSDB 500-599）上，使用默认的最低置信度时，它找到 0.901 的标志，精确率为 0.970；不使用时为 0.718，精确率为 0.981。代价约为检测时间的 5 %。需要读取标志代码；取值等于或高于最低置信度时关闭此功能。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="118" />
+        <source>Adds two views of 53° straight ahead and behind, with 1.5 times the pixels per degree of the horizon views (at a 4096 px panorama's own density), for signs far along the road. Real signs need the pixels: on real street photographs at the horizon views' density the detector found 0.82 of the signs (GTSDB 500-599) and 0.54 of 376 held-out real signs pasted as distant ones; with these views 0.93 and 0.69, precision within 0.01. On held-out generated panoramas: 0.906 of the signs per panorama instead of 0.879. They cost 1.24 times the detection time. On by default; turn it off only for speed on drives with panoramas close together (every sign is then seen from many stations).</source>
+        <translation>在正前方和正后方各添加一个 53° 的视图，其每度像素数为地平线视图的 1.5 倍（即 4096 px 全景图自身的密度），用于沿道路远处的标志。真实标志需要这些像素：在真实街道照片上，按地平线视图的密度，检测器找到了 0.82 的标志（GTSDB 500-599）和作为远处标志粘贴的 376 个保留真实标志中的 0.54；加上这些视图后为 0.93 和 0.69，精度变化不超过 0.01。在保留的生成全景图上：每幅全景图找到 0.906 的标志，而不是 0.879。其代价是 1.24 倍的检测时间。默认开启；仅在全景站点很密的行驶采集中为了速度而关闭（此时每个标志都会从许多全景站点被看到）。</translation>
     </message>
 </context>
 <context>
@@ -2138,55 +2138,55 @@
         <translation>{path} 没有分类维度：请先对其运行 roadsigns:groundfilter</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="692" />
+        <location filename="../core/cloudsigns.py" line="695" />
         <source>Found {signs} sign panels ({bright} retroreflective) and {poles} poles in {n} points ({cand} kept near the road, {windows} windows of {w} m); condition reference {ref:.3f} ({src})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>在 {n} 个点中找到 {signs} 个标志牌（其中 {bright} 个具有逆反射性）和 {poles} 根杆（道路附近保留 {cand} 个点，{windows} 个 {w} m 的窗口）；状态参考值 {ref:.3f}（{src}）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="623" />
+        <location filename="../core/cloudsigns.py" line="626" />
         <source>No point of {path} lies within {corridor} m of the stations' track ({n} points read)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中没有点位于全景站点轨迹线 {corridor} m 范围内（已读取 {n} 个点）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="626" />
+        <location filename="../core/cloudsigns.py" line="629" />
         <source>{path} has no ground points (class 2) along the track: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 沿轨迹线没有地面点（类别 2）：请先对其运行 roadsigns:groundfilter（或用其他工具对地面进行分类）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="630" />
+        <location filename="../core/cloudsigns.py" line="633" />
         <source>{path} has no intensity: all {n} points near the track have intensity 0; signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有强度：轨迹线附近的全部 {n} 个点强度均为 0；没有图像时无法在其中找到标志</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="641" />
+        <location filename="../core/cloudsigns.py" line="644" />
         <source>Intensity: range exponent {alpha:.2f} ({source}), bright threshold {thr:.3f} of full scale at 10 m ({method}; background level {bg:.3f}, bright mode {mode:.3f}; {n} non-ground points near the road)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>强度：距离指数 {alpha:.2f}（{source}），亮度阈值为 10 m 处满量程的 {thr:.3f}（{method}；背景水平 {bg:.3f}，亮峰 {mode:.3f}；道路附近 {n} 个非地面点）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="761" />
+        <location filename="../core/cloudsigns.py" line="764" />
         <source>{n} gantry posts</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} 根门架立柱</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="633" />
+        <location filename="../core/cloudsigns.py" line="636" />
         <source>The cloud's GPS times [{t0:.1f}, {t1:.1f}] do not meet the stations' times: ranges are taken from the nearest track position instead (is one of them in GPS week seconds and the other in adjusted standard GPS time?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点云的 GPS 时间 [{t0:.1f}, {t1:.1f}] 与全景站点的时间不重合：改为从最近的轨迹线位置计算距离（是否一个使用 GPS 周秒、另一个使用调整后的标准 GPS 时间？）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="652" />
+        <location filename="../core/cloudsigns.py" line="655" />
         <source>{share:.0%} of the points near the road have intensity 0: the bright threshold {thr:.3f} of full scale may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>道路附近 {share:.0%} 的点强度为 0：满量程的亮度阈值 {thr:.3f} 可能没有意义</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="657" />
+        <location filename="../core/cloudsigns.py" line="660" />
         <source>{share:.0%} of the points near the road have saturated intensity: the bright threshold {thr:.3f} of full scale and the condition of the signs may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>道路附近 {share:.0%} 的点强度饱和：满量程的亮度阈值 {thr:.3f} 以及标志的状态可能没有意义</translation>
@@ -2230,7 +2230,7 @@
     </message>
     <message>
         <location filename="../core/cloudsource.py" line="245" />
-        <location filename="../core/pointcloud.py" line="561" />
+        <location filename="../core/pointcloud.py" line="575" />
         <source>{path} has no dimension {names} (point format {fmt})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有维度 {names}（点格式 {fmt}）</translation>
@@ -2243,7 +2243,7 @@
     </message>
     <message>
         <location filename="../core/cloudsource.py" line="551" />
-        <location filename="../core/pointcloud.py" line="66" />
+        <location filename="../core/pointcloud.py" line="67" />
         <source>Cannot read {path}: the file does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件不存在</translation>
@@ -2251,8 +2251,8 @@
     <message>
         <location filename="../core/cloudsource.py" line="553" />
         <location filename="../core/ground/pdal.py" line="306" />
-        <location filename="../core/pointcloud.py" line="68" />
-        <location filename="../core/pointcloud.py" line="111" />
+        <location filename="../core/pointcloud.py" line="69" />
+        <location filename="../core/pointcloud.py" line="112" />
         <source>Cannot read {path}: {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：{detail}</translation>
@@ -2436,14 +2436,14 @@
     </message>
     <message>
         <location filename="../core/detections.py" line="106" />
-        <location filename="../core/projection.py" line="340" />
+        <location filename="../core/projection.py" line="341" />
         <source>Detection {det_id}: the field {field} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}：字段 {field} 为空</translation>
     </message>
     <message>
         <location filename="../core/detections.py" line="114" />
-        <location filename="../core/projection.py" line="332" />
+        <location filename="../core/projection.py" line="333" />
         <source>Detection {det_id}, field {field}: expected a number, found '{value}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}，字段 {field}：应为数字，实际为 '{value}'</translation>
@@ -2521,19 +2521,19 @@
         <translation>模型 {path} 在一张 {w} x {h} 的空白图像上运行失败：{error}</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="58" />
+        <location filename="../core/drivewindows.py" line="59" />
         <source>The track needs at least 2 finite positions, got {n}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>轨迹线至少需要 2 个有限位置，实际为 {n} 个</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="105" />
+        <location filename="../core/drivewindows.py" line="106" />
         <source>The track does not move: all its positions are at one place</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>轨迹线没有移动：其所有位置都在同一处</translation>
     </message>
     <message>
-        <location filename="../core/drivewindows.py" line="53" />
+        <location filename="../core/drivewindows.py" line="54" />
         <source>The track has {n} positions but {m} times</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>轨迹线有 {n} 个位置，但有 {m} 个时间</translation>
@@ -2629,95 +2629,95 @@
         <translation>'{returns}' 中有未知的回波类型 {kinds}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="290" />
+        <location filename="../core/ground/engine.py" line="292" />
         <source>Not enough free disk space in {folder} to keep the points between the two passes: the cloud is read twice</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{folder} 中的可用磁盘空间不足，无法在两遍处理之间保存点：点云将被读取两次</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="334" />
-        <location filename="../core/pointcloud.py" line="265" />
+        <location filename="../core/ground/engine.py" line="336" />
+        <location filename="../core/pointcloud.py" line="269" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：输出文件必须以 .las 或 .laz 结尾</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="346" />
+        <location filename="../core/ground/engine.py" line="348" />
         <location filename="../core/ground/tiled.py" line="151" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>点云坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="419" />
+        <location filename="../core/ground/engine.py" line="421" />
         <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到 PDAL：使用内置引擎</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="469" />
+        <location filename="../core/ground/engine.py" line="471" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有裁剪多边形：忽略裁剪缓冲区</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="303" />
+        <location filename="../core/ground/engine.py" line="305" />
         <source>No point of {path} has the returns '{returns}': nothing was classified</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中没有回波为 '{returns}' 的点：未分类任何点</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="340" />
+        <location filename="../core/ground/engine.py" line="342" />
         <source>The output {path} must not be the input file</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>输出 {path} 不能是输入文件</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="348" />
+        <location filename="../core/ground/engine.py" line="350" />
         <location filename="../core/ground/tiled.py" line="153" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有坐标参考系：请给出点云的坐标参考系（从不猜测）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="406" />
+        <location filename="../core/ground/engine.py" line="408" />
         <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：内置引擎，对 {method} 实测比 PDAL 更快（且以有限内存流式处理点云）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="411" />
+        <location filename="../core/ground/engine.py" line="413" />
         <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：PDAL，因为内置 {method} 需要 Python 包 cloth-simulation-filter，而该包未安装</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="417" />
+        <location filename="../core/ground/engine.py" line="419" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>要求使用 PDAL，但既没有找到 pdal Python 模块，也没有找到 pdal 可执行文件（PATH、QGIS 的 bin 文件夹）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="421" />
+        <location filename="../core/ground/engine.py" line="423" />
         <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：PDAL，对 {method} 实测比内置引擎更快</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="456" />
+        <location filename="../core/ground/engine.py" line="458" />
         <source>No point of {path} is left after the crop: {output} has no points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>裁剪后 {path} 没有剩余的点：{output} 中没有点</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="299" />
+        <location filename="../core/ground/engine.py" line="301" />
         <location filename="../core/ground/tiled.py" line="284" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件已损坏（{detail}）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="371" />
+        <location filename="../core/ground/engine.py" line="373" />
         <location filename="../core/ground/tiled.py" line="184" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -2765,13 +2765,13 @@
         <location filename="../core/ground/pdal.py" line="308" />
         <location filename="../core/ground/pdal.py" line="293" />
         <location filename="../core/ground/pdal.py" line="302" />
-        <location filename="../core/pointcloud.py" line="205" />
-        <location filename="../core/pointcloud.py" line="113" />
-        <location filename="../core/pointcloud.py" line="127" />
-        <location filename="../core/pointcloud.py" line="190" />
-        <location filename="../core/pointcloud.py" line="89" />
-        <location filename="../core/pointcloud.py" line="92" />
-        <location filename="../core/pointcloud.py" line="108" />
+        <location filename="../core/pointcloud.py" line="206" />
+        <location filename="../core/pointcloud.py" line="114" />
+        <location filename="../core/pointcloud.py" line="128" />
+        <location filename="../core/pointcloud.py" line="191" />
+        <location filename="../core/pointcloud.py" line="90" />
+        <location filename="../core/pointcloud.py" line="93" />
+        <location filename="../core/pointcloud.py" line="109" />
         <source>Cannot read {path}: the file is truncated or corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件被截断或已损坏（{detail}）</translation>
@@ -2890,7 +2890,7 @@
         <location filename="../core/outputs.py" line="147" />
         <location filename="../core/outputs.py" line="209" />
         <location filename="../core/outputs.py" line="178" />
-        <location filename="../core/pointcloud.py" line="276" />
+        <location filename="../core/pointcloud.py" line="280" />
         <source>Cannot write {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：{error}</translation>
@@ -2902,147 +2902,147 @@
         <translation>输出 {path} 未被写入</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="64" />
+        <location filename="../core/panorama.py" line="70" />
         <source>The panorama {path} is {width} x {height} pixels, more than the {limit} the plugin reads</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>全景图 {path} 为 {width} x {height} 像素，超过插件可读取的 {limit}</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="73" />
+        <location filename="../core/panorama.py" line="79" />
         <source>The panorama {path} is {width} x {height} pixels: an equirectangular panorama must be twice as wide as it is high</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>全景图 {path} 为 {width} x {height} 像素：等距柱状全景图的宽度必须是高度的两倍</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="105" />
-        <location filename="../core/panorama.py" line="56" />
+        <location filename="../core/panorama.py" line="111" />
+        <location filename="../core/panorama.py" line="62" />
         <source>Panorama not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到全景图：{path}</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="112" />
+        <location filename="../core/panorama.py" line="118" />
         <source>Cannot read the panorama {path}: the file is not a JPEG or PNG image or is corrupt</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取全景图 {path}：该文件不是 JPEG 或 PNG 图像，或已损坏</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="58" />
+        <location filename="../core/panorama.py" line="64" />
         <source>The panorama {path} has more pixels than the {limit} the plugin reads</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>全景图 {path} 的像素数超过插件可读取的 {limit}</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="61" />
+        <location filename="../core/panorama.py" line="67" />
         <source>Cannot read the panorama {path}: expected a JPEG or PNG image ({error})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取全景图 {path}：应为 JPEG 或 PNG 图像（{error}）</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="110" />
+        <location filename="../core/panorama.py" line="116" />
         <source>Cannot read the panorama {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取全景图 {path}：{error}</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="365" />
+        <location filename="../core/pointcloud.py" line="379" />
         <source>Cannot use {item!r} as a crop geometry: expected a shapely geometry, WKB or WKT</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法将 {item!r} 用作裁剪几何：应为 shapely 几何、WKB 或 WKT</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="70" />
+        <location filename="../core/pointcloud.py" line="71" />
         <source>Cannot read {path}: expected a LAS or LAZ file ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：应为 LAS 或 LAZ 文件（{detail}）</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="470" />
+        <location filename="../core/pointcloud.py" line="484" />
         <source>{path} has no coordinate reference system and none was given</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有坐标参考系，也未提供坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="269" />
+        <location filename="../core/pointcloud.py" line="273" />
         <source>Cannot write {path}: the folder does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：文件夹不存在</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="388" />
+        <location filename="../core/pointcloud.py" line="402" />
         <source>The crop layer has no geometry</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>裁剪图层没有几何</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="396" />
+        <location filename="../core/pointcloud.py" line="410" />
         <source>A corridor needs a positive buffer, got {buffer_m} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>走廊需要正的缓冲距离，实际为 {buffer_m} m</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="406" />
+        <location filename="../core/pointcloud.py" line="420" />
         <source>A corridor needs stations or lines</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>走廊需要站点或线</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="480" />
+        <location filename="../core/pointcloud.py" line="494" />
         <source>No point of {path} lies inside the crop area; {output} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中没有点位于裁剪区域内；{output} 为空</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="540" />
+        <location filename="../core/projection.py" line="544" />
         <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 个检测结果中有 {ok} 个在点云中找到了表面（{no_points} 个没有点，{no_surface} 个没有平面）</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="361" />
-        <location filename="../core/projection.py" line="602" />
+        <location filename="../core/projection.py" line="362" />
+        <location filename="../core/projection.py" line="606" />
         <source>{source} has no ground points (class 2) where the signs are: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{source} 在标志所在区域没有地面点（类别 2）：请先对其运行 roadsigns:groundfilter（或用其他工具进行地面分类）</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="501" />
+        <location filename="../core/projection.py" line="505" />
         <source>The maximum range must exceed {min} m, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>最大距离必须大于 {min} m，实际为 {value} m</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="325" />
+        <location filename="../core/projection.py" line="326" />
         <source>The candidates lack the field(s) {fields}; expected the output of Project detections</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>候选缺少字段 {fields}；应为“将检测投影到点云”的输出</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="350" />
+        <location filename="../core/projection.py" line="351" />
         <source>Unknown candidate status {status!r}; expected ok, no_points or no_surface</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未知的候选状态 {status!r}；应为 ok、no_points 或 no_surface</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="354" />
+        <location filename="../core/projection.py" line="355" />
         <source>A candidate with status ok has no position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>状态为 ok 的候选没有位置</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="375" />
+        <location filename="../core/projection.py" line="376" />
         <source>The point index lacks {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点索引缺少 {names}</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="506" />
+        <location filename="../core/projection.py" line="510" />
         <source>No detections to project; the candidates are empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有要投影的检测结果；候选为空</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="536" />
+        <location filename="../core/projection.py" line="540" />
         <source>{path} has no point inside the detections' frusta; no candidate found</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 在检测结果的视锥内没有点；未找到候选</translation>

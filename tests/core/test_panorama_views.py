@@ -127,14 +127,14 @@ def test_maps_are_cached_per_view_and_size():
 
 
 def test_view_sets():
-    views = ViewSet.default(640, upward=True)
+    views = ViewSet.default(640, upward=True, fore_aft=False)
     assert len(views) == 14 and [v.yaw_deg for v in views][:8] == [k * 45.0 for k in range(8)]
-    assert len(ViewSet.default(640, upward=False)) == 8
+    assert len(ViewSet.default(640, upward=False, fore_aft=False)) == 8
     hfov = views[0].hfov_deg
     assert hfov - 45.0 >= 20.0  # neighbours overlap by at least 20 deg
     assert views.working_width(4096) == 4096
     assert 4000 <= views.working_width(8192) < 4200
-    assert hash(views) == hash(ViewSet.default(640, upward=True))
+    assert hash(views) == hash(ViewSet.default(640, upward=True, fore_aft=False))
     assert len(ViewSet.default(640)) == 8 + 6 * DEFAULT_UPWARD_VIEWS + 2 * DEFAULT_FORE_AFT_VIEWS  # the plugin's
     # fore and aft: two narrower views straight ahead and behind, after the horizon ring
     fa = ViewSet.default(640, upward=False, fore_aft=True)
@@ -142,6 +142,23 @@ def test_view_sets():
     assert [(v.yaw_deg, v.pitch_deg) for v in fa[8:]] == [(0.0, 0.0), (180.0, 0.0)]
     assert all(v.hfov_deg == FORE_AFT_HFOV_DEG < 0.7 * views[0].hfov_deg for v in fa[8:])
     assert len(ViewSet.default(640, upward=True, fore_aft=True)) == 16
+
+
+def test_denser_views_do_not_change_how_the_others_are_cut_from_a_large_panorama():
+    """An 8K panorama: the 80 deg ring needs half its pixels and is cut from it reduced by 2
+    (not aliased); the fore-and-aft views need nearly all of them and are cut from the
+    panorama itself. Adding them leaves the ring's images as they were."""
+    rng = np.random.default_rng(5)
+    big = cv2.resize(rng.integers(0, 255, (256, 512, 3), dtype=np.uint8), (8192, 4096),
+                     interpolation=cv2.INTER_NEAREST)
+    ring = ViewSet.default((640, 384), upward=False, fore_aft=False)
+    both = ViewSet.default((640, 384), upward=False, fore_aft=True)
+    assert ring.working_width(8192) == 4096 and both.working_width(8192) == 8192
+    ring_images, both_images = list(ring.cut_all(big)), list(both.cut_all(big))
+    for a, b in zip(ring_images, both_images[:8]):
+        np.testing.assert_array_equal(a, b)
+    for view, image in zip(both[8:], both_images[8:]):
+        np.testing.assert_array_equal(image, view.cut(big))
 
 
 def test_large_panorama_is_reduced_before_cutting_and_boxes_stay_in_its_pixels(pano):
