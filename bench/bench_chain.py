@@ -118,18 +118,12 @@ def main(argv=None):
     parser.add_argument("--station-spacing", type=float, metavar="M",
                         help="detectsigns' MIN_STATION_SPACING_M: detect only on stations at least M metres "
                              "apart (0: every station; default: the algorithm's)")
-    upward = parser.add_mutually_exclusive_group()
-    upward.add_argument("--no-upward", dest="upward", action="store_false", default=None,
-                        help="detectsigns without its upward views (UPWARD_VIEWS false: the 8 horizon views only; "
-                             "the algorithm's default)")
-    upward.add_argument("--upward", dest="upward", action="store_true", default=None,
-                        help="detectsigns with its upward views (UPWARD_VIEWS true)")
-    fore_aft = parser.add_mutually_exclusive_group()
-    fore_aft.add_argument("--fore-aft", dest="fore_aft", action="store_true", default=None,
-                          help="detectsigns with its fore-and-aft views (FORE_AFT_VIEWS true; the algorithm's "
-                               "default)")
-    fore_aft.add_argument("--no-fore-aft", dest="fore_aft", action="store_false", default=None,
-                          help="detectsigns without its fore-and-aft views (FORE_AFT_VIEWS false)")
+    parser.add_argument("--upward", action=argparse.BooleanOptionalAction, default=None,
+                        help="detectsigns with or without its upward views (UPWARD_VIEWS; default: the "
+                             "algorithm's, off: the horizon views only)")
+    parser.add_argument("--fore-aft", action=argparse.BooleanOptionalAction, default=None,
+                        help="detectsigns with or without its fore-and-aft views (FORE_AFT_VIEWS; default: the "
+                             "algorithm's, on)")
     parser.add_argument("--rescue-confidence", type=float, metavar="S",
                         help="detectsigns' RESCUE_CONFIDENCE (its second look; the confidence or more: off)")
     parser.add_argument("--confidence", type=float, metavar="S",
