@@ -85,6 +85,7 @@ class FindSignsInCloud(RoadSignsAlgorithm):
         with self.core_errors():
             check_same_crs(source.sourceCrs(), read_cloud_crs_wkt(cloud_path), self.tr("The stations"), cloud_path)
             stations = Stations.from_records(rows, self.tr("Panorama stations"))
+            del rows   # a dict a station: not held through the drive's windows
             params = CloudSignParams(corridor_m=self.parameterAsDouble(parameters, self.CORRIDOR, context))
             result = find_signs_in_cloud(cloud_path, Track.from_stations(stations), params,
                                          progress=self.progress(feedback).sub(0.0, 0.95))

@@ -69,8 +69,11 @@ class ProjectDetections(RoadSignsAlgorithm):
                             required=REQUIRED_POSE_FIELDS,
                             allow_empty=True)  # no detections: a warning and an empty layer
         with self.core_errors():
+            detections = Detections.from_records(rows)
+        del rows   # a dict a detection: not held through the drive's blocks
+        with self.core_errors():
             result = project_detections(
-                Detections.from_records(rows), cloud_path,
+                detections, cloud_path,
                 max_range_m=self.parameterAsDouble(parameters, self.MAX_RANGE, context),
                 progress=self.progress(feedback).sub(0.0, 0.95))
         records = result.records()

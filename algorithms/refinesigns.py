@@ -151,6 +151,8 @@ class RefineSigns(RoadSignsAlgorithm):
         progress = self.progress(feedback)
         with self.core_errors():
             candidates = ProjectionResult.from_records(rows)
+        del rows   # a dict a candidate: not held through the drive's blocks
+        with self.core_errors():
             codes_table = read_codes_table(
                 self.parameterAsFile(parameters, self.CODES_TABLE, context) or BUNDLED_CODES_TABLE)
             result = refine_signs(candidates, cloud_path,
@@ -201,7 +203,7 @@ class RefineSigns(RoadSignsAlgorithm):
         for r in records:
             by_source[r["position_source"]] = by_source.get(r["position_source"], 0) + 1
         feedback.pushInfo(self.tr("{} signs from {} candidates ({})").format(
-            len(records), len(rows), ", ".join("{} {}".format(v, k) for k, v in sorted(by_source.items()))))
+            len(records), len(candidates), ", ".join("{} {}".format(v, k) for k, v in sorted(by_source.items()))))
         return outputs
 
     def _review(self, records, candidates, result, images_dir, layer_file, report_path, progress, feedback):
