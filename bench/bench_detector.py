@@ -329,9 +329,9 @@ def detect_tiled(detector, image, confidence):
     return np.concatenate(boxes), np.concatenate(scores), np.concatenate(ids)
 
 
-#: The panorama width the photographs' scales refer to (``view_scales``): the plugin's views
-#: sample a 4096 px panorama (11.4 px a degree) at 0.70 (the 80 deg ring, 8 px a degree) and
-#: 1.05 (the 53.3 deg fore-and-aft views) of its own density.
+#: The panorama width the photographs' scales refer to (``view_scales``): at their centres the
+#: plugin's views sample a 4096 px panorama (11.4 px a degree) at 0.59 (the 80 deg ring, 6.7 px
+#: a degree) and 0.98 (the 53.3 deg fore-and-aft views) of its own density.
 REFERENCE_PANORAMA_PX = 4096
 
 
@@ -644,8 +644,8 @@ def main(argv=None):
     ap.add_argument("--photo-scales", nargs="+", default=["1"], metavar="SCALES",
                     help="the photographs at other pixel densities, each item measured in the same run: a scale "
                          "(1: as they are), scales joined by '+' (passes merged, e.g. 0.7+1.05), or views:NAME "
-                         "(the densities view set NAME gives a 4096 px panorama: views:default is 0.7, the 80 deg "
-                         "ring); the first item gives the main figures")
+                         "(the densities view set NAME gives a 4096 px panorama at its views' centres: "
+                         "views:horizon is 0.59, the 80 deg ring); the first item gives the main figures")
     ap.add_argument("--json", default=os.path.join(REPO_ROOT, "bench", "out", "detector.json"))
     a = ap.parse_args(argv)
 

@@ -57,7 +57,6 @@ from .cloudpanels import PanelCandidate, PanelParams, WindowPoints, find_panels,
 from .cloudsource import CloudSource, open_cloud
 from .drivewindows import BLOCK_THREADS, DriveAxis, Track, Window, WindowSpool, as_track, make_windows, map_in_order
 from .errors import SILENT, InputError, Message, Progress
-from .memory import release_freed_memory
 from .pointcloud import DEFAULT_CHUNK_POINTS, GROUND_CLASS, xyz_of
 from .poles import GANTRY, Pole, PoleParams, classify_pole, find_poles, promote_far_posts
 from .projection import cell_keys
@@ -623,7 +622,6 @@ def find_signs_in_cloud(cloud_path: Union[str, CloudSource], track: Union[Track,
                      folder=work_folder) as spool:
         n_read, n_cand, n_ground, (t_min, t_max) = _spool_cloud(
             source, axis, spool, hist, has_time, params, chunk_points, progress.sub(0.0, 0.5))
-        release_freed_memory()   # the reading pass's heap, before the windows stack on it
         if n_cand == 0 and n_ground == 0:
             raise InputError("No point of {path} lies within {corridor} m of the stations' track "
                              "({n} points read)", path=cloud_path, corridor=params.corridor_m, n=n_read)

@@ -247,7 +247,10 @@ class Spool:
     written on a thread of their own while the caller goes on (:class:`.writebehind.WriteBehind`;
     one flush at a time, so up to twice ``flush_rows`` rows in memory; a write's error is
     raised by the next flush, :meth:`read` or :meth:`discard`). Rows given to :meth:`append`
-    must not change after, either way.
+    must not change after, either way. The first :meth:`read` ends the writing pass: the
+    memory that pass freed (the cloud's chunks) is given back to the system then
+    (:func:`.memory.release_freed_memory`), so the windows or blocks read back do not stack on
+    its heap.
     """
 
     def __init__(self, dtypes: Dict[str, np.dtype], folder: Optional[str] = None,
@@ -258,6 +261,7 @@ class Spool:
         self._pending: Dict[Tuple[str, int], List[np.ndarray]] = {}
         self._pending_rows = 0
         self._behind = WriteBehind("roadsigns-spool-write") if background else None
+        self._read_back = False
 
     def _path(self, kind: str, index: int) -> str:
         return os.path.join(self.folder, "{}-{:06d}.bin".format(kind, index))
@@ -295,6 +299,9 @@ class Spool:
     def read(self, kind: str, index: int) -> np.ndarray:
         """All rows of ``kind`` appended to ``index``."""
         self._settle()
+        if not self._read_back:      # the writing pass is over: give its heap back
+            self._read_back = True
+            release_freed_memory()
         path = self._path(kind, index)
         if not os.path.exists(path):
             return np.zeros(0, dtype=self.dtypes[kind])

@@ -41,7 +41,6 @@ from .cloudsource import CloudSource, open_cloud
 from .detections import DETECTION_POSE_FIELDS, Detections
 from .drivewindows import BLOCK_THREADS, DriveAxis, Track, WindowSpool, make_windows, map_in_order
 from .errors import SILENT, InputError, Progress
-from .memory import release_freed_memory
 from .pointcloud import GROUND_CLASS, CropRegion, TiledIndex, xyz_of
 from .schema import Schema, fields
 
@@ -603,7 +602,6 @@ def drive_blocks(det: Detections, frusta: Frusta, cloud: Union[str, CloudSource]
             s_m = axis.locate(xyz)[0] if axis is not None else np.zeros(len(rows))
             spool.add("points", s_m, rows)
         spool.flush()
-        release_freed_memory()   # the reading pass's heap, before the windows stack on it
         if n_inside and not n_ground:
             raise InputError("{source} has no ground points (class 2) where the signs are: run "
                              "roadsigns:groundfilter on it first (or classify the ground with "

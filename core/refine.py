@@ -66,7 +66,6 @@ from .cloudsource import CloudSource, conform, open_cloud
 from .detections import Detections
 from .drivewindows import BLOCK_THREADS, DriveAxis, Spool, Track, make_windows, map_in_order
 from .errors import SILENT, InputError, Message, Progress
-from .memory import release_freed_memory
 from .pointcloud import (
     GROUND_CLASS,
     CloudWriter,
@@ -1137,7 +1136,6 @@ class CloudBlocks:
                 rows["classification"] = np.asarray(chunk.classification)[sub]
                 spool.append("block", b, rows)
         spool.flush()
-        release_freed_memory()   # the reading pass's heap, before the blocks stack on it
 
     def _spooled(self, b: int) -> TiledIndex:
         """Block ``b`` read back from its spool file."""

@@ -4,6 +4,7 @@ import subprocess
 import sys
 import textwrap
 
+import numpy as np
 import pytest
 
 from roadsigns.core import drivewindows, memory
@@ -52,3 +53,16 @@ def test_memory_is_given_back_after_each_block(monkeypatch, threads):
 def test_release_is_a_no_op_without_glibc(monkeypatch):
     monkeypatch.setattr(memory, "_malloc_trim", lambda: None)
     assert memory.release_freed_memory() is False
+
+
+def test_a_spool_gives_the_writing_pass_memory_back_at_its_first_read(monkeypatch, tmp_path):
+    calls = []
+    monkeypatch.setattr(drivewindows, "release_freed_memory", lambda: calls.append(1) or True)
+    with drivewindows.Spool({"v": "f8"}, folder=str(tmp_path)) as spool:
+        for k in range(3):
+            spool.append("v", k, np.arange(4.0))
+        assert calls == []                      # not while it is written
+        assert list(spool.read("v", 0)) == [0.0, 1.0, 2.0, 3.0]
+        assert len(calls) == 1
+        spool.read("v", 1), spool.read("v", 2)
+        assert len(calls) == 1                  # once, when reading begins
