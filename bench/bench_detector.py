@@ -486,10 +486,9 @@ def heldout_track_frames(ids=GTSDB_HELDOUT_IDS, seed: int = 2024, sizes_px=TRACK
 def bench_photographs(detectors, confidence, frames, whole_frame=False, classifier=None):
     """Each detector on street photographs ``frames`` ((image BGR, boxes, classes, ignored boxes)) cut
     into tiles of the model's input size (and whole letterboxed frames if asked);
-    ``detectors``: ``(detector, second look)`` pairs (the second look with ``classifier``), or
-    ``(detector, second look, scales)``: the tiles of the photograph resized by each scale,
-    merged (:func:`detect_scaled`)."""
-    detectors = [tuple(e) if len(e) == 3 else (e[0], e[1], (1.0,)) for e in detectors]
+    ``detectors``: ``(detector, second look, scales)`` (the second look with ``classifier``;
+    the tiles of the photograph resized by each scale and merged, :func:`detect_scaled`;
+    ``(1.0,)``: as it is)."""
     modes = ("tiles_640", "whole_frame_letterboxed") if whole_frame else ("tiles_640",)
     acc = [{m: {"all": [], "20": [], "bands": BandCounter(), "s": 0.0} for m in modes} for _ in detectors]
     n_frames = 0
