@@ -22,8 +22,8 @@ process of its own: wall time, peak RSS and their ratios are printed (memory rat
 flat). Nothing is timed against a threshold: read the ratios.
 
     .venv/bin/python bench/bench_drive_repeat.py --copies 3
-    .venv/bin/python bench/bench_drive_repeat.py --copies 9 --stages findsignsincloud projectdetections \\
-        refinesigns --json bench/out/drive-repeat.json
+    .venv/bin/python bench/bench_drive_repeat.py --copies 3 9 27 --stages findsignsincloud \\
+        projectdetections refinesigns --json bench/out/drive-repeat.json
 """
 from __future__ import annotations
 
@@ -136,7 +136,8 @@ def stage_args(stage: str, folder: str) -> list:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--drive", default=DEFAULT_DRIVE, help="a bench_drive folder whose chain/ was run")
-    ap.add_argument("--copies", type=int, default=3)
+    ap.add_argument("--copies", type=int, nargs="+", default=[3],
+                    help="the longer drives, in copies of the drive (several: does the growth level off?)")
     ap.add_argument("--spacing", type=float, default=2000.0, help="metres between the copies (more than the drive)")
     ap.add_argument("--stages", nargs="+", choices=STAGES, default=list(STAGES[:3]))
     ap.add_argument("--work", help="where the copies go (default DRIVE/repeat)")
@@ -148,8 +149,9 @@ def main(argv=None) -> int:
     if not os.path.isfile(os.path.join(chain, "candidates.gpkg")):
         sys.exit(f"{chain} has no chain outputs: run bench/bench_drive.py --preset drive1k first")
     work = a.work or os.path.join(a.drive, "repeat")
+    counts = sorted({1, *a.copies})
     drives = {}
-    for copies in (1, a.copies):
+    for copies in counts:
         folder = os.path.join(work, f"x{copies}")
         drives[copies] = {"folder": folder, "features": make_drive(chain, folder, copies, a.spacing)}
         print(f"x{copies}: {copies} tile(s) of {os.path.join(chain, 'ground.laz')}, "
@@ -160,23 +162,25 @@ def main(argv=None) -> int:
     results = []
     for stage in a.stages:
         runs = {}
-        for copies in (1, a.copies):
+        for copies in counts:
             r = q("run", "roadsigns:" + stage, "--", *stage_args(stage, drives[copies]["folder"]), timeout=7200)
             if r.returncode != 0:
                 print(r.text[-3000:])
                 sys.exit(f"{stage} on x{copies} failed")
             runs[copies] = {"wall_s": round(r.wall_s, 1), "peak_rss_mb": round(r.peak_rss_mb, 1)}
             print(f"{stage:<18} x{copies:<3} {r.wall_s:8.1f} s  peak {r.peak_rss_mb:7.0f} MB", flush=True)
-        one, many = runs[1], runs[a.copies]
-        rec = {"stage": stage, "copies": a.copies, "x1": one, f"x{a.copies}": many,
-               "memory_ratio": round(many["peak_rss_mb"] / one["peak_rss_mb"], 3),
-               "time_ratio": round(many["wall_s"] / one["wall_s"], 3)}
-        results.append(rec)
-        print(f"{stage:<18} x{a.copies} / x1: memory {rec['memory_ratio']:.2f}, time {rec['time_ratio']:.2f} "
-              f"(linear: {a.copies:.2f})", flush=True)
+        one = runs[1]
+        for copies in counts[1:]:
+            many = runs[copies]
+            rec = {"stage": stage, "copies": copies, "x1": one, f"x{copies}": many,
+                   "memory_ratio": round(many["peak_rss_mb"] / one["peak_rss_mb"], 3),
+                   "time_ratio": round(many["wall_s"] / one["wall_s"], 3)}
+            results.append(rec)
+            print(f"{stage:<18} x{copies} / x1: memory {rec['memory_ratio']:.2f}, time {rec['time_ratio']:.2f} "
+                  f"(linear: {copies:.2f})", flush=True)
     if a.json:
         with open(a.json, "w") as f:
-            json.dump({"drive": a.drive, "copies": a.copies, "spacing_m": a.spacing, "stages": results,
+            json.dump({"drive": a.drive, "copies": counts[1:], "spacing_m": a.spacing, "stages": results,
                        "features": {k: v["features"] for k, v in drives.items()}}, f, indent=1)
     return 0
 
