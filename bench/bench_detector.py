@@ -13,7 +13,11 @@ measures several models in one run, on the same images, timed alternately.
 2. GTSDB images 500-599 (held out from training) on tiles of the model's input size (640 x 640
    for a square model) at full resolution
    (6 per frame): per class, signs >= 20 px, the precision/recall curve and the best-F1
-   threshold (where the plugin's default ``CONFIDENCE`` should sit). Then, the same way, the
+   threshold (where the plugin's default ``CONFIDENCE`` should sit). GTSDB's truth lists only
+   its 43 classes (and misses one of them in frame 516): the road signs it leaves out
+   (:data:`GTSDB_UNLABELLED_SIGNS`: information and direction panels, parking and no-parking,
+   chevrons, a cycle-path sign) are ignored, so a box on one is neither a hit nor a false
+   alarm; the precision as labelled (a box on them a false alarm) is printed beside. Then, the same way, the
    held-out gtsrb-train tracks (real signs neither network nor any chosen threshold has seen)
    pasted into those frames, two per track (14-35 and 35-80 px): :func:`heldout_track_frames`
    (``--skip-tracks`` leaves them out).
@@ -38,6 +42,7 @@ import json
 import os
 import sys
 import time
+from typing import NamedTuple
 
 import numpy as np
 
@@ -65,6 +70,30 @@ CURVE_THRESHOLDS = tuple(round(t, 2) for t in np.arange(0.05, 0.96, 0.05))
 TRACK_SIZES_PX = ((14.0, 35.0), (35.0, 80.0))
 #: How many tracks the held-out part has (188): the control with training tracks takes as many.
 HELDOUT_TRACKS = 188
+#: Road signs in GTSDB 500-599 that its gt.txt does not list, (x0, y0, x1, y1) pixels by frame:
+#: GTSDB labels only the 43 GTSRB classes, and missed the no-entry sign (one of them) in frame
+#: 516. Found by looking at every box the bundled detector put on no labelled sign from a
+#: score of 0.2 (88 boxes, 25 November 2026); kept: the plain road signs among them, boxes
+#: checked by eye. Not kept: a sign's back, a reflection in a shop window, an SOS-phone
+#: sign, an island marker, look-alikes (lamps, logos, tail lights, bunting, pylons). Ignored
+#: in the GTSDB figures; the precision as labelled is printed beside them.
+GTSDB_UNLABELLED_SIGNS = {
+    501: [(1029, 550, 1060, 584)],                         # blue direction sign
+    516: [(831, 550, 848, 569), (318, 515, 337, 533)],    # cycle path (round, blue); no entry (class 17)
+    523: [(971, 517, 1014, 573)],                          # parking information panel on a bridge
+    530: [(817, 469, 832, 488)],                           # blue panel in fog
+    536: [(949, 438, 962, 450)],                           # cycle and foot path (round, blue)
+    545: [(367, 441, 381, 459)],                           # no parking
+    550: [(638, 502, 656, 519)],                           # chevron board
+    551: [(697, 488, 739, 523)],                           # motorway direction panel
+    552: [(717, 479, 758, 516)],                           # motorway information panel
+    565: [(1049, 159, 1130, 249)],                         # parking
+    575: [(649, 412, 666, 431)],                           # no stopping
+    581: [(966, 472, 999, 540)],                           # blue panel with a diagonal bar (end of a road class)
+    583: [(607, 336, 674, 410)],                           # overhead direction panel
+    589: [(769, 490, 796, 525)],                           # chevron board
+}
+
 
 
 def band_name(lo, hi):
@@ -428,13 +457,26 @@ def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, cla
     return boxes[keep], np.maximum(scores[keep], np.where(rescued[keep], confidence, 0.0)), kept_ids[keep]
 
 
+class Frame(NamedTuple):
+    """A street photograph and its truth: ``boxes`` ``(n, 4)`` and ``classes`` counted,
+    ``ignored`` boxes that are neither hits nor false alarms, and ``unlabelled`` road signs
+    the truth leaves out (ignored too; counted as false alarms only in the "as labelled"
+    precision)."""
+    image: np.ndarray
+    boxes: np.ndarray
+    classes: np.ndarray
+    ignored: np.ndarray
+    unlabelled: np.ndarray = np.zeros((0, 4), np.float32)
+
+
 def gtsdb_frames(ids=GTSDB_HELDOUT_IDS):
-    """GTSDB frames with their truth: (image BGR, boxes, classes, ignored boxes: none), read one
-    at a time."""
+    """GTSDB frames with their truth (:class:`Frame`; nothing ignored, the signs of
+    :data:`GTSDB_UNLABELLED_SIGNS` as unlabelled), read one at a time."""
     import cv2
 
-    for path, gt, classes in read_gtsdb(ids):
-        yield cv2.imread(path), gt, classes, np.zeros((0, 4), np.float32)
+    for frame_id, (path, gt, classes) in zip(ids, read_gtsdb(ids)):
+        unlabelled = np.array(GTSDB_UNLABELLED_SIGNS.get(int(frame_id), []), np.float32).reshape(-1, 4)
+        yield Frame(cv2.imread(path), gt, classes, np.zeros((0, 4), np.float32), unlabelled)
 
 
 def heldout_track_frames(ids=GTSDB_HELDOUT_IDS, seed: int = 2024, sizes_px=TRACK_SIZES_PX, part: str = "val",
@@ -447,7 +489,7 @@ def heldout_track_frames(ids=GTSDB_HELDOUT_IDS, seed: int = 2024, sizes_px=TRACK
     ``degrade``, as training pastes its own tracks), at a free spot of a GTSDB 500-599 frame.
     Truth: the pasted signs; the frame's own signs are ignored (a detection on them is no
     false alarm: they are measured by :func:`gtsdb_frames`). Deterministic for ``seed``;
-    yields (image BGR, boxes, classes, ignored boxes) frame by frame. ``part="train"`` pastes
+    yields a :class:`Frame` at a time. ``part="train"`` pastes
     tracks training did paste instead (``max_tracks`` of them, drawn evenly): the control that
     tells a gap in generalising to new signs from one in the pasting itself. ``half`` (0 or 1):
     only every other track (sorted), for choosing a rule on one half and testing it on the other."""
@@ -480,22 +522,38 @@ def heldout_track_frames(ids=GTSDB_HELDOUT_IDS, seed: int = 2024, sizes_px=TRACK
             k = tall_enough[0] if tall_enough else frames[-1]
             train_data.paste(sample, patches[k], height, int(classes[k]), rng,
                              post=lambda p: train_data.degrade(p, rng))
-        yield sample.image, sample.boxes[n_own:], sample.classes[n_own:], gt
+        yield Frame(sample.image, sample.boxes[n_own:], sample.classes[n_own:], gt)
+
+
+def match_frame(boxes, scores, class_ids, frame):
+    """One photograph's boxes matched to its truth (:class:`Frame`, IoU >= 0.5), four ways:
+    ``all`` and ``20`` (signs >= 20 px counted; a box on a smaller one is no false alarm)
+    with the unlabelled road signs ignored, ``all_labelled`` and ``20_labelled`` with a box
+    on them a false alarm (the truth as labelled)."""
+    gt, classes = frame.boxes, frame.classes
+    big = (gt[:, 3] - gt[:, 1]) >= MIN_HEIGHT_PX
+    out = {}
+    for suffix, ignore in (("", np.concatenate([frame.ignored, frame.unlabelled])), ("_labelled", frame.ignored)):
+        out["all" + suffix] = match_image(boxes, scores, class_ids, gt, classes, 0.5, ignore_boxes=ignore)
+        out["20" + suffix] = match_image(boxes, scores, class_ids, gt[big], classes[big], 0.5,
+                                         ignore_boxes=np.concatenate([gt[~big], ignore]))
+    return out
 
 
 def bench_photographs(detectors, confidence, frames, whole_frame=False, classifier=None):
-    """Each detector on street photographs ``frames`` ((image BGR, boxes, classes, ignored boxes)) cut
+    """Each detector on street photographs ``frames`` (:class:`Frame`) cut
     into tiles of the model's input size (and whole letterboxed frames if asked);
     ``detectors``: ``(detector, second look, scales)`` (the second look with ``classifier``;
     the tiles of the photograph resized by each scale and merged, :func:`detect_scaled`;
     ``(1.0,)``: as it is)."""
     modes = ("tiles_640", "whole_frame_letterboxed") if whole_frame else ("tiles_640",)
-    acc = [{m: {"all": [], "20": [], "bands": BandCounter(), "s": 0.0} for m in modes} for _ in detectors]
-    n_frames = 0
-    for k, (image, gt, classes, ignore) in enumerate(frames):
+    acc = [{m: {"all": [], "20": [], "all_labelled": [], "20_labelled": [], "bands": BandCounter(), "s": 0.0}
+            for m in modes} for _ in detectors]
+    n_frames = n_unlabelled = 0
+    for k, frame in enumerate(frames):
+        image, gt, classes = frame.image, frame.boxes, frame.classes
         n_frames += 1
-        big = (gt[:, 3] - gt[:, 1]) >= MIN_HEIGHT_PX
-        ignore_20 = np.concatenate([gt[~big], ignore])
+        n_unlabelled += len(frame.unlabelled)
         order = list(enumerate(detectors)) if k % 2 == 0 else list(enumerate(detectors))[::-1]
         for i, (d, look, scales) in order:
             for mode in modes:
@@ -510,10 +568,10 @@ def bench_photographs(detectors, confidence, frames, whole_frame=False, classifi
                                                                  confidence, d.class_names)
                 a = acc[i][mode]
                 a["s"] += time.perf_counter() - t0
-                a["all"].append(match_image(boxes, scores, found_ids, gt, classes, 0.5, ignore_boxes=ignore))
-                a["20"].append(match_image(boxes, scores, found_ids, gt[big], classes[big], 0.5,
-                                           ignore_boxes=ignore_20))
-                a["bands"].add(boxes, scores, found_ids, gt, classes, confidence, ignore=ignore)
+                for key, m in match_frame(boxes, scores, found_ids, frame).items():
+                    a[key].append(m)
+                a["bands"].add(boxes, scores, found_ids, gt, classes, confidence,
+                               ignore=np.concatenate([frame.ignored, frame.unlabelled]))
     out = []
     for a in acc:
         res = {}
@@ -521,7 +579,11 @@ def bench_photographs(detectors, confidence, frames, whole_frame=False, classifi
             res[mode] = {"images": n_frames, "per_class": summarise(v["all"], CLASSES, confidence),
                          "signs_20px_and_up": summarise(v["20"], CLASSES, confidence)["all"],
                          "per_band": v["bands"].result(), "seconds_per_image": v["s"] / max(n_frames, 1),
-                         "curve": curve(v["all"]), "curve_20px_and_up": curve(v["20"])}
+                         "curve": curve(v["all"]), "curve_20px_and_up": curve(v["20"]),
+                         "unlabelled_signs": n_unlabelled,
+                         "as_labelled": {"all": summarise(v["all_labelled"], CLASSES, confidence)["all"],
+                                         "signs_20px_and_up": summarise(v["20_labelled"], CLASSES,
+                                                                        confidence)["all"]}}
         out.append(res)
     return out
 
@@ -585,6 +647,11 @@ def print_model(name, r, confidence):
     for title, g in photo_sets:
         print_table(f"{title}, confidence {confidence}", g["per_class"])
         print(f"signs >= 20 px: {g['signs_20px_and_up']}")
+        if g.get("unlabelled_signs"):
+            lab = g["as_labelled"]
+            print(f"{g['unlabelled_signs']} road signs the truth leaves out, ignored above; as labelled (a box on "
+                  f"them a false alarm): P {_f(lab['all']['precision'])}, >= 20 px P "
+                  f"{_f(lab['signs_20px_and_up']['precision'])}")
         print_bands("size bands", g["per_band"])
         print_curve("P/R curve (all signs)", g["curve"])
         print_curve("P/R curve (signs >= 20 px)", g["curve_20px_and_up"])
@@ -602,6 +669,8 @@ def headline(r):
     if g:
         out.update({"gtsdb_P": g["per_class"]["all"]["precision"], "gtsdb_R": g["per_class"]["all"]["recall"],
                     "gtsdb_20_P": g["signs_20px_and_up"]["precision"], "gtsdb_20_R": g["signs_20px_and_up"]["recall"],
+                    "gtsdb_P_as_labelled": g["as_labelled"]["all"]["precision"],
+                    "gtsdb_20_P_as_labelled": g["as_labelled"]["signs_20px_and_up"]["precision"],
                     "gtsdb_mandatory_R": g["per_class"]["mandatory"]["recall"],
                     "gtsdb_best_f1_threshold": g["curve"]["best_f1"]["threshold"]})
     t = (r.get("heldout_tracks") or {}).get("tiles_640")

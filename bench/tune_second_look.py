@@ -52,10 +52,12 @@ FLOORS = (0.05, 0.1, 0.2)
 
 
 def collect(detector, classifier, frames, confidence):
-    """Per frame: truth, ignored boxes, the detections at ``confidence`` and the candidates
-    with their features (score, class id, box, side, sheeting, probabilities)."""
+    """Per frame: truth, ignored boxes (the road signs the truth leaves out among them), the
+    detections at ``confidence`` and the candidates with their features (score, class id,
+    box, side, sheeting, probabilities)."""
     rows = []
-    for image, gt, classes, ignore in frames:
+    for image, gt, classes, ignored, unlabelled in frames:
+        ignore = np.concatenate([ignored, unlabelled])
         boxes, scores, ids = bd.detect_tiled(detector, image, bd.rescue_mod.DEFAULT_RESCUE_CONFIDENCE)
         sure, cands = bd.photo_candidates(boxes, scores, confidence)
         rgb = image[..., ::-1]

@@ -26,8 +26,10 @@ def test_heldout_tracks_are_pasted_beside_the_frames_own_signs_and_are_repeatabl
     truth = train_data.read_gtsdb(FRAME_IDS)
     assert len(frames) == len(FRAME_IDS)
     pasted = 0
-    for (image, boxes, classes, ignore), (_, own, _own_classes), (image2, boxes2, _, _) in zip(frames, truth, again):
+    for (image, boxes, classes, ignore, unlabelled), (_, own, _own_classes), (image2, boxes2, *_) in zip(
+            frames, truth, again):
         np.testing.assert_array_equal(ignore, own)  # the frame's own signs: ignored, not counted
+        assert unlabelled.shape == (0, 4)
         assert len(boxes) == len(classes)
         if len(boxes) and len(own):
             assert iou_matrix(boxes, own).max() == 0.0  # pasted at free spots
@@ -48,8 +50,8 @@ def test_the_pasted_tracks_are_the_heldout_split_and_each_half_pastes_half_of_th
     held = set(train_data.read_gtsrb_train("val")[2])
     assert held == train_data.gtsrb_track_split(
         [{"ClassId": c, "Track": t} for c, t in every_track]) and len(held) < len(every_track) / 5
-    a = [len(b) for _, b, _, _ in bd.heldout_track_frames(ids=FRAME_IDS, max_tracks=8, half=0)]
-    b = [len(b) for _, b, _, _ in bd.heldout_track_frames(ids=FRAME_IDS, max_tracks=8, half=1)]
+    a = [len(f.boxes) for f in bd.heldout_track_frames(ids=FRAME_IDS, max_tracks=8, half=0)]
+    b = [len(f.boxes) for f in bd.heldout_track_frames(ids=FRAME_IDS, max_tracks=8, half=1)]
     assert 0 < sum(a) <= 8 and 0 < sum(b) <= 8
 
 
@@ -121,7 +123,7 @@ def detector():
 
 
 def test_a_photograph_detected_at_several_scales_gives_its_boxes_in_its_own_pixels(detector):
-    image, gt, classes, _ = next(bd.gtsdb_frames(ids=[FRAME_IDS[0]]))
+    image, gt, classes, *_ = next(bd.gtsdb_frames(ids=[FRAME_IDS[0]]))
     h, w = image.shape[:2]
     one = bd.detect_scaled(detector, image, 0.05)
     sure = one[1] >= 0.5
@@ -137,3 +139,41 @@ def test_a_photograph_detected_at_several_scales_gives_its_boxes_in_its_own_pixe
     assert big[0][:, [0, 2]].max() <= w + 1 and big[0][:, [1, 3]].max() <= h + 1
     found = gt[iou_matrix(gt, one[0][sure]).max(axis=1) >= 0.5]
     assert len(found) and (iou_matrix(found, big[0][big[1] >= 0.5]).max(axis=1) >= 0.5).all()
+
+
+def test_the_unlabelled_signs_are_in_the_heldout_frames_and_on_no_labelled_sign():
+    ids = sorted(bd.GTSDB_UNLABELLED_SIGNS)
+    assert set(ids) <= set(bd.GTSDB_HELDOUT_IDS)
+    frames = list(bd.gtsdb_frames(ids=ids))
+    for frame_id, frame in zip(ids, frames):
+        np.testing.assert_array_equal(frame.unlabelled, np.array(bd.GTSDB_UNLABELLED_SIGNS[frame_id], np.float32))
+        assert frame.ignored.shape == (0, 4)
+        h, w = frame.image.shape[:2]
+        u = frame.unlabelled
+        assert np.all((u[:, 0] < u[:, 2]) & (u[:, 1] < u[:, 3]) & (u[:, 2] <= w) & (u[:, 3] <= h))
+        if len(frame.boxes):
+            assert iou_matrix(u, frame.boxes).max() < 0.1   # a sign the truth leaves out, not one it has
+    # frames not in the table have none
+    assert all(len(f.unlabelled) == 0 for f in bd.gtsdb_frames(ids=[i for i in FRAME_IDS
+                                                                      if i not in bd.GTSDB_UNLABELLED_SIGNS]))
+
+
+def test_a_box_on_an_unlabelled_sign_is_ignored_and_a_false_alarm_only_as_labelled():
+    from devtools.train.metrics import summarise
+
+    frame = next(bd.gtsdb_frames(ids=[516]))
+    assert len(frame.boxes) == 1 and len(frame.unlabelled) == 2
+    no_entry = frame.unlabelled[1]
+    assert no_entry[3] - no_entry[1] < bd.MIN_HEIGHT_PX   # under 20 px: the >= 20 px figure as labelled counts it too
+    boxes = np.stack([frame.boxes[0], no_entry])
+    scores = np.array([0.9, 0.8])
+    ids = np.array([frame.classes[0], frame.classes[0]])
+    m = bd.match_frame(boxes, scores, ids, frame)
+    p = {k: summarise([v], bd.CLASSES, 0.5)["all"] for k, v in m.items()}
+    assert p["all"]["precision"] == 1.0 and p["all"]["recall"] == 1.0
+    assert p["20"]["precision"] == 1.0
+    assert p["all_labelled"]["precision"] == 0.5 and p["all_labelled"]["recall"] == 1.0
+    assert p["20_labelled"]["precision"] == 0.5
+    # a box on nothing is a false alarm both ways
+    m = bd.match_frame(np.array([[10.0, 10.0, 40.0, 40.0]]), np.array([0.9]), ids[:1], frame)
+    assert all(summarise([v], bd.CLASSES, 0.5)["all"]["precision"] == 0.0 for v in m.values())
