@@ -50,6 +50,7 @@ import numpy as np
 import shapely
 
 from .errors import SILENT, InputError, Message, Progress
+from .memory import release_freed_memory
 from .pointcloud import (
     DEFAULT_CHUNK_POINTS,
     LAS_SUFFIXES,
@@ -106,6 +107,10 @@ class Tile:
 
 _HEADERS: Dict[Tuple[str, int, int], laspy.LasHeader] = {}
 _HEADER_CACHE_SIZE = 4096
+#: Points read between two returns of the freed heap to the system while a stage walks the
+#: cloud (:func:`.memory.release_freed_memory`): each chunk's arrays are freed when the next
+#: comes, and without it the heap a pass keeps grows with the number of chunks read.
+TRIM_EVERY_POINTS = 2_000_000
 
 
 def tile_header(path: str) -> laspy.LasHeader:
@@ -296,7 +301,8 @@ class CloudSource:
                             tiles: Optional[Sequence[Tile]] = None
                             ) -> Iterator[Tuple[np.ndarray, laspy.ScaleAwarePointRecord]]:
         """``(cloud indices (n,) int64, points)`` chunk by chunk, over the tiles ``bbox_xy``
-        and ``area`` need (or the ``tiles`` given); progress over the points read."""
+        and ``area`` need (or the ``tiles`` given); progress over the points read. The heap
+        freed is given back every :data:`TRIM_EVERY_POINTS` points."""
         restricted = bbox_xy is not None or area is not None
         chosen = list(tiles) if tiles is not None else self.tiles_in(bbox_xy, area)
         number = {t.path: k for k, t in enumerate(self.tiles)}
@@ -312,7 +318,7 @@ class CloudSource:
             plans.append((tile, parts))
         total = sum(t.point_count if parts is None else sum(n.point_count for n in parts)
                     for t, parts in plans)
-        done = 0
+        done = since_trim = 0
         progress.report(0.0)
         for tile, parts in plans:
             if parts is None:
@@ -323,7 +329,12 @@ class CloudSource:
                 chunks = _chosen_chunks(tile, parts)
             for index, chunk in chunks:
                 done += len(chunk)
+                since_trim += len(chunk)
                 yield index, chunk
+                del index, chunk
+                if since_trim >= TRIM_EVERY_POINTS:
+                    release_freed_memory()
+                    since_trim = 0
                 progress.report(done / total if total else 1.0)
         progress.report(1.0)
 

@@ -590,7 +590,7 @@ def drive_blocks(det: Detections, frusta: Frusta, cloud: Union[str, CloudSource]
     source = open_cloud(cloud)
     with WindowSpool(windows, 2.0 * max_range_m, {"points": SPOOL_DTYPE}) as spool:
         for point_index, chunk in source.iter_indexed_chunks(progress=progress, area=frusta.footprints):
-            inside = np.isin(cell_keys(np.asarray(chunk.x), np.asarray(chunk.y), FRUSTUM_CELL_M), cells)
+            inside = in_sorted(cell_keys(np.asarray(chunk.x), np.asarray(chunk.y), FRUSTUM_CELL_M), cells)
             classes = np.asarray(chunk.classification)[inside]
             ground = classes == GROUND_CLASS
             n_inside += int(inside.sum())
@@ -613,6 +613,16 @@ def drive_blocks(det: Detections, frusta: Frusta, cloud: Union[str, CloudSource]
             points = spool.read("points", window.index)
             xyz = np.column_stack([points["x"], points["y"], points["z"]])
             yield rows_k, TiledIndex(xyz, points["index"], {}, params.tile_size_m)
+
+
+def in_sorted(keys: np.ndarray, sorted_keys: np.ndarray) -> np.ndarray:
+    """``np.isin(keys, sorted_keys)`` for a sorted ``sorted_keys``, by binary search: time and
+    memory follow ``keys`` (a chunk), not ``sorted_keys`` (the cells of a whole drive), which
+    ``np.isin`` would copy and sort with every chunk."""
+    if not len(sorted_keys):
+        return np.zeros(len(keys), bool)
+    at = np.minimum(np.searchsorted(sorted_keys, keys), len(sorted_keys) - 1)
+    return sorted_keys[at] == keys
 
 
 def cell_keys(x: np.ndarray, y: np.ndarray, cell_m: float) -> np.ndarray:

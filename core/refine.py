@@ -66,6 +66,7 @@ from .cloudsource import CloudSource, conform, open_cloud
 from .detections import Detections
 from .drivewindows import BLOCK_THREADS, DriveAxis, Spool, Track, make_windows, map_in_order
 from .errors import SILENT, InputError, Message, Progress
+from .memory import release_freed_memory
 from .pointcloud import (
     GROUND_CLASS,
     CloudWriter,
@@ -172,6 +173,7 @@ class RefineParams:
 
     normal_agreement_deg: float = 30.0
     block_threads: int = BLOCK_THREADS   # blocks refined at once (numpy and scipy release the GIL)
+    block_max_groups: int = 16           # a block holding more groups is cut, in drive order
     cross_class_factor: float = 0.5      # different classes merge within this share of the limits
     box_margin_deg: float = 0.12         # box grown for the point vote
     box_margin_frac: float = 0.03
@@ -1019,6 +1021,22 @@ def drive_axis_of(cand: ProjectionResult) -> Optional[DriveAxis]:
         return None
 
 
+def cut_blocks(blocks: List[np.ndarray], s_m: np.ndarray, max_groups: int) -> List[np.ndarray]:
+    """``blocks`` (group numbers per block) with every block of more than ``max_groups``
+    groups cut into near-equal runs of them in drive order (``s_m``: the groups' arc length).
+    A block's points, and so its memory, grow with its groups: a stretch dense with signs
+    would otherwise hold more than any other, and the longer the drive, the denser its
+    densest stretch."""
+    out = []
+    for gs in blocks:
+        if len(gs) <= max_groups:
+            out.append(gs)
+            continue
+        ordered = gs[np.argsort(s_m[gs], kind="stable")]
+        out.extend(np.sort(part) for part in np.array_split(ordered, -(-len(gs) // max_groups)))
+    return out
+
+
 class CloudBlocks:
     """The cloud around the candidates, read and refined block by block along the drive.
 
@@ -1026,7 +1044,8 @@ class CloudBlocks:
     are put in blocks of ``block_m`` metres along the drive (:mod:`.drivewindows`: arc length
     of the group's centre on the axis through the stations), each group in the one block
     holding its centre, so a group straddling a block seam is refined once, with all its
-    points. A block's points are read (a spatial query: only the tiles it meets; a
+    points; a block of more than ``params.block_max_groups`` groups is cut (:func:`cut_blocks`).
+    A block's points are read (a spatial query: only the tiles it meets; a
     :class:`TiledIndex` given is cut instead) within the reach of its groups (points near
     the views, the surface around the panel and the ground under it: :meth:`reach_m`), and
     kept only when the single-index read would hold them (``max(3.5, merge_radius_m + 2.5)``
@@ -1071,6 +1090,8 @@ class CloudBlocks:
             self._block_edges_m = np.array([w.s1_m for w in windows[:-1]])
         block_of_group = self._block_of(self.centres)
         self.blocks = [np.flatnonzero(block_of_group == b) for b in np.unique(block_of_group)]
+        if self._axis is not None:   # blocks along a drive (not one block: block_m inf)
+            self.blocks = cut_blocks(self.blocks, self._axis.locate(self.centres)[0], params.block_max_groups)
         self._cached: Optional[Tuple[int, TiledIndex]] = None
         try:
             if self.source is not None and len(self.blocks) > 1:
@@ -1116,13 +1137,19 @@ class CloudBlocks:
             boxes.append((*(xy.min(axis=0) - radius), *(xy.max(axis=0) + radius)))
         self._spool = spool = Spool({"block": BLOCK_SPOOL_DTYPE}, prefix="roadsigns-refine-")
         area = [r.geometry for r in regions]
+        box_of_block = np.array(boxes, np.float64).reshape(-1, 4)
         for index, chunk in self.source.iter_indexed_chunks(progress=progress, area=area):
             x, y = np.asarray(chunk.x), np.asarray(chunk.y)
             near = np.flatnonzero(self.corridor.mask(x, y))
             if not len(near):
                 continue
             xn, yn = x[near], y[near]
-            for b, (region, (x0, y0, x1, y1)) in enumerate(zip(regions, boxes)):
+            # only the blocks whose box meets the chunk's points: a chunk lies along a few of
+            # them, and testing every block of the drive would grow with the drive
+            meets = np.flatnonzero((box_of_block[:, 0] <= xn.max()) & (box_of_block[:, 2] >= xn.min())
+                                   & (box_of_block[:, 1] <= yn.max()) & (box_of_block[:, 3] >= yn.min()))
+            for b in meets:
+                region, (x0, y0, x1, y1) = regions[b], boxes[b]
                 sub = near[(xn >= x0) & (xn <= x1) & (yn >= y0) & (yn <= y1)]
                 if not len(sub):
                     continue
@@ -1281,6 +1308,7 @@ class CloudBlocks:
             for k in mine:
                 drafts[k].ground = ground_from_cloud(index, places[k].centre, places[k].bottom_z, params)
             del index
+            release_freed_memory()   # each read's heap given back, or it grows with the blocks read
 
 
 def extract_signs(cand: ProjectionResult, groups: Sequence[np.ndarray], index: Optional[TiledIndex],

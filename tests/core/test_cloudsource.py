@@ -394,3 +394,17 @@ def test_points_too_far_for_the_first_tiles_scale_are_refused(street):
     moved = cs.conform(chunk, header)
     np.testing.assert_allclose(np.asarray(moved.x), np.asarray(chunk.x), atol=1e-4)
     assert np.array_equal(moved.intensity, chunk.intensity)
+
+
+def test_a_pass_over_the_cloud_gives_the_freed_heap_back_as_it_reads(street, monkeypatch):
+    """Every TRIM_EVERY_POINTS points read, the heap the finished chunks freed is given back,
+    so a pass keeps no more of it on a long drive than on a short one."""
+    calls = []
+    monkeypatch.setattr(cs, "release_freed_memory", lambda: calls.append(1) or True)
+    monkeypatch.setattr(cs, "TRIM_EVERY_POINTS", 4000)
+    n = sum(len(chunk) for _, chunk in cs.open_cloud(street["folder"]).iter_indexed_chunks(chunk_points=1000))
+    assert n == street["n"]
+    # at least one return per 4000 points read (a tile's last chunk may be short), and never
+    # more than one per chunk
+    assert n // 4000 - len(street["tiles"]) <= len(calls) <= n // 1000 + len(street["tiles"])
+    assert len(calls) >= 2

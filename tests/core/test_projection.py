@@ -182,3 +182,14 @@ def test_block_by_block_projection_equals_one_index(scene, detections, las_path,
     assert one.status == small.status and one.n_indexed == small.n_indexed and one.n_tiles == small.n_tiles
     np.testing.assert_array_equal(one.xyz_world, small.xyz_world)       # two blocks at a time: the same
     np.testing.assert_array_equal(one.tiles_visited, small.tiles_visited)
+
+
+def test_in_sorted_is_isin_for_sorted_keys():
+    from roadsigns.core.projection import in_sorted
+
+    rng = np.random.default_rng(3)
+    table = np.unique(rng.integers(-(1 << 40), 1 << 40, 5000))
+    keys = np.concatenate([rng.choice(table, 300), rng.integers(-(1 << 41), 1 << 41, 300),
+                           [table[0], table[-1], table[0] - 1, table[-1] + 1]])
+    np.testing.assert_array_equal(in_sorted(keys, table), np.isin(keys, table))
+    assert in_sorted(keys, table[:0]).shape == keys.shape and not in_sorted(keys, table[:0]).any()

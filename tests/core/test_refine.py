@@ -773,6 +773,28 @@ def test_refining_block_by_block_gives_the_one_block_result(scene, candidates, i
     assert len(one.signs) == len(scene.signs)
 
 
+def test_a_block_of_many_groups_is_cut_in_drive_order_with_the_same_result(scene, candidates, index):
+    one = R.refine_signs(candidates, index, block_m=float("inf"))
+    groups = R.merge_candidates(candidates, 1.0)
+    params = dataclasses.replace(R.RefineParams(), block_max_groups=2)
+    with R.CloudBlocks(candidates, groups, index, 1.0, 40.0, R.RefineParams()) as whole, \
+            R.CloudBlocks(candidates, groups, index, 1.0, 40.0, params) as cut:
+        assert max(len(b) for b in whole.blocks) > 2 and max(len(b) for b in cut.blocks) <= 2
+        assert len(cut.blocks) > len(whole.blocks)
+        # every group once, each cut block inside one block of 40 m, in drive order
+        np.testing.assert_array_equal(np.sort(np.concatenate(cut.blocks)), np.arange(len(groups)))
+        s_m = whole._axis.locate(whole.centres)[0]
+        parent = {int(g): k for k, b in enumerate(whole.blocks) for g in b}
+        assert all(len({parent[int(g)] for g in b}) == 1 for b in cut.blocks)
+        ends = [(parent[int(b[0])], s_m[b].min(), s_m[b].max()) for b in cut.blocks]
+        for (k0, _, hi), (k1, lo, _) in zip(ends, ends[1:]):
+            assert k1 > k0 or (k1 == k0 and lo >= hi)
+    _same_result(R.refine_signs(candidates, index, params=params, block_m=40.0), one)
+    # one block (block_m inf) stays one block, however many groups
+    with R.CloudBlocks(candidates, groups, index, 1.0, float("inf"), params) as single:
+        assert len(single.blocks) == 1
+
+
 def test_blocks_refined_in_threads_give_the_same_signs_and_log_in_order(candidates, index):
     runs = {}
     for threads in (1, 2):
