@@ -15,12 +15,12 @@ measures several models in one run, on the same images, timed alternately.
    (6 per frame): per class, signs >= 20 px, the precision/recall curve and the best-F1
    threshold (where the plugin's default ``CONFIDENCE`` should sit). GTSDB's truth lists only
    its 43 classes (and misses one of them in frame 516): the road signs it leaves out
-   (:data:`GTSDB_UNLABELLED_SIGNS`: information and direction panels, parking and no-parking,
-   chevrons, a cycle-path sign) are ignored, so a box on one is neither a hit nor a false
-   alarm; the precision as labelled (a box on them a false alarm) is printed beside. Then, the same way, the
-   held-out gtsrb-train tracks (real signs neither network nor any chosen threshold has seen)
-   pasted into those frames, two per track (14-35 and 35-80 px): :func:`heldout_track_frames`
-   (``--skip-tracks`` leaves them out).
+   (:data:`GTSDB_UNLABELLED_SIGNS`: information and direction panels, parking and no
+   parking, chevrons, cycle paths) are ignored, so a box on one is neither a hit nor a false
+   alarm; the precision as labelled (a box on them a false alarm) is printed beside. Then,
+   the same way, the held-out gtsrb-train tracks (real signs neither network nor any chosen
+   threshold has seen) pasted into those frames, two per track (14-35 and 35-80 px):
+   :func:`heldout_track_frames` (``--skip-tracks`` leaves them out).
 3. Per size band (box height 14-20, 20-35, 35-70, > 70 px) on both: recall of the signs of
    that height and precision of the detections of that height.
 4. Panoramas per second at 4096 x 2048 on ``--threads`` (2) threads, decoding apart; with
@@ -93,7 +93,6 @@ GTSDB_UNLABELLED_SIGNS = {
     583: [(607, 336, 674, 410)],                           # overhead direction panel
     589: [(769, 490, 796, 525)],                           # chevron board
 }
-
 
 
 def band_name(lo, hi):
