@@ -66,7 +66,6 @@ from .cloudsource import CloudSource, conform, open_cloud
 from .detections import Detections
 from .drivewindows import BLOCK_THREADS, DriveAxis, Spool, Track, make_windows, map_in_order
 from .errors import SILENT, InputError, Message, Progress
-from .memory import release_freed_memory
 from .pointcloud import (
     GROUND_CLASS,
     CloudWriter,
@@ -1302,13 +1301,16 @@ class CloudBlocks:
             drafts[d].ground = NO_CLOUD_GROUND
         rows = np.flatnonzero(near)
         block_of_row = self._block_of(centres[rows])
-        for b in np.unique(block_of_row):
-            mine = rows[block_of_row == b]
+
+        def ground_of_block(mine: np.ndarray) -> None:
             index = self._read(centres[mine, :2], radius)
             for k in mine:
                 drafts[k].ground = ground_from_cloud(index, places[k].centre, places[k].bottom_z, params)
-            del index
-            release_freed_memory()   # each read's heap given back, or it grows with the blocks read
+
+        # one block at a time, each read's heap given back after it (as for every block)
+        blocks = (rows[block_of_row == b] for b in np.unique(block_of_row))
+        for _ in map_in_order(ground_of_block, blocks, 1, lambda: None):
+            pass
 
 
 def extract_signs(cand: ProjectionResult, groups: Sequence[np.ndarray], index: Optional[TiledIndex],
