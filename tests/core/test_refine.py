@@ -819,6 +819,40 @@ def test_refining_a_las_file_block_by_block_gives_the_one_block_result(scene, ca
     _same_result(R.refine_signs(candidates, old, block_m=float("inf")), one)
 
 
+def test_blocks_hold_no_shape_of_the_whole_drive(scene, candidates, tmp_path, monkeypatch):
+    """The corridor is built only around the points tested, with the same shape there as the
+    drive-wide one; a block's read region only while spooling meets it, a few at a time, and
+    the hull that picks the chunks to read holds it: 10 MB of shapes on 9 km otherwise."""
+    las = str(tmp_path / "cloud.las")
+    signscene.write_las(scene, las)
+    one = R.refine_signs(candidates, las, block_m=float("inf"))
+    monkeypatch.setattr(R, "REGIONS_HELD", 2)
+    held = []
+    region = R.CloudBlocks._region
+
+    def counted(self, b):
+        out = region(self, b)
+        held.append(len(self._regions))
+        return out
+
+    monkeypatch.setattr(R.CloudBlocks, "_region", counted)
+    with R.CloudBlocks(candidates, R.merge_candidates(candidates, 1.0), las, 1.0, 7.0, R.RefineParams()) as blocks:
+        assert len(blocks.blocks) >= 6 and held and max(held) <= 2
+        assert not hasattr(blocks, "corridor")
+        whole = R.CropRegion.corridor(blocks.corridor_m, points_xy=blocks.ok_xy)
+        rng = np.random.default_rng(3)
+        lo, hi = blocks.ok_xy.min(axis=0) - 5.0, blocks.ok_xy.max(axis=0) + 5.0
+        for _ in range(20):    # windows of points anywhere along the drive
+            c = rng.uniform(lo, hi)
+            xy = c + rng.uniform(-8.0, 8.0, (4000, 2))
+            np.testing.assert_array_equal(blocks._corridor_mask(xy[:, 0], xy[:, 1]), whole.mask(xy[:, 0], xy[:, 1]))
+        for b in range(len(blocks.blocks)):
+            xy, radius = blocks._block_read(b)
+            hull = R.shapely.convex_hull(R.shapely.multipoints(xy)).buffer(radius * R.HULL_MARGIN + 0.01, 4)
+            assert hull.covers(blocks._region(b).geometry)
+    _same_result(R.refine_signs(candidates, las, block_m=7.0), one)
+
+
 @pytest.mark.parametrize("cloud", ["index", "las"])
 def test_image_only_ground_is_read_block_by_block_with_the_one_read_result(scene, candidates, index,
                                                                           tmp_path, monkeypatch, cloud):
