@@ -307,6 +307,12 @@ class Spool:
             return np.zeros(0, dtype=self.dtypes[kind])
         return np.fromfile(path, dtype=self.dtypes[kind])
 
+    def count(self, kind: str, index: int) -> int:
+        """How many rows of ``kind`` have been appended to ``index``."""
+        self._settle()
+        path = self._path(kind, index)
+        return os.path.getsize(path) // self.dtypes[kind].itemsize if os.path.exists(path) else 0
+
     def discard(self, kind: str, index: int) -> None:
         """Delete the rows of ``(kind, index)`` (read them first)."""
         self._pending.pop((kind, index), None)

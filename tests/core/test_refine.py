@@ -819,6 +819,37 @@ def test_refining_a_las_file_block_by_block_gives_the_one_block_result(scene, ca
     _same_result(R.refine_signs(candidates, old, block_m=float("inf")), one)
 
 
+def test_a_spooled_block_of_many_points_is_halved_with_the_same_result(scene, candidates, tmp_path):
+    """A block over ``block_max_points`` points (and of more than one group) is halved, its
+    groups in drive order, each half in a spool file of its own with the block's points
+    within its reach; again while a half is over. The signs do not change."""
+    las = str(tmp_path / "cloud.las")
+    signscene.write_las(scene, las)
+    one = R.refine_signs(candidates, las, block_m=float("inf"))
+    groups = R.merge_candidates(candidates, 1.0)
+    params = dataclasses.replace(R.RefineParams(), block_max_points=3000)
+    with R.CloudBlocks(candidates, groups, las, 1.0, 40.0, R.RefineParams()) as whole, \
+            R.CloudBlocks(candidates, groups, las, 1.0, 40.0, params) as halved:
+        counts = [halved._spool.count("block", sid) for sid in halved._spool_ids]
+        assert max(whole._spool.count("block", sid) for sid in whole._spool_ids) > 3000
+        assert len(halved.blocks) > len(whole.blocks)
+        assert all(n <= 3000 or len(gs) == 1 for n, gs in zip(counts, halved.blocks))
+        np.testing.assert_array_equal(np.sort(np.concatenate(halved.blocks)), np.arange(len(groups)))
+        files = sorted(os.listdir(halved._spool.folder))
+        assert len(files) == len([n for n in counts if n])      # the halved blocks' files are gone
+        assert halved.bright == pytest.approx(whole.bright)
+        # a half holds exactly the block's points within its own reach
+        parent = {int(g): k for k, b in enumerate(whole.blocks) for g in b}
+        for b, gs in enumerate(halved.blocks):
+            k = parent[int(gs[0])]
+            assert all(parent[int(g)] == k for g in gs)
+            xy, radius = halved._groups_read(gs)
+            rows = whole._spool.read("block", whole._spool_ids[k])
+            mine = R.CropRegion.corridor(radius, points_xy=xy).mask(rows["xyz"][:, 0], rows["xyz"][:, 1])
+            assert np.array_equal(np.sort(halved._block(b).point_index), np.sort(rows["point_index"][mine]))
+    _same_result(R.refine_signs(candidates, las, params=params, block_m=40.0), one)
+
+
 def test_blocks_hold_no_shape_of_the_whole_drive(scene, candidates, tmp_path, monkeypatch):
     """The corridor is built only around the points tested, with the same shape there as the
     drive-wide one; a block's read region only while spooling meets it, a few at a time, and
