@@ -69,6 +69,7 @@ from .drivewindows import BLOCK_THREADS, DriveAxis, Spool, Track, make_windows, 
 from .errors import SILENT, InputError, Message, Progress
 from .pointcloud import (
     GROUND_CLASS,
+    READ_CHUNK_POINTS,
     CloudWriter,
     CropRegion,
     PointSet,
@@ -1155,7 +1156,7 @@ class CloudBlocks:
             area.append(shapely.convex_hull(shapely.multipoints(xy)).buffer(radius * HULL_MARGIN + 0.01, 4))
         self._spool = spool = Spool({"block": BLOCK_SPOOL_DTYPE}, prefix="roadsigns-refine-")
         box_of_block = np.array(boxes, np.float64).reshape(-1, 4)
-        for index, chunk in self.source.iter_indexed_chunks(progress=progress, area=area):
+        for index, chunk in self.source.iter_indexed_chunks(READ_CHUNK_POINTS, progress=progress, area=area):
             x, y = np.asarray(chunk.x), np.asarray(chunk.y)
             near = np.flatnonzero(self._corridor_mask(x, y))
             if not len(near):
@@ -1273,7 +1274,7 @@ class CloudBlocks:
                               {k: v[m] for k, v in src.attributes.items()}, src.tile_size_m,
                               src.crs_wkt)
         assert self.source is not None
-        idx = self.source.index(region, ("intensity", "classification"), 5.0, progress=progress)
+        idx = self.source.index(region, ("intensity", "classification"), 5.0, READ_CHUNK_POINTS, progress)
         m = self._corridor_mask(idx.xyz_world[:, 0], idx.xyz_world[:, 1])
         if m.all():
             return idx
