@@ -39,7 +39,7 @@ from scipy.spatial import cKDTree
 from . import geometry
 from .cloudsource import CloudSource, open_cloud
 from .detections import DETECTION_POSE_FIELDS, Detections
-from .drivewindows import BLOCK_THREADS, DriveAxis, Track, WindowSpool, make_windows, map_in_order
+from .drivewindows import BLOCK_THREADS, DriveAxis, Spool, Track, Window, make_windows, map_in_order
 from .errors import SILENT, InputError, Progress
 from .pointcloud import GROUND_CLASS, CropRegion, TiledIndex, xyz_of
 from .schema import Schema, fields
@@ -50,6 +50,9 @@ DEFAULT_MAX_RANGE_M = 30.0
 SPOOL_DTYPE = np.dtype([("x", "f8"), ("y", "f8"), ("z", "f8"), ("index", "i8")])
 #: Cells (m) of the coarse frustum test that decides which points are spooled.
 FRUSTUM_CELL_M = 2.0
+#: Slices (m of drive) the spooled points are kept in, each point in one; a block of
+#: :func:`drive_blocks` reads the slices its detections' frusta may reach.
+SLICE_M = 25.0
 #: Candidate status flags.
 STATUS_OK, STATUS_NO_POINTS, STATUS_NO_SURFACE = "ok", "no_points", "no_surface"
 
@@ -249,6 +252,7 @@ class ProjectionParams:
     min_range_m: float = 0.5
     tile_size_m: float = 5.0
     block_m: float = 150.0            # metres of drive indexed at a time (memory follows it)
+    block_max_points: int = 1_500_000  # points a block reads, at most (but one slice of detections)
     block_threads: int = BLOCK_THREADS  # blocks searched at once (numpy and scipy release the GIL)
     cluster_tolerance_m: float = 0.15  # Euclidean clustering: at least this, or
     cluster_tolerance_per_m: float = 0.008  # this x range
@@ -570,25 +574,28 @@ def drive_blocks(det: Detections, frusta: Frusta, cloud: Union[str, CloudSource]
 
     One streaming read of the cloud (of the tiles, or COPC nodes, that some frustum's
     footprint meets: a drive through a tiled city reads the tiles along it) keeps the
-    non-ground points in the cells of
-    :data:`FRUSTUM_CELL_M` that a frustum's footprint touches (:func:`frustum_cells`; the
-    exact frustum test comes later, per detection) and spools them to disk by their arc
-    length along the drive (the track through the stations, :mod:`.drivewindows`), each
-    into every block of ``params.block_m`` metres of drive whose range grown by twice
-    ``max_range_m`` holds it. A detection belongs to the
-    block of its station. Blocks are then indexed one at a time, so memory follows the
-    block, not the drive. :class:`InputError` when the cloud has points inside the frusta
-    but none of class 2.
+    non-ground points in the cells of :data:`FRUSTUM_CELL_M` that a frustum's footprint
+    touches (:func:`frustum_cells`; the exact frustum test comes later, per detection) and
+    spools each to the slice of :data:`SLICE_M` metres of drive holding its arc length along
+    the drive (the track through the stations, :mod:`.drivewindows`). A detection belongs to
+    the slice of its station; a block is a run of slices (:func:`slice_blocks`: at most
+    ``params.block_m`` long, and reading at most ``params.block_max_points`` points), and
+    reads the slices within twice ``max_range_m`` of it. Blocks are indexed one at a time,
+    so memory follows the block, not the drive; a block's points are bounded, not only its
+    length, since the densest stretch of a longer drive is denser. :class:`InputError` when
+    the cloud has points inside the frusta but none of class 2.
     """
     cells = frustum_cells(frusta, FRUSTUM_CELL_M)
     track = station_track(det)
     axis = DriveAxis(track) if track is not None else None
     length_m = axis.length_m if axis is not None else 0.0
-    windows = make_windows(length_m, params.block_m)
+    slices = make_windows(length_m, min(SLICE_M, params.block_m))
+    inner_edges_m = np.array([w.s1_m for w in slices[:-1]])
     owner_s = axis.locate(det.centre_world)[0] if axis is not None else np.zeros(len(det))
+    owner_slice = np.searchsorted(inner_edges_m, owner_s, side="right")
     n_ground = n_inside = 0
     source = open_cloud(cloud)
-    with WindowSpool(windows, 2.0 * max_range_m, {"points": SPOOL_DTYPE}) as spool:
+    with Spool({"points": SPOOL_DTYPE}, prefix="roadsigns-projection-") as spool:
         for point_index, chunk in source.iter_indexed_chunks(progress=progress, area=frusta.footprints):
             inside = in_sorted(cell_keys(np.asarray(chunk.x), np.asarray(chunk.y), FRUSTUM_CELL_M), cells)
             classes = np.asarray(chunk.classification)[inside]
@@ -600,19 +607,65 @@ def drive_blocks(det: Detections, frusta: Frusta, cloud: Union[str, CloudSource]
             rows["x"], rows["y"], rows["z"] = xyz[:, 0], xyz[:, 1], xyz[:, 2]
             rows["index"] = point_index[inside][~ground]
             s_m = axis.locate(xyz)[0] if axis is not None else np.zeros(len(rows))
-            spool.add("points", s_m, rows)
+            where = np.searchsorted(inner_edges_m, s_m, side="right")
+            for k in np.unique(where):
+                spool.append("points", int(k), rows[where == k])
         spool.flush()
         if n_inside and not n_ground:
             raise InputError("{source} has no ground points (class 2) where the signs are: run "
                              "roadsigns:groundfilter on it first (or classify the ground with "
                              "another tool)", source=source.path)
-        for window in windows:
-            rows_k = np.flatnonzero(window.owns(owner_s))
-            if rows_k.size == 0:
-                continue
-            points = spool.read("points", window.index)
-            xyz = np.column_stack([points["x"], points["y"], points["z"]])
-            yield rows_k, TiledIndex(xyz, points["index"], {}, params.tile_size_m)
+        counts = np.array([spool.count("points", k) for k in range(len(slices))], np.int64)
+        for rows_k, first, last in slice_blocks(slices, owner_slice, counts, 2.0 * max_range_m,
+                                                params.block_m, params.block_max_points):
+            # the slices' points straight into the arrays the index takes, a slice at a time
+            xyz = np.empty((int(counts[first:last + 1].sum()), 3))
+            index = np.empty(len(xyz), np.int64)
+            at = 0
+            for k in range(first, last + 1):
+                points = spool.read("points", k)
+                end = at + len(points)
+                xyz[at:end, 0], xyz[at:end, 1], xyz[at:end, 2] = points["x"], points["y"], points["z"]
+                index[at:end] = points["index"]
+                at = end
+            del points
+            yield rows_k, TiledIndex(xyz, index, {}, params.tile_size_m)
+
+
+def slice_blocks(slices: List[Window], owner_slice: np.ndarray, counts: np.ndarray, reach_m: float,
+                 block_m: float, max_points: int) -> Iterator[Tuple[np.ndarray, int, int]]:
+    """``(detection rows, first slice, last slice)`` per block, in drive order: runs of the
+    ``slices`` that own detections (``owner_slice``: each detection's slice), a run at most
+    ``block_m`` long and its read (the slices within ``reach_m`` of it, both sides: ``counts``
+    points each) at most ``max_points``, but one slice at least; ``first`` to ``last`` are
+    the slices it reads."""
+    n = len(slices)
+    inner = np.array([w.s1_m for w in slices[:-1]])
+    length_m = max((w.s1_m - w.s0_m for w in slices if np.isfinite(w.s1_m - w.s0_m)), default=block_m)
+    most = max(1, int(round(block_m / length_m)) if np.isfinite(block_m) else n)
+    owned = np.bincount(owner_slice, minlength=n) > 0
+    total = np.r_[0, np.cumsum(counts)]
+
+    def read(a: int, b: int) -> Tuple[int, int]:
+        lo = int(np.searchsorted(inner, slices[a].s0_m - reach_m, side="right"))
+        hi = min(int(np.searchsorted(inner, slices[b].s1_m + reach_m, side="left")), n - 1)
+        return lo, hi
+
+    a = 0
+    while a < n:
+        if not owned[a]:
+            a += 1
+            continue
+        b = a
+        while b + 1 < n and b + 1 - a < most:
+            lo, hi = read(a, b + 1)
+            if total[hi + 1] - total[lo] > max_points:
+                break
+            b += 1
+        b = a + int(np.flatnonzero(owned[a:b + 1]).max())   # ends at a slice with detections
+        lo, hi = read(a, b)
+        yield np.flatnonzero((owner_slice >= a) & (owner_slice <= b)), lo, hi
+        a = b + 1
 
 
 def in_sorted(keys: np.ndarray, sorted_keys: np.ndarray) -> np.ndarray:

@@ -184,6 +184,46 @@ def test_block_by_block_projection_equals_one_index(scene, detections, las_path,
     np.testing.assert_array_equal(one.tiles_visited, small.tiles_visited)
 
 
+def test_slice_blocks_bound_length_points_and_reach():
+    """Blocks are runs of the slices owning detections, each detection in one; at most
+    block_m long; reading at most max_points but one slice; reading every slice within
+    the reach of its own on both sides, and no more."""
+    from roadsigns.core.drivewindows import make_windows
+
+    rng = np.random.default_rng(5)
+    slices = make_windows(1000.0, 25.0)
+    counts = rng.integers(0, 400, len(slices))
+    owner = np.sort(rng.choice(np.r_[0:10, 14:len(slices)], 300))   # slices 10-13 own none
+    for max_points in (10 ** 9, 3000, 1):
+        blocks = list(P.slice_blocks(slices, owner, counts, 60.0, 150.0, max_points))
+        assert sorted(np.concatenate([rows for rows, _, _ in blocks]).tolist()) == list(range(len(owner)))
+        for rows, first, last in blocks:
+            own = np.unique(owner[rows])
+            assert own.max() - own.min() < 6                                # 150 m of 25 m slices
+            assert counts[first:last + 1].sum() <= max_points or own.max() == own.min()
+            lo = max(own.min() - int(np.ceil(60.0 / 25.0)), 0)
+            hi = min(own.max() + int(np.ceil(60.0 / 25.0)), len(slices) - 1)
+            assert (first, last) == (lo, hi)
+        if max_points == 1:
+            assert all(len(np.unique(owner[rows])) == 1 for rows, _, _ in blocks)
+
+
+def test_projection_with_few_points_a_block_equals_one_block(detections, las_path, result):
+    """A block cut short by its points (block_max_points) finds the same surfaces."""
+    small = P.project_detections(detections, las_path, keep_point_index=True,
+                                 params=dataclasses.replace(P.ProjectionParams(), block_max_points=20_000))
+    assert small.status == result.status
+    np.testing.assert_allclose(small.xyz_world, result.xyz_world, atol=1e-9, equal_nan=True)
+    for a, b in zip(small.point_index, result.point_index):
+        assert np.array_equal(np.sort(a), np.sort(b))
+    frusta = P.Frusta.build(detections, 30.0, 0.25, 0.1)
+    capped = list(P.drive_blocks(detections, frusta, las_path, 30.0,
+                                 dataclasses.replace(P.ProjectionParams(), block_max_points=20_000)))
+    plain = list(P.drive_blocks(detections, frusta, las_path, 30.0, P.ProjectionParams()))
+    assert len(capped) > len(plain)
+    assert max(len(index) for _, index in capped) < max(len(index) for _, index in plain)
+
+
 def test_in_sorted_is_isin_for_sorted_keys():
     from roadsigns.core.projection import in_sorted
 
