@@ -10,10 +10,11 @@ How the cloud is searched (cost ~ linear in points + detections):
 * one streaming read of the cloud (a LAS/LAZ file, a folder of tiles or a virtual point
   cloud, :mod:`.cloudsource`: only the tiles, or COPC nodes, under some frustum are read)
   keeps only the non-ground points under the union of the frusta's 2D footprints and spools
-  them to disk by their arc length along the drive
+  them to disk in slices of the drive by their arc length along it
   (:func:`drive_blocks`, :mod:`.drivewindows`); the drive is then worked through in blocks
-  of ``ProjectionParams.block_m`` metres, each held in a :class:`~.pointcloud.TiledIndex`
-  of small tiles, so memory follows the block, not the drive;
+  of at most ``ProjectionParams.block_m`` metres and ``block_max_points`` points
+  (:func:`slice_blocks`), each held in a :class:`~.pointcloud.TiledIndex` of small tiles,
+  so memory follows the block, not the drive;
 * within a block, one pass over its tiles serves all its detections together: each tile is
   visited once and tested against the detections whose footprint crosses it, so a
   detection only ever touches the tiles under its own frustum
