@@ -113,7 +113,7 @@ DEFAULT_BLOCK_M = 150.0
 #: two dimensions refinement reads (LAS intensity and class).
 BLOCK_SPOOL_DTYPE = np.dtype([("xyz", "f8", (3,)), ("point_index", "i8"), ("intensity", "u2"),
                               ("classification", "u1")])
-#: Blocks whose read region (and corridor) :class:`CloudBlocks` keeps built while spooling.
+#: Blocks whose read region :class:`CloudBlocks` keeps built while spooling.
 REGIONS_HELD = 16
 #: A block's hull is buffered by this times its reach with 4 segments a quarter circle, so
 #: the coarse polygon holds the region: its edges lie cos(pi/16) of the distance from the
@@ -1109,7 +1109,7 @@ class CloudBlocks:
         try:
             if self.source is not None and len(self.blocks) > 1:
                 self._spool_blocks(progress)
-                self._halve_dense_blocks(params.block_max_points)
+                self._halve_dense_blocks(params.block_max_points, progress)
             self.bright = self._bright_level()
             progress.report(1.0)
         except BaseException:   # cancelled or a bad tile while reading: no spool folder left behind
@@ -1183,7 +1183,7 @@ class CloudBlocks:
         spool.flush()
         self._regions.clear()
 
-    def _halve_dense_blocks(self, max_points: int) -> None:
+    def _halve_dense_blocks(self, max_points: int, progress: Progress = SILENT) -> None:
         """Halve every spooled block of more than ``max_points`` points and more than one
         group: its groups in two runs in drive order, each keeping the block's points within
         its own reach (:meth:`_groups_read`) in a spool file of its own; again while a half
@@ -1198,6 +1198,7 @@ class CloudBlocks:
             assert self._spool is not None
             if len(gs) < 2 or self._spool.count("block", sid) <= max_points:
                 return [(gs, sid)]
+            progress.check()
             rows = self._spool.read("block", sid)
             ordered = gs[np.argsort(s_m[gs], kind="stable")]
             parts = []

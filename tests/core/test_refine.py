@@ -850,6 +850,38 @@ def test_a_spooled_block_of_many_points_is_halved_with_the_same_result(scene, ca
     _same_result(R.refine_signs(candidates, las, params=params, block_m=40.0), one)
 
 
+def test_cancel_while_halving_blocks_stops_and_leaves_no_spool(scene, candidates, tmp_path, monkeypatch):
+    """Cancel asked for once the spool pass is over stops the halving of dense blocks, and
+    the spool folder goes with it."""
+    from roadsigns.core.errors import Cancelled
+
+    las = str(tmp_path / "cloud.las")
+    signscene.write_las(scene, las)
+    spooled, folders = [False], []
+    spool_blocks = R.CloudBlocks._spool_blocks
+
+    def then_cancel(self, progress):
+        spool_blocks(self, progress)
+        folders.append(self._spool.folder)
+        spooled[0] = True
+
+    read_after, read = [], R.Spool.read
+
+    def reading(self, kind, index):
+        if spooled[0]:
+            read_after.append(index)
+        return read(self, kind, index)
+
+    monkeypatch.setattr(R.CloudBlocks, "_spool_blocks", then_cancel)
+    monkeypatch.setattr(R.Spool, "read", reading)
+    params = dataclasses.replace(R.RefineParams(), block_max_points=3000)
+    with pytest.raises(Cancelled):
+        R.CloudBlocks(candidates, R.merge_candidates(candidates, 1.0), las, 1.0, 40.0, params,
+                      Progress(is_cancelled=lambda: spooled[0]))
+    assert folders and not os.path.exists(folders[0])
+    assert read_after == []           # no block was read back to be halved
+
+
 def test_blocks_hold_no_shape_of_the_whole_drive(scene, candidates, tmp_path, monkeypatch):
     """The corridor is built only around the points tested, with the same shape there as the
     drive-wide one; a block's read region only while spooling meets it, a few at a time, and
