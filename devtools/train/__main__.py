@@ -38,6 +38,8 @@ def main(argv=None):
     ap.add_argument("--val-images", type=int, default=60, help="images per validation set and round")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--ema-decay", type=float, default=0.998, help="EMA of the weights (lower follows faster)")
+    ap.add_argument("--small-share", type=float, default=0.0,
+                    help="share of pasted real signs drawn at 14-35 px (far signs), 0..1")
     ap.add_argument("--source-weights", default=None, metavar="NAME=W,...",
                     help="override the data mix's shares, e.g. views=0.5,gtsdb=0.2 (names: gtsdb, gtsrb_paste, "
                          "drawn_paste, views)")
@@ -56,7 +58,7 @@ def main(argv=None):
           crop_px=a.crop, batch_size=a.batch, lr=a.lr, threads=a.threads, validate_every_min=a.validate_every,
           seed=a.seed, resume=a.resume, val_images=a.val_images, init=a.init, device=a.device,
           checkpoint_every_min=a.checkpoint_every, until=a.until, warmup_steps=a.warmup, amp=not a.no_amp,
-          export=not a.no_export, ema_decay=a.ema_decay,
+          export=not a.no_export, ema_decay=a.ema_decay, small_share=a.small_share,
           source_weights={k: float(v) for k, v in (x.split("=") for x in a.source_weights.split(","))}
           if a.source_weights else None)
     return 0

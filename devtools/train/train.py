@@ -26,6 +26,9 @@ TRAIN_SCENES = (("default", 100, None), ("tiny", 100, None), ("default", 101, No
 VAL_PANORAMAS_PER_SCENE = 8
 
 SOURCE_WEIGHTS = {"gtsdb": 0.24, "gtsrb_paste": 0.30, "drawn_paste": 0.10, "views": 0.36}
+# pasted real signs: share drawn at the 14-35 px of far signs (those the detector scores too
+# low on real photographs), beside the sizes of _gtsrb_height; 0 = as the bundled file
+SMALL_PASTE_PX = (14.0, 35.0)
 #: Share of training crops that get 1-3 pasted look-alikes (unlabelled).
 NEGATIVE_SHARE = 0.45
 #: Mandatory signs (GTSDB's weakest class) are drawn this many times more often.
@@ -60,8 +63,9 @@ class DataMix:
     """Random training crops from every source (see :mod:`devtools.train.data`)."""
 
     def __init__(self, crop_px: int, work_dir: str, seed: int = 0, mandatory_boost: float = MANDATORY_BOOST,
-                 source_weights=None):
+                 source_weights=None, small_share: float = 0.0):
         self.crop_px = crop_px
+        self.small_share = small_share
         w = dict(SOURCE_WEIGHTS, **(source_weights or {}))
         self.source_names = list(w)
         self.source_p = np.array([w[k] for k in self.source_names], float) / sum(w.values())
@@ -128,6 +132,8 @@ class DataMix:
     def _gtsrb_height(self, k: int) -> float:
         """Pasted height of a real crop: near its own size (the camera's real blur), or the
         15-60 px of a distant sign, now and then larger."""
+        if self.small_share and self.rng.random() < self.small_share:
+            return log_uniform(self.rng, *SMALL_PASTE_PX)
         r = self.rng.random()
         if r < 0.4:
             h = self.gtsrb_heights[k] * self.rng.uniform(0.6, 1.2)
@@ -420,7 +426,7 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
           validate_every_min: float = 5.0, seed: int = 0, resume: str = None, val_images: int = 60,
           init: str = None, device: str = "auto", checkpoint_every_min: float = 10.0, until: str = None,
           warmup_steps: int = 300, amp: bool = True, scenes=TRAIN_SCENES, export: bool = True,
-          ema_decay: float = 0.998, source_weights=None):
+          ema_decay: float = 0.998, source_weights=None, small_share: float = 0.0):
     """Train (or go on training) for ``minutes`` of training time in all (a resumed run
     counts the time already spent), or until the wall-clock time ``until``; validate every
     ``validate_every_min`` (best by AP50 on GTSDB 500-599), checkpoint every
@@ -434,7 +440,7 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
     os.makedirs(work_dir, exist_ok=True)
     t_start = time.perf_counter()
     scene_folders = ensure_scenes(scene_root, specs=scenes, generate=generate_scenes)
-    mix = DataMix(crop_px, work_dir, seed, source_weights=source_weights)
+    mix = DataMix(crop_px, work_dir, seed, source_weights=source_weights, small_share=small_share)
     mix.add_scenes(scene_folders)
     # GTSDB 500-599 picks the best checkpoint; views and pasted held-out tracks are watched
     val_sets = {"gtsdb_500_599": data.read_gtsdb(data.GTSDB_HELDOUT_IDS)[:val_images],
