@@ -20,7 +20,7 @@ from ..core.signcodes import OTHER_CODE
 from ..core.trajectory import STATION_FIELDS, Stations
 from .base import RoadSignsAlgorithm
 from .codeparams import ReadsCodes
-from .layers import check_layer_extent, check_metric_crs, qgs_fields, read_records, write_records
+from .layers import check_layer_extent, check_metric_crs, qgs_fields, read_columns, write_records
 from .paths import BUNDLED_MODEL
 
 
@@ -161,7 +161,7 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
 
         source = self.source(parameters, self.STATIONS, context)
         check_metric_crs(source.sourceCrs(), self.tr("Panorama stations"))
-        rows = read_records(source, STATION_FIELDS, self.tr("Panorama stations"), feedback)
+        rows = read_columns(source, STATION_FIELDS, self.tr("Panorama stations"), feedback)
         model_path = self.parameterAsFile(parameters, self.MODEL, context) or BUNDLED_MODEL
         if not os.path.isfile(model_path):
             raise QgsProcessingException(self.tr("ONNX model not found: {}").format(model_path))

@@ -5,7 +5,7 @@ from qgis.core import Qgis, QgsGeometry, QgsPoint, QgsProcessingOutputNumber
 from ..core.schema import select
 from ..core.trajectory import STATION_FIELDS
 from .base import RoadSignsAlgorithm
-from .layers import check_same_crs, qgs_fields, read_cloud_crs_wkt, read_records, write_records
+from .layers import check_same_crs, qgs_fields, read_cloud_crs_wkt, read_columns, write_records
 
 
 class FindSignsInCloud(RoadSignsAlgorithm):
@@ -81,11 +81,10 @@ class FindSignsInCloud(RoadSignsAlgorithm):
 
         source = self.source(parameters, self.STATIONS, context)
         cloud_path = self.parameterAsFile(parameters, self.POINT_CLOUD, context)
-        rows = read_records(source, STATION_FIELDS, self.tr("Panorama stations"), feedback)
+        rows = read_columns(source, STATION_FIELDS, self.tr("Panorama stations"), feedback)
         with self.core_errors():
             check_same_crs(source.sourceCrs(), read_cloud_crs_wkt(cloud_path), self.tr("The stations"), cloud_path)
             stations = Stations.from_records(rows, self.tr("Panorama stations"))
-            del rows   # a dict a station: not held through the drive's windows
             params = CloudSignParams(corridor_m=self.parameterAsDouble(parameters, self.CORRIDOR, context))
             result = find_signs_in_cloud(cloud_path, Track.from_stations(stations), params,
                                          progress=self.progress(feedback).sub(0.0, 0.95))

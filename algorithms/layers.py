@@ -3,9 +3,10 @@ signs, outlines): features <-> the plain records ``core`` reads and writes; the 
 layer and cloud CRSs; and :class:`RunOutputs`, what a run has written so far, for the
 boundary in :mod:`.base` to keep or remove.
 
-Records are dicts of Python values (``None`` for NULL) keyed by field name; each layer's
-fields are a :mod:`core.schema <roadsigns.core.schema>` declared once in core. Here the
-field kinds become QGIS field types.
+Records are dicts of Python values (``None`` for NULL) keyed by field name, or, for the
+layers of a whole drive (stations, detections, candidates), :class:`Columns` that read as
+such records; each layer's fields are a :mod:`core.schema <roadsigns.core.schema>` declared
+once in core. Here the field kinds become QGIS field types.
 """
 import os
 import re
@@ -25,7 +26,7 @@ from qgis.PyQt.QtCore import QMetaType
 
 from ..core.errors import Cancelled, InputError
 from ..core.outputs import StagedOutputs, remove, temp_path_beside
-from ..core.schema import names
+from ..core.schema import Columns, names
 from .i18n import tr
 
 #: core field kind -> QGIS field type
@@ -53,6 +54,21 @@ def read_records(source, schema, label, feedback=None, required=None, allow_empt
     error naming the layer, the missing fields and the fields found. A layer without
     features is an error too, unless ``allow_empty``. Cancelling raises ``Cancelled``.
     """
+    return list(_checked_records(source, schema, label, feedback, required, allow_empty))
+
+
+def read_columns(source, schema, label, feedback=None, required=None, allow_empty=False):
+    """The features of ``source`` as :class:`~roadsigns.core.schema.Columns` of ``schema``'s
+    fields (those the layer has; the others read as NULL): a drive's detections or
+    candidates as arrays, not a dict a feature. Checks and errors as :func:`read_records`."""
+    columns = Columns(f for f in schema if f.name in source.fields().names())
+    for record in _checked_records(source, schema, label, feedback, required, allow_empty):
+        columns.append(record)
+    return columns
+
+
+def _checked_records(source, schema, label, feedback, required, allow_empty):
+    """The attribute dicts of ``source``'s features, one at a time (see :func:`read_records`)."""
     found = source.fields().names()
     missing = [f for f in (required or names(schema)) if f not in found]
     if missing:
@@ -60,7 +76,7 @@ def read_records(source, schema, label, feedback=None, required=None, allow_empt
             tr("{layer}: missing field(s) {missing}; fields found: {found}").format(
                 layer=label, missing=", ".join(missing), found=", ".join(found)))
     typed = [f for f in schema if f.name in found and f.kind is not str]
-    records = []
+    n = 0
     for feature in source.getFeatures(QgsFeatureRequest()):
         if feedback is not None and feedback.isCanceled():
             raise Cancelled("cancelled")
@@ -71,21 +87,23 @@ def read_records(source, schema, label, feedback=None, required=None, allow_empt
             except (TypeError, ValueError, OverflowError):
                 raise QgsProcessingException(
                     tr("{layer}, feature {feature}: the field {field} holds '{value}', not a number").format(
-                        layer=label, feature=len(records) + 1, field=field.name,
+                        layer=label, feature=n + 1, field=field.name,
                         value=str(record[field.name])[:60]))
-        records.append(record)
-    if not records and not allow_empty:
+        n += 1
+        yield record
+    if not n and not allow_empty:
         raise QgsProcessingException(tr("{layer}: the layer has no feature, nothing to process").format(
             layer=label))
-    return records
 
 
-def write_records(sink, schema, records, geometries, feedback=None, progress_span=(0, 100)):
+def write_records(sink, schema, records, geometries, feedback=None, progress_span=(0, 100), count=None):
     """Add one feature per record, its values taken by ``schema``'s field names and kinds,
     with ``geometries[k]`` (a QgsGeometry, or None for a feature without geometry).
-    Cancelling raises ``Cancelled`` (the boundary then deletes the layer)."""
+    ``records`` and ``geometries`` may be iterators (one feature made at a time), with
+    ``count`` the number of records for progress. Cancelling raises ``Cancelled`` (the
+    boundary then deletes the layer)."""
     fields = qgs_fields(schema)
-    n = max(len(records), 1)
+    n = max(len(records) if count is None else count, 1)
     start, end = progress_span
     for k, (record, geometry) in enumerate(zip(records, geometries)):
         if feedback is not None and feedback.isCanceled():

@@ -4,7 +4,7 @@ from qgis.core import Qgis, QgsCoordinateReferenceSystem, QgsGeometry, QgsPoint
 
 from ..core.detections import DETECTION_POSE_FIELDS, REQUIRED_POSE_FIELDS
 from .base import RoadSignsAlgorithm
-from .layers import check_cloud_extent, check_same_crs, cloud_crs_wkt, qgs_fields, read_records, write_records
+from .layers import check_cloud_extent, check_same_crs, cloud_crs_wkt, qgs_fields, read_columns, write_records
 
 
 class ProjectDetections(RoadSignsAlgorithm):
@@ -57,7 +57,7 @@ class ProjectDetections(RoadSignsAlgorithm):
 
     def processAlgorithm(self, parameters, context, feedback):
         self.check_dependencies()
-        from ..core.projection import CANDIDATE_FIELDS, Detections, project_detections
+        from ..core.projection import CANDIDATE_FIELDS, STATUS_OK, Detections, project_detections
 
         source = self.source(parameters, self.DETECTIONS, context)
         cloud_path = self.parameterAsFile(parameters, self.POINT_CLOUD, context)
@@ -65,26 +65,25 @@ class ProjectDetections(RoadSignsAlgorithm):
             crs_wkt = cloud_crs_wkt(self.parameterAsCrs(parameters, self.CLOUD_CRS, context), cloud_path)
             check_same_crs(source.sourceCrs(), crs_wkt, self.tr("The detections"), cloud_path)
             check_cloud_extent(cloud_path, crs_wkt)
-        rows = read_records(source, DETECTION_POSE_FIELDS, self.tr("Detections"), feedback,  # code fields: optional
+        rows = read_columns(source, DETECTION_POSE_FIELDS, self.tr("Detections"), feedback,  # code fields: optional
                             required=REQUIRED_POSE_FIELDS,
                             allow_empty=True)  # no detections: a warning and an empty layer
         with self.core_errors():
             detections = Detections.from_records(rows)
-        del rows   # a dict a detection: not held through the drive's blocks
         with self.core_errors():
             result = project_detections(
                 detections, cloud_path,
                 max_range_m=self.parameterAsDouble(parameters, self.MAX_RANGE, context),
                 progress=self.progress(feedback).sub(0.0, 0.95))
-        records = result.records()
         output_crs = source.sourceCrs() if source.sourceCrs().isValid() else \
             QgsCoordinateReferenceSystem.fromWkt(crs_wkt)
         sink, dest_id = self.sink(parameters, self.OUTPUT, context, qgs_fields(CANDIDATE_FIELDS),
                                   Qgis.WkbType.PointZ, output_crs)
-        geometries = [QgsGeometry(QgsPoint(r["cand_x"], r["cand_y"], r["cand_z"]))
-                      if r["status"] == "ok" else None for r in records]
-        write_records(sink, CANDIDATE_FIELDS, records, geometries, feedback, (95, 100))
-        found = sum(r["status"] == "ok" for r in records)
+        found = [status == STATUS_OK for status in result.status]
+        geometries = (QgsGeometry(QgsPoint(*map(float, result.xyz_world[k]))) if ok else None
+                      for k, ok in enumerate(found))
+        write_records(sink, CANDIDATE_FIELDS, result.iter_records(), geometries, feedback, (95, 100),
+                      count=len(result))  # a feature made at a time: a drive's candidates are not held twice
         feedback.pushInfo(self.tr("{} detections: {} with a surface in the cloud, {} without").format(
-            len(records), found, len(records) - found))
+            len(result), sum(found), len(result) - sum(found)))
         return {self.OUTPUT: dest_id}

@@ -20,7 +20,7 @@ from .layers import (
     cloud_crs_wkt,
     destination_file,
     qgs_fields,
-    read_records,
+    read_columns,
     write_records,
 )
 from .paths import BUNDLED_CODES_TABLE
@@ -140,7 +140,7 @@ class RefineSigns(RoadSignsAlgorithm):
             crs_wkt = cloud_crs_wkt(self.parameterAsCrs(parameters, self.CLOUD_CRS, context), cloud_path)
             check_same_crs(source.sourceCrs(), crs_wkt, self.tr("The candidates"), cloud_path)
             check_cloud_extent(cloud_path, crs_wkt)
-        rows = read_records(source, CANDIDATE_FIELDS, self.tr("Sign candidates"), feedback,
+        rows = read_columns(source, CANDIDATE_FIELDS, self.tr("Sign candidates"), feedback,
                             required=[f.name for f in CANDIDATE_FIELDS if f.name not in OPTIONAL_FIELDS],
                             allow_empty=True)  # no candidates: a warning and an empty layer
         images_dir = self.parameterAsFile(parameters, self.IMAGES, context)
@@ -151,7 +151,6 @@ class RefineSigns(RoadSignsAlgorithm):
         progress = self.progress(feedback)
         with self.core_errors():
             candidates = ProjectionResult.from_records(rows)
-        del rows   # a dict a candidate: not held through the drive's blocks
         with self.core_errors():
             codes_table = read_codes_table(
                 self.parameterAsFile(parameters, self.CODES_TABLE, context) or BUNDLED_CODES_TABLE)

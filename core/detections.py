@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Dict, List, Sequence, Tuple
+from typing import Any, Dict, Iterator, List, Mapping, Sequence, Tuple
 
 import numpy as np
 
@@ -89,7 +89,7 @@ class Detections:
                    np.zeros((0, 4)), np.zeros((0, 2)), np.zeros((0, 3)), np.zeros((0, 4)))
 
     @classmethod
-    def from_records(cls, rows: Sequence[Dict]) -> "Detections":
+    def from_records(cls, rows: Sequence[Mapping[str, Any]]) -> "Detections":
         """From dicts with :data:`DETECTION_POSE_FIELDS` (a detections or candidates layer's
         attributes); the :data:`OPTIONAL_FIELDS` are read when present."""
         rows = list(rows)
@@ -176,7 +176,10 @@ class Detections:
 
     def records(self, schema: Schema = DETECTION_FIELDS) -> List[Dict]:
         """One dict per detection with ``schema``'s fields (the detections layer's by default)."""
-        out = []
+        return list(self.iter_records(schema))
+
+    def iter_records(self, schema: Schema = DETECTION_FIELDS) -> Iterator[Dict]:
+        """:meth:`records` one at a time (a drive's layer written without a dict per row held)."""
         for k in range(len(self)):
             record = {"det_id": int(self.det_id[k]), "station_id": int(self.station_id[k]),
                       "image": self.image[k], "class": self.class_name[k],
@@ -188,8 +191,7 @@ class Detections:
             record.update(zip(("u0", "v0", "u1", "v1"), map(float, self.box_px[k])))
             record.update(zip(("x", "y", "z"), map(float, self.centre_world[k])))
             record.update(zip(("qw", "qx", "qy", "qz"), map(float, self.q_world_from_pano_wxyz[k])))
-            out.append({f.name: record[f.name] for f in schema})
-        return out
+            yield {f.name: record[f.name] for f in schema}
 
 
 def _finite_or_none(value: float):

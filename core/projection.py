@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Dict, Iterator, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import shapely
@@ -305,8 +305,11 @@ class ProjectionResult:
 
     def records(self) -> List[Dict]:
         """One dict of :data:`CANDIDATE_FIELDS` per candidate (the candidates layer)."""
-        out = []
-        for k, rec in enumerate(self.detections.records(DETECTION_POSE_FIELDS)):
+        return list(self.iter_records())
+
+    def iter_records(self) -> Iterator[Dict]:
+        """:meth:`records` one at a time (the layer written without a dict per candidate held)."""
+        for k, rec in enumerate(self.detections.iter_records(DETECTION_POSE_FIELDS)):
             rec.update({"cand_x": float(self.xyz_world[k, 0]),
                         "cand_y": float(self.xyz_world[k, 1]),
                         "cand_z": float(self.xyz_world[k, 2]), "range_m": float(self.range_m[k]),
@@ -315,11 +318,10 @@ class ProjectionResult:
                         "normal_n": float(self.normal_world[k, 1]),
                         "normal_u": float(self.normal_world[k, 2]),
                         "quality": float(self.quality[k]), "status": self.status[k]})
-            out.append(rec)
-        return out
+            yield rec
 
     @classmethod
-    def from_records(cls, rows: Sequence[Dict]) -> "ProjectionResult":
+    def from_records(cls, rows: Sequence[Mapping[str, Any]]) -> "ProjectionResult":
         """Read back a candidates layer (the input of refine); ``point_index`` is empty."""
         rows = list(rows)
         det = Detections.from_records(rows)

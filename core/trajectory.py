@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import dataclass, field
-from typing import Dict, List, Optional, Sequence
+from typing import Any, Dict, List, Mapping, Optional, Sequence
 
 import numpy as np
 from scipy.spatial.transform import Rotation, Slerp
@@ -122,7 +122,7 @@ class Stations:
         return out
 
     @classmethod
-    def from_records(cls, rows: Sequence[Dict], layer: str = "Panorama stations") -> "Stations":
+    def from_records(cls, rows: Sequence[Mapping[str, Any]], layer: str = "Panorama stations") -> "Stations":
         """Read back a stations layer: dicts with :data:`STATION_FIELDS` (``time`` may be NULL).
         :class:`InputError` naming the station and the field for any other NULL value."""
         rows = list(rows)
@@ -163,7 +163,7 @@ class Stations:
                    col(("station_id",), np.int64)[:, 0])
 
 
-def _station_label(row: Dict) -> str:
+def _station_label(row: Mapping[str, Any]) -> str:
     return "?" if row.get("station_id") is None else str(row["station_id"])
 
 

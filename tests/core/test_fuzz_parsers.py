@@ -23,6 +23,7 @@ from roadsigns.core.detector import read_labels_file
 from roadsigns.core.errors import InputError
 from roadsigns.core.evaluate import read_reference_csv
 from roadsigns.core.projection import CANDIDATE_FIELDS, ProjectionResult
+from roadsigns.core.schema import Columns
 from roadsigns.core.trajectory import (
     POSE_COLUMNS,
     STATION_FIELDS,
@@ -277,6 +278,75 @@ def test_detections_records(rows):
 @FUZZ
 def test_candidates_records(rows):
     parses_or_input_error(ProjectionResult.from_records, rows)
+
+
+def layer_values(field):
+    """Values a layer read gives a field of this kind (numbers or NULL, text or NULL); a NaN
+    is NULL there (``Field.value``), so it is left out."""
+    if field.kind is int:
+        return st.one_of(st.none(), st.integers(-2**53, 2**53))
+    if field.kind is float:
+        return st.one_of(st.none(), st.floats(allow_nan=False), st.integers(-2**53, 2**53))
+    return st.one_of(st.none(), st.text(max_size=8), st.sampled_from(["", "ok", "no_points", "DE:206"]))
+
+
+def layer_records(schema, good):
+    """Records of ``schema`` as a layer read gives them: good values, some replaced."""
+    def damage(record, values):
+        return {k: (values[k] if k in values else v) for k, v in record.items()}
+
+    return st.lists(st.fixed_dictionaries({}, optional={f.name: layer_values(f) for f in schema}),
+                    min_size=0, max_size=3).map(lambda many: [damage(good, v) for v in many])
+
+
+def outcome(reader, rows):
+    """What ``reader`` makes of ``rows``: its result's fields, or the InputError's message."""
+    try:
+        result = reader(rows)
+    except InputError as error:
+        return str(error)
+    fields = vars(result)
+    if isinstance(result, ProjectionResult):
+        fields = dict(fields, detections=vars(result.detections))
+    return repr({k: v.tolist() if isinstance(v, np.ndarray) else v for k, v in fields.items()})
+
+
+READERS = [(Stations.from_records, STATION_FIELDS, GOOD_STATION),
+           (Detections.from_records, DETECTION_FIELDS, GOOD_DETECTION),
+           (ProjectionResult.from_records, CANDIDATE_FIELDS, GOOD_CANDIDATE)]
+
+
+@pytest.mark.parametrize("reader, schema, good", READERS, ids=["stations", "detections", "candidates"])
+def test_columns_read_as_the_records_they_hold(reader, schema, good):
+    """A layer read into Columns (arrays, not a dict a feature) gives every reader the same
+    result, or the same error, as the records themselves."""
+    good = {f.name: good[f.name] for f in schema}
+
+    @given(layer_records(schema, good))
+    @FEW
+    def check(rows):
+        columns = Columns(schema)
+        for row in rows:
+            columns.append(row)
+        assert len(columns) == len(rows)
+        assert [dict(r) for r in columns] == [{f.name: f.value(r.get(f.name)) for f in schema} for r in rows]
+        assert outcome(reader, columns) == outcome(reader, rows)
+
+    check()
+
+
+def test_columns_store_numbers_not_text():
+    columns = Columns(STATION_FIELDS)
+    with pytest.raises(ValueError):
+        columns.append(dict(GOOD_STATION, x="east"))
+    assert len(columns) == 0 and len(columns.column("x")) == 0   # nothing of the row was stored
+    columns.append(dict(GOOD_STATION, time=None))
+    assert columns[0]["time"] is None and np.isnan(columns.column("time")[0])
+    assert columns[-1]["station_id"] == 1 and isinstance(columns[0]["station_id"], int)
+    with pytest.raises(IndexError):
+        columns[1]
+    with pytest.raises(KeyError):
+        columns[0]["no such field"]
 
 
 # --- LAS/LAZ: truncated and bit-flipped -------------------------------------------------------
