@@ -8,7 +8,9 @@ intensity threshold, orientation-constrained RANSAC planes, shape tests, signs t
 light poles by height).
 
 One streaming read of the cloud, then one pass over the windows; memory is bounded by a
-window's points at any drive length:
+window's points at any drive length, and a window holding more than
+``window_max_points`` (the densest stretch of a longer drive is denser) is searched in
+parts (:func:`.drivewindows.split_window`), each with its own margins:
 
 1. **Read** (:meth:`.cloudsource.CloudSource.iter_chunks`: one file, or of a folder of tiles
    or a virtual point cloud only the tiles, or COPC nodes, that the corridor meets): points
@@ -55,7 +57,17 @@ from scipy.spatial import cKDTree
 from . import geometry
 from .cloudpanels import PanelCandidate, PanelParams, WindowPoints, find_panels, local_features, panel_frame
 from .cloudsource import CloudSource, open_cloud
-from .drivewindows import BLOCK_THREADS, DriveAxis, Track, Window, WindowSpool, as_track, make_windows, map_in_order
+from .drivewindows import (
+    BLOCK_THREADS,
+    DriveAxis,
+    Track,
+    Window,
+    WindowSpool,
+    as_track,
+    make_windows,
+    map_in_order,
+    split_window,
+)
 from .errors import SILENT, InputError, Message, Progress
 from .pointcloud import DEFAULT_CHUNK_POINTS, GROUND_CLASS, xyz_of
 from .poles import GANTRY, Pole, PoleParams, classify_pole, find_poles, promote_far_posts
@@ -118,6 +130,7 @@ class CloudSignParams:
     edge_clearance_m: float = 1.0       # objects this close to the corridor's edge are cut by it
     window_m: float = 50.0
     margin_m: float = 10.0
+    window_max_points: int = 500_000    # a window holding more is searched in parts (split_window)
     window_threads: int = BLOCK_THREADS  # windows searched at once (numpy and scipy release the GIL)
     ground_cell_m: float = 0.25
     min_height_m: float = 0.1           # candidate points above the ground model
@@ -214,7 +227,8 @@ class CloudSignResult:
     n_points: int
     n_candidates: int
     n_windows: int
-    max_window_points: int            # the most points one window held (memory)
+    max_window_points: int            # the most points one window (or part of one) held: memory
+    n_parts: int                      # windows and parts of dense windows searched (split_window)
     coverage_wkt: str
     crs_wkt: Optional[str]
     seconds: float
@@ -579,6 +593,7 @@ def _process_window(window: Window, rows: np.ndarray, ground_rows: np.ndarray, a
 @dataclass
 class _WindowResult:
     n_points: int
+    window_index: int
     found: List[_Found] = field(default_factory=list)
     poles: List[Pole] = field(default_factory=list)
     rejected: Dict[str, int] = field(default_factory=dict)
@@ -663,31 +678,37 @@ def find_signs_in_cloud(cloud_path: Union[str, CloudSource], track: Union[Track,
                 share=threshold.saturated_share, thr=threshold.value))
         found: List[_Found] = []
         poles: List[Pole] = []
-        max_window_points = 0
+        max_window_points = n_parts = 0
         win_progress = progress.sub(0.5, 0.98)
 
         def read_windows() -> Iterator[Tuple[Window, np.ndarray, np.ndarray]]:
             for window in windows:            # read in this thread, searched in the pool's
-                yield window, spool.read("points", window.index), spool.read("ground", window.index)
+                rows, ground_rows = spool.read("points", window.index), spool.read("ground", window.index)
+                parts = split_window(window, rows["s"], params.margin_m, params.window_max_points,
+                                     params.margin_m)
+                for part, part_rows in parts:   # the ground is thinned: each part takes the window's
+                    yield part, (rows if len(parts) == 1 else rows[part_rows]), ground_rows
+                del rows
 
         def search(item: Tuple[Window, np.ndarray, np.ndarray]) -> _WindowResult:
             window, rows, ground_rows = item
-            out = _WindowResult(n_points=len(rows) + len(ground_rows),
+            out = _WindowResult(n_points=len(rows) + len(ground_rows), window_index=window.index,
                                 diagnostics=[] if diagnostics is not None else None)
             if len(rows) and len(ground_rows):
                 out.found, out.poles = _process_window(window, rows, ground_rows, axis, model, threshold.value,
                                                        params, out.rejected, out.diagnostics)
             return out
 
-        for i, res in enumerate(map_in_order(search, read_windows(), params.window_threads, win_progress.check)):
+        for res in map_in_order(search, read_windows(), params.window_threads, win_progress.check):
             max_window_points = max(max_window_points, res.n_points)
+            n_parts += 1
             found.extend(res.found)
             poles.extend(res.poles)
             for k, v in res.rejected.items():
                 rejected[k] = rejected.get(k, 0) + v
             if diagnostics is not None and res.diagnostics:
                 diagnostics.extend(res.diagnostics)
-            win_progress.report((i + 1) / len(windows))
+            win_progress.report((res.window_index + 1) / len(windows))   # a window's parts share it
     signs, poles = _finish(found, poles, threshold, params, messages, progress)
     ref = drive_reference(np.array([f.stats["retro"] for f in found if f.panel.bright and f.face_seen]),
                           threshold.value, params.retro_reference)
@@ -700,7 +721,7 @@ def find_signs_in_cloud(cloud_path: Union[str, CloudSource], track: Union[Track,
     progress.report(1.0)
     return CloudSignResult(signs=signs, poles=poles, threshold=threshold, reference=ref[0],
                            reference_source=ref[1], n_points=n_read, n_candidates=n_cand,
-                           n_windows=len(windows), max_window_points=max_window_points,
+                           n_windows=len(windows), max_window_points=max_window_points, n_parts=n_parts,
                            coverage_wkt=coverage.wkt,
                            crs_wkt=source.crs_wkt, seconds=time.perf_counter() - started,
                            messages=messages, warnings=warnings, rejected=rejected)

@@ -179,6 +179,34 @@ def make_windows(length_m: float, window_m: float) -> List[Window]:
     return [Window(k, float(edges[k]), float(edges[k + 1])) for k in range(n)]
 
 
+def split_window(window: Window, s_m: np.ndarray, margin_m: float, max_points: int,
+                 min_core_m: float) -> List[Tuple[Window, np.ndarray]]:
+    """``window`` in parts of at most ``max_points`` points where it can: ``(part, rows)``
+    in drive order, ``rows`` indexing ``s_m`` (the arc lengths of the window's points, core
+    and margins). A part holding more is cut in two at the median of its core's points,
+    each half keeping the points within ``margin_m`` of its own core, while its core is
+    longer than ``min_core_m``. The parts' cores tile the window's core and keep its index,
+    so an object is still reported once, by the part whose core holds it, and found whole
+    in that part's margins. The densest window of a longer drive is denser; its parts are
+    not."""
+    s = np.asarray(s_m, dtype=np.float64)
+    done: List[Tuple[Window, np.ndarray]] = []
+    todo = [(window, np.arange(len(s)))]
+    while todo:
+        part, rows = todo.pop()
+        core = s[rows][part.owns(s[rows])]
+        lo = part.s0_m if np.isfinite(part.s0_m) else (core.min() if len(core) else 0.0)
+        hi = part.s1_m if np.isfinite(part.s1_m) else (core.max() if len(core) else 0.0)
+        if len(rows) <= max_points or hi - lo <= min_core_m or len(core) < 2:
+            done.append((part, rows))
+            continue
+        cut = float(np.clip(np.median(core), lo + 0.5 * min_core_m, hi - 0.5 * min_core_m))
+        first, second = Window(part.index, part.s0_m, cut), Window(part.index, cut, part.s1_m)
+        todo.append((second, rows[s[rows] >= cut - margin_m]))   # popped after the first
+        todo.append((first, rows[s[rows] < cut + margin_m]))
+    return done
+
+
 #: Windows or blocks worked on at once by the cloud stages (:func:`map_in_order`; the
 #: machines this is measured on have two cores).
 BLOCK_THREADS = 2

@@ -17,7 +17,7 @@ import shapely
 from roadsigns.core import cloudpanels as CP
 from roadsigns.core import cloudsigns as CS
 from roadsigns.core import retroreflectivity as RR
-from roadsigns.core.drivewindows import DriveAxis, Track, Window, WindowSpool, make_windows
+from roadsigns.core.drivewindows import DriveAxis, Track, Window, WindowSpool, make_windows, split_window
 from roadsigns.core.errors import Cancelled, InputError, Progress
 from roadsigns.core.poles import POLE_FIELDS
 from roadsigns.core.projection import cell_keys
@@ -203,6 +203,47 @@ def test_small_chunks_and_windows_give_the_same_answer(built_path, built_result)
     pa = np.array(sorted((round(p.x, 2), round(p.y, 2)) for p in built_result.poles))
     pb = np.array(sorted((round(p.x, 2), round(p.y, 2)) for p in small.poles))
     assert pa.shape == pb.shape and np.abs(pa - pb).max() <= 0.011
+
+
+def test_dense_windows_searched_in_parts_give_the_same_answer(built_path, built_result):
+    """A window of more than window_max_points is searched in parts: the most points a part
+    holds drops, the signs and poles stay (at the same places, each once)."""
+    params = CS.CloudSignParams(window_max_points=800)
+    parts = CS.find_signs_in_cloud(built_path, built_track(), params=params)
+    assert built_result.n_parts == built_result.n_windows == parts.n_windows
+    assert parts.n_parts >= 2 * parts.n_windows
+    assert parts.max_window_points < built_result.max_window_points
+    a = np.array(sorted(tuple(np.round(s.centre_world, 2)) for s in built_result.signs))
+    b = np.array(sorted(tuple(np.round(s.centre_world, 2)) for s in parts.signs))
+    assert len(a) and a.shape == b.shape and np.abs(a - b).max() <= 0.011
+    assert sorted(s.support for s in built_result.signs) == sorted(s.support for s in parts.signs)
+    pa = np.array(sorted((round(p.x, 2), round(p.y, 2)) for p in built_result.poles))
+    pb = np.array(sorted((round(p.x, 2), round(p.y, 2)) for p in parts.poles))
+    assert len(pa) and pa.shape == pb.shape and np.abs(pa - pb).max() <= 0.011
+
+
+@pytest.mark.parametrize("window", [Window(3, 100.0, 150.0), Window(0, -np.inf, 50.0), Window(9, 450.0, np.inf)])
+def test_split_window_parts_tile_the_core_and_keep_their_margins(window):
+    rng = np.random.default_rng(1)
+    margin = 10.0
+    lo = window.s0_m if np.isfinite(window.s0_m) else 30.0   # the drive's first and last windows:
+    hi = window.s1_m if np.isfinite(window.s1_m) else 470.0  # their points end where the drive does
+    s = np.sort(np.r_[rng.uniform(lo - margin, hi + margin, 3000), rng.normal(0.5 * (lo + hi), 2.0, 4000)])
+    s = s[(s >= window.s0_m - margin) & (s < window.s1_m + margin)]
+    parts = split_window(window, s, margin, max_points=1500, min_core_m=margin)
+    assert len(parts) > 2 and all(p.index == window.index for p, _ in parts)
+    assert parts[0][0].s0_m == window.s0_m and parts[-1][0].s1_m == window.s1_m
+    for (a, _), (b, _) in zip(parts, parts[1:]):
+        assert a.s1_m == b.s0_m                         # the cores tile the window's core, in order
+    for part, rows in parts:
+        want = np.flatnonzero((s >= part.s0_m - margin) & (s < part.s1_m + margin))
+        assert np.array_equal(rows, want)               # exactly the points within the margin
+        core = s[part.owns(s)]
+        assert len(rows) <= 1500 or np.ptp(core) <= margin + 1e-9   # small, or too short to cut
+    owned = np.concatenate([rows[part.owns(s[rows])] for part, rows in parts])
+    assert np.array_equal(np.sort(owned), np.flatnonzero(window.owns(s)))   # each point owned once
+    whole = split_window(window, s, margin, max_points=len(s), min_core_m=margin)
+    assert len(whole) == 1 and whole[0][0] == window and np.array_equal(whole[0][1], np.arange(len(s)))
 
 
 def test_windows_searched_in_threads_give_the_same_answer(tiny):
