@@ -72,7 +72,7 @@ def main(argv=None) -> int:
             best_read = best_search = np.inf
             for _ in range(args.repeats):
                 t0 = time.perf_counter()
-                index = TiledIndex.from_las(path, CropRegion(shapely.union_all(frusta.footprints)),
+                index = TiledIndex.from_las(path, CropRegion(shapely.union_all(frusta.footprints())),
                                             dimensions=("intensity", "classification"),
                                             tile_size_m=5.0)
                 t1 = time.perf_counter()

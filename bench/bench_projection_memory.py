@@ -78,7 +78,7 @@ def child(way: str, las_path: str, detections_path: str) -> None:
         result = P.project_detections(det, las_path)
     else:
         frusta = P.Frusta.build(det, P.DEFAULT_MAX_RANGE_M, 0.25, 0.1)
-        index = TiledIndex.from_las(las_path, CropRegion(shapely.union_all(frusta.footprints)),
+        index = TiledIndex.from_las(las_path, CropRegion(shapely.union_all(frusta.footprints())),
                                     dimensions=("intensity", "classification"), tile_size_m=5.0)
         result = P.project_detections(det, index)
     seconds = time.perf_counter() - t0

@@ -301,8 +301,9 @@ class CloudSource:
                             tiles: Optional[Sequence[Tile]] = None
                             ) -> Iterator[Tuple[np.ndarray, laspy.ScaleAwarePointRecord]]:
         """``(cloud indices (n,) int64, points)`` chunk by chunk, over the tiles ``bbox_xy``
-        and ``area`` need (or the ``tiles`` given); progress over the points read. The heap
-        freed is given back every :data:`TRIM_EVERY_POINTS` points."""
+        and ``area`` need (or the ``tiles`` given); progress over the points read. ``area`` is
+        let go once the reads are planned. The heap freed is given back every
+        :data:`TRIM_EVERY_POINTS` points."""
         restricted = bbox_xy is not None or area is not None
         chosen = list(tiles) if tiles is not None else self.tiles_in(bbox_xy, area)
         number = {t.path: k for k, t in enumerate(self.tiles)}
@@ -316,6 +317,7 @@ class CloudSource:
                 keep = _boxes_meet(np.array([b.bounds_xy for b in boxes]).reshape(-1, 4), bbox_xy, area)
                 parts = [b for b, k in zip(boxes, keep) if k]
             plans.append((tile, parts))
+        del area, chosen          # planned: a drive's shapes are not held through the reading
         total = sum(t.point_count if parts is None else sum(n.point_count for n in parts)
                     for t, parts in plans)
         done = since_trim = 0
@@ -377,7 +379,7 @@ def _boxes_meet(boxes: np.ndarray, bbox_xy: Optional[BBoxXY], area: Optional[Are
         x0, y0, x1, y1 = (float(v) for v in bbox_xy)
         keep &= (boxes[:, 0] <= x1) & (boxes[:, 2] >= x0) & (boxes[:, 1] <= y1) & (boxes[:, 3] >= y0)
     if area is not None and keep.any():
-        geoms = [g for g in (area if isinstance(area, (list, tuple)) else [area])
+        geoms = [g for g in (area if isinstance(area, (list, tuple, np.ndarray)) else [area])
                  if g is not None and not shapely.is_empty(g)]
         hit = np.zeros(len(boxes), dtype=bool)
         if geoms:

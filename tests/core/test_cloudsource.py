@@ -408,3 +408,20 @@ def test_a_pass_over_the_cloud_gives_the_freed_heap_back_as_it_reads(street, mon
     # more than one per chunk
     assert n // 4000 - len(street["tiles"]) <= len(calls) <= n // 1000 + len(street["tiles"])
     assert len(calls) >= 2
+
+
+def test_a_pass_lets_go_of_its_area_once_the_reads_are_planned(street):
+    """The shapes that choose the tiles (a drive's frustum footprints) are not held while
+    the pass reads: the caller's last reference is its own."""
+    import sys
+
+    source = cs.open_cloud(street["folder"])
+    x0, y0, _, x1, y1, _ = source.bounds
+    area = [shapely.box(x0, y0, x1, y1)]
+    held = sys.getrefcount(area)
+    chunks = source.iter_indexed_chunks(chunk_points=5000, area=area)
+    index, _ = next(chunks)
+    assert len(index) > 0
+    assert sys.getrefcount(area) == held
+    rest = sum(len(i) for i, _ in chunks)
+    assert len(index) + rest == street["n"]     # the area still chose the tiles: all of them

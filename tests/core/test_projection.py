@@ -126,6 +126,26 @@ def test_one_pass_over_the_tiles_for_all_detections(scene, detections, monkeypat
     assert ten.status == one.status * 10
 
 
+def test_footprints_are_the_shapes_built_from_their_vertices(detections):
+    """Frusta keeps each footprint as vertices and builds the polygons asked for: the
+    buffered hulls themselves, in the order of the rows given."""
+    import shapely
+
+    frusta = P.Frusta.build(detections, 30.0, 0.25, 0.1)
+    assert len(frusta) == len(detections) and frusta.outline_start[-1] == len(frusta.outline_xy)
+    every = frusta.footprints()
+    assert len(every) == len(detections) and shapely.is_valid(every).all()
+    rows = np.array([len(detections) - 1, 0, len(detections) // 2])
+    some = frusta.footprints(rows)
+    assert all(shapely.equals_exact(a, every[k], tolerance=0.0) for a, k in zip(some, rows))
+    assert len(frusta.footprints(np.zeros(0, np.int64))) == 0
+    for k in range(len(detections)):          # each holds its station and its frustum's far end
+        fp = every[k]
+        assert shapely.contains_xy(fp, *detections.centre_world[k, :2])
+        lo, hi = frusta.lo_world[k, :2], frusta.hi_world[k, :2]
+        assert np.allclose(shapely.bounds(fp), np.r_[lo, hi], atol=1e-6)
+
+
 def test_records_round_trip(result):
     back = P.ProjectionResult.from_records(result.records())
     assert back.status == result.status
