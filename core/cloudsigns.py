@@ -47,7 +47,7 @@ from __future__ import annotations
 import math
 import os
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Callable, Dict, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
@@ -411,6 +411,10 @@ def _spool_cloud(source: CloudSource, axis: DriveAxis, spool: WindowSpool, hist:
 # Pass 2: one window
 # --------------------------------------------------------------------------------------
 
+#: A found panel's rows once its window is done (:func:`_process_window`).
+_NO_ROWS = np.zeros(0, np.int64)
+
+
 @dataclass
 class _Found:
     panel: PanelCandidate
@@ -581,7 +585,9 @@ def _process_window(window: Window, rows: np.ndarray, ground_rows: np.ndarray, a
             if depth > 0.0:
                 normal = -normal          # the support is in front: the scanner saw the back
         stats, face_seen = _panel_stats(panel, normal, pts, model, params)
-        found.append(_Found(panel, support, support_xy, normal, stats, face_seen, len(panel.rows)))
+        # its rows index this window's points: the drive keeps the panel's measures, not them
+        found.append(_Found(replace(panel, rows=_NO_ROWS), support, support_xy, normal, stats, face_seen,
+                            len(panel.rows)))
     owned_poles = [p for p in poles if window.owns(p.s_m) and s_lo <= p.s_m <= s_hi
                    and abs(float(axis.locate(np.array([[p.x, p.y]]))[1][0])) <= edge]
     for p in owned_poles:  # a head's points serve its window, and a gantry's the drive (promote_far_posts);

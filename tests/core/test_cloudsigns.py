@@ -171,6 +171,18 @@ def test_poles_keep_no_head_points_once_their_window_is_searched(built_result):
     assert any(p.reach_m > 0 for p in built_result.poles)  # heads were there and measured
 
 
+def test_found_panels_keep_no_window_rows_once_their_window_is_searched(built_path, monkeypatch):
+    """A found panel's rows index its window's points; the drive's signs keep the panel's
+    measures and its point count, not the rows (a long drive finds thousands of panels)."""
+    kept = []
+    real_finish = CS._finish
+    monkeypatch.setattr(CS, "_finish", lambda found, *a, **k: kept.extend(found) or real_finish(found, *a, **k))
+    res = CS.find_signs_in_cloud(built_path, built_track())
+    assert kept and len(res.signs) and all(f.n_points > 0 for f in kept)
+    assert all(len(f.panel.rows) == 0 and _held_bytes(f.panel.rows) == 0 for f in kept)
+    assert {s.n_points for s in res.signs} <= {f.n_points for f in kept}   # counted before they went
+
+
 def _held_bytes(array: np.ndarray) -> int:
     """The memory an array keeps alive: its own, or that of the array it is a view of."""
     while isinstance(array.base, np.ndarray):
