@@ -54,6 +54,9 @@ FRUSTUM_CELL_M = 2.0
 #: Slices (m of drive) the spooled points are kept in, each point in one; a block of
 #: :func:`drive_blocks` reads the slices its detections' frusta may reach.
 SLICE_M = 25.0
+#: Detections whose frusta are built, or whose footprints' cells are found, at a time
+#: (:meth:`Frusta.build`, :func:`frustum_cells`): the shapes on the way are a batch's.
+FRUSTA_BATCH = 1024
 #: Candidate status flags.
 STATUS_OK, STATUS_NO_POINTS, STATUS_NO_SURFACE = "ok", "no_points", "no_surface"
 
@@ -127,23 +130,31 @@ class Frusta:
 
     @classmethod
     def build(cls, det: Detections, max_range_m: float, margin_deg: float,
-              margin_frac: float) -> "Frusta":
+              margin_frac: float, batch: int = FRUSTA_BATCH) -> "Frusta":
+        """The frusta of ``det``, ``batch`` detections at a time: the rays and shapes made
+        on the way are a batch's, not the drive's."""
         boxes = grow_boxes(det.box_px, det.pano_size_px, margin_deg, margin_frac)
         R = det.R_world_from_pano()
-        rays = box_boundary_rays_world(boxes, det.pano_size_px, R)
-        far = det.centre_world[:, None, :] + max_range_m * rays
         # the far cap bulges between sampled rays by at most range x (1 - cos(step / 2))
         size_deg = np.maximum((boxes[:, 2] - boxes[:, 0]) / det.pano_size_px[:, 0] * 360.0,
                               (boxes[:, 3] - boxes[:, 1]) / det.pano_size_px[:, 1] * 180.0)
         step = np.radians(size_deg / 4.0)
         pad = 0.1 + max_range_m * (1.0 - np.cos(np.minimum(step, np.pi / 2) / 2.0))
-        pts = np.concatenate([det.centre_world[:, None, :], far], axis=1)
-        lo, hi = pts.min(axis=1) - pad[:, None], pts.max(axis=1) + pad[:, None]
-        hulls = shapely.convex_hull(shapely.multipoints(pts[:, :, :2]))
-        outline_xy, owner = shapely.get_coordinates(shapely.buffer(hulls, pad, quad_segs=2),
-                                                    return_index=True)
-        start = np.searchsorted(owner, np.arange(len(det) + 1))
-        return cls(boxes, lo, hi, outline_xy, start)
+        lo, hi = np.empty((len(det), 3)), np.empty((len(det), 3))
+        outlines, counts = [], []
+        for b0 in range(0, len(det), batch):
+            b = slice(b0, b0 + batch)
+            rays = box_boundary_rays_world(boxes[b], det.pano_size_px[b], R[b])
+            pts = np.concatenate([det.centre_world[b, None, :], det.centre_world[b, None, :] + max_range_m * rays],
+                                 axis=1)
+            lo[b], hi[b] = pts.min(axis=1) - pad[b, None], pts.max(axis=1) + pad[b, None]
+            hulls = shapely.convex_hull(shapely.multipoints(pts[:, :, :2]))
+            xy, owner = shapely.get_coordinates(shapely.buffer(hulls, pad[b], quad_segs=2), return_index=True)
+            outlines.append(xy)
+            counts.append(np.bincount(owner, minlength=len(hulls)))
+        outline_xy = np.concatenate(outlines) if outlines else np.zeros((0, 2))
+        start = np.r_[0, np.cumsum(np.concatenate(counts))] if counts else np.zeros(1, np.int64)
+        return cls(boxes, lo, hi, outline_xy, start.astype(np.int64))
 
     def footprints(self, rows: Optional[np.ndarray] = None) -> np.ndarray:
         """The footprints of detections ``rows`` (all without), shapely polygons in their
@@ -708,12 +719,14 @@ def cell_keys(x: np.ndarray, y: np.ndarray, cell_m: float) -> np.ndarray:
     return (np.floor(x / cell_m).astype(np.int64) << 32) + (np.floor(y / cell_m).astype(np.int64) & 0xFFFFFFFF)
 
 
-def frustum_cells(frusta: Frusta, cell_m: float, batch: int = 1024) -> np.ndarray:
-    """Sorted keys (:func:`cell_keys`) of the cells that some frustum's footprint touches
-    (the footprints built ``batch`` detections at a time)."""
-    keys = []
+def frustum_cells(frusta: Frusta, cell_m: float, batch: int = FRUSTA_BATCH) -> np.ndarray:
+    """Sorted keys (:func:`cell_keys`) of the cells that some frustum's footprint touches,
+    ``batch`` footprints at a time, each batch's cells merged into the drive's as it goes:
+    what is held is the drive's distinct cells (neighbouring frusta share most of theirs)."""
+    cells = np.zeros(0, np.int64)
     for b0 in range(0, len(frusta), batch):
         rows = np.arange(b0, min(b0 + batch, len(frusta)))
+        keys = []
         for k, footprint in zip(rows, frusta.footprints(rows)):
             i0, j0 = np.floor(frusta.lo_world[k, :2] / cell_m).astype(np.int64)
             i1, j1 = np.floor(frusta.hi_world[k, :2] / cell_m).astype(np.int64)
@@ -721,7 +734,9 @@ def frustum_cells(frusta: Frusta, cell_m: float, batch: int = 1024) -> np.ndarra
             hit = shapely.intersects(footprint, shapely.box(i * cell_m, j * cell_m, (i + 1) * cell_m,
                                                             (j + 1) * cell_m))
             keys.append(cell_keys((i[hit] + 0.5) * cell_m, (j[hit] + 0.5) * cell_m, cell_m))
-    return np.unique(np.concatenate(keys)) if keys else np.zeros(0, np.int64)
+        if keys:
+            cells = np.union1d(cells, np.concatenate(keys))
+    return cells
 
 
 def _project_block(det: Detections, rows: np.ndarray, index: TiledIndex, frusta: Frusta, R: np.ndarray,

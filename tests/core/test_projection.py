@@ -146,6 +146,19 @@ def test_footprints_are_the_shapes_built_from_their_vertices(detections):
         assert np.allclose(shapely.bounds(fp), np.r_[lo, hi], atol=1e-6)
 
 
+def test_frusta_and_their_cells_built_in_batches_are_the_same(detections):
+    """A batch at a time (the shapes on the way are a batch's, not the drive's) gives the
+    frusta and the cells of all at once."""
+    whole = P.Frusta.build(detections, 30.0, 0.25, 0.1, batch=len(detections))
+    parts = P.Frusta.build(detections, 30.0, 0.25, 0.1, batch=3)
+    assert len(detections) > 6
+    for name in ("boxes_px", "lo_world", "hi_world", "outline_xy", "outline_start"):
+        assert np.array_equal(getattr(whole, name), getattr(parts, name)), name
+    cells = P.frustum_cells(whole, P.FRUSTUM_CELL_M, batch=len(detections))
+    assert len(cells) and np.array_equal(cells, P.frustum_cells(whole, P.FRUSTUM_CELL_M, batch=2))
+    assert np.all(np.diff(cells) > 0)
+
+
 def test_records_round_trip(result):
     back = P.ProjectionResult.from_records(result.records())
     assert back.status == result.status
