@@ -538,18 +538,26 @@ class TiledIndex:
             raise ValueError("tile_size_m must be positive")
         self.crs_wkt = crs_wkt
         attributes = dict(attributes or {})
-        tiles = np.floor(xyz_world[:, :2] / self.tile_size_m).astype(np.int64)
-        order = np.lexsort((tiles[:, 1], tiles[:, 0]))
+        # the points in tile order (column i, then row j; stable within a tile), by one int64
+        # key a point: what is built on the way is ~16 bytes a point besides the sorted copy
+        i = np.floor(xyz_world[:, 0] / self.tile_size_m).astype(np.int64)
+        j = np.floor(xyz_world[:, 1] / self.tile_size_m).astype(np.int64)
+        i0, j0 = (int(i.min()), int(j.min())) if len(i) else (0, 0)
+        rows_j = int(j.max()) - j0 + 1 if len(j) else 1
+        key = (i - i0) * rows_j + (j - j0)
+        del i, j
+        order = np.argsort(key, kind="stable")
+        key = key[order]
         self.xyz_world = xyz_world[order]
         self.point_index = np.asarray(point_index, dtype=np.int64)[order]
         self.attributes = {k: np.asarray(v)[order] for k, v in attributes.items()}
-        tiles = tiles[order]
+        del order
         self._ranges: Dict[Tuple[int, int], Tuple[int, int]] = {}
-        if len(tiles):
-            starts = np.flatnonzero(np.r_[True, np.any(tiles[1:] != tiles[:-1], axis=1)])
-            ends = np.r_[starts[1:], len(tiles)]
-            for s, e in zip(starts, ends):
-                self._ranges[(int(tiles[s, 0]), int(tiles[s, 1]))] = (int(s), int(e))
+        if len(key):
+            starts = np.flatnonzero(np.r_[True, key[1:] != key[:-1]])
+            ends = np.r_[starts[1:], len(key)]
+            for s, e, k in zip(starts.tolist(), ends.tolist(), key[starts].tolist()):
+                self._ranges[(i0 + k // rows_j, j0 + k % rows_j)] = (s, e)
         self._trees: Dict[Tuple[int, int], object] = {}
 
     # -- construction ------------------------------------------------------------------

@@ -28,6 +28,7 @@ Conventions: world ENU metres; boxes in the detections layer's form (``u0 < W``,
 from __future__ import annotations
 
 import math
+from collections import Counter
 from dataclasses import dataclass, field
 from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
 
@@ -665,7 +666,10 @@ def drive_blocks(det: Detections, frusta: Frusta, cloud: Union[str, CloudSource]
                 index[at:end] = points["index"]
                 at = end
             del points
-            yield rows_k, TiledIndex(xyz, index, {}, params.tile_size_m)
+            block = TiledIndex(xyz, index, {}, params.tile_size_m)   # holds its own, sorted, copies
+            del xyz, index       # not kept in this frame while the block is worked on
+            yield rows_k, block
+            del block
 
 
 def slice_blocks(slices: List[Window], owner_slice: np.ndarray, counts: np.ndarray, reach_m: float,
@@ -744,12 +748,15 @@ def _project_block(det: Detections, rows: np.ndarray, index: TiledIndex, frusta:
                    result: ProjectionResult, keep_point_index: bool) -> None:
     """Project the detections ``rows`` into ``index`` (non-ground points only), filling
     their rows of ``result``: one pass over the tiles, every detection crossing a tile
-    tested there, then the surface search per detection."""
+    tested there; a detection's surface is searched as soon as its last tile is passed, and
+    its points let go, so the frustum points held are those of the detections the pass is
+    in the middle of, not the block's (overlapping frusta hold the same points many times)."""
     if len(index) == 0:
         return
     tile = index.tile_size_m
     per_tile = _assign_tiles(frusta, tile, set(index.tile_keys), rows)
-    found: Dict[int, List[Tuple[np.ndarray, np.ndarray]]] = {int(k): [] for k in rows}
+    tiles_left = Counter(k for members in per_tile.values() for k in members)
+    found: Dict[int, List[Tuple[np.ndarray, np.ndarray]]] = {k: [] for k in tiles_left}
     for key, members in sorted(per_tile.items()):
         pts = index.query_box([key[0] * tile, key[1] * tile, -np.inf],
                               [(key[0] + 1) * tile, (key[1] + 1) * tile, np.inf])
@@ -759,23 +766,32 @@ def _project_block(det: Detections, rows: np.ndarray, index: TiledIndex, frusta:
             inside = _frustum_members(pts.xyz_world, det, k, frusta, R, max_range_m, params.min_range_m)
             if inside.size:
                 found[k].append((pts.xyz_world[inside], pts.point_index[inside]))
-    for k, parts in found.items():
-        if not parts:
-            continue
-        xyz = np.concatenate([f[0] for f in parts])
-        pidx = np.concatenate([f[1] for f in parts])
-        pidx, first = np.unique(pidx, return_index=True)  # a point on a tile edge comes twice
-        xyz = xyz[first]
-        W, H = det.pano_size_px[k]
-        u, v, _ = geometry.world_to_pixel(xyz, det.centre_world[k], R[k], W, H)
-        a, b = box_coordinates(u, v, det.box_px[k], W)
-        status, surface = find_surface(xyz, det.centre_world[k], rays[k], a, b, params)
-        result.status[k] = status
-        if surface is not None:
-            result.xyz_world[k] = surface.xyz_world
-            result.normal_world[k] = surface.normal_world
-            result.range_m[k] = surface.range_m
-            result.n_points[k] = len(surface.members)
-            result.quality[k] = surface.quality
-            if keep_point_index:
-                result.point_index[k] = pidx[surface.members]
+            tiles_left[k] -= 1
+            if tiles_left[k] == 0:
+                _search_surface(det, k, found.pop(k), R, rays, params, result, keep_point_index)
+
+
+def _search_surface(det: Detections, k: int, parts: List[Tuple[np.ndarray, np.ndarray]], R: np.ndarray,
+                    rays: np.ndarray, params: ProjectionParams, result: ProjectionResult,
+                    keep_point_index: bool) -> None:
+    """The surface of detection ``k`` among its frustum's points ``parts`` (``(xyz, point
+    index)`` per tile), into row ``k`` of ``result``; nothing without points."""
+    if not parts:
+        return
+    xyz = np.concatenate([f[0] for f in parts])
+    pidx = np.concatenate([f[1] for f in parts])
+    pidx, first = np.unique(pidx, return_index=True)  # a point on a tile edge comes twice
+    xyz = xyz[first]
+    W, H = det.pano_size_px[k]
+    u, v, _ = geometry.world_to_pixel(xyz, det.centre_world[k], R[k], W, H)
+    a, b = box_coordinates(u, v, det.box_px[k], W)
+    status, surface = find_surface(xyz, det.centre_world[k], rays[k], a, b, params)
+    result.status[k] = status
+    if surface is not None:
+        result.xyz_world[k] = surface.xyz_world
+        result.normal_world[k] = surface.normal_world
+        result.range_m[k] = surface.range_m
+        result.n_points[k] = len(surface.members)
+        result.quality[k] = surface.quality
+        if keep_point_index:
+            result.point_index[k] = pidx[surface.members]

@@ -283,3 +283,25 @@ def test_crop_mask_by_cells_equals_the_exact_test():
     exact = shapely.intersects_xy(region.geometry, x, y)
     assert 0.1 < exact.mean() < 0.9
     assert np.array_equal(region.mask(x, y), exact)
+
+
+@pytest.mark.parametrize("offset", [(0.0, 0.0), (-130.0, -47.0), (350_000.0, 5_600_000.0)])
+def test_tiled_index_orders_its_points_by_tile_column_then_row(offset):
+    """The index's order: tile column i, then row j, the input order within a tile (as
+    numpy's stable lexsort gives it), and each tile's range of rows, on either side of 0."""
+    rng = np.random.default_rng(4)
+    xyz = np.column_stack([rng.uniform(-60, 60, 5000) + offset[0], rng.uniform(-40, 40, 5000) + offset[1],
+                           rng.uniform(0, 5, 5000)])
+    xyz[:50, :2] = np.floor(xyz[:50, :2] / 10.0) * 10.0        # points on tile edges
+    idx = pc.TiledIndex(xyz, np.arange(len(xyz)) * 3, {"intensity": np.arange(len(xyz))}, tile_size_m=10.0)
+    tiles = np.floor(xyz[:, :2] / 10.0).astype(np.int64)
+    order = np.lexsort((tiles[:, 1], tiles[:, 0]))
+    np.testing.assert_array_equal(idx.xyz_world, xyz[order])
+    np.testing.assert_array_equal(idx.point_index, order * 3)
+    np.testing.assert_array_equal(idx.attributes["intensity"], order)
+    keys = {tuple(t) for t in tiles.tolist()}
+    assert idx.tile_keys == sorted(keys)
+    for key in keys:
+        s, e = idx._ranges[key]
+        assert np.array_equal(np.sort(order[s:e]), np.flatnonzero((tiles == key).all(axis=1)))
+    assert len(pc.TiledIndex(np.zeros((0, 3)), np.zeros(0, np.int64))) == 0
