@@ -194,7 +194,8 @@ def split_window(window: Window, s_m: np.ndarray, margin_m: float, max_points: i
     todo = [(window, np.arange(len(s)))]
     while todo:
         part, rows = todo.pop()
-        core = s[rows][part.owns(s[rows])]
+        s_rows = s[rows]
+        core = s_rows[part.owns(s_rows)]
         lo = part.s0_m if np.isfinite(part.s0_m) else (core.min() if len(core) else 0.0)
         hi = part.s1_m if np.isfinite(part.s1_m) else (core.max() if len(core) else 0.0)
         if len(rows) <= max_points or hi - lo <= min_core_m or len(core) < 2:
@@ -202,8 +203,8 @@ def split_window(window: Window, s_m: np.ndarray, margin_m: float, max_points: i
             continue
         cut = float(np.clip(np.median(core), lo + 0.5 * min_core_m, hi - 0.5 * min_core_m))
         first, second = Window(part.index, part.s0_m, cut), Window(part.index, cut, part.s1_m)
-        todo.append((second, rows[s[rows] >= cut - margin_m]))   # popped after the first
-        todo.append((first, rows[s[rows] < cut + margin_m]))
+        todo.append((second, rows[s_rows >= cut - margin_m]))   # popped after the first
+        todo.append((first, rows[s_rows < cut + margin_m]))
     return done
 
 

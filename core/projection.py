@@ -424,24 +424,31 @@ def build_index(cloud: Union[str, CloudSource, TiledIndex], region: Optional[Cro
     return index, source
 
 
+def _footprint_cells(frusta: Frusta, rows: np.ndarray, cell_m: float, present: Optional[set] = None
+                     ) -> Iterator[Tuple[int, np.ndarray, np.ndarray]]:
+    """``(k, i, j)`` for each detection ``k`` of ``rows``: the columns ``i`` and rows ``j``
+    (int64) of the square cells of ``cell_m`` metres that its footprint touches, of those in
+    ``present`` (``(i, j)`` tuples) when given; detections touching none are skipped."""
+    for k, footprint in zip(map(int, rows), frusta.footprints(rows)):
+        i0, j0 = np.floor(frusta.lo_world[k, :2] / cell_m).astype(np.int64)
+        i1, j1 = np.floor(frusta.hi_world[k, :2] / cell_m).astype(np.int64)
+        i, j = (a.ravel() for a in np.meshgrid(np.arange(i0, i1 + 1), np.arange(j0, j1 + 1), indexing="ij"))
+        if present is not None:
+            kept = np.fromiter(((a, b) in present for a, b in zip(i.tolist(), j.tolist())), bool, len(i))
+            i, j = i[kept], j[kept]
+        if len(i):
+            hit = shapely.intersects(footprint, shapely.box(i * cell_m, j * cell_m, (i + 1) * cell_m,
+                                                            (j + 1) * cell_m))
+            yield k, i[hit], j[hit]
+
+
 def _assign_tiles(frusta: Frusta, tile_size_m: float, present: set,
                   rows: np.ndarray) -> Dict[Tuple[int, int], List[int]]:
     """Tile key -> detections (of ``rows``) whose footprint crosses that (non-empty) tile."""
     per_tile: Dict[Tuple[int, int], List[int]] = {}
-    t = tile_size_m
-    for k, fp in zip(map(int, rows), frusta.footprints(rows)):
-        i0, j0 = np.floor(frusta.lo_world[k, :2] / t).astype(int)
-        i1, j1 = np.floor(frusta.hi_world[k, :2] / t).astype(int)
-        ii, jj = np.meshgrid(np.arange(i0, i1 + 1), np.arange(j0, j1 + 1), indexing="ij")
-        keys = [key for key in zip(ii.ravel().tolist(), jj.ravel().tolist()) if key in present]
-        if not keys:
-            continue
-        arr = np.array(keys, float)
-        squares = shapely.box(arr[:, 0] * t, arr[:, 1] * t, (arr[:, 0] + 1) * t,
-                              (arr[:, 1] + 1) * t)
-        for key, hit in zip(keys, shapely.intersects(fp, squares)):
-            if hit:
-                per_tile.setdefault(key, []).append(k)
+    for k, i, j in _footprint_cells(frusta, rows, tile_size_m, present):
+        for key in zip(i.tolist(), j.tolist()):
+            per_tile.setdefault(key, []).append(k)
     return per_tile
 
 
@@ -729,15 +736,8 @@ def frustum_cells(frusta: Frusta, cell_m: float, batch: int = FRUSTA_BATCH) -> n
     what is held is the drive's distinct cells (neighbouring frusta share most of theirs)."""
     cells = np.zeros(0, np.int64)
     for b0 in range(0, len(frusta), batch):
-        rows = np.arange(b0, min(b0 + batch, len(frusta)))
-        keys = []
-        for k, footprint in zip(rows, frusta.footprints(rows)):
-            i0, j0 = np.floor(frusta.lo_world[k, :2] / cell_m).astype(np.int64)
-            i1, j1 = np.floor(frusta.hi_world[k, :2] / cell_m).astype(np.int64)
-            i, j = (a.ravel() for a in np.meshgrid(np.arange(i0, i1 + 1), np.arange(j0, j1 + 1), indexing="ij"))
-            hit = shapely.intersects(footprint, shapely.box(i * cell_m, j * cell_m, (i + 1) * cell_m,
-                                                            (j + 1) * cell_m))
-            keys.append(cell_keys((i[hit] + 0.5) * cell_m, (j[hit] + 0.5) * cell_m, cell_m))
+        keys = [cell_keys((i + 0.5) * cell_m, (j + 0.5) * cell_m, cell_m)
+                for _, i, j in _footprint_cells(frusta, np.arange(b0, min(b0 + batch, len(frusta))), cell_m)]
         if keys:
             cells = np.union1d(cells, np.concatenate(keys))
     return cells
