@@ -20,7 +20,11 @@ measures several models in one run, on the same images, timed alternately.
    alarm; the precision as labelled (a box on them a false alarm) is printed beside. Then,
    the same way, the held-out gtsrb-train tracks (real signs neither network nor any chosen
    threshold has seen) pasted into those frames, two per track (14-35 and 35-80 px):
-   :func:`heldout_track_frames` (``--skip-tracks`` leaves them out).
+   :func:`heldout_track_frames` (``--skip-tracks`` leaves them out); and sign faces of many
+   countries drawn in code from a seed training never draws from (foreign no-parking,
+   no-stopping, no-entry, parking, one-way and stop signs among them), 12 per family in each
+   of 20-35 and 35-80 px, with the recall of each family: :func:`drawn_face_frames`
+   (``--skip-faces``); a floor check of shapes and colours, not real photographs.
 3. Per size band (box height 14-20, 20-35, 35-70, > 70 px) on both: recall of the signs of
    that height and precision of the detections of that height.
 4. Panoramas per second at 4096 x 2048 on ``--threads`` (2) threads, decoding apart; with
@@ -70,6 +74,12 @@ CURVE_THRESHOLDS = tuple(round(t, 2) for t in np.arange(0.05, 0.96, 0.05))
 TRACK_SIZES_PX = ((14.0, 35.0), (35.0, 80.0))
 #: How many tracks the held-out part has (188): the control with training tracks takes as many.
 HELDOUT_TRACKS = 188
+#: Drawn faces of many countries (devtools/train/signfaces.py) pasted into GTSDB 500-599: faces
+#: per family and size band, the bands, and the seed (training draws its faces from seeds
+#: under 1000; these are never drawn there).
+FACES_PER_FAMILY = 12
+FACE_SIZES_PX = ((20.0, 35.0), (35.0, 80.0))
+FACES_SEED = 4242
 #: Road signs in GTSDB 500-599 that its gt.txt does not list, (x0, y0, x1, y1) pixels by frame:
 #: GTSDB labels only the 43 GTSRB classes, and missed the no-entry sign (one of them) in frame
 #: 516. Found by looking at every box the bundled detector put on no labelled sign from a
@@ -466,6 +476,7 @@ class Frame(NamedTuple):
     classes: np.ndarray
     ignored: np.ndarray
     unlabelled: np.ndarray = np.zeros((0, 4), np.float32)
+    families: tuple = ()   # per counted box, the drawn face's family (drawn_face_frames), else empty
 
 
 def gtsdb_frames(ids=GTSDB_HELDOUT_IDS):
@@ -524,6 +535,41 @@ def heldout_track_frames(ids=GTSDB_HELDOUT_IDS, seed: int = 2024, sizes_px=TRACK
         yield Frame(sample.image, sample.boxes[n_own:], sample.classes[n_own:], gt)
 
 
+def drawn_face_frames(ids=GTSDB_HELDOUT_IDS, seed: int = FACES_SEED, per_family: int = FACES_PER_FAMILY,
+                      sizes_px=FACE_SIZES_PX):
+    """Sign faces of many countries drawn in code (``devtools.train.signfaces``: foreign
+    no-parking, no-stopping, no-entry, parking, one-way and stop signs among them) pasted,
+    ``per_family`` of each family per band of ``sizes_px``, warped obliquely and degraded as
+    a distant sign, at free spots of GTSDB 500-599 frames. Truth: the pasted faces, with
+    their family (:attr:`Frame.families`); the frames' own signs are ignored. The faces come
+    from ``seed``, which training never draws from, but from the same drawing code: a floor
+    check of what the detector learned of shapes and colours, not real photographs."""
+    import cv2
+
+    from devtools.train import data as train_data
+    from devtools.train import signfaces
+
+    rng = np.random.default_rng(seed)
+    jobs = [(family, lo, hi) for family in signfaces.FAMILIES for lo, hi in sizes_px for _ in range(per_family)]
+    frame_ids = list(ids)
+    per_frame = [[] for _ in frame_ids]
+    for j in rng.permutation(len(jobs)):
+        per_frame[int(j) % len(frame_ids)].append(jobs[int(j)])
+    for (path, gt, cls), frame_jobs in zip(read_gtsdb(frame_ids), per_frame):
+        sample = train_data.Sample(cv2.imread(path), gt.copy(), cls.copy())
+        n_own = len(gt)
+        families = []
+        for family, lo, hi in frame_jobs:
+            face, klass, _ = signfaces.random_face(rng, 160, families=[family])
+            height = float(np.exp(rng.uniform(np.log(lo), np.log(hi))))
+            before = len(sample.boxes)
+            train_data.paste(sample, cv2.cvtColor(face, cv2.COLOR_RGBA2BGRA), height,
+                             train_data.CLASS_INDEX[klass], rng, post=lambda p: train_data.degrade(p, rng))
+            if len(sample.boxes) > before:
+                families.append(family)
+        yield Frame(sample.image, sample.boxes[n_own:], sample.classes[n_own:], gt, families=tuple(families))
+
+
 def match_frame(boxes, scores, class_ids, frame):
     """One photograph's boxes matched to its truth (:class:`Frame`, IoU >= 0.5), four ways:
     ``all`` and ``20`` (signs >= 20 px counted; a box on a smaller one is no false alarm)
@@ -546,8 +592,8 @@ def bench_photographs(detectors, confidence, frames, whole_frame=False, classifi
     the tiles of the photograph resized by each scale and merged, :func:`detect_scaled`;
     ``(1.0,)``: as it is)."""
     modes = ("tiles_640", "whole_frame_letterboxed") if whole_frame else ("tiles_640",)
-    acc = [{m: {"all": [], "20": [], "all_labelled": [], "20_labelled": [], "bands": BandCounter(), "s": 0.0}
-            for m in modes} for _ in detectors]
+    acc = [{m: {"all": [], "20": [], "all_labelled": [], "20_labelled": [], "bands": BandCounter(), "s": 0.0,
+                "families": {}} for m in modes} for _ in detectors]
     n_frames = n_unlabelled = 0
     for k, frame in enumerate(frames):
         image, gt, classes = frame.image, frame.boxes, frame.classes
@@ -571,6 +617,14 @@ def bench_photographs(detectors, confidence, frames, whole_frame=False, classifi
                     a[key].append(m)
                 a["bands"].add(boxes, scores, found_ids, gt, classes, confidence,
                                ignore=np.concatenate([frame.ignored, frame.unlabelled]))
+                if frame.families:   # per family: the faces a detection at the confidence matched
+                    keep = np.asarray(scores) >= confidence
+                    hit = match_image(np.asarray(boxes)[keep], np.asarray(scores)[keep], np.asarray(found_ids)[keep],
+                                      gt, classes, 0.5)["hit"]
+                    for family, h in zip(frame.families, hit):
+                        counts = a["families"].setdefault(family, [0, 0])
+                        counts[0] += int(h)
+                        counts[1] += 1
     out = []
     for a in acc:
         res = {}
@@ -580,6 +634,8 @@ def bench_photographs(detectors, confidence, frames, whole_frame=False, classifi
                          "per_band": v["bands"].result(), "seconds_per_image": v["s"] / max(n_frames, 1),
                          "curve": curve(v["all"]), "curve_20px_and_up": curve(v["20"]),
                          "unlabelled_signs": n_unlabelled,
+                         "per_family": {f: {"true": n, "hits": h, "recall": h / n}
+                                        for f, (h, n) in sorted(v["families"].items())},
                          "as_labelled": {"all": summarise(v["all_labelled"], CLASSES, confidence)["all"],
                                          "signs_20px_and_up": summarise(v["20_labelled"], CLASSES,
                                                                         confidence)["all"]}}
@@ -643,6 +699,9 @@ def print_model(name, r, confidence):
     if r.get("heldout_tracks"):
         which = "held-out" if r["heldout_tracks"]["part"] == "val" else "training (control)"
         photo_sets.append((f"{which} gtsrb-train tracks pasted into GTSDB 500-599", r["heldout_tracks"]["tiles_640"]))
+    if r.get("drawn_faces"):
+        photo_sets.append(("faces of many countries drawn in code (held-out seed) pasted into GTSDB 500-599",
+                           r["drawn_faces"]["tiles_640"]))
     for title, g in photo_sets:
         print_table(f"{title}, confidence {confidence}", g["per_class"])
         print(f"signs >= 20 px: {g['signs_20px_and_up']}")
@@ -652,6 +711,9 @@ def print_model(name, r, confidence):
                   f"them a false alarm): P {_f(lab['all']['precision'])}, >= 20 px P "
                   f"{_f(lab['signs_20px_and_up']['precision'])}")
         print_bands("size bands", g["per_band"])
+        if g.get("per_family"):
+            print("recall by family: " + ", ".join(f"{k} {v['hits']}/{v['true']} {_f(v['recall'])}"
+                                                   for k, v in g["per_family"].items()))
         print_curve("P/R curve (all signs)", g["curve"])
         print_curve("P/R curve (signs >= 20 px)", g["curve_20px_and_up"])
     for key, title in (("gtsdb_500_599_by_scale", "GTSDB 500-599"), ("heldout_tracks_by_scale", "held-out tracks")):
@@ -672,6 +734,10 @@ def headline(r):
                     "gtsdb_20_P_as_labelled": g["as_labelled"]["signs_20px_and_up"]["precision"],
                     "gtsdb_mandatory_R": g["per_class"]["mandatory"]["recall"],
                     "gtsdb_best_f1_threshold": g["curve"]["best_f1"]["threshold"]})
+    f = (r.get("drawn_faces") or {}).get("tiles_640")
+    if f:
+        out.update({"faces_P": f["per_class"]["all"]["precision"], "faces_R": f["per_class"]["all"]["recall"]})
+        out.update({f"faces_{k}_R": v["recall"] for k, v in f["per_family"].items()})
     t = (r.get("heldout_tracks") or {}).get("tiles_640")
     if t:
         out.update({"tracks_P": t["per_class"]["all"]["precision"], "tracks_R": t["per_class"]["all"]["recall"],
@@ -698,6 +764,8 @@ def main(argv=None):
                     help="skip the held-out gtsrb-train tracks pasted into GTSDB 500-599 (heldout_track_frames)")
     ap.add_argument("--tracks-part", choices=("val", "train"), default="val",
                     help="val: the held-out tracks; train: as many tracks training pasted (the control)")
+    ap.add_argument("--skip-faces", action="store_true",
+                    help="skip the faces of many countries drawn in code pasted into GTSDB 500-599 (drawn_face_frames)")
     ap.add_argument("--gtsdb-images", type=int, default=None,
                     help="only the first N of GTSDB 500-599, for both photograph sets (quick checks)")
     ap.add_argument("--whole-frame", action="store_true", help="also GTSDB whole frames letterboxed to 640 px")
@@ -752,6 +820,10 @@ def main(argv=None):
         photo_sets.append(("heldout_tracks", bench_photographs(
             photo_detectors, a.confidence, heldout_track_frames(GTSDB_HELDOUT_IDS[:a.gtsdb_images], part=a.tracks_part,
                                                                 max_tracks=HELDOUT_TRACKS), classifier=classifier)))
+    if not a.skip_faces:
+        photo_sets.append(("drawn_faces", bench_photographs(
+            photo_detectors, a.confidence, drawn_face_frames(GTSDB_HELDOUT_IDS[:a.gtsdb_images]),
+            classifier=classifier)))
     for key, measured in photo_sets:
         for r, (k, _, look) in zip(results, entries):
             by_scale = {spec: measured[runs.index((k, look, spec))] for spec in a.photo_scales}

@@ -40,9 +40,11 @@ def main(argv=None):
     ap.add_argument("--ema-decay", type=float, default=0.998, help="EMA of the weights (lower follows faster)")
     ap.add_argument("--small-share", type=float, default=0.0,
                     help="share of pasted real signs drawn at 14-35 px (far signs), 0..1")
+    ap.add_argument("--faces", type=int, default=None,
+                    help="sign faces of many countries drawn at the start for faces_paste (default 2000; 0: none)")
     ap.add_argument("--source-weights", default=None, metavar="NAME=W,...",
                     help="override the data mix's shares, e.g. views=0.5,gtsdb=0.2 (names: gtsdb, gtsrb_paste, "
-                         "drawn_paste, views)")
+                         "drawn_paste, views, faces_paste)")
     ap.add_argument("--resume", default=None, help="a checkpoint (WORK/last.pt) to go on from, with its "
                     "optimiser, EMA, step, training time and random states")
     ap.add_argument("--init", default=None, help="start weights only: a checkpoint (.pt) or an exported "
@@ -59,6 +61,7 @@ def main(argv=None):
           seed=a.seed, resume=a.resume, val_images=a.val_images, init=a.init, device=a.device,
           checkpoint_every_min=a.checkpoint_every, until=a.until, warmup_steps=a.warmup, amp=not a.no_amp,
           export=not a.no_export, ema_decay=a.ema_decay, small_share=a.small_share,
+          **({"faces": a.faces} if a.faces is not None else {}),
           source_weights={k: float(v) for k, v in (x.split("=") for x in a.source_weights.split(","))}
           if a.source_weights else None)
     return 0

@@ -170,6 +170,16 @@ def drawn_signs(size_px: int = 160):
     return patches, np.array(classes, np.int64)
 
 
+def drawn_faces(n: int, seed: int = 0, size_px: int = 160):
+    """``n`` sign faces of many countries (:mod:`devtools.train.signfaces`) as BGRA, and their
+    class ids; repeatable from ``seed`` (training uses seeds under 1000, the bench one above)."""
+    from devtools.train import signfaces
+
+    faces = signfaces.random_faces(n, seed=seed, size_px=size_px)
+    return ([cv2.cvtColor(face, cv2.COLOR_RGBA2BGRA) for face, _, _ in faces],
+            np.array([CLASS_INDEX[cls] for _, cls, _ in faces], np.int64))
+
+
 def distractor_patches(rng, n_billboards: int = 12):
     """Look-alike objects that are not signs (BGRA): traffic mirrors, billboards, discs, boxes."""
     textures = import_textures()

@@ -25,7 +25,10 @@ TRAIN_SCENES = (("default", 100, None), ("tiny", 100, None), ("default", 101, No
 #: The last panoramas of each training scene (at most this many, and a sixth) are kept for validation.
 VAL_PANORAMAS_PER_SCENE = 8
 
-SOURCE_WEIGHTS = {"gtsdb": 0.24, "gtsrb_paste": 0.30, "drawn_paste": 0.10, "views": 0.36}
+SOURCE_WEIGHTS = {"gtsdb": 0.24, "gtsrb_paste": 0.30, "drawn_paste": 0.10, "views": 0.36, "faces_paste": 0.12}
+#: Sign faces of many countries drawn at the start (devtools/train/signfaces.py), pasted by
+#: "faces_paste"; drawn from seed 0 (the bench draws its own from a seed over 1000).
+FACES = 2000
 # pasted real signs: share drawn at the 14-35 px of far signs (those the detector scores too
 # low on real photographs), beside the sizes of _gtsrb_height; 0 = as the bundled file
 SMALL_PASTE_PX = (14.0, 35.0)
@@ -63,7 +66,7 @@ class DataMix:
     """Random training crops from every source (see :mod:`devtools.train.data`)."""
 
     def __init__(self, crop_px: int, work_dir: str, seed: int = 0, mandatory_boost: float = MANDATORY_BOOST,
-                 source_weights=None, small_share: float = 0.0):
+                 source_weights=None, small_share: float = 0.0, faces: int = FACES):
         self.crop_px = crop_px
         self.small_share = small_share
         w = dict(SOURCE_WEIGHTS, **(source_weights or {}))
@@ -80,11 +83,13 @@ class DataMix:
         self.gtsrb, self.gtsrb_classes, tracks, self.gtsrb_heights = data.read_gtsrb_train("train")
         self.gtsrb_p = data.class_sampling_weights(self.gtsrb_classes, {CLASS_INDEX["mandatory"]: mandatory_boost})
         self.drawn, self.drawn_classes = data.drawn_signs()
+        self.faces, self.faces_classes = data.drawn_faces(faces, seed=0)
         self.distractors = data.distractor_patches(self.rng)
         self.work_dir = work_dir
         self.views, self.val_views, self.scenes = [], [], set()
         print(f"[train] {len(self.gtsdb)} GTSDB scenes, {len(self.gtsrb)} GTSRB crops of {len(set(tracks))} "
-              f"training tracks, {len(self.drawn)} drawn signs, {len(self.distractors)} distractors", flush=True)
+              f"training tracks, {len(self.drawn)} drawn signs, {len(self.faces)} faces of many countries, "
+              f"{len(self.distractors)} distractors", flush=True)
 
     def add_scenes(self, folders):
         """Cut the views of scenes not loaded yet (those whose scene.json exists)."""
@@ -169,7 +174,7 @@ class DataMix:
     def sample(self) -> Sample:
         rng = self.rng
         source = self.source_names[int(rng.choice(len(self.source_names), p=self.source_p))]
-        if source == "views" and not self.views:
+        if (source == "views" and not self.views) or (source == "faces_paste" and not self.faces):
             source = "gtsdb"
         if source == "gtsdb":
             k = int(rng.choice(len(self.gtsdb), p=self.gtsdb_p))
@@ -180,6 +185,12 @@ class DataMix:
         elif source == "drawn_paste":
             s = self._background()
             self._paste_many(s, self.drawn, self.drawn_classes, int(rng.integers(1, 4)), 10, 120)
+        elif source == "faces_paste":   # degraded as distant signs, like the real crops
+            s = self._background()
+            for _ in range(int(rng.integers(1, 4))):
+                k = int(rng.integers(len(self.faces)))
+                data.paste(s, self.faces[k], log_uniform(rng, 12, 120), int(self.faces_classes[k]), rng,
+                           post=lambda p: data.degrade(p, self.rng))
         else:
             s = self._load(self.views[int(rng.integers(len(self.views)))])
             if rng.random() < 0.3:
@@ -426,7 +437,7 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
           validate_every_min: float = 5.0, seed: int = 0, resume: str = None, val_images: int = 60,
           init: str = None, device: str = "auto", checkpoint_every_min: float = 10.0, until: str = None,
           warmup_steps: int = 300, amp: bool = True, scenes=TRAIN_SCENES, export: bool = True,
-          ema_decay: float = 0.998, source_weights=None, small_share: float = 0.0):
+          ema_decay: float = 0.998, source_weights=None, small_share: float = 0.0, faces: int = FACES):
     """Train (or go on training) for ``minutes`` of training time in all (a resumed run
     counts the time already spent), or until the wall-clock time ``until``; validate every
     ``validate_every_min`` (best by AP50 on GTSDB 500-599), checkpoint every
@@ -440,7 +451,7 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
     os.makedirs(work_dir, exist_ok=True)
     t_start = time.perf_counter()
     scene_folders = ensure_scenes(scene_root, specs=scenes, generate=generate_scenes)
-    mix = DataMix(crop_px, work_dir, seed, source_weights=source_weights, small_share=small_share)
+    mix = DataMix(crop_px, work_dir, seed, source_weights=source_weights, small_share=small_share, faces=faces)
     mix.add_scenes(scene_folders)
     # GTSDB 500-599 picks the best checkpoint; views and pasted held-out tracks are watched
     val_sets = {"gtsdb_500_599": data.read_gtsdb(data.GTSDB_HELDOUT_IDS)[:val_images],

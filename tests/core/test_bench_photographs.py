@@ -26,10 +26,10 @@ def test_heldout_tracks_are_pasted_beside_the_frames_own_signs_and_are_repeatabl
     truth = train_data.read_gtsdb(FRAME_IDS)
     assert len(frames) == len(FRAME_IDS)
     pasted = 0
-    for (image, boxes, classes, ignore, unlabelled), (_, own, _own_classes), (image2, boxes2, *_) in zip(
+    for (image, boxes, classes, ignore, unlabelled, families), (_, own, _own_classes), (image2, boxes2, *_) in zip(
             frames, truth, again):
         np.testing.assert_array_equal(ignore, own)  # the frame's own signs: ignored, not counted
-        assert unlabelled.shape == (0, 4)
+        assert unlabelled.shape == (0, 4) and families == ()
         assert len(boxes) == len(classes)
         if len(boxes) and len(own):
             assert iou_matrix(boxes, own).max() == 0.0  # pasted at free spots
