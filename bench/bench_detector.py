@@ -489,6 +489,21 @@ def gtsdb_frames(ids=GTSDB_HELDOUT_IDS):
         yield Frame(cv2.imread(path), gt, classes, np.zeros((0, 4), np.float32), unlabelled)
 
 
+def _frames_with_jobs(ids, jobs, rng):
+    """The GTSDB frames ``ids`` one at a time as ``(Sample, own boxes, jobs)``: ``jobs`` (things
+    to paste) shuffled by ``rng`` and dealt round the frames."""
+    import cv2
+
+    from devtools.train import data as train_data
+
+    frame_ids = list(ids)
+    per_frame = [[] for _ in frame_ids]
+    for j in rng.permutation(len(jobs)):
+        per_frame[int(j) % len(frame_ids)].append(jobs[int(j)])
+    for (path, gt, cls), frame_jobs in zip(read_gtsdb(frame_ids), per_frame):
+        yield train_data.Sample(cv2.imread(path), gt.copy(), cls.copy()), gt, frame_jobs
+
+
 def heldout_track_frames(ids=GTSDB_HELDOUT_IDS, seed: int = 2024, sizes_px=TRACK_SIZES_PX, part: str = "val",
                          max_tracks=None, half=None):
     """Real signs that neither network has seen: each held-out ``gtsrb-train`` track (every
@@ -503,7 +518,6 @@ def heldout_track_frames(ids=GTSDB_HELDOUT_IDS, seed: int = 2024, sizes_px=TRACK
     tracks training did paste instead (``max_tracks`` of them, drawn evenly): the control that
     tells a gap in generalising to new signs from one in the pasting itself. ``half`` (0 or 1):
     only every other track (sorted), for choosing a rule on one half and testing it on the other."""
-    import cv2
 
     from devtools.train import data as train_data
 
@@ -518,12 +532,7 @@ def heldout_track_frames(ids=GTSDB_HELDOUT_IDS, seed: int = 2024, sizes_px=TRACK
     if half is not None:
         keys = keys[half::2]
     jobs = [(key, lo, hi) for key in keys for lo, hi in sizes_px]
-    frame_ids = list(ids)
-    per_frame = [[] for _ in frame_ids]
-    for j in rng.permutation(len(jobs)):
-        per_frame[int(j) % len(frame_ids)].append(jobs[int(j)])
-    for (path, gt, cls), frame_jobs in zip(read_gtsdb(frame_ids), per_frame):
-        sample = train_data.Sample(cv2.imread(path), gt.copy(), cls.copy())
+    for sample, gt, frame_jobs in _frames_with_jobs(ids, jobs, rng):
         n_own = len(gt)
         for key, lo, hi in frame_jobs:
             height = float(np.exp(rng.uniform(np.log(lo), np.log(hi))))
@@ -551,12 +560,7 @@ def drawn_face_frames(ids=GTSDB_HELDOUT_IDS, seed: int = FACES_SEED, per_family:
 
     rng = np.random.default_rng(seed)
     jobs = [(family, lo, hi) for family in signfaces.FAMILIES for lo, hi in sizes_px for _ in range(per_family)]
-    frame_ids = list(ids)
-    per_frame = [[] for _ in frame_ids]
-    for j in rng.permutation(len(jobs)):
-        per_frame[int(j) % len(frame_ids)].append(jobs[int(j)])
-    for (path, gt, cls), frame_jobs in zip(read_gtsdb(frame_ids), per_frame):
-        sample = train_data.Sample(cv2.imread(path), gt.copy(), cls.copy())
+    for sample, gt, frame_jobs in _frames_with_jobs(ids, jobs, rng):
         n_own = len(gt)
         families = []
         for family, lo, hi in frame_jobs:
