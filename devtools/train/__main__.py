@@ -41,7 +41,7 @@ def main(argv=None):
     ap.add_argument("--small-share", type=float, default=0.0,
                     help="share of pasted real signs drawn at 14-35 px (far signs), 0..1")
     ap.add_argument("--faces", type=int, default=None,
-                    help="sign faces of many countries drawn at the start for faces_paste (default 2000; 0: none)")
+                    help="faces of many countries drawn at the start for faces_paste (default train.FACES; 0: none)")
     ap.add_argument("--source-weights", default=None, metavar="NAME=W,...",
                     help="override the data mix's shares, e.g. views=0.5,gtsdb=0.2 (names: gtsdb, gtsrb_paste, "
                          "drawn_paste, views, faces_paste)")
@@ -52,7 +52,7 @@ def main(argv=None):
     ap.add_argument("--no-export", action="store_true", help="do not export at the end")
     ap.add_argument("--export-only", metavar="CKPT", help="only export this checkpoint (.pt) to --out")
     a = ap.parse_args(argv)
-    from .train import export_checkpoint, train
+    from .train import FACES, export_checkpoint, train
     if a.export_only:
         export_checkpoint(a.export_only, a.out)
         return 0
@@ -61,7 +61,7 @@ def main(argv=None):
           seed=a.seed, resume=a.resume, val_images=a.val_images, init=a.init, device=a.device,
           checkpoint_every_min=a.checkpoint_every, until=a.until, warmup_steps=a.warmup, amp=not a.no_amp,
           export=not a.no_export, ema_decay=a.ema_decay, small_share=a.small_share,
-          **({"faces": a.faces} if a.faces is not None else {}),
+          faces=FACES if a.faces is None else a.faces,
           source_weights={k: float(v) for k, v in (x.split("=") for x in a.source_weights.split(","))}
           if a.source_weights else None)
     return 0

@@ -33,7 +33,11 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 import cv2
 import numpy as np
 
-AA = cv2.LINE_AA
+from devtools.scenegen.textures import AA, _fill, _regular_polygon, faded  # the generator's own helpers
+from devtools.scenegen.textures import _arrow as _polyline_arrow
+
+from .data import CLASSES  # noqa: F401  (the six classes, declared once there)
+
 #: Where the TrueType fonts are looked for (Debian's fonts-dejavu).
 FONT_GLOBS = ("/usr/share/fonts/truetype/dejavu/DejaVu*.ttf",)
 #: Words for stop on octagons (Latin, Cyrillic, Greek scripts).
@@ -59,7 +63,6 @@ FAMILIES: Dict[str, Tuple[str, float]] = {
     "panel_pictogram": ("information", 0.2),
     "panel_text": ("information", 0.3),
 }
-CLASSES = ("warning", "prohibitory", "mandatory", "information", "stop", "yield")
 
 
 # --- colours ---------------------------------------------------------------------------
@@ -95,10 +98,6 @@ def font_paths() -> Tuple[str, ...]:
     return tuple(found)
 
 
-def _fill(img, pts, rgb) -> None:
-    cv2.fillPoly(img, [np.round(np.asarray(pts, float) * 16).astype(np.int32)], (*rgb, 255), AA, shift=4)
-
-
 def _disc(img, centre, r, rgb) -> None:
     cv2.circle(img, (int(round(centre[0] * 16)), int(round(centre[1] * 16))), max(1, int(round(r * 16))),
                (*rgb, 255), -1, AA, shift=4)
@@ -107,11 +106,6 @@ def _disc(img, centre, r, rgb) -> None:
 def _line(img, p, q, rgb, thick) -> None:
     cv2.line(img, tuple(int(round(v)) for v in p), tuple(int(round(v)) for v in q), (*rgb, 255),
              max(1, int(round(thick))), AA)
-
-
-def _regular_polygon(cx, cy, r, n, rot) -> np.ndarray:
-    a = rot + 2 * np.pi * np.arange(n) / n
-    return np.stack([cx + r * np.cos(a), cy + r * np.sin(a)], 1)
 
 
 def _rounded_polygon(pts: np.ndarray, radius: float, steps: int = 6) -> np.ndarray:
@@ -171,14 +165,8 @@ def draw_text(img, text: str, rgb, box, rng, font_path: Optional[str] = None) ->
 
 
 def draw_arrow(img, pts, rgb, thick: float, head: Optional[float] = None) -> None:
-    """A polyline ending in a filled head."""
-    pts = np.asarray(pts, float)
-    cv2.polylines(img, [np.round(pts).astype(np.int32)], False, (*rgb, 255), max(1, int(round(thick))), AA)
-    p, q = pts[-2], pts[-1]
-    d = (q - p) / max(np.linalg.norm(q - p), 1e-9)
-    n = np.array([-d[1], d[0]])
-    head = head or 2.2 * thick
-    _fill(img, [q + d * head, q + n * head, q - n * head], rgb)
+    """A polyline ending in a filled head (the generator's arrow, at any thickness in pixels)."""
+    _polyline_arrow(img, np.asarray(pts, float), rgb, max(1, int(round(thick))), head=head or 2.2 * thick)
 
 
 def _random_arrow(img, rng, cx, cy, r, rgb, thick) -> None:
@@ -500,12 +488,9 @@ _DRAW: Dict[str, Callable] = {
 
 def weathered(face: np.ndarray, rng) -> np.ndarray:
     """Sun-bleached, dirty or streaked sheeting (the alpha is kept)."""
-    out = face.copy()
-    rgb = out[..., :3].astype(np.float32)
     fade = rng.uniform(0.0, 0.55) if rng.random() < 0.5 else 0.0
-    if fade:
-        grey = rgb.mean(-1, keepdims=True)
-        rgb = (1 - fade) * rgb + fade * (0.5 * grey + 0.5 * 200)
+    out = faded(face, fade) if fade else face.copy()
+    rgb = out[..., :3].astype(np.float32)
     if rng.random() < 0.4:   # dirt: a smooth dark mottling
         h, w = rgb.shape[:2]
         small = rng.uniform(0, 1, (max(2, h // 16), max(2, w // 16))).astype(np.float32)

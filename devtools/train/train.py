@@ -128,11 +128,13 @@ class DataMix:
             centre = (rng.uniform(0, w), rng.uniform(0, h))
         return data.crop_sample(sample, S, scale, centre, flip=bool(rng.random() < 0.5))
 
-    def _paste_many(self, s: Sample, patches, classes, n, lo, hi):
+    def _paste_many(self, s: Sample, patches, classes, n, lo, hi, degraded: bool = False):
+        """``n`` of ``patches`` at heights drawn in [lo, hi] px; ``degraded``: as distant signs."""
+        post = (lambda p: data.degrade(p, self.rng)) if degraded else None
         for _ in range(n):
             k = int(self.rng.integers(len(patches)))
             klass = None if classes is None else int(classes[k])
-            data.paste(s, patches[k], log_uniform(self.rng, lo, hi), klass, self.rng)
+            data.paste(s, patches[k], log_uniform(self.rng, lo, hi), klass, self.rng, post=post)
 
     def _gtsrb_height(self, k: int) -> float:
         """Pasted height of a real crop: near its own size (the camera's real blur), or the
@@ -187,10 +189,7 @@ class DataMix:
             self._paste_many(s, self.drawn, self.drawn_classes, int(rng.integers(1, 4)), 10, 120)
         elif source == "faces_paste":   # degraded as distant signs, like the real crops
             s = self._background()
-            for _ in range(int(rng.integers(1, 4))):
-                k = int(rng.integers(len(self.faces)))
-                data.paste(s, self.faces[k], log_uniform(rng, 12, 120), int(self.faces_classes[k]), rng,
-                           post=lambda p: data.degrade(p, self.rng))
+            self._paste_many(s, self.faces, self.faces_classes, int(rng.integers(1, 4)), 12, 120, degraded=True)
         else:
             s = self._load(self.views[int(rng.integers(len(self.views)))])
             if rng.random() < 0.3:
