@@ -44,7 +44,7 @@ def main(argv=None):
                     help="faces of many countries drawn at the start for faces_paste (default train.FACES; 0: none)")
     ap.add_argument("--source-weights", default=None, metavar="NAME=W,...",
                     help="override the data mix's shares, e.g. views=0.5,gtsdb=0.2 (names: gtsdb, gtsrb_paste, "
-                         "drawn_paste, views, faces_paste)")
+                         "drawn_paste, views, faces_paste, gtsdb_hard)")
     ap.add_argument("--resume", default=None, help="a checkpoint (WORK/last.pt) to go on from, with its "
                     "optimiser, EMA, step, training time and random states")
     ap.add_argument("--init", default=None, help="start weights only: a checkpoint (.pt) or an exported "

@@ -13,7 +13,7 @@ import numpy as np
 import torch
 import torch.nn.functional as F
 
-from . import data
+from . import data, mine
 from .data import CLASS_INDEX, CLASSES, Sample
 from .metrics import average_precision, best_f1_threshold, match_image, summarise
 from .model import STRIDE, ConvBN, SignNet, calibration_power, decode, export_onnx
@@ -25,7 +25,10 @@ TRAIN_SCENES = (("default", 100, None), ("tiny", 100, None), ("default", 101, No
 #: The last panoramas of each training scene (at most this many, and a sixth) are kept for validation.
 VAL_PANORAMAS_PER_SCENE = 8
 
-SOURCE_WEIGHTS = {"gtsdb": 0.24, "gtsrb_paste": 0.30, "drawn_paste": 0.10, "views": 0.36, "faces_paste": 0.12}
+SOURCE_WEIGHTS = {"gtsdb": 0.24, "gtsrb_paste": 0.30, "drawn_paste": 0.10, "views": 0.36, "faces_paste": 0.12,
+                  "gtsdb_hard": 0.08}
+#: "gtsdb_hard" crops GTSDB training frames round the false alarms of an earlier detector
+#: (devtools/train/mine.py; the reviewed list also labels the signs GTSDB leaves out).
 #: Sign faces of many countries drawn at the start (devtools/train/signfaces.py), pasted by
 #: "faces_paste"; drawn from seed 0 (the bench draws its own from a seed over 1000).
 FACES = 2000
@@ -66,7 +69,8 @@ class DataMix:
     """Random training crops from every source (see :mod:`devtools.train.data`)."""
 
     def __init__(self, crop_px: int, work_dir: str, seed: int = 0, mandatory_boost: float = MANDATORY_BOOST,
-                 source_weights=None, small_share: float = 0.0, faces: int = FACES):
+                 source_weights=None, small_share: float = 0.0, faces: int = FACES,
+                 mined_path: str = mine.MINED_PATH):
         self.crop_px = crop_px
         self.small_share = small_share
         w = dict(SOURCE_WEIGHTS, **(source_weights or {}))
@@ -75,6 +79,7 @@ class DataMix:
         self.rng = np.random.default_rng(seed)
         self.cache = data.ImageCache()
         self.gtsdb = data.read_gtsdb(data.GTSDB_TRAIN_IDS)
+        self.hard = self._add_mined(mined_path)
         # scenes with a mandatory sign come up more often (the weakest class on GTSDB)
         w = np.array([1.0 + (mandatory_boost - 1.0) * bool(np.any(r[2] == CLASS_INDEX["mandatory"]))
                       for r in self.gtsdb])
@@ -89,7 +94,15 @@ class DataMix:
         self.views, self.val_views, self.scenes = [], [], set()
         print(f"[train] {len(self.gtsdb)} GTSDB scenes, {len(self.gtsrb)} GTSRB crops of {len(set(tracks))} "
               f"training tracks, {len(self.drawn)} drawn signs, {len(self.faces)} faces of many countries, "
-              f"{len(self.distractors)} distractors", flush=True)
+              f"{len(self.distractors)} distractors, {len(self.hard)} mined false alarms", flush=True)
+
+    def _add_mined(self, path: str):
+        """Label the signs of the GTSDB training frames that the reviewed mined file adds
+        (:func:`mine.label_frames`) and return its false alarms as ``[(index into self.gtsdb, box)]``."""
+        false_alarms, signs, ignored = mine.read_mined(path)
+        self.gtsdb = mine.label_frames(self.gtsdb, data.GTSDB_TRAIN_IDS, signs, ignored)
+        index = {frame_id: k for k, frame_id in enumerate(data.GTSDB_TRAIN_IDS)}
+        return [(index[frame_id], box) for frame_id, boxes in sorted(false_alarms.items()) for box in boxes]
 
     def add_scenes(self, folders):
         """Cut the views of scenes not loaded yet (those whose scene.json exists)."""
@@ -176,9 +189,16 @@ class DataMix:
     def sample(self) -> Sample:
         rng = self.rng
         source = self.source_names[int(rng.choice(len(self.source_names), p=self.source_p))]
-        if (source == "views" and not self.views) or (source == "faces_paste" and not self.faces):
+        if ((source == "views" and not self.views) or (source == "faces_paste" and not self.faces)
+                or (source == "gtsdb_hard" and not self.hard)):
             source = "gtsdb"
-        if source == "gtsdb":
+        if source == "gtsdb_hard":   # round a false alarm of an earlier detector
+            k, box = self.hard[int(rng.integers(len(self.hard)))]
+            s = self._load(self.gtsdb[k])
+            S, scale = self.crop_px, log_uniform(rng, 0.6, 1.5)
+            centre = 0.5 * (box[:2] + box[2:]) + rng.uniform(-0.4, 0.4, 2) * S / scale
+            s = data.crop_sample(s, S, scale, tuple(centre), flip=bool(rng.random() < 0.5))
+        elif source == "gtsdb":
             k = int(rng.choice(len(self.gtsdb), p=self.gtsdb_p))
             s = self._crop(self._load(self.gtsdb[k]), log_uniform(rng, 0.5, 1.8), 0.8)
         elif source == "gtsrb_paste":
