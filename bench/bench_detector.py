@@ -93,7 +93,8 @@ GTSDB_UNLABELLED_SIGNS = {
     523: [(971, 517, 1014, 573)],                          # parking information panel on a bridge
     530: [(817, 469, 832, 488)],                           # blue panel in fog
     536: [(949, 438, 962, 450)],                           # cycle and foot path (round, blue)
-    545: [(367, 441, 381, 459)],                           # no parking
+    545: [(367, 441, 381, 459),                            # no parking
+          (213, 359, 240, 396)],                           # parking panel (added 27 November, seen by eye)
     550: [(638, 502, 656, 519)],                           # chevron board
     551: [(697, 488, 739, 523)],                           # motorway direction panel
     552: [(717, 479, 758, 516)],                           # motorway information panel

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import csv
 import json
+import math
 import os
 from collections import defaultdict
 from dataclasses import dataclass, field
@@ -677,9 +678,52 @@ def _sign_back(rng):
     return img
 
 
+def _bunting(rng):
+    """A line of triangular pennants, points down (white ones look like give-way signs)."""
+    n = int(rng.integers(3, 8))
+    side = int(rng.integers(22, 34))
+    gap = int(side * rng.uniform(0.1, 0.8))
+    w, h = n * (side + gap) + gap, side + 12
+    img = _bgra(h, w)
+    sag = rng.uniform(0, 8)
+    colours = [_WHITE] * 3 + [_RED, _BLUE, _YELLOW, _rand_colour(rng)]
+    one = colours[int(rng.integers(len(colours)))] if rng.random() < 0.5 else None
+    line = []
+    for k in range(n):
+        x0 = gap + k * (side + gap)
+        y0 = 2 + int(sag * math.sin(math.pi * (x0 + side / 2) / w))
+        colour = one or colours[int(rng.integers(len(colours)))]
+        tri = np.array([[x0, y0], [x0 + side, y0], [x0 + side // 2, y0 + int(side * rng.uniform(0.8, 1.2))]])
+        tri[:, 1] = np.minimum(tri[:, 1], h - 1)
+        cv2.fillPoly(img, [tri], (*colour, 255), cv2.LINE_AA)
+        line += [(x0, y0), (x0 + side, y0)]
+    cv2.polylines(img, [np.array(line)], False, (60, 60, 60, 255), 1, cv2.LINE_AA)
+    return img
+
+
+def _lattice(rng):
+    """A steel lattice (a pylon's arm, a gantry's truss): thin bars making triangles."""
+    w, h = int(rng.integers(80, 160)), int(rng.integers(30, 70))
+    img = _bgra(h, w)
+    grey = int(rng.integers(30, 140))
+    colour = (grey, grey, grey + int(rng.integers(0, 15)), 255)
+    step = int(rng.integers(14, 30))
+    thick = max(1, min(int(rng.integers(1, 4)), step // 8))   # bars, not a panel: mostly see-through
+    for y in (1, h - 2):
+        cv2.line(img, (0, y), (w - 1, y), colour, thick + 1, cv2.LINE_AA)
+    for x in range(0, w, step):   # zig-zag bracing: triangles pointing up and down
+        cv2.line(img, (x, h - 2), (min(x + step // 2, w - 1), 1), colour, thick, cv2.LINE_AA)
+        cv2.line(img, (min(x + step // 2, w - 1), 1), (min(x + step, w - 1), h - 2), colour, thick, cv2.LINE_AA)
+    if rng.random() < 0.5:   # insulators hanging under it
+        for x in rng.integers(4, w - 4, int(rng.integers(1, 4))):
+            cv2.line(img, (int(x), h - 2), (int(x), h - 1), colour, 2)
+    return img
+
+
 NEGATIVE_MAKERS = {"traffic_light": _traffic_light, "tail_lights": _tail_lights, "shop_sign": _shop_sign,
                    "red_ring_logo": _red_ring_logo, "convex_mirror": _convex_mirror,
-                   "printed_roundel": _printed_roundel, "sign_back": _sign_back}
+                   "printed_roundel": _printed_roundel, "sign_back": _sign_back, "bunting": _bunting,
+                   "lattice": _lattice}
 
 
 def hard_negative(rng, background=None):
