@@ -51,10 +51,15 @@ def main(argv=None):
                     "model (.onnx, e.g. models/roadsigns.onnx: its folded batch norms are recovered)")
     ap.add_argument("--no-export", action="store_true", help="do not export at the end")
     ap.add_argument("--export-only", metavar="CKPT", help="only export this checkpoint (.pt) to --out")
+    ap.add_argument("--operating-point", type=float, default=None, metavar="SCORE",
+                    help="with --export-only: the raw score to map to the plugin's default confidence "
+                         "(default: the checkpoint's validation best-F1 threshold)")
+    ap.add_argument("--maps-to", type=float, default=None, metavar="SCORE",
+                    help="with --export-only: the exported score the operating point becomes (default 0.4)")
     a = ap.parse_args(argv)
     from .train import FACES, export_checkpoint, train
     if a.export_only:
-        export_checkpoint(a.export_only, a.out)
+        export_checkpoint(a.export_only, a.out, operating_point=a.operating_point, maps_to=a.maps_to)
         return 0
     train(a.out, a.minutes, a.work, a.scenes or os.path.join(a.work, "scenes"), generate_scenes=not a.no_generate,
           crop_px=a.crop, batch_size=a.batch, lr=a.lr, threads=a.threads, validate_every_min=a.validate_every,

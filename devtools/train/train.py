@@ -16,7 +16,7 @@ import torch.nn.functional as F
 from . import data, mine
 from .data import CLASS_INDEX, CLASSES, Sample
 from .metrics import average_precision, best_f1_threshold, match_image, summarise
-from .model import STRIDE, ConvBN, SignNet, calibration_power, decode, export_onnx
+from .model import PLUGIN_DEFAULT_CONFIDENCE, STRIDE, ConvBN, SignNet, calibration_power, decode, export_onnx
 
 #: Generated scenes used for training: (preset, seed, panorama width or None). Seeds from
 #: 100 up are reserved for training; the bench and tests use seeds below 100.
@@ -606,18 +606,22 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
     return export_checkpoint(os.path.join(work_dir, "best.pt"), out_path)
 
 
-def export_checkpoint(checkpoint: str, out_path: str, net: SignNet = None):
-    """Export a checkpoint with its scores calibrated on the GTSDB validation: the best-F1
-    threshold found there becomes the plugin's default confidence (0.4)."""
+def export_checkpoint(checkpoint: str, out_path: str, net: SignNet = None, operating_point: float = None,
+                      maps_to: float = None):
+    """Export a checkpoint with its scores calibrated: ``operating_point`` (a raw score; default
+    the best-F1 threshold of the checkpoint's GTSDB validation) becomes the exported score
+    ``maps_to`` (default ``model.PLUGIN_DEFAULT_CONFIDENCE``)."""
     best = torch.load(checkpoint, map_location="cpu", weights_only=False)
     net = net or SignNet(len(CLASSES))
     net = net.cpu().to(memory_format=torch.contiguous_format)
     net.load_state_dict(best["model"])
-    threshold = best["entry"]["gtsdb_500_599"]["best_f1_threshold"]
-    power = calibration_power(threshold)
+    threshold = operating_point or best["entry"]["gtsdb_500_599"]["best_f1_threshold"]
+    target = maps_to or PLUGIN_DEFAULT_CONFIDENCE
+    power = calibration_power(threshold, target)
+    source = "the chosen operating point" if operating_point else "the validation best-F1 threshold"
     export_onnx(net, out_path, CLASSES, score_power=power, extra_metadata={
         "description": "Road sign detector (6 classes), CenterNet-style, trained by devtools/train",
-        "score_calibration": f"raw ** {power:.4f}: the validation best-F1 threshold {threshold:.2f} maps to 0.40",
+        "score_calibration": f"raw ** {power:.4f}: {source} {threshold:.3f} maps to {target:.2f}",
         "training": json.dumps({"step": best["step"], "validation": best["entry"]})})
     print(f"[train] exported {out_path} ({os.path.getsize(out_path) / 1e6:.2f} MB) from step {best['step']} "
           f"(scores ** {power:.3f}): {json.dumps(best['entry'])}", flush=True)
