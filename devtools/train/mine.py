@@ -48,9 +48,10 @@ def false_alarms(boxes, scores, class_ids, truth, confidence: float):
 def mine(model_path: str, confidence: float, ids=data.GTSDB_TRAIN_IDS, progress=print):
     """``{frame id: false-alarm rows}`` of the detector ``model_path`` run as the bench runs it
     on photographs (tiles of its input size at full resolution)."""
-    from bench.bench_detector import detect_tiled, detector_mod
+    from devtools import import_roadsigns
+    from devtools.photos import detect_tiled
 
-    detector = detector_mod.Detector(model_path, threads=2)
+    detector = import_roadsigns("roadsigns.core.detector").Detector(model_path, threads=2)
     out = {}
     for n, (frame_id, (path, truth, _)) in enumerate(zip(ids, data.read_gtsdb(ids))):
         image = cv2.imread(path)
@@ -78,9 +79,11 @@ def contact_sheet(mined, path: str, cell_px: int = 96, columns: int = 16):
     rows = max(1, -(-len(items) // columns))
     sheet = np.full((rows * (cell_px + 14), columns * cell_px, 3), 255, np.uint8)
     ids = sorted({f for _, f, _ in items})
-    frames = dict(zip(ids, data.read_gtsdb(ids)))
-    for k, frame_id, row in items:
-        image = cv2.imread(frames[frame_id][0])
+    paths = {frame_id: row[0] for frame_id, row in zip(ids, data.read_gtsdb(ids))}
+    image, shown = None, None
+    for k, frame_id, row in items:   # numbered() goes frame by frame: each frame read once
+        if frame_id != shown:
+            image, shown = cv2.imread(paths[frame_id]), frame_id
         x0, y0, x1, y1 = row[:4]
         side = max(x1 - x0, y1 - y0) * 1.6 + 8
         cx, cy = 0.5 * (x0 + x1), 0.5 * (y0 + y1)

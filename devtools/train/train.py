@@ -130,13 +130,16 @@ class DataMix:
         return Sample(self.cache.get(path).copy() if real else cv2.imread(path),
                       boxes.copy(), classes.copy(), ignore.copy())
 
-    def _crop(self, sample: Sample, scale: float, on_sign: float) -> Sample:
+    def _crop(self, sample: Sample, scale: float, on_sign: float, around=None) -> Sample:
+        """A crop at ``scale``: near the box ``around`` if given, else near one of the sample's
+        signs with probability ``on_sign``, else anywhere."""
         rng, S = self.rng, self.crop_px
         h, w = sample.image.shape[:2]
-        if len(sample.boxes) and rng.random() < on_sign:
-            b = sample.boxes[int(rng.integers(len(sample.boxes)))]
+        if around is None and len(sample.boxes) and rng.random() < on_sign:
+            around = sample.boxes[int(rng.integers(len(sample.boxes)))]
+        if around is not None:
             jitter = rng.uniform(-0.4, 0.4, 2) * S / scale
-            centre = (0.5 * (b[0] + b[2]) + jitter[0], 0.5 * (b[1] + b[3]) + jitter[1])
+            centre = (0.5 * (around[0] + around[2]) + jitter[0], 0.5 * (around[1] + around[3]) + jitter[1])
         else:
             centre = (rng.uniform(0, w), rng.uniform(0, h))
         return data.crop_sample(sample, S, scale, centre, flip=bool(rng.random() < 0.5))
@@ -194,10 +197,7 @@ class DataMix:
             source = "gtsdb"
         if source == "gtsdb_hard":   # round a false alarm of an earlier detector
             k, box = self.hard[int(rng.integers(len(self.hard)))]
-            s = self._load(self.gtsdb[k])
-            S, scale = self.crop_px, log_uniform(rng, 0.6, 1.5)
-            centre = 0.5 * (box[:2] + box[2:]) + rng.uniform(-0.4, 0.4, 2) * S / scale
-            s = data.crop_sample(s, S, scale, tuple(centre), flip=bool(rng.random() < 0.5))
+            s = self._crop(self._load(self.gtsdb[k]), log_uniform(rng, 0.6, 1.5), 0.0, around=box)
         elif source == "gtsdb":
             k = int(rng.choice(len(self.gtsdb), p=self.gtsdb_p))
             s = self._crop(self._load(self.gtsdb[k]), log_uniform(rng, 0.5, 1.8), 0.8)
