@@ -141,6 +141,7 @@ def main(argv=None):
         + {None: "", False: "-noforeaft", True: "-foreaft"}[args.fore_aft]
         + (f"-rescue{args.rescue_confidence:g}" if args.rescue_confidence is not None else "")
         + (f"-conf{args.confidence:g}" if args.confidence is not None else "")
+        + ("-model-" + os.path.splitext(os.path.basename(args.model))[0] if args.model else "")
         + ("-classifier-" + os.path.splitext(os.path.basename(args.classifier))[0] if args.classifier else ""))
     os.makedirs(work, exist_ok=True)
     qgis = QgisProcess()

@@ -582,10 +582,12 @@ def merge_view_detections(boxes: np.ndarray, scores: np.ndarray, class_ids: np.n
 
 
 #: Default of detectsigns' (and fusesigns') CONFIDENCE: boxes scoring below it are dropped,
-#: or given the second look (:mod:`.rescue`) from its RESCUE_CONFIDENCE. The best F1 of the
-#: plugin's path (second look on) on held-out real photographs, GTSDB 500-599: P 0.970 /
-#: R 0.901 at 0.5, 0.941 / 0.901 at 0.45, 0.901 / 0.901 at 0.4, 0.969 / 0.887 at 0.6; on
-#: five held-out generated streets 0.5 is the best F1 too (models/README.md, "The second look").
+#: or given the second look (:mod:`.rescue`) from its RESCUE_CONFIDENCE. The bundled file's
+#: plugin path (second look on) on held-out real photographs, GTSDB 500-599, at the densities
+#: the plugin's views give: best F1 at 0.5 (P 0.918 / R 0.944; 0.905 / 0.944 at 0.4, 0.917 /
+#: 0.930 at 0.55, 0.942 / 0.915 at 0.6); at the photographs' own density 0.55 is one false
+#: box better, and on five held-out generated streets 0.5 and 0.55 tie (models/README.md,
+#: "Bundled on 27 November").
 DEFAULT_CONFIDENCE = 0.5
 
 #: Shorter side (panorama pixels) under which ``roadsigns:detectsigns`` drops a box by

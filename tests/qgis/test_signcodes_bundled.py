@@ -1,7 +1,9 @@
 """The bundled sign-code classifier (models/signcodes.onnx) behind the bundled detector, through
-qgis_process with the default parameters: on the generated panoramas of a scene never
-trained on (preset tiny, seed 23: the classifier trains on seeds from 100 up), its speed
-limit 50 comes out as DE:274[50] and its stop sign as DE:206.
+qgis_process with the default parameters: on the generated panoramas of scenes never
+trained on (preset tiny; the classifier trains on seeds from 100 up), the speed limit 50 of
+seed 23 comes out as DE:274[50] and the stop sign of seed 8 as DE:206. (Seed 23's stop sign
+is 6-14 px wide in every panorama, at or under detectsigns' MIN_SIZE: seed 8's is seen at
+22 and 27 px.)
 
 Each sign's detections (its own class, IoU >= 0.5 with its visible or whole box in a
 panorama that sees its front) are put to the vote refine makes (core.signcodes.vote,
@@ -18,8 +20,8 @@ from devtools import REPO_ROOT
 
 BUNDLED_DETECTOR = os.path.join(REPO_ROOT, "models", "roadsigns-int8.onnx")
 BUNDLED_CLASSIFIER = os.path.join(REPO_ROOT, "models", "signcodes.onnx")
-SEED = 23
-EXPECTED = {("prohibitory", "50"): "DE:274[50]", ("stop", "stop"): "DE:206"}
+#: (class, variant): (the tiny scene's seed, the code expected)
+EXPECTED = {("prohibitory", "50"): (23, "DE:274[50]"), ("stop", "stop"): (8, "DE:206")}
 
 
 def require_bundled():
@@ -45,34 +47,44 @@ def seam_iou(a, b, width):
 
 @pytest.fixture(scope="module")
 def run(qgis_process, tmp_path_factory):
-    """Scene tiny/23 (panoramas, no cloud), its stations, and detectsigns with every default."""
+    """``run(seed)``: scene tiny/seed (panoramas, no cloud), its stations, and detectsigns with
+    every default; each seed run once."""
     import json
 
     from devtools.scenegen import generate_scene
 
     require_bundled()
-    work = tmp_path_factory.mktemp("codes_bundled")
-    scene_dir = str(work / "scene")
-    generate_scene("tiny", seed=SEED, out_dir=scene_dir, lidar=False, masks=False)
-    with open(os.path.join(scene_dir, "scene.json")) as f:
-        scene = json.load(f)
-    stations = str(work / "stations.gpkg")
-    imported = qgis_process.run("roadsigns:importtrajectory", OUTPUT=stations, **scene_inputs(scene_dir, scene))
-    assert imported.returncode == 0, imported.text
-    out = str(work / "detections.gpkg")
-    detected = qgis_process.run("roadsigns:detectsigns", STATIONS=stations, OUTPUT=out)  # bundled models
-    assert detected.returncode == 0, detected.text
-    dataset = ogr.Open(out)
-    rows = [{k: f[k] for k in f.keys()} for f in dataset.GetLayer(0)]
-    dataset = None
-    return scene, rows, detected.text
+    done = {}
+
+    def run_seed(seed):
+        if seed not in done:
+            work = tmp_path_factory.mktemp("codes_bundled_{}".format(seed))
+            scene_dir = str(work / "scene")
+            generate_scene("tiny", seed=seed, out_dir=scene_dir, lidar=False, masks=False)
+            with open(os.path.join(scene_dir, "scene.json")) as f:
+                scene = json.load(f)
+            stations = str(work / "stations.gpkg")
+            imported = qgis_process.run("roadsigns:importtrajectory", OUTPUT=stations,
+                                        **scene_inputs(scene_dir, scene))
+            assert imported.returncode == 0, imported.text
+            out = str(work / "detections.gpkg")
+            detected = qgis_process.run("roadsigns:detectsigns", STATIONS=stations, OUTPUT=out)  # bundled models
+            assert detected.returncode == 0, detected.text
+            dataset = ogr.Open(out)
+            rows = [{k: f[k] for k in f.keys()} for f in dataset.GetLayer(0)]
+            dataset = None
+            done[seed] = (scene, rows, detected.text)
+        return done[seed]
+
+    return run_seed
 
 
 @pytest.mark.parametrize("variant", sorted(EXPECTED), ids=lambda v: v[0])
 def test_bundled_classifier_reads_the_generated_signs(run, variant):
     from roadsigns.core.signcodes import crop_view, vote
 
-    scene, rows, text = run
+    seed, expected = EXPECTED[variant]
+    scene, rows, text = run(seed)
     assert "signcodes.onnx" in text
     width = scene["image_width"]
     signs = [s for s in scene["signs"] if (s["class"], s["variant"]) == variant]
@@ -91,6 +103,6 @@ def test_bundled_classifier_reads_the_generated_signs(run, variant):
                     views.append((d["code"], d["code_score"], d["score"] * side, meta["image"]))
     assert views, "the bundled detector found no {} sign".format(variant)
     code, share, n = vote([v[0] for v in views], [v[1] for v in views], [v[2] for v in views])
-    assert code == EXPECTED[variant], views
+    assert code == expected, views
     assert n >= len(views) / 2, views  # most views read it
     print("\n{}: {} of {} views read {} (share {:.2f})".format(variant, n, len(views), code, share))
