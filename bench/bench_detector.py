@@ -411,7 +411,7 @@ def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, cla
     """:func:`roadsigns.core.rescue.second_look` on a photograph's boxes (from 0.05): the
     boxes from ``DEFAULT_RESCUE_CONFIDENCE`` under ``confidence`` that lie on no detection
     (overlap of the smaller box >= 0.5) are merged across classes (the best-scored kept) and
-    kept when the rule and the classifier confirm them, with their code's class, counted at
+    kept when the rule and the classifier confirm them, with the class read, counted at
     ``confidence``. Returns the plugin's boxes, scores and class ids."""
     from devtools.train.codes import crop_square
 
@@ -425,13 +425,13 @@ def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, cla
         rgb = image_bgr[..., ::-1]
         crops = [crop_square(rgb, boxes[j], margin=classifier.crop_margin, out_px=classifier.input_px)
                  for j in cands]
-        codes, code_scores = classifier.classify(crops)
-        for j, code, ok in zip(cands, codes, rescue_mod.confirmed(codes, code_scores)):
+        best, score = rescue_mod.class_reading(classifier.probabilities(crops), classifier.names,
+                                               classifier.table, class_names)
+        for j, klass, ok in zip(cands, best, rescue_mod.confirmed(score)):
             if ok:
                 rescued[j] = True
-                name = rescue_mod.class_of_code(code, classifier.table, class_names)
-                if name is not None:
-                    kept_ids[j] = list(class_names).index(name)
+                if klass >= 0:
+                    kept_ids[j] = klass
     keep = sure | rescued
     return boxes[keep], np.maximum(scores[keep], np.where(rescued[keep], confidence, 0.0)), kept_ids[keep]
 

@@ -16,9 +16,12 @@ For each box under the confidence that overlaps no detection (a *candidate*, mer
 ``core.rescue`` merges them): its shorter side, its share of sheeting colours and the
 classifier's probabilities. Every rule of a grid is then scored on each set without running a
 network again: precision, recall and F1 of the detections plus the kept candidates, and
-mandatory recall. Two kinds of rule: ``code`` (today's: the best code, not ``other``, has at
-least the probability) and ``sign`` (the probability that the crop is any sign in the table,
-``1 - P(other)``, is at least it; the class is the one whose codes add up to most).
+mandatory recall. Three kinds of rule: ``code`` (the rule until 27 November: the best code,
+not ``other``, has at least the probability), ``class`` (today's: the codes of one class add
+up to at least it, ``rescue.class_reading``: a speed limit whose digits are unsure is still a
+prohibitory sign; that class is given) and ``sign``
+(the probability that the crop is any sign in the table, ``1 - P(other)``, is at least it;
+the class is the one whose codes add up to most).
 
     .venv/bin/python bench/tune_second_look.py [--json bench/out/tune-second-look.json]
 """
@@ -44,7 +47,7 @@ from devtools.train.metrics import match_image  # noqa: E402
 
 REPO_ROOT = bd.REPO_ROOT
 #: The grid of rules: kind, probability, shortest side (px), sheeting share, lowest detector score.
-KINDS = ("code", "sign")
+KINDS = ("code", "class", "sign")
 PROBABILITIES = (0.5, 0.6, 0.7, 0.8, 0.9, 0.95)
 MIN_SIDES_PX = (10.0, 12.0, 14.0, 16.0)
 MIN_SHEETING = (0.0, 0.02, 0.05, 0.1)
@@ -56,8 +59,9 @@ def collect(detector, classifier, frames, confidence):
     detections at ``confidence`` and the candidates with their features (score, class id,
     box, side, sheeting, probabilities)."""
     rows = []
-    for image, gt, classes, ignored, unlabelled in frames:
-        ignore = np.concatenate([ignored, unlabelled])
+    for frame in frames:   # bench_detector.Frame
+        image, gt, classes = frame.image, frame.boxes, frame.classes
+        ignore = np.concatenate([frame.ignored, frame.unlabelled])
         boxes, scores, ids = bd.detect_tiled(detector, image, bd.rescue_mod.DEFAULT_RESCUE_CONFIDENCE)
         sure, cands = bd.photo_candidates(boxes, scores, confidence)
         rgb = image[..., ::-1]
@@ -76,13 +80,25 @@ def collect(detector, classifier, frames, confidence):
 
 
 class Reader:
-    """What a rule reads in the classifier's probabilities: per candidate the best code's
-    probability (``other`` excluded from being best), ``1 - P(other)``, and the class each gives.
+    """What a rule reads in the classifier's probabilities: per candidate, for each kind of
+    rule (:data:`KINDS`), the probability it compares and the class it gives: the best code's
+    (``other`` excluded from being best), the best class's (its codes added up), and
+    ``1 - P(other)`` (with the best class).
     ``other``: the column of ``other``; ``class_index``: each column's class (detector order,
     -1 for none); ``n_classes``: the detector's classes."""
 
-    def __init__(self, other: int, class_index: np.ndarray, n_classes: int):
+    def __init__(self, other: int, class_index: np.ndarray, n_classes: int, read_class=None):
         self.other, self.class_index, self.n_classes = other, np.asarray(class_index), n_classes
+        #: ``probabilities -> (class, its codes added up)``: the plugin's own
+        #: (``rescue.class_reading``) in :meth:`of`; by ``class_index`` when built by hand
+        self.read_class = read_class or self._class_by_index
+
+    def _class_by_index(self, probs):
+        per_class = np.zeros((len(probs), self.n_classes))
+        for k, c in enumerate(self.class_index):
+            if c >= 0:
+                per_class[:, c] += probs[:, k]
+        return per_class.argmax(1), per_class.max(1)
 
     @classmethod
     def of(cls, classifier, class_names):
@@ -90,23 +106,21 @@ class Reader:
         other = names.index(bd.signcodes_mod.OTHER_CODE)
         code_class = [bd.rescue_mod.class_of_code(n, classifier.table, class_names) if k != other else None
                       for k, n in enumerate(names)]
-        return cls(other, [list(class_names).index(c) if c else -1 for c in code_class], len(class_names))
+        return cls(other, [list(class_names).index(c) if c else -1 for c in code_class], len(class_names),
+                   lambda probs: bd.rescue_mod.class_reading(probs, names, classifier.table, class_names))
 
     def read(self, probs, det_ids):
         if not len(probs):
             z = np.zeros(0)
-            return z, z.astype(np.int64), z, z.astype(np.int64)
+            return {kind: (z, z.astype(np.int64)) for kind in KINDS}
         best = probs.argmax(1)
         code_p = np.where(best == self.other, 0.0, probs[np.arange(len(best)), best])
         code_cls = np.where(best == self.other, det_ids, self.class_index[best])
         code_cls = np.where(code_cls < 0, det_ids, code_cls)
-        per_class = np.zeros((len(probs), self.n_classes))
-        for k, c in enumerate(self.class_index):
-            if c >= 0:
-                per_class[:, c] += probs[:, k]
-        sign_p = 1.0 - probs[:, self.other]
-        sign_cls = per_class.argmax(1)
-        return code_p, code_cls, sign_p, sign_cls
+        best_class, class_p = self.read_class(probs)
+        best_class = np.where(best_class < 0, det_ids, best_class)
+        return {"code": (code_p, code_cls), "class": (class_p, best_class),
+                "sign": (1.0 - probs[:, self.other], best_class)}
 
 
 def score_rule(rows, reads, rule, confidence):
@@ -116,8 +130,8 @@ def score_rule(rows, reads, rule, confidence):
     n_det = n_tp = n_true = n_hit = 0
     mand = CLASSES.index("mandatory")
     m_true = m_hit = 0
-    for row, (code_p, code_cls, sign_p, sign_cls) in zip(rows, reads):
-        prob, cls = (code_p, code_cls) if kind == "code" else (sign_p, sign_cls)
+    for row, read in zip(rows, reads):
+        prob, cls = read[kind]
         keep = ((row["cand_scores"] >= floor) & (row["side"] >= side_min) & (row["sheeting"] >= sheet_min)
                 & (prob >= p_min))
         b, s, i = row["sure"]
@@ -165,7 +179,7 @@ def main(argv=None):
         print(f"{name}: {len(rows)} frames, {sum(len(r['classes']) for r in rows)} signs, "
               f"{sum(len(r['cand_scores']) for r in rows)} candidates ({time.perf_counter() - t0:.0f} s)", flush=True)
 
-    today = ("code", bd.rescue_mod.DEFAULT_RULE.min_code_score, bd.rescue_mod.DEFAULT_RULE.min_box_px,
+    today = ("class", bd.rescue_mod.DEFAULT_RULE.min_class_score, bd.rescue_mod.DEFAULT_RULE.min_box_px,
              bd.rescue_mod.DEFAULT_RULE.min_sheeting, bd.rescue_mod.DEFAULT_RESCUE_CONFIDENCE)
     none = ("code", 2.0, 0.0, 0.0, 1.0)  # keeps nothing: the detector alone
     grid = [none, today] + [r for r in itertools.product(KINDS, PROBABILITIES, MIN_SIDES_PX, MIN_SHEETING, FLOORS)

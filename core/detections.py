@@ -200,25 +200,34 @@ def _finite_or_none(value: float):
 
 def read_codes(classifier, pano: np.ndarray, found):
     """The sign code of each detection of ``found`` (a :class:`.detector.PanoramaDetections`
-    of the panorama ``pano``, ``H x W x 3`` BGR), read by ``classifier``.
+    of the panorama ``pano``, ``H x W x 3`` BGR), read by ``classifier``: ``found.code`` and
+    ``found.code_score`` set in place by :func:`read_code_probabilities`, and ``found``
+    returned. Use it as :func:`.detector.detect_drive`'s ``on_panorama``.
+    """
+    read_code_probabilities(classifier, pano, found)
+    return found
 
-    ``classifier``: a :class:`.signcodes.CodeClassifier` (or any object with
-    ``classify(crops) -> (names, probabilities)`` and ``crop_margin``). One rectified crop
-    per box is cut at the panorama's native resolution (the classifier's ``cut_crop``, up to
-    twice its input side, or :func:`.signcodes.cut_crop`, with the classifier's margin) and
-    all are classified in batches; ``found.code`` and
-    ``found.code_score`` are set in place (``other`` when the classifier knows no code) and
-    ``found`` is returned. Use it as :func:`.detector.detect_drive`'s ``on_panorama``.
+
+def read_code_probabilities(classifier, pano: np.ndarray, found) -> np.ndarray:
+    """What :func:`read_codes` does, returning the classifier's probabilities ``(n, C)`` in
+    the order of ``classifier.names``.
+
+    ``classifier``: a :class:`.signcodes.CodeClassifier` (or any object with ``names``,
+    ``probabilities(crops) -> (n, C)`` and ``crop_margin``). One rectified crop per box is
+    cut at the panorama's native resolution (the classifier's ``cut_crop``, up to twice its
+    input side, or :func:`.signcodes.cut_crop`, with the classifier's margin) and all are
+    classified in batches; ``found.code`` and ``found.code_score`` (the best name and its
+    probability; ``other`` when the classifier knows no code) are set in place.
     """
     if len(found) == 0:
-        return found
+        return np.zeros((0, len(classifier.names)))
     margin = float(getattr(classifier, "crop_margin", DEFAULT_CROP_MARGIN))
     cut = getattr(classifier, "cut_crop", None) or (lambda p, box: cut_crop(p, box, margin))
-    crops = [cut(pano, box) for box in found.boxes()]
-    codes, probabilities = classifier.classify(crops)
-    found.code = [str(c) for c in codes]
-    found.code_score = np.asarray(probabilities, float).reshape(-1)
-    return found
+    probabilities = np.asarray(classifier.probabilities([cut(pano, box) for box in found.boxes()]), float)
+    best = probabilities.argmax(axis=1)
+    found.code = [str(classifier.names[i]) for i in best]
+    found.code_score = probabilities[np.arange(len(best)), best]
+    return probabilities
 
 
 def drive_detections(stations, per_image: Sequence) -> Detections:

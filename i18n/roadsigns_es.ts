@@ -14,12 +14,12 @@
         <translation>{layer}: no hay campo 'class'; campos encontrados: {found}</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="59" />
+        <location filename="../algorithms/layers.py" line="75" />
         <source>{layer}: missing field(s) {missing}; fields found: {found}</source>
         <translation>{layer}: falta(n) el/los campo(s) {missing}; campos encontrados: {found}</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="180" />
+        <location filename="../algorithms/layers.py" line="198" />
         <source>{layer} is in {layer_crs}, the point cloud {cloud} in {cloud_crs}: import the trajectory with the cloud's CRS as target CRS so that every stage works in one CRS</source>
         <translation>{layer} está en {layer_crs} y la nube de puntos {cloud} en {cloud_crs}: importe la trayectoria con el SRC de la nube como SRC de destino para que todas las etapas trabajen en un mismo SRC</translation>
     </message>
@@ -69,32 +69,32 @@
         <translation>{layer}: la señal '{sign_id}' no tiene una posición x, y, z válida (ni geometría de punto ni números en los campos x, y, z)</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="72" />
+        <location filename="../algorithms/layers.py" line="88" />
         <source>{layer}, feature {feature}: the field {field} holds '{value}', not a number</source>
         <translation>{layer}, entidad {feature}: el campo {field} contiene '{value}', no un número</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="78" />
+        <location filename="../algorithms/layers.py" line="95" />
         <source>{layer}: the layer has no feature, nothing to process</source>
         <translation>{layer}: la capa no tiene entidades, no hay nada que procesar</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="98" />
+        <location filename="../algorithms/layers.py" line="116" />
         <source>Cannot write feature {} to the output layer: {}</source>
         <translation>No se puede escribir la entidad {} en la capa de salida: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="123" />
+        <location filename="../algorithms/layers.py" line="141" />
         <source>{layer} is in {crs}, a geographic CRS (degrees): this needs a projected CRS in metres, the CRS of the point cloud (e.g. a UTM zone)</source>
         <translation>{layer} está en {crs}, un SRC geográfico (grados): esto necesita un SRC proyectado en metros, el SRC de la nube de puntos (p. ej. una zona UTM)</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="157" />
+        <location filename="../algorithms/layers.py" line="175" />
         <source>The point cloud {cloud} has no coordinate reference system: give it as Cloud CRS (an advanced parameter; a CRS is never guessed)</source>
         <translation>La nube de puntos {cloud} no tiene sistema de referencia de coordenadas: indíquelo en SRC de la nube (un parámetro avanzado; el SRC nunca se adivina)</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="175" />
+        <location filename="../algorithms/layers.py" line="193" />
         <source>The point cloud {cloud} has no coordinate reference system: give it one with Ground filter (parameter Cloud CRS); a CRS is never guessed</source>
         <translation>La nube de puntos {cloud} no tiene sistema de referencia de coordenadas: asígnele uno con Filtro de suelo (parámetro SRC de la nube); el SRC nunca se adivina</translation>
     </message>
@@ -117,7 +117,7 @@
         <translation>Ejecuta un detector de señales ONNX en cada panorama; un rayo por señal detectada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="174" />
+        <location filename="../algorithms/detectsigns.py" line="176" />
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
@@ -152,112 +152,112 @@
         <translation>Se descartan las detecciones con una puntuación inferior a este valor (0-1).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="95" />
+        <location filename="../algorithms/detectsigns.py" line="97" />
         <source>Smallest sign kept (panorama pixels)</source>
         <translation>Señal más pequeña conservada (píxeles de panorama)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="95" />
+        <location filename="../algorithms/detectsigns.py" line="97" />
         <source>Detections whose box is shorter than this on its shorter side are dropped: signs that small are boxed a few pixels off and their class is unsure, and the drive sees them again, larger, from the next stations. 0 keeps every detection.</source>
         <translation>Se descartan las detecciones cuyo recuadro tiene el lado menor por debajo de este valor: en señales tan pequeñas el recuadro se desvía unos píxeles y la clase es dudosa, y el recorrido las vuelve a ver, más grandes, desde las estaciones siguientes. 0 conserva todas las detecciones.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="101" />
+        <location filename="../algorithms/detectsigns.py" line="103" />
         <source>Class names file (optional)</source>
         <translation>Archivo de nombres de clase (opcional)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="101" />
+        <location filename="../algorithms/detectsigns.py" line="103" />
         <source>One class name per line, in the model's class order; needed when the model has no names in its metadata and no labels file beside it.</source>
         <translation>Un nombre de clase por línea, en el orden de clases del modelo; necesario cuando el modelo no tiene nombres en sus metadatos ni un archivo de etiquetas a su lado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="101" />
+        <location filename="../algorithms/detectsigns.py" line="103" />
         <source>Text files (*.txt);;All files (*.*)</source>
         <translation>Archivos de texto (*.txt);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="106" />
+        <location filename="../algorithms/detectsigns.py" line="108" />
         <source>Ray length (m)</source>
         <translation>Longitud del rayo (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="106" />
+        <location filename="../algorithms/detectsigns.py" line="108" />
         <source>Length of each detection ray from the panorama centre, in metres.</source>
         <translation>Longitud de cada rayo de detección desde el centro del panorama, en metros.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="110" />
+        <location filename="../algorithms/detectsigns.py" line="112" />
         <source>Also look upwards (overhead and gantry signs)</source>
         <translation>Mirar también hacia arriba (señales elevadas y de pórtico)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="142" />
+        <location filename="../algorithms/detectsigns.py" line="144" />
         <source>CPU threads (0: all)</source>
         <translation>Hilos de CPU (0: todos)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="142" />
+        <location filename="../algorithms/detectsigns.py" line="144" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>Hilos que onnxruntime puede usar en la CPU; 0 le permite usar todos los núcleos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="148" />
+        <location filename="../algorithms/detectsigns.py" line="150" />
         <source>Detections</source>
         <translation>Detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="152" />
+        <location filename="../algorithms/detectsigns.py" line="154" />
         <source>Number of detections</source>
         <translation>Número de detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="153" />
+        <location filename="../algorithms/detectsigns.py" line="155" />
         <source>Panoramas skipped</source>
         <translation>Panoramas omitidos</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="167" />
+        <location filename="../algorithms/detectsigns.py" line="169" />
         <source>ONNX model not found: {}</source>
         <translation>No se encontró el modelo ONNX: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="182" />
+        <location filename="../algorithms/detectsigns.py" line="184" />
         <source>{} panoramas, {} views each</source>
         <translation>{} panoramas, {} vistas cada uno</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="206" />
+        <location filename="../algorithms/detectsigns.py" line="208" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>Se omitieron {} panorama(s) que no se pudieron leer.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="222" />
+        <location filename="../algorithms/detectsigns.py" line="224" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} detecciones en {} panoramas ({} omitidos).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="214" />
+        <location filename="../algorithms/detectsigns.py" line="216" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>No se detectó ninguna señal: la capa de detecciones está vacía.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="148" />
+        <location filename="../algorithms/detectsigns.py" line="150" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>Capa LineStringZ, un rayo por detección, con det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views y los campos de pose de la estación.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="226" />
+        <location filename="../algorithms/detectsigns.py" line="228" />
         <source>Sign codes read in {} of the {} detections (the others: other).</source>
         <translation>Códigos de señal leídos en {} de las {} detecciones (las demás: other).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="129" />
+        <location filename="../algorithms/detectsigns.py" line="131" />
         <source>Skip stations closer than (m)</source>
         <translation>Omitir estaciones a menos de (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="188" />
+        <location filename="../algorithms/detectsigns.py" line="190" />
         <source>Detecting in {} of the {} panoramas: stations closer than {} m to the last one detected in are skipped.</source>
         <translation>Detectando en {} de los {} panoramas: se omiten las estaciones a menos de {} m de la última en la que se detectó.</translation>
     </message>
@@ -267,22 +267,22 @@
         <translation>Corta el panorama equirrectangular de cada estación en vistas en perspectiva superpuestas (un anillo horizontal y, opcionalmente, un anillo hacia arriba para las señales elevadas), ejecuta el detector ONNX en cada vista, devuelve los recuadros a píxeles del panorama y fusiona la misma señal encontrada en dos vistas.&lt;br&gt;&lt;br&gt;El &lt;b&gt;modelo&lt;/b&gt; es el incluido si se deja vacío, o su propia exportación ONNX: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) o un modelo con NMS integrado ([1, N, 6]). Los nombres de clase provienen de los metadatos del modelo (&lt;i&gt;names&lt;/i&gt; de Ultralytics) o de un archivo de etiquetas (un nombre por línea).&lt;br&gt;&lt;br&gt;Salida: una línea por detección desde el centro del panorama a lo largo del rayo que pasa por el centro del recuadro, de &lt;i&gt;Longitud del rayo&lt;/i&gt; de largo, con el recuadro (u0, v0, u1, v1 en píxeles del panorama; a través de la costura de ±180°, u1 supera el ancho) y la pose de la estación. Un panorama que no se puede leer se omite con una advertencia y se contabiliza.&lt;br&gt;&lt;br&gt;&lt;b&gt;Códigos de señal&lt;/b&gt;: un segundo modelo ONNX, pequeño (el clasificador de códigos de señal incluido, o el suyo propio), lee lo que dice cada señal detectada a partir de un recorte rectificado del panorama alrededor de su recuadro, con la resolución propia del panorama: &lt;i&gt;code&lt;/i&gt; (como DE:274[50], límite de velocidad 50, de la tabla de códigos; &lt;i&gt;other&lt;/i&gt; cuando no conoce ninguno) y &lt;i&gt;code_score&lt;/i&gt; (su probabilidad). «Refinar y fusionar señales» los somete a votación entre las vistas de cada señal. El formato del clasificador está en models/README.md (sección &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="110" />
+        <location filename="../algorithms/detectsigns.py" line="112" />
         <source>Adds a ring of 6 views tilted 35° up to the 8 horizon views, for signs high above the road close to the vehicle. Off by default: a sign overhead is in the horizon views from every station more than a few metres away, and on two held-out test streets (panoramas every 5 m, 6 gantry panels each) the horizon views alone found every sign, as many as with the upward ring, in 1.3 to 1.6 times less detection time. Check it for drives with panoramas far apart.</source>
         <translation>Añade un anillo de 6 vistas inclinadas 35° hacia arriba a las 8 vistas horizontales, para las señales situadas muy por encima de la calzada cerca del vehículo. Desactivado por defecto: una señal elevada aparece en las vistas horizontales desde cualquier estación situada a más de unos pocos metros, y en dos calles de prueba no usadas en el ajuste (panoramas cada 5 m, 6 paneles de pórtico en cada una) las vistas horizontales por sí solas encontraron todas las señales, tantas como con el anillo hacia arriba, en un tiempo de detección de 1,3 a 1,6 veces menor. Márquelo para recorridos con panoramas muy separados entre sí.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="146" />
+        <location filename="../algorithms/detectsigns.py" line="148" />
         <source>in a crop around each detection, voted later across the views of each sign by Refine and merge signs</source>
         <translation>en un recorte alrededor de cada detección; «Refinar y fusionar señales» vota después entre las vistas de cada señal</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="129" />
+        <location filename="../algorithms/detectsigns.py" line="131" />
         <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so skipping saves detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. The default, 2.5 m, keeps a detected panorama at least every 5 m on any drive (every second one of a drive with a panorama every 1.25 m) and skips nothing on drives with panoramas 2.5 m or more apart. 0 detects in every panorama.</source>
         <translation>Detecta solo en las panorámicas cuya estación está al menos a esta distancia de la última estación en la que se detectó; las intermedias se omiten (no se leen, sin detecciones). Una señal permanece visible desde muchas estaciones, así que omitir ahorra tiempo de detección en proporción, pero cada señal se ve entonces desde menos estaciones: menos rayos para situarla, y una señal visible solo desde pocas estaciones (pequeña, u oculta tras árboles o vehículos) puede perderse. Medido en dos calles de prueba reservadas con una panorámica cada 5 m: todas las panorámicas encontraron las 46 y 45 señales; 10 m (una de cada dos) perdió 2 en cada una, 15 m perdió 11 de 46. El valor por defecto, 2,5 m, mantiene una panorámica detectada al menos cada 5 m en cualquier recorrido (una de cada dos en un recorrido con una panorámica cada 1,25 m) y no omite nada en recorridos con panorámicas a 2,5 m o más. 0 detecta en todas las panorámicas.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="118" />
+        <location filename="../algorithms/detectsigns.py" line="120" />
         <source>Look ahead and behind more closely (small, far signs)</source>
         <translation>Mirar hacia delante y hacia atrás con más detalle (señales pequeñas y lejanas)</translation>
     </message>
@@ -292,19 +292,19 @@
         <translation>Segunda mirada desde la confianza</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="197" />
+        <location filename="../algorithms/detectsigns.py" line="199" />
         <source>Second look: boxes scored from {} to {} are kept where the sign-code classifier reads a code.</source>
         <translation>Segunda mirada: los recuadros puntuados de {} a {} se conservan donde el clasificador de códigos de señal lee un código.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="82" />
-        <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a sign code in it with a probability of at least {score}, its box is at least {px} px on its shorter side and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes the class of its code and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.901 of the signs at a precision of 0.970, against 0.718 at 0.981 without it, for about 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
-        <translation>Los recuadros que el detector puntúa desde este valor hasta la confianza mínima reciben una segunda mirada: se conserva uno cuando el clasificador de códigos de señal lee en él un código de señal con una probabilidad de al menos {score}, su recuadro mide al menos {px} px en su lado más corto y al menos un {share:.0%} de él son colores de señal (rojo, azul o amarillo saturados); entonces toma la clase de su código y conserva su propia puntuación. En fotografías reales de calles (GTSDB 500-599), con la confianza mínima por defecto, encuentra 0,901 de las señales con una precisión de 0,970, frente a 0,718 con 0,981 sin ella, por cerca de un 5 % del tiempo de detección. Necesita que se lean los códigos de señal; un valor igual o superior a la confianza mínima la desactiva.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="118" />
+        <location filename="../algorithms/detectsigns.py" line="120" />
         <source>Adds two views of 53° straight ahead and behind, with 1.5 times the pixels per degree of the horizon views (at a 4096 px panorama's own density), for signs far along the road. Real signs need the pixels: on real street photographs at the horizon views' density the detector found 0.82 of the signs (GTSDB 500-599) and 0.54 of 376 held-out real signs pasted as distant ones; with these views 0.93 and 0.69, precision within 0.01. On held-out generated panoramas: 0.906 of the signs per panorama instead of 0.879. They cost 1.24 times the detection time. On by default; turn it off only for speed on drives with panoramas close together (every sign is then seen from many stations).</source>
         <translation>Añade dos vistas de 53° justo delante y detrás, con 1,5 veces los píxeles por grado de las vistas del horizonte (la densidad propia de un panorama de 4096 px), para las señales lejanas a lo largo de la vía. Las señales reales necesitan esos píxeles: en fotografías reales de calles, a la densidad de las vistas del horizonte, el detector encontró 0,82 de las señales (GTSDB 500-599) y 0,54 de 376 señales reales reservadas pegadas como señales lejanas; con estas vistas, 0,93 y 0,69, con una precisión que varía menos de 0,01. En panoramas generados reservados: 0,906 de las señales por panorama en lugar de 0,879. Cuestan 1,24 veces el tiempo de detección. Activado por defecto; desactívelo solo por velocidad en recorridos con panoramas muy próximos (cada señal se ve entonces desde muchas estaciones).</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="82" />
+        <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a class of signs in it with a probability of at least {score} (the probabilities of the codes of that class added up: a speed limit whose digits are unsure is still a prohibitory sign), its box is at least {px} px on its shorter side and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes that class and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.958 of the signs at a precision of 0.958, against 0.704 at 0.962 without it, for about 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
+        <translation>Los recuadros que el detector puntúa desde este valor hasta la confianza mínima reciben una segunda mirada: se conserva uno cuando el clasificador de códigos de señal lee en él una clase de señales con una probabilidad de al menos {score} (las probabilidades de los códigos de esa clase sumadas: un límite de velocidad cuyas cifras no son seguras sigue siendo una señal de prohibición), su recuadro mide al menos {px} px en su lado más corto y al menos un {share:.0%} de él son colores de señal (rojo, azul o amarillo saturados); entonces toma esa clase y conserva su propia puntuación. En fotografías reales de calles (GTSDB 500-599), con la confianza mínima por defecto, encuentra 0,958 de las señales con una precisión de 0,958, frente a 0,704 con 0,962 sin ella, por cerca de un 5 % del tiempo de detección. Necesita que se lean los códigos de señal; un valor igual o superior a la confianza mínima la desactiva.</translation>
     </message>
 </context>
 <context>
@@ -1513,7 +1513,7 @@
         <translation>Las detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="85" />
+        <location filename="../algorithms/projectdetections.py" line="87" />
         <source>{} detections: {} with a surface in the cloud, {} without</source>
         <translation>{} detecciones: {} con superficie en la nube, {} sin ella</translation>
     </message>
@@ -1699,32 +1699,32 @@
         <translation>Los candidatos</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="172" />
+        <location filename="../algorithms/refinesigns.py" line="173" />
         <source>The review report needs the panorama folder: not written.</source>
         <translation>El informe de revisión necesita la carpeta de panoramas: no se escribió.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="178" />
+        <location filename="../algorithms/refinesigns.py" line="179" />
         <source>{} sign points written to {}</source>
         <translation>{} puntos de señales escritos en {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="203" />
+        <location filename="../algorithms/refinesigns.py" line="204" />
         <source>{} signs from {} candidates ({})</source>
         <translation>{} señales a partir de {} candidatos ({})</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="213" />
+        <location filename="../algorithms/refinesigns.py" line="214" />
         <source>Review chips need a sign layer written to a file: skipped.</source>
         <translation>Las miniaturas de revisión necesitan una capa de señales escrita en un archivo: se omiten.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="226" />
+        <location filename="../algorithms/refinesigns.py" line="227" />
         <source>Road signs for review</source>
         <translation>Señales viales para revisión</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="228" />
+        <location filename="../algorithms/refinesigns.py" line="229" />
         <source>{} review chips in {}</source>
         <translation>{} miniaturas de revisión en {}</translation>
     </message>
@@ -2120,193 +2120,193 @@
 <context>
     <name>RoadSigns</name>
     <message>
-        <location filename="../core/cloudsigns.py" line="272" />
+        <location filename="../core/cloudsigns.py" line="286" />
         <source>The stations do not overlap the cloud {path}: the track passes {gap:.1f} m from the cloud's extent ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}), more than the corridor of {corridor} m; are the cloud and the stations in the same CRS and of the same drive?</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Las estaciones no se solapan con la nube {path}: el trayecto pasa a {gap:.1f} m de la extensión de la nube ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}), más que el corredor de {corridor} m; ¿están la nube y las estaciones en el mismo SRC y son del mismo recorrido?</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="285" />
+        <location filename="../core/cloudsigns.py" line="299" />
         <source>{path} has no intensity dimension (point format {fmt}): signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene dimensión de intensidad (formato de punto {fmt}): sin imágenes no se pueden encontrar señales en ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="288" />
+        <location filename="../core/cloudsigns.py" line="302" />
         <source>{path} has no classification dimension: run roadsigns:groundfilter on it first</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene dimensión de clasificación: ejecute primero roadsigns:groundfilter sobre ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="695" />
+        <location filename="../core/cloudsigns.py" line="722" />
         <source>Found {signs} sign panels ({bright} retroreflective) and {poles} poles in {n} points ({cand} kept near the road, {windows} windows of {w} m); condition reference {ref:.3f} ({src})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se encontraron {signs} paneles de señal ({bright} retrorreflectantes) y {poles} postes en {n} puntos ({cand} conservados cerca de la vía, {windows} ventanas de {w} m); referencia de estado {ref:.3f} ({src})</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="626" />
+        <location filename="../core/cloudsigns.py" line="647" />
         <source>No point of {path} lies within {corridor} m of the stations' track ({n} points read)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} está a menos de {corridor} m del trayecto de las estaciones ({n} puntos leídos)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="629" />
+        <location filename="../core/cloudsigns.py" line="650" />
         <source>{path} has no ground points (class 2) along the track: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene puntos de suelo (clase 2) a lo largo del trayecto: ejecute primero roadsigns:groundfilter sobre ella (o clasifique el suelo con otra herramienta)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="633" />
+        <location filename="../core/cloudsigns.py" line="654" />
         <source>{path} has no intensity: all {n} points near the track have intensity 0; signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene intensidad: los {n} puntos cercanos al trayecto tienen intensidad 0; sin imágenes no se pueden encontrar señales en ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="644" />
+        <location filename="../core/cloudsigns.py" line="665" />
         <source>Intensity: range exponent {alpha:.2f} ({source}), bright threshold {thr:.3f} of full scale at 10 m ({method}; background level {bg:.3f}, bright mode {mode:.3f}; {n} non-ground points near the road)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Intensidad: exponente de distancia {alpha:.2f} ({source}), umbral de brillo {thr:.3f} del fondo de escala a 10 m ({method}; nivel de fondo {bg:.3f}, moda brillante {mode:.3f}; {n} puntos que no son de suelo cerca de la vía)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="764" />
+        <location filename="../core/cloudsigns.py" line="791" />
         <source>{n} gantry posts</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} postes de pórtico</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="636" />
+        <location filename="../core/cloudsigns.py" line="657" />
         <source>The cloud's GPS times [{t0:.1f}, {t1:.1f}] do not meet the stations' times: ranges are taken from the nearest track position instead (is one of them in GPS week seconds and the other in adjusted standard GPS time?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Los tiempos GPS de la nube [{t0:.1f}, {t1:.1f}] no coinciden con los de las estaciones: las distancias se toman en su lugar desde la posición más cercana del trayecto (¿está uno en segundos de la semana GPS y el otro en tiempo GPS estándar ajustado?)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="655" />
+        <location filename="../core/cloudsigns.py" line="676" />
         <source>{share:.0%} of the points near the road have intensity 0: the bright threshold {thr:.3f} of full scale may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El {share:.0%} de los puntos cercanos a la vía tiene intensidad 0: el umbral de brillo {thr:.3f} del fondo de escala puede carecer de sentido</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="660" />
+        <location filename="../core/cloudsigns.py" line="681" />
         <source>{share:.0%} of the points near the road have saturated intensity: the bright threshold {thr:.3f} of full scale and the condition of the signs may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El {share:.0%} de los puntos cercanos a la vía tiene la intensidad saturada: el umbral de brillo {thr:.3f} del fondo de escala y el estado de las señales pueden carecer de sentido</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="560" />
-        <location filename="../core/cloudsource.py" line="558" />
+        <location filename="../core/cloudsource.py" line="573" />
+        <location filename="../core/cloudsource.py" line="571" />
         <source>expected a virtual point cloud: a JSON FeatureCollection (STAC ItemCollection) whose features each have assets.data.href (the tile's file, relative to the .vpc) and properties, as QGIS's Build virtual point cloud writes it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>se esperaba una nube de puntos virtual: una FeatureCollection JSON (ItemCollection de STAC) cuyas entidades tengan cada una assets.data.href (el archivo de la tesela, relativo al .vpc) y properties, tal como la escribe «Construir nube de puntos virtual» de QGIS</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="156" />
+        <location filename="../core/cloudsource.py" line="161" />
         <source>no CRS</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>sin SRC</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="519" />
+        <location filename="../core/cloudsource.py" line="532" />
         <source>The folder {path} holds no LAS or LAZ file (*.las, *.laz); expected a point cloud file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La carpeta {path} no contiene ningún archivo LAS ni LAZ (*.las, *.laz); se esperaba un archivo de nube de puntos, una carpeta de teselas LAS/LAZ o una nube de puntos virtual (.vpc)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="562" />
+        <location filename="../core/cloudsource.py" line="575" />
         <source>Cannot read {path}: the JSON is not an object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el JSON no es un objeto; {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="565" />
+        <location filename="../core/cloudsource.py" line="578" />
         <source>Cannot read {path}: it is not a 'FeatureCollection' with a 'features' list; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: no es una 'FeatureCollection' con una lista 'features'; {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="568" />
+        <location filename="../core/cloudsource.py" line="581" />
         <source>The virtual point cloud {path} lists no tile</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} no enumera ninguna tesela</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="245" />
-        <location filename="../core/pointcloud.py" line="575" />
+        <location filename="../core/cloudsource.py" line="250" />
+        <location filename="../core/pointcloud.py" line="587" />
         <source>{path} has no dimension {names} (point format {fmt})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene la dimensión {names} (formato de punto {fmt})</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="512" />
+        <location filename="../core/cloudsource.py" line="525" />
         <source>Cannot read the folder {path}: {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer la carpeta {path}: {detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="551" />
-        <location filename="../core/pointcloud.py" line="67" />
+        <location filename="../core/cloudsource.py" line="564" />
+        <location filename="../core/pointcloud.py" line="71" />
         <source>Cannot read {path}: the file does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo no existe</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="553" />
+        <location filename="../core/cloudsource.py" line="566" />
         <location filename="../core/ground/pdal.py" line="306" />
-        <location filename="../core/pointcloud.py" line="69" />
-        <location filename="../core/pointcloud.py" line="112" />
+        <location filename="../core/pointcloud.py" line="73" />
+        <location filename="../core/pointcloud.py" line="116" />
         <source>Cannot read {path}: {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: {detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="557" />
+        <location filename="../core/cloudsource.py" line="570" />
         <source>Cannot read {path}: it is not valid JSON ({detail}); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: no es un JSON válido ({detail}); {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="575" />
+        <location filename="../core/cloudsource.py" line="588" />
         <source>Cannot read {path}: feature {feature} has no 'assets' object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: la entidad {feature} no tiene objeto 'assets'; {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="583" />
+        <location filename="../core/cloudsource.py" line="596" />
         <source>Cannot read {path}: feature {feature} has no asset with an 'href' (assets.data.href); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: la entidad {feature} no tiene ningún asset con 'href' (assets.data.href); {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="587" />
+        <location filename="../core/cloudsource.py" line="600" />
         <source>The virtual point cloud {path} lists the remote tile {href}: only local files are read; download the tiles and build the virtual point cloud again</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} enumera la tesela remota {href}: solo se leen archivos locales; descargue las teselas y vuelva a construir la nube de puntos virtual</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="593" />
+        <location filename="../core/cloudsource.py" line="606" />
         <source>The virtual point cloud {path} lists the tile {tile} twice (features {first} and {second})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} enumera la tesela {tile} dos veces (entidades {first} y {second})</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="597" />
+        <location filename="../core/cloudsource.py" line="610" />
         <source>The virtual point cloud {path} lists the tile {tile} (feature {feature}), which does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} enumera la tesela {tile} (entidad {feature}), que no existe</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="612" />
+        <location filename="../core/cloudsource.py" line="625" />
         <source>The tiles of {path} cannot be read as one cloud: {tile_a} has point format {fmt_a}, {tile_b} point format {fmt_b}; every tile needs the same point format (convert them to one, e.g. with PDAL's translate)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Las teselas de {path} no se pueden leer como una sola nube: {tile_a} tiene el formato de punto {fmt_a}, {tile_b} el formato de punto {fmt_b}; todas las teselas necesitan el mismo formato de punto (conviértalas a uno solo, p. ej. con translate de PDAL)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="618" />
+        <location filename="../core/cloudsource.py" line="631" />
         <source>The tiles of {path} are in different CRSs: {tile_a} in {crs_a}, {tile_b} in {crs_b}; every tile must be in the same CRS (reproject them to one first)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Las teselas de {path} están en SRC distintos: {tile_a} en {crs_a}, {tile_b} en {crs_b}; todas las teselas deben estar en el mismo SRC (reproyéctelas antes a uno solo)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="647" />
+        <location filename="../core/cloudsource.py" line="660" />
         <source>The points cannot be written with the first tile's scale {scale} and offset {offset} in {axis}: their coordinates are too far from it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Los puntos no se pueden escribir con la escala {scale} y el desplazamiento {offset} de la primera tesela en {axis}: sus coordenadas están demasiado lejos de ellos</translation>
@@ -2436,14 +2436,14 @@
     </message>
     <message>
         <location filename="../core/detections.py" line="106" />
-        <location filename="../core/projection.py" line="341" />
+        <location filename="../core/projection.py" line="383" />
         <source>Detection {det_id}: the field {field} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}: el campo {field} está vacío</translation>
     </message>
     <message>
         <location filename="../core/detections.py" line="114" />
-        <location filename="../core/projection.py" line="333" />
+        <location filename="../core/projection.py" line="375" />
         <source>Detection {det_id}, field {field}: expected a number, found '{value}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}, campo {field}: se esperaba un número, se encontró '{value}'</translation>
@@ -2636,7 +2636,7 @@
     </message>
     <message>
         <location filename="../core/ground/engine.py" line="336" />
-        <location filename="../core/pointcloud.py" line="269" />
+        <location filename="../core/pointcloud.py" line="273" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la salida debe terminar en .las o .laz</translation>
@@ -2765,13 +2765,13 @@
         <location filename="../core/ground/pdal.py" line="308" />
         <location filename="../core/ground/pdal.py" line="293" />
         <location filename="../core/ground/pdal.py" line="302" />
-        <location filename="../core/pointcloud.py" line="206" />
-        <location filename="../core/pointcloud.py" line="114" />
-        <location filename="../core/pointcloud.py" line="128" />
-        <location filename="../core/pointcloud.py" line="191" />
-        <location filename="../core/pointcloud.py" line="90" />
-        <location filename="../core/pointcloud.py" line="93" />
-        <location filename="../core/pointcloud.py" line="109" />
+        <location filename="../core/pointcloud.py" line="210" />
+        <location filename="../core/pointcloud.py" line="118" />
+        <location filename="../core/pointcloud.py" line="132" />
+        <location filename="../core/pointcloud.py" line="195" />
+        <location filename="../core/pointcloud.py" line="94" />
+        <location filename="../core/pointcloud.py" line="97" />
+        <location filename="../core/pointcloud.py" line="113" />
         <source>Cannot read {path}: the file is truncated or corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo está truncado o dañado ({detail})</translation>
@@ -2890,7 +2890,7 @@
         <location filename="../core/outputs.py" line="147" />
         <location filename="../core/outputs.py" line="209" />
         <location filename="../core/outputs.py" line="178" />
-        <location filename="../core/pointcloud.py" line="280" />
+        <location filename="../core/pointcloud.py" line="284" />
         <source>Cannot write {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: {error}</translation>
@@ -2945,218 +2945,218 @@
         <translation>No se puede leer el panorama {path}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="379" />
+        <location filename="../core/pointcloud.py" line="383" />
         <source>Cannot use {item!r} as a crop geometry: expected a shapely geometry, WKB or WKT</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede usar {item!r} como geometría de recorte: se esperaba una geometría de shapely, WKB o WKT</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="71" />
+        <location filename="../core/pointcloud.py" line="75" />
         <source>Cannot read {path}: expected a LAS or LAZ file ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: se esperaba un archivo LAS o LAZ ({detail})</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="484" />
+        <location filename="../core/pointcloud.py" line="488" />
         <source>{path} has no coordinate reference system and none was given</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene sistema de referencia de coordenadas y no se indicó ninguno</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="273" />
+        <location filename="../core/pointcloud.py" line="277" />
         <source>Cannot write {path}: the folder does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la carpeta no existe</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="402" />
+        <location filename="../core/pointcloud.py" line="406" />
         <source>The crop layer has no geometry</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La capa de recorte no tiene geometría</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="410" />
+        <location filename="../core/pointcloud.py" line="414" />
         <source>A corridor needs a positive buffer, got {buffer_m} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un corredor necesita un búfer positivo; se recibió {buffer_m} m</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="420" />
+        <location filename="../core/pointcloud.py" line="424" />
         <source>A corridor needs stations or lines</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un corredor necesita estaciones o líneas</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="494" />
+        <location filename="../core/pointcloud.py" line="498" />
         <source>No point of {path} lies inside the crop area; {output} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} está dentro del área de recorte; {output} está vacío</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="544" />
+        <location filename="../core/projection.py" line="592" />
         <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{ok} de {count} detecciones encontraron una superficie en la nube ({no_points} sin puntos, {no_surface} sin superficie plana)</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="362" />
-        <location filename="../core/projection.py" line="606" />
+        <location filename="../core/projection.py" line="404" />
+        <location filename="../core/projection.py" line="659" />
         <source>{source} has no ground points (class 2) where the signs are: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{source} no tiene puntos de suelo (clase 2) donde están las señales: ejecute primero roadsigns:groundfilter sobre ella (o clasifique el suelo con otra herramienta)</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="505" />
+        <location filename="../core/projection.py" line="553" />
         <source>The maximum range must exceed {min} m, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El alcance máximo debe superar {min} m; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="326" />
+        <location filename="../core/projection.py" line="368" />
         <source>The candidates lack the field(s) {fields}; expected the output of Project detections</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>A los candidatos les faltan los campos {fields}; se esperaba la salida de «Proyectar detecciones en la nube de puntos»</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="351" />
+        <location filename="../core/projection.py" line="393" />
         <source>Unknown candidate status {status!r}; expected ok, no_points or no_surface</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Estado de candidato desconocido {status!r}; se esperaba ok, no_points o no_surface</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="355" />
+        <location filename="../core/projection.py" line="397" />
         <source>A candidate with status ok has no position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un candidato con estado ok no tiene posición</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="376" />
+        <location filename="../core/projection.py" line="418" />
         <source>The point index lacks {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Al índice de puntos le falta {names}</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="510" />
+        <location filename="../core/projection.py" line="558" />
         <source>No detections to project; the candidates are empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay detecciones que proyectar; los candidatos están vacíos</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="540" />
+        <location filename="../core/projection.py" line="588" />
         <source>{path} has no point inside the detections' frusta; no candidate found</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene puntos dentro de los troncos de visión de las detecciones; no se encontró ningún candidato</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="126" />
+        <location filename="../core/refine.py" line="134" />
         <source>curved surface (a convex mirror?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>superficie curva (¿un espejo convexo?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="127" />
+        <location filename="../core/refine.py" line="135" />
         <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>parte de una superficie plana mayor (¿una imagen en una valla publicitaria o una pared?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="955" />
+        <location filename="../core/refine.py" line="968" />
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} señales a partir de {candidates} candidatos ({from_images} situadas solo a partir de las imágenes)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1505" />
+        <location filename="../core/refine.py" line="1619" />
         <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{coded} de {signs} señales tienen código de señal; {from_code} tomaron su clase del código, {dropped} códigos se descartaron por la votación de clase (code_check)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1514" />
+        <location filename="../core/refine.py" line="1628" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>la altura de las estaciones menos {height} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="369" />
+        <location filename="../core/refine.py" line="382" />
         <source>Detection {det_id} has the sign code {code}, which is not in the sign codes table {table}: give the codes table the classifier was run with</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La detección {det_id} tiene el código de señal {code}, que no está en la tabla de códigos de señal {table}: indique la tabla de códigos con la que se ejecutó el clasificador</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="934" />
+        <location filename="../core/refine.py" line="947" />
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El radio de fusión debe ser positivo; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="937" />
+        <location filename="../core/refine.py" line="950" />
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay candidatos que refinar; la capa de señales está vacía</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1314" />
+        <location filename="../core/refine.py" line="1428" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids}: {reason}; situados en la mediana de los candidatos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1454" />
+        <location filename="../core/refine.py" line="1568" />
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: un panel de {width:.2f} x {height:.2f} m es demasiado grande para una señal {sign_class} (¿una valla publicitaria?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1459" />
+        <location filename="../core/refine.py" line="1573" />
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: vistos en una sola panorámica, con una puntuación de {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="465" />
+        <location filename="../core/refine.py" line="478" />
         <source>too few points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="468" />
+        <location filename="../core/refine.py" line="481" />
         <source>too few points in the boxes</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos en los recuadros</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="474" />
+        <location filename="../core/refine.py" line="487" />
         <source>no near-vertical plane</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>ningún plano casi vertical</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="478" />
+        <location filename="../core/refine.py" line="491" />
         <source>too few planar points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos planos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1308" />
+        <location filename="../core/refine.py" line="1422" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>sin nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1311" />
+        <location filename="../core/refine.py" line="1425" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: {reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1515" />
+        <location filename="../core/refine.py" line="1629" />
         <source>the lowest points below the sign</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>los puntos más bajos bajo la señal</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1519" />
+        <location filename="../core/refine.py" line="1633" />
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} señal(es) no tienen puntos de suelo (clase 2) a menos de {radius} m: su altura se mide desde {source}</translation>

@@ -14,12 +14,12 @@
         <translation>{layer}：没有字段 'class'；找到的字段：{found}</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="59" />
+        <location filename="../algorithms/layers.py" line="75" />
         <source>{layer}: missing field(s) {missing}; fields found: {found}</source>
         <translation>{layer}：缺少字段 {missing}；找到的字段：{found}</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="180" />
+        <location filename="../algorithms/layers.py" line="198" />
         <source>{layer} is in {layer_crs}, the point cloud {cloud} in {cloud_crs}: import the trajectory with the cloud's CRS as target CRS so that every stage works in one CRS</source>
         <translation>{layer} 的坐标参考系为 {layer_crs}，点云 {cloud} 的为 {cloud_crs}：请以点云的坐标参考系作为目标坐标参考系导入轨迹，使每个步骤都在同一坐标参考系中工作</translation>
     </message>
@@ -69,32 +69,32 @@
         <translation>{layer}：标志 '{sign_id}' 没有有效的 x、y、z 位置（既无点几何，字段 x、y、z 中也没有数字）</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="72" />
+        <location filename="../algorithms/layers.py" line="88" />
         <source>{layer}, feature {feature}: the field {field} holds '{value}', not a number</source>
         <translation>{layer}，要素 {feature}：字段 {field} 的值为 '{value}'，不是数字</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="78" />
+        <location filename="../algorithms/layers.py" line="95" />
         <source>{layer}: the layer has no feature, nothing to process</source>
         <translation>{layer}：图层没有要素，无可处理的内容</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="98" />
+        <location filename="../algorithms/layers.py" line="116" />
         <source>Cannot write feature {} to the output layer: {}</source>
         <translation>无法将要素 {} 写入输出图层：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="123" />
+        <location filename="../algorithms/layers.py" line="141" />
         <source>{layer} is in {crs}, a geographic CRS (degrees): this needs a projected CRS in metres, the CRS of the point cloud (e.g. a UTM zone)</source>
         <translation>{layer} 的坐标参考系为 {crs}，这是地理坐标参考系（度）：此处需要以米为单位的投影坐标参考系，即点云的坐标参考系（例如 UTM 分带）</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="157" />
+        <location filename="../algorithms/layers.py" line="175" />
         <source>The point cloud {cloud} has no coordinate reference system: give it as Cloud CRS (an advanced parameter; a CRS is never guessed)</source>
         <translation>点云 {cloud} 没有坐标参考系：请在“点云坐标参考系”中指定（高级参数；坐标参考系从不猜测）</translation>
     </message>
     <message>
-        <location filename="../algorithms/layers.py" line="175" />
+        <location filename="../algorithms/layers.py" line="193" />
         <source>The point cloud {cloud} has no coordinate reference system: give it one with Ground filter (parameter Cloud CRS); a CRS is never guessed</source>
         <translation>点云 {cloud} 没有坐标参考系：请用地面滤波（参数“点云坐标参考系”）为其指定一个；坐标参考系从不猜测</translation>
     </message>
@@ -117,7 +117,7 @@
         <translation>在每张全景图上运行 ONNX 标志检测器；每个检测到的标志生成一条射线。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="174" />
+        <location filename="../algorithms/detectsigns.py" line="176" />
         <source>Panorama stations</source>
         <translation>全景站点</translation>
     </message>
@@ -152,112 +152,112 @@
         <translation>得分低于此值（0-1）的检测将被丢弃。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="95" />
+        <location filename="../algorithms/detectsigns.py" line="97" />
         <source>Smallest sign kept (panorama pixels)</source>
         <translation>保留的最小标志（全景像素）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="95" />
+        <location filename="../algorithms/detectsigns.py" line="97" />
         <source>Detections whose box is shorter than this on its shorter side are dropped: signs that small are boxed a few pixels off and their class is unsure, and the drive sees them again, larger, from the next stations. 0 keeps every detection.</source>
         <translation>检测框短边小于此值的检测将被丢弃：这么小的标志框会偏差几个像素，类别也不可靠，而车辆在后续站点会以更大的尺寸再次看到它们。0 保留所有检测。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="101" />
+        <location filename="../algorithms/detectsigns.py" line="103" />
         <source>Class names file (optional)</source>
         <translation>类别名称文件（可选）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="101" />
+        <location filename="../algorithms/detectsigns.py" line="103" />
         <source>One class name per line, in the model's class order; needed when the model has no names in its metadata and no labels file beside it.</source>
         <translation>每行一个类别名称，按模型的类别顺序排列；当模型元数据中没有名称且旁边没有标签文件时需要提供。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="101" />
+        <location filename="../algorithms/detectsigns.py" line="103" />
         <source>Text files (*.txt);;All files (*.*)</source>
         <translation>文本文件 (*.txt);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="106" />
+        <location filename="../algorithms/detectsigns.py" line="108" />
         <source>Ray length (m)</source>
         <translation>射线长度 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="106" />
+        <location filename="../algorithms/detectsigns.py" line="108" />
         <source>Length of each detection ray from the panorama centre, in metres.</source>
         <translation>每条检测射线从全景图中心起算的长度，单位为米。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="110" />
+        <location filename="../algorithms/detectsigns.py" line="112" />
         <source>Also look upwards (overhead and gantry signs)</source>
         <translation>同时向上看（悬挂式和门架式标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="142" />
+        <location filename="../algorithms/detectsigns.py" line="144" />
         <source>CPU threads (0: all)</source>
         <translation>CPU 线程数（0：全部）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="142" />
+        <location filename="../algorithms/detectsigns.py" line="144" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>onnxruntime 在 CPU 上可使用的线程数；0 表示使用所有核心。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="148" />
+        <location filename="../algorithms/detectsigns.py" line="150" />
         <source>Detections</source>
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="152" />
+        <location filename="../algorithms/detectsigns.py" line="154" />
         <source>Number of detections</source>
         <translation>检测数量</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="153" />
+        <location filename="../algorithms/detectsigns.py" line="155" />
         <source>Panoramas skipped</source>
         <translation>跳过的全景图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="167" />
+        <location filename="../algorithms/detectsigns.py" line="169" />
         <source>ONNX model not found: {}</source>
         <translation>未找到 ONNX 模型：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="182" />
+        <location filename="../algorithms/detectsigns.py" line="184" />
         <source>{} panoramas, {} views each</source>
         <translation>{} 张全景图，每张 {} 个视图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="206" />
+        <location filename="../algorithms/detectsigns.py" line="208" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>跳过了 {} 张无法读取的全景图。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="222" />
+        <location filename="../algorithms/detectsigns.py" line="224" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} 个检测，来自 {} 张全景图（跳过 {} 张）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="214" />
+        <location filename="../algorithms/detectsigns.py" line="216" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>未检测到任何标志：检测图层为空。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="148" />
+        <location filename="../algorithms/detectsigns.py" line="150" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>LineStringZ 图层，每个检测一条射线，包含字段 det_id、station_id、image、class、score、code、code_score、u0、v0、u1、v1、n_views 以及站点的位姿字段。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="226" />
+        <location filename="../algorithms/detectsigns.py" line="228" />
         <source>Sign codes read in {} of the {} detections (the others: other).</source>
         <translation>{} 个检测读出了标志代码（共 {} 个检测；其余为 other）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="129" />
+        <location filename="../algorithms/detectsigns.py" line="131" />
         <source>Skip stations closer than (m)</source>
         <translation>跳过间距小于此值的站点 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="188" />
+        <location filename="../algorithms/detectsigns.py" line="190" />
         <source>Detecting in {} of the {} panoramas: stations closer than {} m to the last one detected in are skipped.</source>
         <translation>在 {} 张全景图（共 {} 张）中检测：距上一个检测站点不足 {} m 的站点将被跳过。</translation>
     </message>
@@ -267,22 +267,22 @@
         <translation>将每个站点的等距柱状全景图切分为相互重叠的透视视图（一圈水平视图，以及可选的一圈用于悬挂式标志的上视视图），在每个视图上运行 ONNX 检测器，将检测框映射回全景图像素，并合并在两个视图中找到的同一标志。&lt;br&gt;&lt;br&gt;&lt;b&gt;模型&lt;/b&gt;留空时使用内置模型，也可以是您自己导出的 ONNX 模型：Ultralytics YOLOv8/11（[1, 4+nc, N]）、YOLOv5/7（[1, N, 5+nc]）或内置 NMS 的模型（[1, N, 6]）。类别名称来自模型元数据（Ultralytics &lt;i&gt;names&lt;/i&gt;）或标签文件（每行一个名称）。&lt;br&gt;&lt;br&gt;输出：每个检测一条线，从全景图中心沿穿过检测框中心的射线延伸，长度为&lt;i&gt;射线长度&lt;/i&gt;，附带检测框（u0、v0、u1、v1，单位为全景图像素；跨越 ±180° 接缝时 u1 大于图像宽度）和站点位姿。无法读取的全景图将被跳过，并给出警告和计数。&lt;br&gt;&lt;br&gt;&lt;b&gt;标志代码&lt;/b&gt;：第二个小型 ONNX 模型（内置的标志代码分类器或您自己的分类器）从全景图中围绕检测框、按全景图原始分辨率截取的校正裁剪图像中读取每个检测到的标志的内容：&lt;i&gt;code&lt;/i&gt;（例如 DE:274[50]，即限速 50，取自代码表；不认识时为 &lt;i&gt;other&lt;/i&gt;）和 &lt;i&gt;code_score&lt;/i&gt;（其概率）。“精化与合并标志”在每个标志的各视图之间对其进行投票。分类器的格式见 models/README.md（&lt;i&gt;Sign-code classifier: the format&lt;/i&gt; 一节）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="110" />
+        <location filename="../algorithms/detectsigns.py" line="112" />
         <source>Adds a ring of 6 views tilted 35° up to the 8 horizon views, for signs high above the road close to the vehicle. Off by default: a sign overhead is in the horizon views from every station more than a few metres away, and on two held-out test streets (panoramas every 5 m, 6 gantry panels each) the horizon views alone found every sign, as many as with the upward ring, in 1.3 to 1.6 times less detection time. Check it for drives with panoramas far apart.</source>
         <translation>在 8 个水平视图之外增加一圈 6 个上仰 35° 的视图，用于车辆附近高悬于道路上方的标志。默认不勾选：从相距几米以上的每个站点看，悬挂式标志都会出现在水平视图中；在两条未参与调参的测试街道上（每 5 m 一张全景图，各有 6 块门架标志牌），仅用水平视图就找到了所有标志，与加上上视视图时一样多，而检测时间仅为后者的 1/1.3 至 1/1.6。全景图间距较大的行驶采集请勾选此项。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="146" />
+        <location filename="../algorithms/detectsigns.py" line="148" />
         <source>in a crop around each detection, voted later across the views of each sign by Refine and merge signs</source>
         <translation>在每个检测结果周围的裁剪图中读取，之后由“精化与合并标志”在每个标志的各视图间投票</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="129" />
+        <location filename="../algorithms/detectsigns.py" line="131" />
         <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so skipping saves detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. The default, 2.5 m, keeps a detected panorama at least every 5 m on any drive (every second one of a drive with a panorama every 1.25 m) and skips nothing on drives with panoramas 2.5 m or more apart. 0 detects in every panorama.</source>
         <translation>仅在其站点与上一个检测站点相距至少此距离的全景图中检测；其间的全景图将被跳过（不读取，无检测结果）。一个标志在许多站点中都可见，因此跳过可按比例节省检测时间，但每个标志被看到的站点会变少：用于定位它的射线更少，而只在少数站点可见的标志（较小，或被树木或车辆遮挡）可能会漏检。在两条保留的测试街道上（每 5 米一张全景图）测得：使用全部全景图找到了全部 46 个和 45 个标志；10 米（隔一张）各漏检 2 个，15 米漏检 46 个中的 11 个。默认值 2.5 米可保证在任何行驶路线上至少每 5 米有一张被检测的全景图（全景图间隔 1.25 米的路线即每隔一张），而对全景图间隔 2.5 米或以上的路线不跳过任何全景图。0 表示在每张全景图中检测。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="118" />
+        <location filename="../algorithms/detectsigns.py" line="120" />
         <source>Look ahead and behind more closely (small, far signs)</source>
         <translation>更仔细地向前和向后看（小而远的标志）</translation>
     </message>
@@ -292,19 +292,19 @@
         <translation>二次检查起始置信度</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="197" />
+        <location filename="../algorithms/detectsigns.py" line="199" />
         <source>Second look: boxes scored from {} to {} are kept where the sign-code classifier reads a code.</source>
         <translation>二次检查：评分在 {} 到 {} 之间、且标志代码分类器读出代码的框被保留。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="82" />
-        <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a sign code in it with a probability of at least {score}, its box is at least {px} px on its shorter side and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes the class of its code and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.901 of the signs at a precision of 0.970, against 0.718 at 0.981 without it, for about 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
-        <translation>检测器评分介于此值与最低置信度之间的框会接受二次检查：当标志代码分类器以至少 {score} 的概率在框中读出一个标志代码、框的短边至少 {px} 像素且至少 {share:.0%} 的像素为标志颜色（饱和的红、蓝或黄色）时，该框被保留；它随后采用其代码的类别并保留自身的评分。在真实街道照片（GTSDB 500-599）上，使用默认的最低置信度时，它找到 0.901 的标志，精确率为 0.970；不使用时为 0.718，精确率为 0.981。代价约为检测时间的 5 %。需要读取标志代码；取值等于或高于最低置信度时关闭此功能。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="118" />
+        <location filename="../algorithms/detectsigns.py" line="120" />
         <source>Adds two views of 53° straight ahead and behind, with 1.5 times the pixels per degree of the horizon views (at a 4096 px panorama's own density), for signs far along the road. Real signs need the pixels: on real street photographs at the horizon views' density the detector found 0.82 of the signs (GTSDB 500-599) and 0.54 of 376 held-out real signs pasted as distant ones; with these views 0.93 and 0.69, precision within 0.01. On held-out generated panoramas: 0.906 of the signs per panorama instead of 0.879. They cost 1.24 times the detection time. On by default; turn it off only for speed on drives with panoramas close together (every sign is then seen from many stations).</source>
         <translation>在正前方和正后方各添加一个 53° 的视图，其每度像素数为地平线视图的 1.5 倍（即 4096 px 全景图自身的密度），用于沿道路远处的标志。真实标志需要这些像素：在真实街道照片上，按地平线视图的密度，检测器找到了 0.82 的标志（GTSDB 500-599）和作为远处标志粘贴的 376 个保留真实标志中的 0.54；加上这些视图后为 0.93 和 0.69，精度变化不超过 0.01。在保留的生成全景图上：每幅全景图找到 0.906 的标志，而不是 0.879。其代价是 1.24 倍的检测时间。默认开启；仅在全景站点很密的行驶采集中为了速度而关闭（此时每个标志都会从许多全景站点被看到）。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="82" />
+        <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a class of signs in it with a probability of at least {score} (the probabilities of the codes of that class added up: a speed limit whose digits are unsure is still a prohibitory sign), its box is at least {px} px on its shorter side and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes that class and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.958 of the signs at a precision of 0.958, against 0.704 at 0.962 without it, for about 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
+        <translation>检测器评分介于此值与最低置信度之间的框会接受二次检查：当标志代码分类器以至少 {score} 的概率在框中读出一类标志（该类别各代码的概率之和：数字不确定的限速标志仍是禁令标志）、框的短边至少 {px} 像素且至少 {share:.0%} 的像素为标志颜色（饱和的红、蓝或黄色）时，该框被保留；它随后采用该类别并保留自身的评分。在真实街道照片（GTSDB 500-599）上，使用默认的最低置信度时，它找到 0.958 的标志，精确率为 0.958；不使用时为 0.704，精确率为 0.962。代价约为检测时间的 5 %。需要读取标志代码；取值等于或高于最低置信度时关闭此功能。</translation>
     </message>
 </context>
 <context>
@@ -1513,7 +1513,7 @@
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="85" />
+        <location filename="../algorithms/projectdetections.py" line="87" />
         <source>{} detections: {} with a surface in the cloud, {} without</source>
         <translation>{} 个检测：{} 个在点云中找到表面，{} 个未找到</translation>
     </message>
@@ -1699,32 +1699,32 @@
         <translation>候选</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="172" />
+        <location filename="../algorithms/refinesigns.py" line="173" />
         <source>The review report needs the panorama folder: not written.</source>
         <translation>审核报告需要全景图文件夹：未写入。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="178" />
+        <location filename="../algorithms/refinesigns.py" line="179" />
         <source>{} sign points written to {}</source>
         <translation>已将 {} 个标志点写入 {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="203" />
+        <location filename="../algorithms/refinesigns.py" line="204" />
         <source>{} signs from {} candidates ({})</source>
         <translation>{} 个标志，来自 {} 个候选（{}）</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="213" />
+        <location filename="../algorithms/refinesigns.py" line="214" />
         <source>Review chips need a sign layer written to a file: skipped.</source>
         <translation>审核切片需要写入文件的标志图层：已跳过。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="226" />
+        <location filename="../algorithms/refinesigns.py" line="227" />
         <source>Road signs for review</source>
         <translation>待审核的道路标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="228" />
+        <location filename="../algorithms/refinesigns.py" line="229" />
         <source>{} review chips in {}</source>
         <translation>{} 张审核切片，位于 {}</translation>
     </message>
@@ -2120,193 +2120,193 @@
 <context>
     <name>RoadSigns</name>
     <message>
-        <location filename="../core/cloudsigns.py" line="272" />
+        <location filename="../core/cloudsigns.py" line="286" />
         <source>The stations do not overlap the cloud {path}: the track passes {gap:.1f} m from the cloud's extent ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}), more than the corridor of {corridor} m; are the cloud and the stations in the same CRS and of the same drive?</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>全景站点与点云 {path} 不重叠：轨迹线距点云范围 ({xmin:.1f}, {ymin:.1f}) - ({xmax:.1f}, {ymax:.1f}) {gap:.1f} m，超出 {corridor} m 的走廊；点云和全景站点是否在同一坐标参考系中、是否来自同一次行驶采集？</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="285" />
+        <location filename="../core/cloudsigns.py" line="299" />
         <source>{path} has no intensity dimension (point format {fmt}): signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有强度维度（点格式 {fmt}）：没有图像时无法在其中找到标志</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="288" />
+        <location filename="../core/cloudsigns.py" line="302" />
         <source>{path} has no classification dimension: run roadsigns:groundfilter on it first</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有分类维度：请先对其运行 roadsigns:groundfilter</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="695" />
+        <location filename="../core/cloudsigns.py" line="722" />
         <source>Found {signs} sign panels ({bright} retroreflective) and {poles} poles in {n} points ({cand} kept near the road, {windows} windows of {w} m); condition reference {ref:.3f} ({src})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>在 {n} 个点中找到 {signs} 个标志牌（其中 {bright} 个具有逆反射性）和 {poles} 根杆（道路附近保留 {cand} 个点，{windows} 个 {w} m 的窗口）；状态参考值 {ref:.3f}（{src}）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="626" />
+        <location filename="../core/cloudsigns.py" line="647" />
         <source>No point of {path} lies within {corridor} m of the stations' track ({n} points read)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中没有点位于全景站点轨迹线 {corridor} m 范围内（已读取 {n} 个点）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="629" />
+        <location filename="../core/cloudsigns.py" line="650" />
         <source>{path} has no ground points (class 2) along the track: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 沿轨迹线没有地面点（类别 2）：请先对其运行 roadsigns:groundfilter（或用其他工具对地面进行分类）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="633" />
+        <location filename="../core/cloudsigns.py" line="654" />
         <source>{path} has no intensity: all {n} points near the track have intensity 0; signs cannot be found in it without images</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有强度：轨迹线附近的全部 {n} 个点强度均为 0；没有图像时无法在其中找到标志</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="644" />
+        <location filename="../core/cloudsigns.py" line="665" />
         <source>Intensity: range exponent {alpha:.2f} ({source}), bright threshold {thr:.3f} of full scale at 10 m ({method}; background level {bg:.3f}, bright mode {mode:.3f}; {n} non-ground points near the road)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>强度：距离指数 {alpha:.2f}（{source}），亮度阈值为 10 m 处满量程的 {thr:.3f}（{method}；背景水平 {bg:.3f}，亮峰 {mode:.3f}；道路附近 {n} 个非地面点）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="764" />
+        <location filename="../core/cloudsigns.py" line="791" />
         <source>{n} gantry posts</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} 根门架立柱</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="636" />
+        <location filename="../core/cloudsigns.py" line="657" />
         <source>The cloud's GPS times [{t0:.1f}, {t1:.1f}] do not meet the stations' times: ranges are taken from the nearest track position instead (is one of them in GPS week seconds and the other in adjusted standard GPS time?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点云的 GPS 时间 [{t0:.1f}, {t1:.1f}] 与全景站点的时间不重合：改为从最近的轨迹线位置计算距离（是否一个使用 GPS 周秒、另一个使用调整后的标准 GPS 时间？）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="655" />
+        <location filename="../core/cloudsigns.py" line="676" />
         <source>{share:.0%} of the points near the road have intensity 0: the bright threshold {thr:.3f} of full scale may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>道路附近 {share:.0%} 的点强度为 0：满量程的亮度阈值 {thr:.3f} 可能没有意义</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="660" />
+        <location filename="../core/cloudsigns.py" line="681" />
         <source>{share:.0%} of the points near the road have saturated intensity: the bright threshold {thr:.3f} of full scale and the condition of the signs may be meaningless</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>道路附近 {share:.0%} 的点强度饱和：满量程的亮度阈值 {thr:.3f} 以及标志的状态可能没有意义</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="560" />
-        <location filename="../core/cloudsource.py" line="558" />
+        <location filename="../core/cloudsource.py" line="573" />
+        <location filename="../core/cloudsource.py" line="571" />
         <source>expected a virtual point cloud: a JSON FeatureCollection (STAC ItemCollection) whose features each have assets.data.href (the tile's file, relative to the .vpc) and properties, as QGIS's Build virtual point cloud writes it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>应为虚拟点云：一个 JSON FeatureCollection（STAC ItemCollection），其每个要素都有 assets.data.href（分块文件，相对于 .vpc 的路径）和 properties，即 QGIS 的“构建虚拟点云”写出的格式</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="156" />
+        <location filename="../core/cloudsource.py" line="161" />
         <source>no CRS</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="519" />
+        <location filename="../core/cloudsource.py" line="532" />
         <source>The folder {path} holds no LAS or LAZ file (*.las, *.laz); expected a point cloud file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>文件夹 {path} 中没有 LAS 或 LAZ 文件（*.las、*.laz）；应为点云文件、LAS/LAZ 分块文件夹或虚拟点云（.vpc）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="562" />
+        <location filename="../core/cloudsource.py" line="575" />
         <source>Cannot read {path}: the JSON is not an object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：该 JSON 不是对象；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="565" />
+        <location filename="../core/cloudsource.py" line="578" />
         <source>Cannot read {path}: it is not a 'FeatureCollection' with a 'features' list; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：不是带有 'features' 列表的 'FeatureCollection'；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="568" />
+        <location filename="../core/cloudsource.py" line="581" />
         <source>The virtual point cloud {path} lists no tile</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 未列出任何分块</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="245" />
-        <location filename="../core/pointcloud.py" line="575" />
+        <location filename="../core/cloudsource.py" line="250" />
+        <location filename="../core/pointcloud.py" line="587" />
         <source>{path} has no dimension {names} (point format {fmt})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有维度 {names}（点格式 {fmt}）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="512" />
+        <location filename="../core/cloudsource.py" line="525" />
         <source>Cannot read the folder {path}: {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取文件夹 {path}：{detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="551" />
-        <location filename="../core/pointcloud.py" line="67" />
+        <location filename="../core/cloudsource.py" line="564" />
+        <location filename="../core/pointcloud.py" line="71" />
         <source>Cannot read {path}: the file does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件不存在</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="553" />
+        <location filename="../core/cloudsource.py" line="566" />
         <location filename="../core/ground/pdal.py" line="306" />
-        <location filename="../core/pointcloud.py" line="69" />
-        <location filename="../core/pointcloud.py" line="112" />
+        <location filename="../core/pointcloud.py" line="73" />
+        <location filename="../core/pointcloud.py" line="116" />
         <source>Cannot read {path}: {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：{detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="557" />
+        <location filename="../core/cloudsource.py" line="570" />
         <source>Cannot read {path}: it is not valid JSON ({detail}); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：不是有效的 JSON（{detail}）；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="575" />
+        <location filename="../core/cloudsource.py" line="588" />
         <source>Cannot read {path}: feature {feature} has no 'assets' object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：要素 {feature} 没有 'assets' 对象；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="583" />
+        <location filename="../core/cloudsource.py" line="596" />
         <source>Cannot read {path}: feature {feature} has no asset with an 'href' (assets.data.href); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：要素 {feature} 没有带 'href' 的 asset（assets.data.href）；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="587" />
+        <location filename="../core/cloudsource.py" line="600" />
         <source>The virtual point cloud {path} lists the remote tile {href}: only local files are read; download the tiles and build the virtual point cloud again</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 列出了远程分块 {href}：只读取本地文件；请下载这些分块并重新构建虚拟点云</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="593" />
+        <location filename="../core/cloudsource.py" line="606" />
         <source>The virtual point cloud {path} lists the tile {tile} twice (features {first} and {second})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 两次列出分块 {tile}（要素 {first} 和 {second}）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="597" />
+        <location filename="../core/cloudsource.py" line="610" />
         <source>The virtual point cloud {path} lists the tile {tile} (feature {feature}), which does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 列出的分块 {tile}（要素 {feature}）不存在</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="612" />
+        <location filename="../core/cloudsource.py" line="625" />
         <source>The tiles of {path} cannot be read as one cloud: {tile_a} has point format {fmt_a}, {tile_b} point format {fmt_b}; every tile needs the same point format (convert them to one, e.g. with PDAL's translate)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 的分块无法作为一个点云读取：{tile_a} 的点格式为 {fmt_a}，{tile_b} 的点格式为 {fmt_b}；所有分块必须使用相同的点格式（请将其转换为同一格式，例如使用 PDAL 的 translate）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="618" />
+        <location filename="../core/cloudsource.py" line="631" />
         <source>The tiles of {path} are in different CRSs: {tile_a} in {crs_a}, {tile_b} in {crs_b}; every tile must be in the same CRS (reproject them to one first)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 的分块位于不同的坐标参考系中：{tile_a} 为 {crs_a}，{tile_b} 为 {crs_b}；所有分块必须位于同一坐标参考系中（请先将其重投影到同一坐标参考系）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="647" />
+        <location filename="../core/cloudsource.py" line="660" />
         <source>The points cannot be written with the first tile's scale {scale} and offset {offset} in {axis}: their coordinates are too far from it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法以第一个分块在 {axis} 方向的缩放 {scale} 和偏移 {offset} 写入这些点：其坐标离偏移太远</translation>
@@ -2436,14 +2436,14 @@
     </message>
     <message>
         <location filename="../core/detections.py" line="106" />
-        <location filename="../core/projection.py" line="341" />
+        <location filename="../core/projection.py" line="383" />
         <source>Detection {det_id}: the field {field} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}：字段 {field} 为空</translation>
     </message>
     <message>
         <location filename="../core/detections.py" line="114" />
-        <location filename="../core/projection.py" line="333" />
+        <location filename="../core/projection.py" line="375" />
         <source>Detection {det_id}, field {field}: expected a number, found '{value}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}，字段 {field}：应为数字，实际为 '{value}'</translation>
@@ -2636,7 +2636,7 @@
     </message>
     <message>
         <location filename="../core/ground/engine.py" line="336" />
-        <location filename="../core/pointcloud.py" line="269" />
+        <location filename="../core/pointcloud.py" line="273" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：输出文件必须以 .las 或 .laz 结尾</translation>
@@ -2765,13 +2765,13 @@
         <location filename="../core/ground/pdal.py" line="308" />
         <location filename="../core/ground/pdal.py" line="293" />
         <location filename="../core/ground/pdal.py" line="302" />
-        <location filename="../core/pointcloud.py" line="206" />
-        <location filename="../core/pointcloud.py" line="114" />
-        <location filename="../core/pointcloud.py" line="128" />
-        <location filename="../core/pointcloud.py" line="191" />
-        <location filename="../core/pointcloud.py" line="90" />
-        <location filename="../core/pointcloud.py" line="93" />
-        <location filename="../core/pointcloud.py" line="109" />
+        <location filename="../core/pointcloud.py" line="210" />
+        <location filename="../core/pointcloud.py" line="118" />
+        <location filename="../core/pointcloud.py" line="132" />
+        <location filename="../core/pointcloud.py" line="195" />
+        <location filename="../core/pointcloud.py" line="94" />
+        <location filename="../core/pointcloud.py" line="97" />
+        <location filename="../core/pointcloud.py" line="113" />
         <source>Cannot read {path}: the file is truncated or corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件被截断或已损坏（{detail}）</translation>
@@ -2890,7 +2890,7 @@
         <location filename="../core/outputs.py" line="147" />
         <location filename="../core/outputs.py" line="209" />
         <location filename="../core/outputs.py" line="178" />
-        <location filename="../core/pointcloud.py" line="280" />
+        <location filename="../core/pointcloud.py" line="284" />
         <source>Cannot write {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：{error}</translation>
@@ -2945,218 +2945,218 @@
         <translation>无法读取全景图 {path}：{error}</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="379" />
+        <location filename="../core/pointcloud.py" line="383" />
         <source>Cannot use {item!r} as a crop geometry: expected a shapely geometry, WKB or WKT</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法将 {item!r} 用作裁剪几何：应为 shapely 几何、WKB 或 WKT</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="71" />
+        <location filename="../core/pointcloud.py" line="75" />
         <source>Cannot read {path}: expected a LAS or LAZ file ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：应为 LAS 或 LAZ 文件（{detail}）</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="484" />
+        <location filename="../core/pointcloud.py" line="488" />
         <source>{path} has no coordinate reference system and none was given</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有坐标参考系，也未提供坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="273" />
+        <location filename="../core/pointcloud.py" line="277" />
         <source>Cannot write {path}: the folder does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：文件夹不存在</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="402" />
+        <location filename="../core/pointcloud.py" line="406" />
         <source>The crop layer has no geometry</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>裁剪图层没有几何</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="410" />
+        <location filename="../core/pointcloud.py" line="414" />
         <source>A corridor needs a positive buffer, got {buffer_m} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>走廊需要正的缓冲距离，实际为 {buffer_m} m</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="420" />
+        <location filename="../core/pointcloud.py" line="424" />
         <source>A corridor needs stations or lines</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>走廊需要站点或线</translation>
     </message>
     <message>
-        <location filename="../core/pointcloud.py" line="494" />
+        <location filename="../core/pointcloud.py" line="498" />
         <source>No point of {path} lies inside the crop area; {output} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中没有点位于裁剪区域内；{output} 为空</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="544" />
+        <location filename="../core/projection.py" line="592" />
         <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 个检测结果中有 {ok} 个在点云中找到了表面（{no_points} 个没有点，{no_surface} 个没有平面）</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="362" />
-        <location filename="../core/projection.py" line="606" />
+        <location filename="../core/projection.py" line="404" />
+        <location filename="../core/projection.py" line="659" />
         <source>{source} has no ground points (class 2) where the signs are: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{source} 在标志所在区域没有地面点（类别 2）：请先对其运行 roadsigns:groundfilter（或用其他工具进行地面分类）</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="505" />
+        <location filename="../core/projection.py" line="553" />
         <source>The maximum range must exceed {min} m, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>最大距离必须大于 {min} m，实际为 {value} m</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="326" />
+        <location filename="../core/projection.py" line="368" />
         <source>The candidates lack the field(s) {fields}; expected the output of Project detections</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>候选缺少字段 {fields}；应为“将检测投影到点云”的输出</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="351" />
+        <location filename="../core/projection.py" line="393" />
         <source>Unknown candidate status {status!r}; expected ok, no_points or no_surface</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未知的候选状态 {status!r}；应为 ok、no_points 或 no_surface</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="355" />
+        <location filename="../core/projection.py" line="397" />
         <source>A candidate with status ok has no position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>状态为 ok 的候选没有位置</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="376" />
+        <location filename="../core/projection.py" line="418" />
         <source>The point index lacks {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点索引缺少 {names}</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="510" />
+        <location filename="../core/projection.py" line="558" />
         <source>No detections to project; the candidates are empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有要投影的检测结果；候选为空</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="540" />
+        <location filename="../core/projection.py" line="588" />
         <source>{path} has no point inside the detections' frusta; no candidate found</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 在检测结果的视锥内没有点；未找到候选</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="126" />
+        <location filename="../core/refine.py" line="134" />
         <source>curved surface (a convex mirror?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>曲面（凸面镜？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="127" />
+        <location filename="../core/refine.py" line="135" />
         <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>较大平面的一部分（广告牌或墙上的图案？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="955" />
+        <location filename="../core/refine.py" line="968" />
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>从 {candidates} 个候选得到 {signs} 个标志（{from_images} 个仅由图像定位）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1505" />
+        <location filename="../core/refine.py" line="1619" />
         <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} 个标志中有 {coded} 个带有标志代码；{from_code} 个的类别取自代码，{dropped} 个代码因类别投票被舍弃（code_check）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1514" />
+        <location filename="../core/refine.py" line="1628" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>站点高度减去 {height} 米</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="369" />
+        <location filename="../core/refine.py" line="382" />
         <source>Detection {det_id} has the sign code {code}, which is not in the sign codes table {table}: give the codes table the classifier was run with</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id} 的标志代码 {code} 不在标志代码表 {table} 中：请提供运行分类器时所用的代码表</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="934" />
+        <location filename="../core/refine.py" line="947" />
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>合并半径必须为正数，实际为 {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="937" />
+        <location filename="../core/refine.py" line="950" />
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有要精化的候选；标志图层为空</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1314" />
+        <location filename="../core/refine.py" line="1428" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>候选 {ids}：{reason}；位置取候选的中位数</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1454" />
+        <location filename="../core/refine.py" line="1568" />
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{width:.2f} x {height:.2f} 米的面板对 {sign_class} 标志来说太大（广告牌？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1459" />
+        <location filename="../core/refine.py" line="1573" />
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：只在一张全景图中出现，得分为 {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="465" />
+        <location filename="../core/refine.py" line="478" />
         <source>too few points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="468" />
+        <location filename="../core/refine.py" line="481" />
         <source>too few points in the boxes</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>框内的点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="474" />
+        <location filename="../core/refine.py" line="487" />
         <source>no near-vertical plane</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有近似竖直的平面</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="478" />
+        <location filename="../core/refine.py" line="491" />
         <source>too few planar points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>平面点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1308" />
+        <location filename="../core/refine.py" line="1422" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有点云</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1311" />
+        <location filename="../core/refine.py" line="1425" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1515" />
+        <location filename="../core/refine.py" line="1629" />
         <source>the lowest points below the sign</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志下方的最低点</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1519" />
+        <location filename="../core/refine.py" line="1633" />
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 个标志在 {radius} 米内没有地面点（类别 2）：其高度从{source}起算</translation>

@@ -87,6 +87,24 @@ def test_a_rule_keeps_only_the_candidates_that_pass_every_check():
     assert (sign["hits"], sign["detections"]) == (2, 3)
 
 
+
+def test_a_class_rule_adds_up_the_codes_of_a_class():
+    """Two codes of class 2 (a speed limit whose digits are unsure) read 0.5 and 0.45: no code
+    reaches 0.8, their class does (0.95) and is the class given; a crop read as other is not
+    kept by either."""
+    reader = tune.Reader(other=2, class_index=[2, 2, -1], n_classes=6)
+    sign = [[100, 100, 130, 130]]
+    row = _row(sign, [], [[100, 100, 130, 130], [300, 300, 330, 330]], [0.3, 0.3], [30, 30], [0.2, 0.2],
+               [[0.5, 0.45, 0.05], [0.1, 0.1, 0.8]])
+    row["classes"] = np.array([2])
+    read = reader.read(row["probs"], row["cand_ids"])
+    assert read["code"][0] == pytest.approx([0.5, 0.0]) and read["class"][0] == pytest.approx([0.95, 0.2])
+    assert read["class"][1].tolist() == [2, 2]
+    code = tune.score_rule([row], [read], ("code", 0.8, 16.0, 0.05, 0.05), 0.5)
+    klass = tune.score_rule([row], [read], ("class", 0.8, 16.0, 0.05, 0.05), 0.5)
+    assert (code["hits"], code["detections"]) == (0, 0)
+    assert (klass["hits"], klass["detections"], klass["P"]) == (1, 1, 1.0)
+
 def test_photo_candidates_are_merged_across_classes_best_first_and_off_the_detections():
     boxes = np.array([[0, 0, 20, 20],      # a detection
                       [2, 2, 22, 22],      # on the detection: no candidate

@@ -1,5 +1,6 @@
 """The second look (core.rescue): boxes the detector scores under its confidence are kept
-when the sign-code classifier reads a code in them (and they are big and coloured enough);
+when the sign-code classifier reads a class of signs in them (the class's codes added up;
+and they are big and coloured enough);
 the detections themselves stay as they were. The classifier is the tiny real ONNX model of
 tests/helpers/tinyclassifier.py (red crop: DE:206 stop, blue: DE:215 roundabout, grey: other)."""
 import cv2
@@ -17,7 +18,7 @@ RED, BLUE, DARK = (30, 30, 230), (230, 40, 30), (40, 40, 40)  # BGR
 CLASSES = ("warning", "prohibitory", "mandatory", "information", "stop", "yield")
 TABLE_TEXT = "code;name;class\nDE:206;stop;stop\nDE:215;roundabout;mandatory\n"
 #: the tiny classifier's probabilities on a disc's crop are ~0.7: the rule's bar is set under them
-RULE = rescue.RescueRule(min_code_score=0.6, min_box_px=16.0, min_sheeting=0.05)
+RULE = rescue.RescueRule(min_class_score=0.6, min_box_px=16.0, min_sheeting=0.05)
 
 
 @pytest.fixture(scope="module")
@@ -68,12 +69,31 @@ def test_sheeting_fraction_counts_sign_colours_and_wraps_the_seam():
     assert rescue.sheeting_fraction(pano, (30, 20, 30, 40)) == 0.0                 # empty box
 
 
-def test_the_rule_needs_size_colour_and_a_confident_code():
+def test_the_rule_needs_size_colour_and_a_confident_class():
     boxes = np.array([[0, 0, 20, 20], [0, 0, 15, 40], [0, 0, 20, 20]], float)
     np.testing.assert_array_equal(rescue.worth_reading(boxes, [0.5, 0.5, 0.01]), [True, False, False])
-    np.testing.assert_array_equal(
-        rescue.confirmed(["DE:206", "other", "DE:206", "", "DE:215"], [0.95, 0.99, 0.5, 0.99, np.nan]),
-        [True, False, False, False, False])
+    np.testing.assert_array_equal(rescue.confirmed([0.95, 0.9, 0.89, 0.0, np.nan]),
+                                  [True, True, False, False, False])
+
+
+def test_the_class_reading_adds_up_the_codes_of_each_class(tmp_path):
+    """Two speed limits of one class, unsure of the digits, make a sure class; ``other`` is
+    no class; codes of a class the detector lacks (here warning) add up apart and leave the
+    detector's class (-1)."""
+    path = tmp_path / "codes.csv"
+    path.write_text("code;name;class\nDE:274[30];30;prohibitory\nDE:274[50];50;prohibitory\n"
+                    "DE:206;stop;stop\nDE:101;danger;warning\n")
+    table = SC.read_codes_table(str(path))
+    names = ["DE:274[30]", "DE:274[50]", "DE:206", "DE:101", "other"]
+    detector_classes = ("prohibitory", "stop")
+    probs = np.array([[0.45, 0.47, 0.03, 0.0, 0.05],    # an unsure speed limit: prohibitory, 0.92
+                      [0.1, 0.1, 0.1, 0.0, 0.7],        # other wins: the best class is prohibitory, 0.2
+                      [0.0, 0.0, 0.05, 0.9, 0.05]])     # a code of a class the detector lacks
+    best, score = rescue.class_reading(probs, names, table, detector_classes)
+    assert best.tolist() == [0, 0, -1]
+    np.testing.assert_allclose(score, [0.92, 0.2, 0.9])
+    assert rescue.confirmed(score).tolist() == [True, False, True]
+    assert rescue.class_reading(np.zeros((0, 5)), names, table, detector_classes)[0].tolist() == []
 
 
 def test_class_of_a_code(classifier):
@@ -118,9 +138,11 @@ def test_second_look_keeps_the_read_candidates_with_their_codes_class(tmp_path, 
         def cut_crop(self, pano, box):
             return classifier.cut_crop(pano, box)
 
-        def classify(self, crops):
+        names = classifier.names
+
+        def probabilities(self, crops):
             read.append(len(crops))
-            return classifier.classify(crops)
+            return classifier.probabilities(crops)
 
     def look(pano, found):
         return rescue.second_look(Counting(), pano, found, CLASSES, RULE)
