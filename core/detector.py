@@ -587,7 +587,7 @@ def merge_view_detections(boxes: np.ndarray, scores: np.ndarray, class_ids: np.n
 #: the plugin's views give: best F1 at 0.5 (P 0.918 / R 0.944; 0.905 / 0.944 at 0.4, 0.917 /
 #: 0.930 at 0.55, 0.942 / 0.915 at 0.6); at the photographs' own density 0.55 is one false
 #: box better, and on five held-out generated streets 0.5 and 0.55 tie (models/README.md,
-#: "Bundled on 27 November").
+#: "Bundled on 27 November"; measured while the second look still read single codes).
 DEFAULT_CONFIDENCE = 0.5
 
 #: Shorter side (panorama pixels) under which ``roadsigns:detectsigns`` drops a box by
