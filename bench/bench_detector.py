@@ -126,8 +126,9 @@ def seam_iou(width_px):
 
 
 def scene_truth(meta, sign_class):
-    """Counted signs (visible + amodal boxes, classes), uncounted ones (small/hidden), back faces."""
-    counted, classes, small, hidden, back = [], [], [], [], []
+    """Counted signs (visible + amodal boxes, classes), uncounted ones (small/hidden), back
+    faces, and the counted signs' ids (in the order of their boxes)."""
+    counted, classes, small, hidden, back, ids = [], [], [], [], [], []
     for s in meta["signs"]:
         if s.get("visible_box") is None:
             continue
@@ -143,7 +144,31 @@ def scene_truth(meta, sign_class):
         else:
             counted.append(boxes)
             classes.append(CLASSES.index(sign_class[s["sign_id"]]))
-    return np.array(counted).reshape(-1, 8), np.array(classes, np.int64), small, hidden, back
+            ids.append(s["sign_id"])
+    return np.array(counted).reshape(-1, 8), np.array(classes, np.int64), small, hidden, back, ids
+
+
+#: A counted sign seen more than this from its face's normal is reported apart as oblique.
+OBLIQUE_DEG = 70.0
+
+
+def sign_kinds(sign, seen, pano_centre, pano_width_px, views_top_deg):
+    """The kinds a counted sign of a panorama is reported under (issue 15: "no kind of sign
+    below 0.90"): its mount (``pole``, ``shared_pole`` for stacked panels, ``lamp_post``,
+    ``gantry``); ``oblique`` when seen more than :data:`OBLIQUE_DEG` from its face's normal;
+    ``gantry above the views`` when a gantry panel's box reaches above the highest elevation
+    the view set covers (``views_top_deg``). ``sign``: the scene's record; ``seen``: the
+    panorama's; boxes in pixels of an equirectangular panorama ``pano_width_px`` wide."""
+    kinds = [sign["mount"]]
+    ray = np.asarray(sign["centre"], float) - np.asarray(pano_centre, float)
+    normal = np.asarray(sign["normal"], float)
+    cos_off = abs(float(ray @ normal)) / max(float(np.linalg.norm(ray) * np.linalg.norm(normal)), 1e-12)
+    if np.degrees(np.arccos(min(cos_off, 1.0))) > OBLIQUE_DEG:
+        kinds.append("oblique")
+    top_elevation_deg = 90.0 - seen["visible_box"][1] * 360.0 / pano_width_px
+    if sign["mount"] == "gantry" and top_elevation_deg > views_top_deg:
+        kinds.append("gantry above the views")
+    return kinds
 
 
 # --- size bands ------------------------------------------------------------------------------
@@ -217,15 +242,17 @@ class PanoramaBench:
         self.matches, self.small, self.hidden, self.face_on = [], [], [], []
         self.back_hits, self.detect_s, self.cpu_s, self.n = 0, 0.0, 0.0, 0
         self.bands = BandCounter(width=8)
+        self.kinds = {}   # kind: [true, hits] (sign_kinds)
+        self.views_top_deg = max(v.pitch_deg + v.vfov_deg / 2.0 for v in views)
 
-    def run(self, pano, meta, sign_class):
+    def run(self, pano, meta, sign_class, signs=None):
         t0, c0 = time.perf_counter(), time.process_time()
         found = self.detect(pano)
         self.detect_s += time.perf_counter() - t0
         self.cpu_s += time.process_time() - c0
         self.n += 1
         iou = seam_iou(pano.shape[1])
-        counted, classes, small, hidden, back = scene_truth(meta, sign_class)
+        counted, classes, small, hidden, back, counted_ids = scene_truth(meta, sign_class)
         boxes, scores, ids = found.boxes(), found.score, found.class_id
         if self.second_look:
             scores = np.maximum(scores, self.confidence)
@@ -235,6 +262,17 @@ class PanoramaBench:
         edge_on = (counted[:, 2] - counted[:, 0]) < EDGE_ON_MAX_WIDTH_PX
         self.face_on.append(match_image(boxes, scores, ids, counted[~edge_on], classes[~edge_on], 0.5, iou_fn=iou,
                                         ignore_boxes=np.concatenate([uncounted, counted[edge_on]])))
+        if signs is not None:  # recall by kind of sign, at the confidence
+            sure = scores >= self.confidence
+            kept = match_image(boxes[sure], scores[sure], ids[sure], counted, classes, 0.5,
+                               ignore_boxes=uncounted, iou_fn=iou)
+            seen = {s["sign_id"]: s for s in meta["signs"]}
+            for sign_id, hit in zip(counted_ids, kept["hit"]):
+                for kind in sign_kinds(signs[sign_id], seen[sign_id], meta["pano_centre"], pano.shape[1],
+                                       self.views_top_deg):
+                    tally = self.kinds.setdefault(kind, [0, 0])
+                    tally[0] += 1
+                    tally[1] += int(hit)
         if back and len(boxes):
             self.back_hits += int(((iou(boxes, np.array(back)).max(1) >= 0.5) & (scores >= self.confidence)).sum())
         for group, out in ((small, self.small), (hidden, self.hidden)):
@@ -270,6 +308,7 @@ class PanoramaBench:
             return {k: s[k] for k in ("true", "hits", "recall")}
         return {"images": self.n, "per_class": summarise(self.matches, CLASSES, c),
                 "per_band": self.bands.result(),
+                "per_kind": {k: {"true": t, "hits": h, "recall": h / t} for k, (t, h) in sorted(self.kinds.items())},
                 "small_under_20px": recall_only(self.small),
                 "without_edge_on": summarise(self.face_on, CLASSES, c)["all"],
                 "occluded_over_half": recall_only(self.hidden),
@@ -317,6 +356,7 @@ def bench_panoramas(entries, scene_dirs, confidence, max_images=None, min_box_px
         with open(os.path.join(scene_dir, "scene.json")) as f:
             scene = json.load(f)
         sign_class = {s["sign_id"]: s["class"] for s in scene["signs"]}
+        signs = {s["sign_id"]: s for s in scene["signs"]}
         for meta in scene["images"][:max_images]:
             t0 = time.perf_counter()
             pano = panorama_mod.read_panorama(os.path.join(scene_dir, "images", meta["image"]))
@@ -327,7 +367,7 @@ def bench_panoramas(entries, scene_dirs, confidence, max_images=None, min_box_px
                 warm = True
             order = benches if n % 2 == 0 else benches[::-1]
             for b in order:
-                b.run(pano, meta, sign_class)
+                b.run(pano, meta, sign_class, signs)
             n += 1
     out = [b.result() for b in benches]
     for r in out:
@@ -662,6 +702,8 @@ def print_model(name, r, confidence):
     print_table(f"Generated panoramas ({p['images']}, held-out seeds), signs >= {MIN_HEIGHT_PX:.0f} px, "
                 f"occlusion <= {MAX_OCCLUSION}, confidence {confidence}", p["per_class"])
     print_bands("size bands", p["per_band"])
+    print("recall by kind: " + ", ".join(f"{k} {v['hits']}/{v['true']} {_f(v['recall'])}"
+                                         for k, v in p.get("per_kind", {}).items()))
     print(f"signs under {MIN_HEIGHT_PX:.0f} px: {p['small_under_20px']}\nsigns more than half hidden: "
           f"{p['occluded_over_half']}\ndetections on back faces: {p['detections_on_back_faces']}\n"
           f"without signs seen edge-on (< {EDGE_ON_MAX_WIDTH_PX:.0f} px wide): {p['without_edge_on']}")

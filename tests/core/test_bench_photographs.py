@@ -195,3 +195,20 @@ def test_a_box_on_an_unlabelled_sign_is_ignored_and_a_false_alarm_only_as_labell
     # a box on nothing is a false alarm both ways
     m = bd.match_frame(np.array([[10.0, 10.0, 40.0, 40.0]]), np.array([0.9]), ids[:1], frame)
     assert all(summarise([v], bd.CLASSES, 0.5)["all"]["precision"] == 0.0 for v in m.values())
+
+
+def test_sign_kinds_name_the_mount_oblique_views_and_gantries_above_the_views():
+    """bench_detector.sign_kinds: a pole sign seen face-on is a pole sign; seen 80 deg off its
+    face also oblique; a gantry panel whose box top is above the views' top elevation also
+    "gantry above the views" (2048 px panorama: 1024 rows over 180 deg)."""
+    pole = {"mount": "pole", "centre": [10.0, 0.0, 2.0], "normal": [-1.0, 0.0, 0.0]}
+    seen = {"visible_box": [0, 500, 10, 520]}   # rows 500: elevation 2.1 deg
+    assert bd.sign_kinds(pole, seen, [0.0, 0.0, 2.0], 2048, 26.7) == ["pole"]
+    off = np.radians(80.0)
+    edge_on = dict(pole, normal=[-np.cos(off), np.sin(off), 0.0])
+    assert bd.sign_kinds(edge_on, seen, [0.0, 0.0, 2.0], 2048, 26.7) == ["pole", "oblique"]
+    gantry = dict(pole, mount="gantry")
+    high = {"visible_box": [0, 300, 10, 420]}   # rows 300: elevation 37.3 deg
+    assert bd.sign_kinds(gantry, high, [0.0, 0.0, 2.0], 2048, 26.7) == ["gantry", "gantry above the views"]
+    assert bd.sign_kinds(gantry, seen, [0.0, 0.0, 2.0], 2048, 26.7) == ["gantry"]
+    assert bd.sign_kinds(pole, high, [0.0, 0.0, 2.0], 2048, 26.7) == ["pole"]   # only gantries
