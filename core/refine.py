@@ -221,7 +221,7 @@ class RefineParams:
     #: sign passing the vehicle is seen from several stations, a lone weak box is mostly noise.
     #: With the rule off, five held-out streets (seeds 7, 11, tiny 3, dusk 21, glare 23) gave
     #: no false single-view sign with either detector of 27 November; the true ones scored
-    #: 0.48-0.96, the lowest a rescued 14-25 px sign (models/README.md, "The single-view rule")
+    #: 0.48-0.96, the lowest a rescued 14-25 px sign (models/README.md, "Bundled on 27 November")
     min_single_view_score: float = 0.4
 
     def max_side_m(self, klass: str) -> float:
