@@ -465,8 +465,8 @@ def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, cla
         rgb = image_bgr[..., ::-1]
         crops = [crop_square(rgb, boxes[j], margin=classifier.crop_margin, out_px=classifier.input_px)
                  for j in cands]
-        best, score = rescue_mod.class_reading(classifier.probabilities(crops), classifier.names,
-                                               classifier.table, class_names)
+        columns = rescue_mod.code_classes(classifier.names, classifier.table, class_names)
+        best, score = rescue_mod.class_reading(classifier.probabilities(crops), columns, len(class_names))
         for j, klass, ok in zip(cands, best, rescue_mod.confirmed(score)):
             if ok:
                 rescued[j] = True

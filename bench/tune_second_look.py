@@ -82,32 +82,20 @@ def collect(detector, classifier, frames, confidence):
 class Reader:
     """What a rule reads in the classifier's probabilities: per candidate, for each kind of
     rule (:data:`KINDS`), the probability it compares and the class it gives: the best code's
-    (``other`` excluded from being best), the best class's (its codes added up), and
-    ``1 - P(other)`` (with the best class).
-    ``other``: the column of ``other``; ``class_index``: each column's class (detector order,
-    -1 for none); ``n_classes``: the detector's classes."""
+    (``other`` excluded from being best), the best class's (its codes added up,
+    ``rescue.class_reading``), and ``1 - P(other)`` (with the best class).
+    ``other``: the column of ``other``; ``column_class``: each column's class
+    (``rescue.code_classes``: detector order, negative for none); ``n_classes``: the
+    detector's classes."""
 
-    def __init__(self, other: int, class_index: np.ndarray, n_classes: int, read_class=None):
-        self.other, self.class_index, self.n_classes = other, np.asarray(class_index), n_classes
-        #: ``probabilities -> (class, its codes added up)``: the plugin's own
-        #: (``rescue.class_reading``) in :meth:`of`; by ``class_index`` when built by hand
-        self.read_class = read_class or self._class_by_index
-
-    def _class_by_index(self, probs):
-        per_class = np.zeros((len(probs), self.n_classes))
-        for k, c in enumerate(self.class_index):
-            if c >= 0:
-                per_class[:, c] += probs[:, k]
-        return per_class.argmax(1), per_class.max(1)
+    def __init__(self, other: int, column_class, n_classes: int):
+        self.other, self.column_class, self.n_classes = other, np.asarray(column_class), n_classes
 
     @classmethod
     def of(cls, classifier, class_names):
         names = list(classifier.names)
-        other = names.index(bd.signcodes_mod.OTHER_CODE)
-        code_class = [bd.rescue_mod.class_of_code(n, classifier.table, class_names) if k != other else None
-                      for k, n in enumerate(names)]
-        return cls(other, [list(class_names).index(c) if c else -1 for c in code_class], len(class_names),
-                   lambda probs: bd.rescue_mod.class_reading(probs, names, classifier.table, class_names))
+        return cls(names.index(bd.signcodes_mod.OTHER_CODE),
+                   bd.rescue_mod.code_classes(names, classifier.table, class_names), len(class_names))
 
     def read(self, probs, det_ids):
         if not len(probs):
@@ -115,9 +103,9 @@ class Reader:
             return {kind: (z, z.astype(np.int64)) for kind in KINDS}
         best = probs.argmax(1)
         code_p = np.where(best == self.other, 0.0, probs[np.arange(len(best)), best])
-        code_cls = np.where(best == self.other, det_ids, self.class_index[best])
+        code_cls = np.where(best == self.other, det_ids, self.column_class[best])
         code_cls = np.where(code_cls < 0, det_ids, code_cls)
-        best_class, class_p = self.read_class(probs)
+        best_class, class_p = bd.rescue_mod.class_reading(probs, self.column_class, self.n_classes)
         best_class = np.where(best_class < 0, det_ids, best_class)
         return {"code": (code_p, code_cls), "class": (class_p, best_class),
                 "sign": (1.0 - probs[:, self.other], best_class)}

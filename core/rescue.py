@@ -85,22 +85,36 @@ def worth_reading(box_px: np.ndarray, sheeting: np.ndarray, rule: RescueRule = D
     return (side >= rule.min_box_px) & (np.asarray(sheeting, float) >= rule.min_sheeting)
 
 
-def class_reading(probabilities, names: Sequence[str], table, class_names: Sequence[str]
-                  ) -> Tuple[np.ndarray, np.ndarray]:
-    """Per crop, the class whose codes' probabilities add up to most in ``probabilities``
-    (``(n, C)``, the classifier's columns ``names``), and that sum. The class is an index into
-    ``class_names`` (the detector's), or -1 for the codes whose class the detector lacks (or
-    that the codes ``table`` does not hold), added up together: the box then keeps the
-    detector's class. ``other`` counts for no class."""
-    probs = np.asarray(probabilities, float).reshape(len(probabilities), len(names))
-    unmapped = len(class_names)                       # the last column: classes the detector lacks
-    per_class = np.zeros((len(probs), unmapped + 1))
+#: :func:`code_classes`' mark for the column of ``other``, and for a code of a class the
+#: detector lacks (or that the codes table does not hold).
+OTHER_COLUMN, UNMAPPED_COLUMN = -2, -1
+
+
+def code_classes(names: Sequence[str], table, class_names: Sequence[str]) -> np.ndarray:
+    """Per classifier column (``names``), the class of its code as an index into
+    ``class_names`` (the detector's); :data:`UNMAPPED_COLUMN` for a code of a class the
+    detector lacks (or not in the codes ``table``), :data:`OTHER_COLUMN` for ``other``."""
+    out = np.empty(len(names), np.int64)
     for k, name in enumerate(names):
-        if name != OTHER_CODE:
-            klass = class_of_code(name, table, class_names)
-            per_class[:, unmapped if klass is None else list(class_names).index(klass)] += probs[:, k]
+        klass = class_of_code(name, table, class_names) if name != OTHER_CODE else None
+        out[k] = (OTHER_COLUMN if name == OTHER_CODE else
+                  UNMAPPED_COLUMN if klass is None else list(class_names).index(klass))
+    return out
+
+
+def class_reading(probabilities, column_class: np.ndarray, n_classes: int) -> Tuple[np.ndarray, np.ndarray]:
+    """Per crop, the class whose codes' probabilities add up to most in ``probabilities``
+    (``(n, C)``; ``column_class``: :func:`code_classes` of its columns), and that sum. The
+    class is an index into the detector's ``n_classes``, or -1 for the codes of classes the
+    detector lacks, added up together: the box then keeps the detector's class. ``other``
+    counts for no class."""
+    probs = np.asarray(probabilities, float).reshape(-1, len(column_class))
+    per_class = np.zeros((len(probs), n_classes + 1))     # the last column: classes the detector lacks
+    for k, c in enumerate(np.asarray(column_class)):
+        if c != OTHER_COLUMN:
+            per_class[:, n_classes if c == UNMAPPED_COLUMN else c] += probs[:, k]
     best = per_class.argmax(1)
-    return np.where(best == unmapped, -1, best), per_class[np.arange(len(probs)), best]
+    return np.where(best == n_classes, -1, best), per_class[np.arange(len(probs)), best]
 
 
 def confirmed(class_scores, rule: RescueRule = DEFAULT_RULE) -> np.ndarray:
@@ -149,7 +163,8 @@ def second_look(classifier, pano: np.ndarray, found, class_names: Sequence[str],
     if not found.candidate.any():
         return found
     names = list(class_names)
-    best, score = class_reading(probabilities, classifier.names, getattr(classifier, "table", None), names)
+    columns = code_classes(classifier.names, getattr(classifier, "table", None), names)
+    best, score = class_reading(probabilities, columns, len(names))
     kept = ~found.candidate | confirmed(score, rule)
     for k in np.flatnonzero(found.candidate & kept & (best >= 0)):
         found.class_name[k] = names[best[k]]

@@ -67,7 +67,7 @@ def _row(gt, sure, cand_boxes, cand_scores, sides, sheeting, probs):
 
 
 def test_a_rule_keeps_only_the_candidates_that_pass_every_check():
-    reader = tune.Reader(other=1, class_index=[0, -1], n_classes=6)  # codes: one of class 0, and other
+    reader = tune.Reader(other=1, column_class=[0, -2], n_classes=6)  # codes: one of class 0, and other
     two_signs = [[0, 0, 20, 20], [100, 100, 130, 130]]
     # one sign detected; a candidate on the other sign (read as a code at 0.8) and one on nothing
     row = _row(two_signs, [[0, 0, 20, 20]], [[100, 100, 130, 130], [300, 300, 330, 330]], [0.3, 0.3],
@@ -92,7 +92,7 @@ def test_a_class_rule_adds_up_the_codes_of_a_class():
     """Two codes of class 2 (a speed limit whose digits are unsure) read 0.5 and 0.45: no code
     reaches 0.8, their class does (0.95) and is the class given; a crop read as other is not
     kept by either."""
-    reader = tune.Reader(other=2, class_index=[2, 2, -1], n_classes=6)
+    reader = tune.Reader(other=2, column_class=[2, 2, -2], n_classes=6)
     sign = [[100, 100, 130, 130]]
     row = _row(sign, [], [[100, 100, 130, 130], [300, 300, 330, 330]], [0.3, 0.3], [30, 30], [0.2, 0.2],
                [[0.5, 0.45, 0.05], [0.1, 0.1, 0.8]])

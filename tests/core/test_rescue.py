@@ -89,11 +89,13 @@ def test_the_class_reading_adds_up_the_codes_of_each_class(tmp_path):
     probs = np.array([[0.45, 0.47, 0.03, 0.0, 0.05],    # an unsure speed limit: prohibitory, 0.92
                       [0.1, 0.1, 0.1, 0.0, 0.7],        # other wins: the best class is prohibitory, 0.2
                       [0.0, 0.0, 0.05, 0.9, 0.05]])     # a code of a class the detector lacks
-    best, score = rescue.class_reading(probs, names, table, detector_classes)
+    columns = rescue.code_classes(names, table, detector_classes)
+    assert columns.tolist() == [0, 0, 1, rescue.UNMAPPED_COLUMN, rescue.OTHER_COLUMN]
+    best, score = rescue.class_reading(probs, columns, len(detector_classes))
     assert best.tolist() == [0, 0, -1]
     np.testing.assert_allclose(score, [0.92, 0.2, 0.9])
     assert rescue.confirmed(score).tolist() == [True, False, True]
-    assert rescue.class_reading(np.zeros((0, 5)), names, table, detector_classes)[0].tolist() == []
+    assert rescue.class_reading(np.zeros((0, 5)), columns, len(detector_classes))[0].tolist() == []
 
 
 def test_class_of_a_code(classifier):
