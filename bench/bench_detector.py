@@ -245,7 +245,7 @@ class PanoramaBench:
         self.kinds = {}   # kind: [true, hits] (sign_kinds)
         self.views_top_deg = max(v.pitch_deg + v.vfov_deg / 2.0 for v in views)
 
-    def run(self, pano, meta, sign_class, signs=None):
+    def run(self, pano, meta, sign_class, signs):
         t0, c0 = time.perf_counter(), time.process_time()
         found = self.detect(pano)
         self.detect_s += time.perf_counter() - t0
@@ -262,17 +262,17 @@ class PanoramaBench:
         edge_on = (counted[:, 2] - counted[:, 0]) < EDGE_ON_MAX_WIDTH_PX
         self.face_on.append(match_image(boxes, scores, ids, counted[~edge_on], classes[~edge_on], 0.5, iou_fn=iou,
                                         ignore_boxes=np.concatenate([uncounted, counted[edge_on]])))
-        if signs is not None:  # recall by kind of sign, at the confidence
-            sure = scores >= self.confidence
-            kept = match_image(boxes[sure], scores[sure], ids[sure], counted, classes, 0.5,
-                               ignore_boxes=uncounted, iou_fn=iou)
-            seen = {s["sign_id"]: s for s in meta["signs"]}
-            for sign_id, hit in zip(counted_ids, kept["hit"]):
-                for kind in sign_kinds(signs[sign_id], seen[sign_id], meta["pano_centre"], pano.shape[1],
-                                       self.views_top_deg):
-                    tally = self.kinds.setdefault(kind, [0, 0])
-                    tally[0] += 1
-                    tally[1] += int(hit)
+        # recall by kind of sign (``signs``: the scene's records by id), at the confidence
+        sure = scores >= self.confidence
+        kept = match_image(boxes[sure], scores[sure], ids[sure], counted, classes, 0.5,
+                           ignore_boxes=uncounted, iou_fn=iou)
+        seen = {s["sign_id"]: s for s in meta["signs"]}
+        for sign_id, hit in zip(counted_ids, kept["hit"]):
+            for kind in sign_kinds(signs[sign_id], seen[sign_id], meta["pano_centre"], pano.shape[1],
+                                   self.views_top_deg):
+                tally = self.kinds.setdefault(kind, [0, 0])
+                tally[0] += 1
+                tally[1] += int(hit)
         if back and len(boxes):
             self.back_hits += int(((iou(boxes, np.array(back)).max(1) >= 0.5) & (scores >= self.confidence)).sum())
         for group, out in ((small, self.small), (hidden, self.hidden)):
