@@ -212,3 +212,17 @@ def test_sign_kinds_name_the_mount_oblique_views_and_gantries_above_the_views():
     assert bd.sign_kinds(gantry, high, [0.0, 0.0, 2.0], 2048, 26.7) == ["gantry", "gantry above the views"]
     assert bd.sign_kinds(gantry, seen, [0.0, 0.0, 2.0], 2048, 26.7) == ["gantry"]
     assert bd.sign_kinds(pole, high, [0.0, 0.0, 2.0], 2048, 26.7) == ["pole"]   # only gantries
+
+
+def test_reportable_signs_leave_out_slivers_and_oblique_views_only():
+    """bench_detector.reportable_signs: a sign whose visible box is narrower (or lower) than
+    MIN_SIZE, or that is seen oblique, cannot come out of detectsigns from that panorama; a
+    sign of MIN_SIZE and more seen face-on can."""
+    rows = np.array([[0, 0, 20, 40] + [0, 0, 20, 40],      # face-on, 20 x 40 px: reportable
+                     [0, 0, 10, 90] + [0, 0, 10, 90],      # a sliver 10 px wide
+                     [0, 0, 14, 14] + [0, 0, 14, 14],      # exactly MIN_SIZE
+                     [0, 0, 30, 30] + [0, 0, 30, 30]], float)  # wide enough but oblique
+    kinds = [["pole"], ["pole"], ["shared_pole"], ["pole", "oblique"]]
+    assert bd.reportable_signs(rows, kinds, 14.0).tolist() == [True, False, True, False]
+    assert bd.reportable_signs(rows, kinds, 25.0).tolist() == [False, False, False, False]
+    assert bd.reportable_signs(np.zeros((0, 8)), [], 14.0).tolist() == []
