@@ -49,6 +49,11 @@ def main(argv=None):
                     "optimiser, EMA, step, training time and random states")
     ap.add_argument("--init", default=None, help="start weights only: a checkpoint (.pt) or an exported "
                     "model (.onnx, e.g. models/roadsigns.onnx: its folded batch norms are recovered)")
+    ap.add_argument("--widths", default=None, metavar="C4,C8,C16,C32",
+                    help="the backbone's widths at strides 4, 8, 16 and 32 (default: the start's, or 32,48,96,160); "
+                         "wider than --init's, the start is widened keeping its function")
+    ap.add_argument("--fpn", type=int, default=None, help="the pyramid's width (default: the start's, or 64)")
+    ap.add_argument("--head", type=int, default=None, help="the head's width (default: the start's, or 32)")
     ap.add_argument("--no-export", action="store_true", help="do not export at the end")
     ap.add_argument("--export-only", metavar="CKPT", help="only export this checkpoint (.pt) to --out")
     ap.add_argument("--operating-point", type=float, default=None, metavar="SCORE",
@@ -67,6 +72,8 @@ def main(argv=None):
           checkpoint_every_min=a.checkpoint_every, until=a.until, warmup_steps=a.warmup, amp=not a.no_amp,
           export=not a.no_export, ema_decay=a.ema_decay, small_share=a.small_share,
           faces=FACES if a.faces is None else a.faces,
+          arch={k: v for k, v in (("widths", tuple(int(c) for c in a.widths.split(",")) if a.widths else None),
+                                  ("fpn", a.fpn), ("head", a.head)) if v is not None} or None,
           source_weights={k: float(v) for k, v in (x.split("=") for x in a.source_weights.split(","))}
           if a.source_weights else None)
     return 0

@@ -41,11 +41,17 @@ class SepConv(nn.Sequential):
         super().__init__(ConvBN(cin, cin, 3, groups=cin), ConvBN(cin, cout, 1))
 
 
+#: The bundled detector's widths: backbone stages at strides 4/8/16/32, pyramid, head.
+ARCH_DEFAULT = {"widths": (32, 48, 96, 160), "fpn": 64, "head": 32}
+
+
 class SignNet(nn.Module):
-    def __init__(self, num_classes: int = 6, widths=(32, 48, 96, 160), fpn: int = 64, head: int = 32):
+    def __init__(self, num_classes: int = 6, widths=ARCH_DEFAULT["widths"], fpn: int = ARCH_DEFAULT["fpn"],
+                 head: int = ARCH_DEFAULT["head"]):
         super().__init__()
         c4, c8, c16, c32 = widths
         self.num_classes = num_classes
+        self.arch = {"widths": tuple(int(c) for c in widths), "fpn": int(fpn), "head": int(head)}
         self.stem = nn.Sequential(ConvBN(3, 16, 3, 2), ConvBN(16, c4, 3, 2))
         self.s8 = nn.Sequential(ConvBN(c4, c8, 3, 2), ResBlock(c8))
         self.s16 = nn.Sequential(ConvBN(c8, c16, 3, 2), ResBlock(c16), ResBlock(c16))
@@ -76,6 +82,29 @@ class SignNet(nn.Module):
         p = self.smooth4(self.lat4(f4) + F.interpolate(p, size=f4.shape[-2:], mode="nearest"))
         h = self.head(p)
         return self.heatmap(h), self.regression(h)
+
+
+def widened(net: SignNet, widths, fpn: int, head: int) -> SignNet:
+    """A wider SignNet that computes exactly what ``net`` computes (eval mode), to train on
+    from there: each convolution's old outputs keep their weights and read nothing from the
+    new input channels (zero weights); the new output channels start as a fresh network's
+    and are read by no old channel until training moves those zeros. Batch norms of old
+    channels keep their statistics. Every width at least ``net``'s."""
+    big = SignNet(net.num_classes, widths, fpn, head)
+    small_state = net.state_dict()
+    convs = {name: m for name, m in big.named_modules() if isinstance(m, nn.Conv2d)}
+    state = big.state_dict()
+    with torch.no_grad():
+        for name, value in state.items():
+            old = small_state[name]
+            if any(b < a for a, b in zip(old.shape, value.shape)):
+                raise ValueError(f"{name}: {tuple(value.shape)} is narrower than {tuple(old.shape)}")
+            module = convs.get(name.rsplit(".", 1)[0])
+            if module is not None and name.endswith("weight") and module.groups == 1 and value.ndim == 4:
+                value[:old.shape[0], old.shape[1]:] = 0.0     # old outputs ignore the new inputs
+            value[tuple(slice(0, n) for n in old.shape)] = old
+    big.load_state_dict(state)
+    return big
 
 
 def decode(heat_logits, regression, k: int = TOP_K):

@@ -16,7 +16,17 @@ import torch.nn.functional as F
 from . import data, mine
 from .data import CLASS_INDEX, CLASSES, Sample
 from .metrics import average_precision, best_f1_threshold, match_image, summarise
-from .model import PLUGIN_DEFAULT_CONFIDENCE, STRIDE, ConvBN, SignNet, calibration_power, decode, export_onnx
+from .model import (
+    ARCH_DEFAULT,
+    PLUGIN_DEFAULT_CONFIDENCE,
+    STRIDE,
+    ConvBN,
+    SignNet,
+    calibration_power,
+    decode,
+    export_onnx,
+    widened,
+)
 
 #: Generated scenes used for training: (preset, seed, panorama width or None). Seeds from
 #: 100 up are reserved for training; the bench and tests use seeds below 100.
@@ -414,7 +424,7 @@ def recover_from_onnx(net: SignNet, onnx_path: str, calibration_batches) -> Sign
 def save_checkpoint(path, net, ema, opt, scaler, step, elapsed_s, history, best_score, mix, extra=None):
     """Everything a run needs to go on: raw and EMA weights, optimiser, AMP scaler, step,
     training time, validation history, and the random states (numpy, torch, cuda)."""
-    state = {"model": ema.state_dict(), "net": net.state_dict(), "opt": opt.state_dict(),
+    state = {"model": ema.state_dict(), "net": net.state_dict(), "arch": net.arch, "opt": opt.state_dict(),
              "scaler": scaler.state_dict() if scaler is not None else None, "step": step,
              "elapsed_s": elapsed_s, "history": history, "best_score": best_score,
              "rng": {"numpy": mix.rng.bit_generator.state, "torch": torch.get_rng_state(),
@@ -423,6 +433,12 @@ def save_checkpoint(path, net, ema, opt, scaler, step, elapsed_s, history, best_
     tmp = path + ".tmp"
     torch.save(state, tmp)
     os.replace(tmp, path)
+
+
+def checkpoint_arch(state) -> dict:
+    """The widths a checkpoint's network has (``model.ARCH_DEFAULT`` for those saved before
+    checkpoints recorded them)."""
+    return dict(ARCH_DEFAULT, **(state.get("arch") or {}))
 
 
 def pick_device(name: str) -> torch.device:
@@ -456,11 +472,15 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
           validate_every_min: float = 5.0, seed: int = 0, resume: str = None, val_images: int = 60,
           init: str = None, device: str = "auto", checkpoint_every_min: float = 10.0, until: str = None,
           warmup_steps: int = 300, amp: bool = True, scenes=TRAIN_SCENES, export: bool = True,
-          ema_decay: float = 0.998, source_weights=None, small_share: float = 0.0, faces: int = FACES):
+          ema_decay: float = 0.998, source_weights=None, small_share: float = 0.0, faces: int = FACES,
+          arch=None):
     """Train (or go on training) for ``minutes`` of training time in all (a resumed run
     counts the time already spent), or until the wall-clock time ``until``; validate every
     ``validate_every_min`` (best by AP50 on GTSDB 500-599), checkpoint every
-    ``checkpoint_every_min`` and on SIGTERM/SIGINT, then export the best checkpoint."""
+    ``checkpoint_every_min`` and on SIGTERM/SIGINT, then export the best checkpoint.
+    ``arch``: the network's widths (``model.ARCH_DEFAULT``'s keys; None: the start's own, or
+    the default); wider than ``init``'s, the start is widened keeping its function
+    (:func:`model.widened`). A resumed run keeps its checkpoint's."""
     import signal
 
     torch.set_num_threads(threads)
@@ -477,17 +497,27 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
                 "gtsrb_val_tracks": pasted_validation(min(30, val_images)),
                 "views": mix.val_views[::max(1, len(mix.val_views) // val_images)]}
 
-    net = SignNet(len(CLASSES))
     state = torch.load(resume, map_location="cpu", weights_only=False) if resume else None
     if state is not None:
+        net = SignNet(len(CLASSES), **checkpoint_arch(state))
         net.load_state_dict(state.get("net", state["model"]))
     elif init and init.endswith(".onnx"):
+        net = SignNet(len(CLASSES))   # the exported files are of the default widths
         calib = [batch_tensors([mix.sample() for _ in range(batch_size)], crop_px, len(CLASSES))[0]
                  for _ in range(6)]
         recover_from_onnx(net, init, calib)
         print(f"[train] weights recovered from {init}", flush=True)
     elif init:
-        net.load_state_dict(torch.load(init, map_location="cpu", weights_only=False)["model"])
+        start = torch.load(init, map_location="cpu", weights_only=False)
+        net = SignNet(len(CLASSES), **checkpoint_arch(start))
+        net.load_state_dict(start["model"])
+    else:
+        net = SignNet(len(CLASSES), **(arch or {}))
+    want = dict(net.arch, **(arch or {}))
+    want["widths"] = tuple(int(c) for c in want["widths"])
+    if state is None and want != net.arch:
+        net = widened(net, **want)
+        print(f"[train] widened to {net.arch} (the same function to start from)", flush=True)
     net.to(dev)
     if dev.type == "cuda":
         net = net.to(memory_format=torch.channels_last)
@@ -548,7 +578,7 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
             print(f"[train] {json.dumps(entry)}", flush=True)
             if score > best_score:
                 best_score = score
-                torch.save({"model": ema.state_dict(), "step": step, "entry": entry},
+                torch.save({"model": ema.state_dict(), "arch": net.arch, "step": step, "entry": entry},
                            os.path.join(work_dir, "best.pt"))
             save_checkpoint(os.path.join(work_dir, "last.pt"), net, ema, opt, scaler, step, elapsed, history,
                             best_score, mix)
@@ -612,7 +642,7 @@ def export_checkpoint(checkpoint: str, out_path: str, net: SignNet = None, opera
     the best-F1 threshold of the checkpoint's GTSDB validation) becomes the exported score
     ``maps_to`` (default ``model.PLUGIN_DEFAULT_CONFIDENCE``)."""
     best = torch.load(checkpoint, map_location="cpu", weights_only=False)
-    net = net or SignNet(len(CLASSES))
+    net = net or SignNet(len(CLASSES), **checkpoint_arch(best))
     net = net.cpu().to(memory_format=torch.contiguous_format)
     net.load_state_dict(best["model"])
     threshold = operating_point or best["entry"]["gtsdb_500_599"]["best_f1_threshold"]

@@ -1,0 +1,49 @@
+"""devtools.train.model.widened: a wider detector that starts from the narrow one's function.
+
+Training needs torch (devtools/train/requirements.txt), which the plugin's own setup does not
+install: these tests run where it is installed and are skipped elsewhere.
+"""
+import pytest
+
+torch = pytest.importorskip("torch")
+
+from devtools.train.model import ARCH_DEFAULT, SignNet, widened  # noqa: E402
+
+
+def _trained_looking(net):
+    """Non-trivial weights and batch-norm statistics, as a trained network has."""
+    gen = torch.Generator().manual_seed(1)
+    with torch.no_grad():
+        for name, value in net.state_dict().items():
+            if value.dtype.is_floating_point:
+                if name.endswith("running_var"):
+                    value.copy_(0.5 + torch.rand(value.shape, generator=gen))
+                else:
+                    value.copy_(0.2 * torch.randn(value.shape, generator=gen))
+    return net.eval()
+
+
+def test_widened_network_computes_the_same_heatmaps_and_boxes():
+    torch.manual_seed(0)
+    small = _trained_looking(SignNet(6))
+    big = widened(small, widths=(48, 64, 160, 256), fpn=96, head=48).eval()
+    assert big.arch == {"widths": (48, 64, 160, 256), "fpn": 96, "head": 48}
+    assert sum(p.numel() for p in big.parameters()) > 2 * sum(p.numel() for p in small.parameters())
+    x = torch.rand(2, 3, 96, 128)
+    with torch.no_grad():
+        (h0, r0), (h1, r1) = small(x), big(x)
+    assert torch.allclose(h0, h1, atol=1e-4) and torch.allclose(r0, r1, atol=1e-4)
+    # and the new channels are not dead: the zeros that hide them get a gradient
+    h1, r1 = big(x)
+    (h1.sum() + r1.sum()).backward()
+    hidden = big.s16[0][0].weight.grad[:96, 48:]   # stride-16 stage: old outputs, new inputs (48 -> 64)
+    assert hidden.abs().sum() > 0
+
+def test_widening_only_part_of_the_network_and_refusing_to_narrow():
+    small = _trained_looking(SignNet(6))
+    deep = widened(small, widths=(32, 48, 128, 224), fpn=ARCH_DEFAULT["fpn"], head=ARCH_DEFAULT["head"]).eval()
+    x = torch.rand(1, 3, 64, 64)
+    with torch.no_grad():
+        assert torch.allclose(small(x)[0], deep(x)[0], atol=1e-4)
+    with pytest.raises(ValueError, match="narrower"):
+        widened(small, widths=(16, 48, 96, 160), fpn=64, head=32)
