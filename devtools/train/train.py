@@ -502,10 +502,16 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
         net = SignNet(len(CLASSES), **checkpoint_arch(state))
         net.load_state_dict(state.get("net", state["model"]))
     elif init and init.endswith(".onnx"):
-        net = SignNet(len(CLASSES))   # the exported files are of the default widths
         calib = [batch_tensors([mix.sample() for _ in range(batch_size)], crop_px, len(CLASSES))[0]
                  for _ in range(6)]
-        recover_from_onnx(net, init, calib)
+        net = SignNet(len(CLASSES))   # the bundled files' widths; a wider export needs its own
+        try:
+            recover_from_onnx(net, init, calib)
+        except ValueError as e:
+            if not arch:
+                raise ValueError(f"{e}: give the exported file's widths (--widths, --fpn, --head)") from e
+            net = SignNet(len(CLASSES), **dict(ARCH_DEFAULT, **arch))
+            recover_from_onnx(net, init, calib)
         print(f"[train] weights recovered from {init}", flush=True)
     elif init:
         start = torch.load(init, map_location="cpu", weights_only=False)
