@@ -182,6 +182,13 @@ def reportable_signs(counted, kinds, min_box_px):
     return (shorter_px >= min_box_px) & np.array(["oblique" not in k for k in kinds], bool).reshape(-1)
 
 
+def count_kind(tallies, kind, hit):
+    """One more sign of ``kind`` in ``{kind: [true, hits]}``, found or not."""
+    tally = tallies.setdefault(kind, [0, 0])
+    tally[0] += 1
+    tally[1] += int(hit)
+
+
 def per_kind(tallies):
     """``{kind: [true, hits]}`` as ``{kind: {true, hits, recall}}``, kinds sorted."""
     return {k: {"true": t, "hits": h, "recall": h / t} for k, (t, h) in sorted(tallies.items())}
@@ -289,12 +296,11 @@ class PanoramaBench:
         can = reportable_signs(counted, kinds, self.min_box_px)
         self.reportable.append(match_image(boxes, scores, ids, counted[can], classes[can], 0.5, iou_fn=iou,
                                            ignore_boxes=np.concatenate([uncounted, counted[~can]])))
-        for sign_kinds_k, hit, ok in zip(kinds, kept["hit"], can):
+        for sign_kinds_k, hit, reportable in zip(kinds, kept["hit"], can):
             for kind in sign_kinds_k:
-                for tallies in (self.kinds, self.kinds_reportable) if ok else (self.kinds,):
-                    tally = tallies.setdefault(kind, [0, 0])
-                    tally[0] += 1
-                    tally[1] += int(hit)
+                count_kind(self.kinds, kind, hit)
+                if reportable:
+                    count_kind(self.kinds_reportable, kind, hit)
         if back and len(boxes):
             self.back_hits += int(((iou(boxes, np.array(back)).max(1) >= 0.5) & (scores >= self.confidence)).sum())
         for group, out in ((small, self.small), (hidden, self.hidden)):
