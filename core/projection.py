@@ -58,6 +58,8 @@ SLICE_M = 25.0
 #: Detections whose frusta are built, or whose footprints' cells are found, at a time
 #: (:meth:`Frusta.build`, :func:`frustum_cells`): the shapes on the way are a batch's.
 FRUSTA_BATCH = 1024
+#: Standard errors by which :func:`convex_radius_m` moves a fitted curvature towards flat.
+CURVATURE_CONFIDENCE = 2.0
 #: Candidate status flags.
 STATUS_OK, STATUS_NO_POINTS, STATUS_NO_SURFACE = "ok", "no_points", "no_surface"
 
@@ -252,7 +254,11 @@ def convex_radius_m(xyz: np.ndarray, normal_to_viewer: np.ndarray) -> float:
     """Radius of curvature of a surface bulging towards the viewer (``inf`` when flat or
     hollow): a paraboloid ``w = a + b s + c t + k (s^2 + t^2)`` fitted robustly in the frame
     of the plane, ``w`` along ``normal_to_viewer``. Convex traffic mirrors give ~1-3 m; a
-    flat sign with its pole behind looks hollow (k > 0) and is not mistaken for one."""
+    flat sign with its pole behind looks hollow (k > 0) and is not mistaken for one.
+
+    The radius is the flattest the points allow: ``k`` moved towards flat by
+    ``CURVATURE_CONFIDENCE`` standard errors of its fit, so range noise on a small flat
+    sign (a few dozen points, +-1 cm) is not read as a bulge of a few metres' radius."""
     if len(xyz) < 10:
         return math.inf
     n = np.asarray(normal_to_viewer, float)
@@ -271,8 +277,12 @@ def convex_radius_m(xyz: np.ndarray, normal_to_viewer: np.ndarray) -> float:
         if new.sum() < 10 or np.array_equal(new, keep):
             break
         keep = new
-    k = coef[3]
-    return 1.0 / (2.0 * -k) if k < -1e-9 else math.inf
+    Ak = A[keep]
+    dof = max(1, len(Ak) - 4)
+    residual_var = float(np.sum((w[keep] - Ak @ coef) ** 2)) / dof
+    k_se = math.sqrt(max(0.0, residual_var * float(np.linalg.pinv(Ak.T @ Ak)[3, 3])))
+    k_flattest = coef[3] + CURVATURE_CONFIDENCE * k_se
+    return 1.0 / (2.0 * -k_flattest) if k_flattest < -1e-9 else math.inf
 
 
 # --------------------------------------------------------------------------------------
@@ -481,7 +491,9 @@ def find_surface(xyz: np.ndarray, centre: np.ndarray, ray: np.ndarray, a: np.nda
 
     ``a, b``: the points' coordinates relative to the (un-grown) box, 0..1 inside. Clusters
     are ranked by the median range of their points in the box's core (the central
-    ``core_fraction``); the first one that is dense, planar, flat and not a line wins.
+    ``core_fraction``); the first one that is dense, planar, flat and not a line wins. Its
+    curvature is judged on its points in the whole box: the core's lever arm is too short
+    to tell a small sign's range noise from a mirror's bulge.
     """
     if len(xyz) < params.min_points:
         return STATUS_NO_POINTS, None
@@ -511,7 +523,8 @@ def find_surface(xyz: np.ndarray, centre: np.ndarray, ray: np.ndarray, a: np.nda
                 or plane.inliers.sum() < params.min_points):
             continue
         normal = plane.normal if plane.normal @ (centre - plane.point) > 0 else -plane.normal
-        if convex_radius_m(pts[in_core], normal) < params.min_curvature_radius_m:
+        in_box = (a[members] >= 0) & (a[members] <= 1) & (b[members] >= 0) & (b[members] <= 1)
+        if convex_radius_m(pts[in_box], normal) < params.min_curvature_radius_m:
             break  # the first surface is curved (a convex mirror): nothing behind it counts
         denom = float(ray @ normal)
         point = None

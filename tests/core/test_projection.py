@@ -283,3 +283,51 @@ def test_in_sorted_is_isin_for_sorted_keys():
                            [table[0], table[-1], table[0] - 1, table[-1] + 1]])
     np.testing.assert_array_equal(in_sorted(keys, table), np.isin(keys, table))
     assert in_sorted(keys, table[:0]).shape == keys.shape and not in_sorted(keys, table[:0]).any()
+
+
+def _disc_points(rng, radius_m, n, noise_m, bulge_radius_m=None):
+    """``n`` points on a disc facing +x (the viewer), ``noise_m`` range noise along x;
+    with ``bulge_radius_m`` the disc is a convex cap of that radius (edges fall back)."""
+    r = radius_m * np.sqrt(rng.random(n))
+    phi = rng.random(n) * 2 * np.pi
+    y, z = r * np.cos(phi), r * np.sin(phi)
+    x = rng.normal(0.0, noise_m, n)
+    if bulge_radius_m:
+        x -= (y ** 2 + z ** 2) / (2 * bulge_radius_m)
+    return np.column_stack([x, y, z])
+
+
+
+def _sign_in_its_box(points_m):
+    """A disc's points as :func:`projection.find_surface` gets them: the station 10 m out
+    on +x, the box-centre ray towards the disc, the box the disc's 0.6 m square."""
+    a = (points_m[:, 1] + 0.3) / 0.6
+    b = (0.3 - points_m[:, 2]) / 0.6
+    return points_m, np.array([10.0, 0.0, 0.0]), np.array([-1.0, 0.0, 0.0]), a, b
+
+
+def test_range_noise_on_a_small_flat_sign_is_not_read_as_a_mirror():
+    """A 0.6 m sign (250 points, 1.2 cm range noise) is found every time, and a traffic
+    mirror of 1 m radius never: judged on the box's core alone, the noise read as a bulge
+    of a few metres' radius in 4 % of such signs (the keep-right sign of the glare street
+    was lost in two of its four views so)."""
+    rng = np.random.default_rng(12)
+    params = P.ProjectionParams()
+    flat = [P.find_surface(*_sign_in_its_box(_disc_points(rng, 0.3, 250, 0.012)), params)[0]
+            for _ in range(300)]
+    assert flat.count(P.STATUS_OK) == len(flat)
+    mirrors = [P.find_surface(*_sign_in_its_box(_disc_points(rng, 0.3, 250, 0.012, 1.0)), params)[0]
+               for _ in range(100)]
+    assert mirrors.count(P.STATUS_NO_SURFACE) == len(mirrors)
+
+
+def test_the_curvature_is_the_flattest_the_points_allow():
+    """Few points of a far flat sign (60, 1.2 cm noise) never read curved; the fitted bulge
+    alone read under 3 m one time in 150. A mirror's cap of 1 m radius still reads curved."""
+    rng = np.random.default_rng(7)
+    limit = P.ProjectionParams().min_curvature_radius_m
+    toward_viewer = np.array([1.0, 0.0, 0.0])
+    flat = [P.convex_radius_m(_disc_points(rng, 0.3, 60, 0.012), toward_viewer) for _ in range(1000)]
+    assert min(flat) >= limit
+    curved = [P.convex_radius_m(_disc_points(rng, 0.3, 60, 0.012, 1.0), toward_viewer) for _ in range(300)]
+    assert max(curved) < limit
