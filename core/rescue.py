@@ -21,8 +21,10 @@ import numpy as np
 
 from .signcodes import OTHER_CODE
 
-#: Default of detectsigns' RESCUE_CONFIDENCE: the lowest detector score of a candidate.
-DEFAULT_RESCUE_CONFIDENCE = 0.05
+#: Default of detectsigns' RESCUE_CONFIDENCE: the lowest detector score of a candidate. 0.2
+#: since the wider detector (27 November): at 0.05 its candidates cost precision on
+#: held-out real signs for little recall (models/README.md, "A wider detector").
+DEFAULT_RESCUE_CONFIDENCE = 0.2
 #: Saturation (8-bit HSV) from which a pixel counts as coloured sheeting.
 SHEETING_MIN_SATURATION = 80
 #: Hue ranges (8-bit HSV, inclusive) of the sheeting colours: red (both ends), blue, yellow.

@@ -303,8 +303,8 @@
     </message>
     <message>
         <location filename="../algorithms/detectsigns.py" line="82" />
-        <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a class of signs in it with a probability of at least {score} (the probabilities of the codes of that class added up: a speed limit whose digits are unsure is still a prohibitory sign), its box is at least {px} px on its shorter side and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes that class and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.958 of the signs at a precision of 0.958, against 0.704 at 0.962 without it, for about 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
-        <translation>Los recuadros que el detector puntúa desde este valor hasta la confianza mínima reciben una segunda mirada: se conserva uno cuando el clasificador de códigos de señal lee en él una clase de señales con una probabilidad de al menos {score} (las probabilidades de los códigos de esa clase sumadas: un límite de velocidad cuyas cifras no son seguras sigue siendo una señal de prohibición), su recuadro mide al menos {px} px en su lado más corto y al menos un {share:.0%} de él son colores de señal (rojo, azul o amarillo saturados); entonces toma esa clase y conserva su propia puntuación. En fotografías reales de calles (GTSDB 500-599), con la confianza mínima por defecto, encuentra 0,958 de las señales con una precisión de 0,958, frente a 0,704 con 0,962 sin ella, por cerca de un 5 % del tiempo de detección. Necesita que se lean los códigos de señal; un valor igual o superior a la confianza mínima la desactiva.</translation>
+        <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a class of signs in it with a probability of at least {score} (the probabilities of the codes of that class added up: a speed limit whose digits are unsure is still a prohibitory sign), its box is at least {px} px on its shorter side and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes that class and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.930 of the signs at a precision of 0.971, against 0.831 at 0.967 without it, for about 15 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
+        <translation>Los recuadros que el detector puntúa desde este valor hasta la confianza mínima reciben una segunda mirada: se conserva uno cuando el clasificador de códigos de señal lee en él una clase de señales con una probabilidad de al menos {score} (las probabilidades de los códigos de esa clase sumadas: un límite de velocidad cuyas cifras no son seguras sigue siendo una señal de prohibición), su recuadro mide al menos {px} px en su lado más corto y al menos un {share:.0%} de él son colores de señal (rojo, azul o amarillo saturados); entonces toma esa clase y conserva su propia puntuación. En fotografías reales de calles (GTSDB 500-599), con la confianza mínima por defecto, encuentra 0,930 de las señales con una precisión de 0,971, frente a 0,831 con 0,967 sin ella, por cerca de un 15 % del tiempo de detección. Necesita que se lean los códigos de señal; un valor igual o superior a la confianza mínima la desactiva.</translation>
     </message>
 </context>
 <context>
@@ -2436,14 +2436,14 @@
     </message>
     <message>
         <location filename="../core/detections.py" line="106" />
-        <location filename="../core/projection.py" line="383" />
+        <location filename="../core/projection.py" line="393" />
         <source>Detection {det_id}: the field {field} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}: el campo {field} está vacío</translation>
     </message>
     <message>
         <location filename="../core/detections.py" line="114" />
-        <location filename="../core/projection.py" line="375" />
+        <location filename="../core/projection.py" line="385" />
         <source>Detection {det_id}, field {field}: expected a number, found '{value}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}, campo {field}: se esperaba un número, se encontró '{value}'</translation>
@@ -2993,56 +2993,56 @@
         <translation>Ningún punto de {path} está dentro del área de recorte; {output} está vacío</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="592" />
+        <location filename="../core/projection.py" line="605" />
         <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{ok} de {count} detecciones encontraron una superficie en la nube ({no_points} sin puntos, {no_surface} sin superficie plana)</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="404" />
-        <location filename="../core/projection.py" line="659" />
+        <location filename="../core/projection.py" line="414" />
+        <location filename="../core/projection.py" line="672" />
         <source>{source} has no ground points (class 2) where the signs are: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{source} no tiene puntos de suelo (clase 2) donde están las señales: ejecute primero roadsigns:groundfilter sobre ella (o clasifique el suelo con otra herramienta)</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="553" />
+        <location filename="../core/projection.py" line="566" />
         <source>The maximum range must exceed {min} m, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El alcance máximo debe superar {min} m; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="368" />
+        <location filename="../core/projection.py" line="378" />
         <source>The candidates lack the field(s) {fields}; expected the output of Project detections</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>A los candidatos les faltan los campos {fields}; se esperaba la salida de «Proyectar detecciones en la nube de puntos»</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="393" />
+        <location filename="../core/projection.py" line="403" />
         <source>Unknown candidate status {status!r}; expected ok, no_points or no_surface</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Estado de candidato desconocido {status!r}; se esperaba ok, no_points o no_surface</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="397" />
+        <location filename="../core/projection.py" line="407" />
         <source>A candidate with status ok has no position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Un candidato con estado ok no tiene posición</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="418" />
+        <location filename="../core/projection.py" line="428" />
         <source>The point index lacks {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Al índice de puntos le falta {names}</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="558" />
+        <location filename="../core/projection.py" line="571" />
         <source>No detections to project; the candidates are empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay detecciones que proyectar; los candidatos están vacíos</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="588" />
+        <location filename="../core/projection.py" line="601" />
         <source>{path} has no point inside the detections' frusta; no candidate found</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene puntos dentro de los troncos de visión de las detecciones; no se encontró ningún candidato</translation>

@@ -303,8 +303,8 @@
     </message>
     <message>
         <location filename="../algorithms/detectsigns.py" line="82" />
-        <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a class of signs in it with a probability of at least {score} (the probabilities of the codes of that class added up: a speed limit whose digits are unsure is still a prohibitory sign), its box is at least {px} px on its shorter side and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes that class and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.958 of the signs at a precision of 0.958, against 0.704 at 0.962 without it, for about 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
-        <translation>检测器评分介于此值与最低置信度之间的框会接受二次检查：当标志代码分类器以至少 {score} 的概率在框中读出一类标志（该类别各代码的概率之和：数字不确定的限速标志仍是禁令标志）、框的短边至少 {px} 像素且至少 {share:.0%} 的像素为标志颜色（饱和的红、蓝或黄色）时，该框被保留；它随后采用该类别并保留自身的评分。在真实街道照片（GTSDB 500-599）上，使用默认的最低置信度时，它找到 0.958 的标志，精确率为 0.958；不使用时为 0.704，精确率为 0.962。代价约为检测时间的 5 %。需要读取标志代码；取值等于或高于最低置信度时关闭此功能。</translation>
+        <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a class of signs in it with a probability of at least {score} (the probabilities of the codes of that class added up: a speed limit whose digits are unsure is still a prohibitory sign), its box is at least {px} px on its shorter side and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes that class and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.930 of the signs at a precision of 0.971, against 0.831 at 0.967 without it, for about 15 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
+        <translation>检测器评分介于此值与最低置信度之间的框会接受二次检查：当标志代码分类器以至少 {score} 的概率在框中读出一类标志（该类别各代码的概率之和：数字不确定的限速标志仍是禁令标志）、框的短边至少 {px} 像素且至少 {share:.0%} 的像素为标志颜色（饱和的红、蓝或黄色）时，该框被保留；它随后采用该类别并保留自身的评分。在真实街道照片（GTSDB 500-599）上，使用默认的最低置信度时，它找到 0.930 的标志，精确率为 0.971；不使用时为 0.831，精确率为 0.967。代价约为检测时间的 15 %。需要读取标志代码；取值等于或高于最低置信度时关闭此功能。</translation>
     </message>
 </context>
 <context>
@@ -2436,14 +2436,14 @@
     </message>
     <message>
         <location filename="../core/detections.py" line="106" />
-        <location filename="../core/projection.py" line="383" />
+        <location filename="../core/projection.py" line="393" />
         <source>Detection {det_id}: the field {field} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}：字段 {field} 为空</translation>
     </message>
     <message>
         <location filename="../core/detections.py" line="114" />
-        <location filename="../core/projection.py" line="375" />
+        <location filename="../core/projection.py" line="385" />
         <source>Detection {det_id}, field {field}: expected a number, found '{value}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}，字段 {field}：应为数字，实际为 '{value}'</translation>
@@ -2993,56 +2993,56 @@
         <translation>{path} 中没有点位于裁剪区域内；{output} 为空</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="592" />
+        <location filename="../core/projection.py" line="605" />
         <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 个检测结果中有 {ok} 个在点云中找到了表面（{no_points} 个没有点，{no_surface} 个没有平面）</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="404" />
-        <location filename="../core/projection.py" line="659" />
+        <location filename="../core/projection.py" line="414" />
+        <location filename="../core/projection.py" line="672" />
         <source>{source} has no ground points (class 2) where the signs are: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{source} 在标志所在区域没有地面点（类别 2）：请先对其运行 roadsigns:groundfilter（或用其他工具进行地面分类）</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="553" />
+        <location filename="../core/projection.py" line="566" />
         <source>The maximum range must exceed {min} m, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>最大距离必须大于 {min} m，实际为 {value} m</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="368" />
+        <location filename="../core/projection.py" line="378" />
         <source>The candidates lack the field(s) {fields}; expected the output of Project detections</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>候选缺少字段 {fields}；应为“将检测投影到点云”的输出</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="393" />
+        <location filename="../core/projection.py" line="403" />
         <source>Unknown candidate status {status!r}; expected ok, no_points or no_surface</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未知的候选状态 {status!r}；应为 ok、no_points 或 no_surface</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="397" />
+        <location filename="../core/projection.py" line="407" />
         <source>A candidate with status ok has no position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>状态为 ok 的候选没有位置</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="418" />
+        <location filename="../core/projection.py" line="428" />
         <source>The point index lacks {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点索引缺少 {names}</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="558" />
+        <location filename="../core/projection.py" line="571" />
         <source>No detections to project; the candidates are empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有要投影的检测结果；候选为空</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="588" />
+        <location filename="../core/projection.py" line="601" />
         <source>{path} has no point inside the detections' frusta; no candidate found</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 在检测结果的视锥内没有点；未找到候选</translation>

@@ -8,6 +8,7 @@ x1, y1, x2, y2, score, class in input pixels (the plugin's "nms" layout).
 """
 from __future__ import annotations
 
+import json
 import math
 import os
 
@@ -43,6 +44,9 @@ class SepConv(nn.Sequential):
 
 #: The bundled detector's widths: backbone stages at strides 4/8/16/32, pyramid, head.
 ARCH_DEFAULT = {"widths": (32, 48, 96, 160), "fpn": 64, "head": 32}
+#: The exported file's metadata key holding its network's widths (JSON of ``SignNet.arch``),
+#: which ``--init`` from the file reads; files exported before 27 November lack it.
+ARCH_METADATA_KEY = "architecture"
 
 
 class SignNet(nn.Module):
@@ -170,7 +174,8 @@ def export_onnx(net: SignNet, path: str, class_names, size_px: int = 640, extra_
     proto = onnx.load(tmp)
     meta = {"names": "{" + ", ".join(f"{k}: '{n}'" for k, n in enumerate(class_names)) + "}",
             "task": "detect", "imgsz": f"[{size_px}, {size_px}]", "stride": str(STRIDE),
-            "author": "Road Sign Inventory (devtools/train)", "license": "see models/README.md"}
+            "author": "Road Sign Inventory (devtools/train)", "license": "see models/README.md",
+            ARCH_METADATA_KEY: json.dumps(dict(net.arch, widths=list(net.arch["widths"])))}
     meta.update(extra_metadata or {})
     for key, value in meta.items():
         entry = proto.metadata_props.add()

@@ -18,6 +18,7 @@ from .data import CLASS_INDEX, CLASSES, Sample
 from .metrics import average_precision, best_f1_threshold, match_image, summarise
 from .model import (
     ARCH_DEFAULT,
+    ARCH_METADATA_KEY,
     PLUGIN_DEFAULT_CONFIDENCE,
     STRIDE,
     ConvBN,
@@ -435,6 +436,16 @@ def save_checkpoint(path, net, ema, opt, scaler, step, elapsed_s, history, best_
     os.replace(tmp, path)
 
 
+def onnx_arch(onnx_path: str) -> dict:
+    """The widths an exported file records (``model.ARCH_METADATA_KEY``), else
+    ``model.ARCH_DEFAULT`` (files exported before 27 November: give a wider one's widths)."""
+    import onnx
+
+    meta = {p.key: p.value for p in onnx.load(onnx_path, load_external_data=False).metadata_props}
+    recorded = json.loads(meta[ARCH_METADATA_KEY]) if ARCH_METADATA_KEY in meta else {}
+    return dict(ARCH_DEFAULT, **{k: tuple(v) if k == "widths" else int(v) for k, v in recorded.items()})
+
+
 def checkpoint_arch(state) -> dict:
     """The widths a checkpoint's network has (``model.ARCH_DEFAULT`` for those saved before
     checkpoints recorded them)."""
@@ -504,7 +515,7 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
     elif init and init.endswith(".onnx"):
         calib = [batch_tensors([mix.sample() for _ in range(batch_size)], crop_px, len(CLASSES))[0]
                  for _ in range(6)]
-        net = SignNet(len(CLASSES))   # the bundled files' widths; a wider export needs its own
+        net = SignNet(len(CLASSES), **onnx_arch(init))
         try:
             recover_from_onnx(net, init, calib)
         except ValueError as e:

@@ -113,11 +113,14 @@ def test_photo_candidates_are_merged_across_classes_best_first_and_off_the_detec
                       [200, 0, 220, 20],   # a candidate
                       [300, 0, 320, 20]], float)  # under the floor
     scores = np.array([0.9, 0.3, 0.2, 0.3, 0.1, 0.01])
-    sure, cands = bd.photo_candidates(boxes, scores, confidence=0.5)
+    sure, cands = bd.photo_candidates(boxes, scores, confidence=0.5, floor=0.05)
     assert sure.tolist() == [True, False, False, False, False, False]
     assert cands.tolist() == [3, 4]
     _, higher = bd.photo_candidates(boxes, scores, confidence=0.5, floor=0.15)
     assert higher.tolist() == [3]
+    _, default = bd.photo_candidates(boxes, scores, confidence=0.5)   # the plugin's floor
+    floor = bd.rescue_mod.DEFAULT_RESCUE_CONFIDENCE
+    assert default.tolist() == [j for j in (3, 4) if scores[j] >= floor]
 
 
 def test_photo_scales_are_the_view_densities_against_a_4096_px_panorama():

@@ -47,3 +47,23 @@ def test_widening_only_part_of_the_network_and_refusing_to_narrow():
         assert torch.allclose(small(x)[0], deep(x)[0], atol=1e-4)
     with pytest.raises(ValueError, match="narrower"):
         widened(small, widths=(16, 48, 96, 160), fpn=64, head=32)
+
+
+def test_an_exported_file_records_its_widths_for_init(tmp_path):
+    """``--init`` from an exported file builds the network of the file's recorded widths
+    (``onnx_arch``), so a wider file needs no --widths; an older file without the record
+    gives the defaults."""
+    import onnx
+
+    from devtools.train.model import ARCH_METADATA_KEY, export_onnx
+    from devtools.train.train import onnx_arch
+
+    wide = widened(SignNet(6), widths=(32, 64, 128, 256), fpn=96, head=32)
+    path = export_onnx(wide, str(tmp_path / "wide.onnx"), [str(k) for k in range(6)], size_px=64)
+    assert onnx_arch(path) == wide.arch
+    proto = onnx.load(path)
+    kept = [p for p in proto.metadata_props if p.key != ARCH_METADATA_KEY]
+    del proto.metadata_props[:]
+    proto.metadata_props.extend(kept)
+    onnx.save(proto, str(tmp_path / "old.onnx"))
+    assert onnx_arch(str(tmp_path / "old.onnx")) == ARCH_DEFAULT
