@@ -9,7 +9,7 @@ PLUGIN_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ICON_PATH = os.path.join(PLUGIN_DIR, "icons", "roadsigns.svg")
 MODELS_DIR = os.path.join(PLUGIN_DIR, "models")
 #: The detector shipped with the plugin (``roadsigns:detectsigns`` with an empty MODEL): the
-#: float detector quantised to int8 (models/README.md: as accurate, 1.2-1.3 times faster).
+#: float detector quantised to int8 (models/README.md: as accurate, about twice as fast).
 BUNDLED_MODEL = os.path.join(MODELS_DIR, "roadsigns-int8.onnx")
 #: The same detector in float32, which the int8 file is quantised from and training starts
 #: from (``python -m devtools.train --init``); MODEL may name it.
