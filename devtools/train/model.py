@@ -42,7 +42,8 @@ class SepConv(nn.Sequential):
         super().__init__(ConvBN(cin, cin, 3, groups=cin), ConvBN(cin, cout, 1))
 
 
-#: The bundled detector's widths: backbone stages at strides 4/8/16/32, pyramid, head.
+#: The default widths (the 1.10 M detector bundled until 27 November; the bundled file is
+#: wider, see its metadata): backbone stages at strides 4/8/16/32, pyramid, head.
 ARCH_DEFAULT = {"widths": (32, 48, 96, 160), "fpn": 64, "head": 32}
 #: The exported file's metadata key holding its network's widths (JSON of ``SignNet.arch``),
 #: which ``--init`` from the file reads; files exported before 27 November lack it.

@@ -297,7 +297,6 @@ def _disc_points(rng, radius_m, n, noise_m, bulge_radius_m=None):
     return np.column_stack([x, y, z])
 
 
-
 def _sign_in_its_box(points_m):
     """A disc's points as :func:`projection.find_surface` gets them: the station 10 m out
     on +x, the box-centre ray towards the disc, the box the disc's 0.6 m square."""
