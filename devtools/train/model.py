@@ -185,3 +185,13 @@ def export_onnx(net: SignNet, path: str, class_names, size_px: int = 640, extra_
     os.remove(tmp)
     return path
 
+
+def onnx_arch(onnx_path: str) -> dict:
+    """The widths an exported file records (:data:`ARCH_METADATA_KEY`, written by
+    :func:`export_onnx`), else :data:`ARCH_DEFAULT` (files exported before 27 November: a
+    wider one's widths are then given with ``--widths``)."""
+    import onnx
+
+    meta = {p.key: p.value for p in onnx.load(onnx_path, load_external_data=False).metadata_props}
+    recorded = json.loads(meta[ARCH_METADATA_KEY]) if ARCH_METADATA_KEY in meta else {}
+    return dict(ARCH_DEFAULT, **{k: tuple(v) if k == "widths" else int(v) for k, v in recorded.items()})

@@ -18,7 +18,6 @@ from .data import CLASS_INDEX, CLASSES, Sample
 from .metrics import average_precision, best_f1_threshold, match_image, summarise
 from .model import (
     ARCH_DEFAULT,
-    ARCH_METADATA_KEY,
     PLUGIN_DEFAULT_CONFIDENCE,
     STRIDE,
     ConvBN,
@@ -26,6 +25,7 @@ from .model import (
     calibration_power,
     decode,
     export_onnx,
+    onnx_arch,
     widened,
 )
 
@@ -434,16 +434,6 @@ def save_checkpoint(path, net, ema, opt, scaler, step, elapsed_s, history, best_
     tmp = path + ".tmp"
     torch.save(state, tmp)
     os.replace(tmp, path)
-
-
-def onnx_arch(onnx_path: str) -> dict:
-    """The widths an exported file records (``model.ARCH_METADATA_KEY``), else
-    ``model.ARCH_DEFAULT`` (files exported before 27 November: give a wider one's widths)."""
-    import onnx
-
-    meta = {p.key: p.value for p in onnx.load(onnx_path, load_external_data=False).metadata_props}
-    recorded = json.loads(meta[ARCH_METADATA_KEY]) if ARCH_METADATA_KEY in meta else {}
-    return dict(ARCH_DEFAULT, **{k: tuple(v) if k == "widths" else int(v) for k, v in recorded.items()})
 
 
 def checkpoint_arch(state) -> dict:

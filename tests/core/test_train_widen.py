@@ -55,8 +55,7 @@ def test_an_exported_file_records_its_widths_for_init(tmp_path):
     gives the defaults."""
     import onnx
 
-    from devtools.train.model import ARCH_METADATA_KEY, export_onnx
-    from devtools.train.train import onnx_arch
+    from devtools.train.model import ARCH_METADATA_KEY, export_onnx, onnx_arch
 
     wide = widened(SignNet(6), widths=(32, 64, 128, 256), fpn=96, head=32)
     path = export_onnx(wide, str(tmp_path / "wide.onnx"), [str(k) for k in range(6)], size_px=64)
