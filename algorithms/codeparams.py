@@ -26,9 +26,10 @@ class ReadsCodes:
         self.add_file(
             self.CLASSIFIER, self.tr("Sign-code classifier (empty: the bundled one)"),
             self.tr("An ONNX classifier of sign crops: float input [N, 3, S, S] (RGB, 0..1), output [N, C], "
-                    "the codes it answers in its metadata 'names' (each in the codes table, or 'other'). The "
-                    "format is in models/README.md (section <i>Sign-code classifier: the format</i>). Empty uses "
-                    "the classifier bundled with the plugin (models/signcodes.onnx)."),
+                    "the codes it answers in its metadata 'names' (each in the codes table, 'other', or "
+                    "'unlisted:' and a class for a sign whose code the table lacks). The format is in "
+                    "models/README.md (section <i>Sign-code classifier: the format</i>). Empty uses the "
+                    "classifier bundled with the plugin (models/signcodes.onnx)."),
             file_filter=self.tr("ONNX models (*.onnx);;All files (*.*)"), optional=True, advanced=True)
         self.add_file(
             self.CODES_TABLE, self.tr("Sign codes table (empty: the bundled one)"),

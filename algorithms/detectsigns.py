@@ -16,7 +16,7 @@ from ..core.detections import DETECTION_FIELDS, drive_detections
 from ..core.detector import DEFAULT_CONFIDENCE, DEFAULT_MIN_BOX_PX, DEFAULT_MIN_STATION_SPACING_M, spaced_stations
 from ..core.panorama import DEFAULT_FORE_AFT_VIEWS, DEFAULT_UPWARD_VIEWS
 from ..core.rescue import DEFAULT_RESCUE_CONFIDENCE, DEFAULT_RULE
-from ..core.signcodes import OTHER_CODE
+from ..core.signcodes import is_code
 from ..core.trajectory import STATION_FIELDS, Stations
 from .base import RoadSignsAlgorithm
 from .codeparams import ReadsCodes
@@ -224,8 +224,8 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
         feedback.pushInfo(self.tr("{} detections in {} panoramas ({} skipped).").format(
             len(detections), len(chosen) - len(found.skipped), len(found.skipped)))
         if classifier is not None and len(detections):
-            coded = sum(1 for c in detections.code if c and c != OTHER_CODE)
-            feedback.pushInfo(self.tr("Sign codes read in {} of the {} detections (the others: other).").format(
-                coded, len(detections)))
+            coded = sum(1 for c in detections.code if is_code(c))
+            feedback.pushInfo(self.tr("Sign codes read in {} of the {} detections (the others: other, or "
+                                      "a sign whose code the table lacks).").format(coded, len(detections)))
         return {self.OUTPUT: dest_id, self.DETECTIONS: len(detections), self.SKIPPED_IMAGES: len(found.skipped)}
 

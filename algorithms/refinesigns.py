@@ -93,7 +93,8 @@ class RefineSigns(RoadSignsAlgorithm):
             self.CODE_CONFIDENCE, self.tr("Minimum code confidence"), 0.5,  # core.refine.DEFAULT_CODE_CONFIDENCE
             self.tr("A sign's voted code is kept when its support (its share of the views' weighted vote x "
                     "the mean probability the classifier gave it, 0-1: the code_score field) is at least "
-                    "this; else the code field stays empty. 0 keeps every code but 'other'."),
+                    "this; else the code field stays empty. 0 keeps every code but 'other' and 'unlisted:...' (a sign "
+                    "whose code the table lacks)."),
             minimum=0.0, maximum=1.0)
         self.add_file(
             self.CODES_TABLE, self.tr("Sign codes table (empty: the bundled one)"),

@@ -104,6 +104,7 @@ from .signcodes import (  # noqa: F401 (CodeVote and the constants are the refin
     code_support,
     crop_view,
     decide_code,
+    is_code,
 )
 
 DEFAULT_MERGE_RADIUS_M = 1.0
@@ -355,7 +356,8 @@ def vote_code(cand: ProjectionResult, rows: Rows, klass: str, table: Optional[Co
     share of the vote x the ``w``-weighted mean ``p`` of the views that read it (0..1; a
     code all views read with certainty has 1): ``code_score``. ``code_views``: the views
     that read it. ``code`` and ``code_name`` (from ``table``) are left empty when the winner
-    is :data:`.signcodes.OTHER_CODE` or its support is below ``confidence``
+    is :data:`.signcodes.OTHER_CODE` or a class whose code the table lacks (``unlisted:...``,
+    :func:`.signcodes.is_code`), or its support is below ``confidence``
     (``code_score`` and ``code_views`` still describe the winner); no view with a code:
     all empty, ``code_score`` NaN.
 
@@ -377,7 +379,7 @@ def vote_code(cand: ProjectionResult, rows: Rows, klass: str, table: Optional[Co
     codes = [det.code[k] for k in read]
     w = np.clip(np.nan_to_num(det.score[read]), 0.0, None) * crop_side_px(det, read)
     winner, support, n_views = code_support(codes, det.code_score[read], w)
-    if table is not None and winner != OTHER_CODE and support >= confidence and winner not in table:
+    if table is not None and is_code(winner) and support >= confidence and winner not in table:
         k = read[codes.index(winner)]
         raise InputError("Detection {det_id} has the sign code {code}, which is not in the sign "
                          "codes table {table}: give the codes table the classifier was run with",

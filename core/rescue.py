@@ -19,7 +19,7 @@ from typing import Optional, Sequence, Tuple
 
 import numpy as np
 
-from .signcodes import OTHER_CODE
+from .signcodes import OTHER_CODE, unlisted_code_class
 
 #: Default of detectsigns' RESCUE_CONFIDENCE: the lowest detector score of a candidate. 0.2
 #: since the wider detector (27 November): at 0.05 its candidates cost precision on
@@ -95,10 +95,13 @@ OTHER_COLUMN, UNMAPPED_COLUMN = -2, -1
 def code_classes(names: Sequence[str], table, class_names: Sequence[str]) -> np.ndarray:
     """Per classifier column (``names``), the class of its code as an index into
     ``class_names`` (the detector's); :data:`UNMAPPED_COLUMN` for a code of a class the
-    detector lacks (or not in the codes ``table``), :data:`OTHER_COLUMN` for ``other``."""
+    detector lacks (or not in the codes ``table``), :data:`OTHER_COLUMN` for ``other``. An
+    ``unlisted:`` name (a sign of a class whose code the table lacks,
+    :func:`.signcodes.unlisted_code`) counts for its class."""
     out = np.empty(len(names), np.int64)
     for k, name in enumerate(names):
-        klass = class_of_code(name, table, class_names) if name != OTHER_CODE else None
+        klass = unlisted_code_class(name) or (class_of_code(name, table, class_names) if name != OTHER_CODE else None)
+        klass = klass if klass in class_names else None
         out[k] = (OTHER_COLUMN if name == OTHER_CODE else
                   UNMAPPED_COLUMN if klass is None else list(class_names).index(klass))
     return out

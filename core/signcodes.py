@@ -42,6 +42,32 @@ SIGN_CLASSES = ("warning", "prohibitory", "mandatory", "information", "stop", "y
 #: The classifier's name for "no code of the table" (or no sign at all); never in a table.
 OTHER_CODE = "other"
 
+#: Prefix of the names a classifier may answer for "a sign of this class whose code the
+#: table lacks" (``unlisted:prohibitory``: a foreign no-parking sign, a limit no code has).
+#: Such a reading gives no code, but it tells a sign of that class from a look-alike (the
+#: second look, ``core/rescue.py``). Never in a table.
+UNLISTED_CODE_PREFIX = "unlisted:"
+
+
+def unlisted_code(class_name: str) -> str:
+    """The classifier's name for a sign of ``class_name`` whose code the table lacks."""
+    return UNLISTED_CODE_PREFIX + class_name
+
+
+def unlisted_code_class(name: str) -> Optional[str]:
+    """The class of an :func:`unlisted_code` name (one of :data:`SIGN_CLASSES`), else None."""
+    if not name.startswith(UNLISTED_CODE_PREFIX):
+        return None
+    klass = name[len(UNLISTED_CODE_PREFIX):]
+    return klass if klass in SIGN_CLASSES else None
+
+
+def is_code(name: str) -> bool:
+    """Whether a classifier's answer is a code of the table: not empty, not
+    :data:`OTHER_CODE`, not an :func:`unlisted_code`."""
+    return bool(name) and name != OTHER_CODE and not name.startswith(UNLISTED_CODE_PREFIX)
+
+
 #: Fraction of the box's longer angular side added on each side of a crop.
 DEFAULT_CROP_MARGIN = 0.15
 
@@ -159,7 +185,7 @@ def read_codes_table(path: str) -> CodesTable:
         if not code:
             raise InputError("Sign codes table {path}, line {line}: the code is empty",
                              path=path, line=line_no)
-        if code.lower() == OTHER_CODE:
+        if code.lower() == OTHER_CODE or code.lower().startswith(UNLISTED_CODE_PREFIX):
             raise InputError("Sign codes table {path}, line {line}: the code {code} is reserved "
                              "for signs the classifier cannot read and must not be in the table",
                              path=path, line=line_no, code=code)
@@ -260,7 +286,8 @@ class CodeClassifier:
         if twice:
             raise InputError("The model {path} names {names} more than once in its metadata "
                              "'names'", path=self.model_path, names=", ".join(twice))
-        unknown = [n for n in names if n != OTHER_CODE and n not in self.table]
+        unknown = [n for n in names if (is_code(n) and n not in self.table)
+                   or (n.startswith(UNLISTED_CODE_PREFIX) and unlisted_code_class(n) is None)]
         if unknown:
             shown = ", ".join(unknown[:5]) + (" and {} more".format(len(unknown) - 5)
                                               if len(unknown) > 5 else "")
@@ -344,9 +371,11 @@ class CodeClassifier:
 
     def describe(self) -> str:
         """One line for the log: file, number of codes, input size, output kind, providers."""
-        n_codes = sum(1 for n in self.names if n != OTHER_CODE)
-        return ("{}: {} codes{}, input {} x {} px RGB crops (margin {:g}), {}, batch {}, "
+        n_codes = sum(1 for n in self.names if is_code(n))
+        n_classes = sum(1 for n in self.names if unlisted_code_class(n))
+        return ("{}: {} codes{}{}, input {} x {} px RGB crops (margin {:g}), {}, batch {}, "
                 "providers {}".format(os.path.basename(self.model_path), n_codes,
+                                      ", {} classes of signs without a code".format(n_classes) if n_classes else "",
                                       " and '{}'".format(OTHER_CODE) if OTHER_CODE in self.names else "",
                                       self.input_px, self.input_px, self.crop_margin,
                                       self.output_kind, self.max_batch,
@@ -600,7 +629,7 @@ def decide_code(winner: str, support: float, n_views: int, klass: str,
     (``code_check = code_dropped``). Without a ``table`` the name is empty and there is no
     check. The caller makes sure ``winner`` is in ``table``.
     """
-    if not winner or winner == OTHER_CODE or not support >= confidence:
+    if not is_code(winner) or not support >= confidence:
         return CodeVote("", "", support, n_views, "", klass)
     if table is None:
         return CodeVote(winner, "", support, n_views, "", klass)

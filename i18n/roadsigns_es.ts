@@ -247,11 +247,6 @@
         <translation>Capa LineStringZ, un rayo por detección, con det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views y los campos de pose de la estación.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="228" />
-        <source>Sign codes read in {} of the {} detections (the others: other).</source>
-        <translation>Códigos de señal leídos en {} de las {} detecciones (las demás: other).</translation>
-    </message>
-    <message>
         <location filename="../algorithms/detectsigns.py" line="131" />
         <source>Skip stations closer than (m)</source>
         <translation>Omitir estaciones a menos de (m)</translation>
@@ -305,6 +300,11 @@
         <location filename="../algorithms/detectsigns.py" line="82" />
         <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a class of signs in it with a probability of at least {score} (the probabilities of the codes of that class added up: a speed limit whose digits are unsure is still a prohibitory sign), its box is at least {px} px on its shorter side and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes that class and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.930 of the signs at a precision of 0.971, against 0.831 at 0.967 without it, for under 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
         <translation>Los recuadros que el detector puntúa desde este valor hasta la confianza mínima reciben una segunda mirada: se conserva uno cuando el clasificador de códigos de señal lee en él una clase de señales con una probabilidad de al menos {score} (las probabilidades de los códigos de esa clase sumadas: un límite de velocidad cuyas cifras no son seguras sigue siendo una señal de prohibición), su recuadro mide al menos {px} px en su lado más corto y al menos un {share:.0%} de él son colores de señal (rojo, azul o amarillo saturados); entonces toma esa clase y conserva su propia puntuación. En fotografías reales de calles (GTSDB 500-599), con la confianza mínima por defecto, encuentra 0,930 de las señales con una precisión de 0,971, frente a 0,831 con 0,967 sin ella, por menos de un 5 % del tiempo de detección. Necesita que se lean los códigos de señal; un valor igual o superior a la confianza mínima la desactiva.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="228" />
+        <source>Sign codes read in {} of the {} detections (the others: other, or a sign whose code the table lacks).</source>
+        <translation>Códigos de señal leídos en {} de las {} detecciones (las demás: other, o una señal cuyo código no está en la tabla).</translation>
     </message>
 </context>
 <context>
@@ -1547,48 +1547,48 @@
     </message>
     <message>
         <location filename="../algorithms/codeparams.py" line="26" />
-        <source>An ONNX classifier of sign crops: float input [N, 3, S, S] (RGB, 0..1), output [N, C], the codes it answers in its metadata 'names' (each in the codes table, or 'other'). The format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;). Empty uses the classifier bundled with the plugin (models/signcodes.onnx).</source>
-        <translation>Un clasificador ONNX de recortes de señales: entrada float [N, 3, S, S] (RGB, 0..1), salida [N, C], los códigos que puede responder en sus metadatos 'names' (cada uno en la tabla de códigos, o bien 'other'). El formato está en models/README.md (sección &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;). Vacío usa el clasificador incluido con el complemento (models/signcodes.onnx).</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/codeparams.py" line="26" />
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>Modelos ONNX (*.onnx);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/codeparams.py" line="33" />
+        <location filename="../algorithms/codeparams.py" line="34" />
         <source>Sign codes table (empty: the bundled one)</source>
         <translation>Tabla de códigos de señal (vacío: la incluida)</translation>
     </message>
     <message>
-        <location filename="../algorithms/codeparams.py" line="33" />
+        <location filename="../algorithms/codeparams.py" line="34" />
         <source>The codes the classifier may answer, with their names and classes: UTF-8 text, semicolon-separated, the header code;name;class (format in models/README.md). Empty uses the bundled table of German codes (models/sign-codes-de.csv).</source>
         <translation>Los códigos que el clasificador puede responder, con sus nombres y clases: texto UTF-8, separado por punto y coma, con la cabecera code;name;class (formato en models/README.md). Vacío usa la tabla incluida de códigos alemanes (models/sign-codes-de.csv).</translation>
     </message>
     <message>
-        <location filename="../algorithms/codeparams.py" line="33" />
+        <location filename="../algorithms/codeparams.py" line="34" />
         <source>CSV files (*.csv *.txt);;All files (*.*)</source>
         <translation>Archivos CSV (*.csv *.txt);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/codeparams.py" line="46" />
+        <location filename="../algorithms/codeparams.py" line="47" />
         <source>Sign codes are not read (Read the sign codes is off).</source>
         <translation>Los códigos de señal no se leen («Leer los códigos de señal» está desactivado).</translation>
     </message>
     <message>
-        <location filename="../algorithms/codeparams.py" line="52" />
+        <location filename="../algorithms/codeparams.py" line="53" />
         <source>The bundled sign-code classifier {} is missing: no sign code is read.</source>
         <translation>Falta el clasificador de códigos de señal incluido {}: no se lee ningún código de señal.</translation>
     </message>
     <message>
-        <location filename="../algorithms/codeparams.py" line="56" />
+        <location filename="../algorithms/codeparams.py" line="57" />
         <source>Sign-code classifier not found: {}</source>
         <translation>No se encontró el clasificador de códigos de señal: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/codeparams.py" line="59" />
+        <location filename="../algorithms/codeparams.py" line="60" />
         <source>Sign codes: {}</source>
         <translation>Códigos de señal: {}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="26" />
+        <source>An ONNX classifier of sign crops: float input [N, 3, S, S] (RGB, 0..1), output [N, C], the codes it answers in its metadata 'names' (each in the codes table, 'other', or 'unlisted:' and a class for a sign whose code the table lacks). The format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;). Empty uses the classifier bundled with the plugin (models/signcodes.onnx).</source>
+        <translation>Un clasificador ONNX de recortes de señales: entrada float [N, 3, S, S] (RGB, 0..1), salida [N, C], los códigos que puede responder en sus metadatos 'names' (cada uno en la tabla de códigos, 'other', o bien 'unlisted:' y una clase para una señal cuyo código no está en la tabla). El formato está en models/README.md (sección &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;). Vacío usa el clasificador incluido con el complemento (models/signcodes.onnx).</translation>
     </message>
 </context>
 <context>
@@ -1604,7 +1604,7 @@
         <translation>Fusiona las vistas de cada señal y la refina en la nube: la capa de señales.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="143" />
+        <location filename="../algorithms/refinesigns.py" line="144" />
         <source>Sign candidates</source>
         <translation>Candidatos de señal</translation>
     </message>
@@ -1634,112 +1634,112 @@
         <translation>Los candidatos de la misma clase más cercanos que esto (metros) y con normales de plano concordantes se toman como una sola señal.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="104" />
+        <location filename="../algorithms/refinesigns.py" line="105" />
         <source>Panorama folder (for review chips)</source>
         <translation>Carpeta de panoramas (para las miniaturas de revisión)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="104" />
+        <location filename="../algorithms/refinesigns.py" line="105" />
         <source>The folder of the panoramas (as for Import trajectory). When given, an image chip of each sign is cut from its best panorama for review.</source>
         <translation>La carpeta de los panoramas (como para «Importar trayectoria y panoramas»). Si se indica, se recorta una miniatura de cada señal de su mejor panorama para la revisión.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="112" />
+        <location filename="../algorithms/refinesigns.py" line="113" />
         <source>Signs</source>
         <translation>Señales</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="112" />
+        <location filename="../algorithms/refinesigns.py" line="113" />
         <source>PointZ sign layer at the panel centres (fields in docs/formats.md), and chip: the relative path of the sign's review picture.</source>
         <translation>Capa de señales PointZ en los centros de los paneles (campos en docs/formats.md), y chip: la ruta relativa de la imagen de revisión de la señal.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="116" />
+        <location filename="../algorithms/refinesigns.py" line="117" />
         <source>Panel outlines</source>
         <translation>Contornos de los paneles</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="116" />
+        <location filename="../algorithms/refinesigns.py" line="117" />
         <source>PolygonZ layer of each panel's rectangle in its plane (signs placed from the cloud).</source>
         <translation>Capa PolygonZ con el rectángulo de cada panel en su plano (señales situadas a partir de la nube).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="120" />
+        <location filename="../algorithms/refinesigns.py" line="121" />
         <source>Sign points</source>
         <translation>Puntos de las señales</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="120" />
+        <location filename="../algorithms/refinesigns.py" line="121" />
         <source>LAZ (*.laz);;LAS (*.las)</source>
         <translation>LAZ (*.laz);;LAS (*.las)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="120" />
+        <location filename="../algorithms/refinesigns.py" line="121" />
         <source>A LAS/LAZ file of the points of every sign panel, all dimensions kept.</source>
         <translation>Un archivo LAS/LAZ con los puntos de cada panel de señal, con todas las dimensiones.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="123" />
+        <location filename="../algorithms/refinesigns.py" line="124" />
         <source>Review report</source>
         <translation>Informe de revisión</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="123" />
+        <location filename="../algorithms/refinesigns.py" line="124" />
         <source>HTML files (*.html)</source>
         <translation>Archivos HTML (*.html)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="123" />
+        <location filename="../algorithms/refinesigns.py" line="124" />
         <source>An HTML page with every sign's chip and attributes, to confirm signs without opening panoramas (needs the panorama folder).</source>
         <translation>Una página HTML con la miniatura y los atributos de cada señal, para confirmar las señales sin abrir los panoramas (necesita la carpeta de panoramas).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="141" />
+        <location filename="../algorithms/refinesigns.py" line="142" />
         <source>The candidates</source>
         <translation>Los candidatos</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="173" />
+        <location filename="../algorithms/refinesigns.py" line="174" />
         <source>The review report needs the panorama folder: not written.</source>
         <translation>El informe de revisión necesita la carpeta de panoramas: no se escribió.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="179" />
+        <location filename="../algorithms/refinesigns.py" line="180" />
         <source>{} sign points written to {}</source>
         <translation>{} puntos de señales escritos en {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="204" />
+        <location filename="../algorithms/refinesigns.py" line="205" />
         <source>{} signs from {} candidates ({})</source>
         <translation>{} señales a partir de {} candidatos ({})</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="214" />
+        <location filename="../algorithms/refinesigns.py" line="215" />
         <source>Review chips need a sign layer written to a file: skipped.</source>
         <translation>Las miniaturas de revisión necesitan una capa de señales escrita en un archivo: se omiten.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="227" />
+        <location filename="../algorithms/refinesigns.py" line="228" />
         <source>Road signs for review</source>
         <translation>Señales viales para revisión</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="229" />
+        <location filename="../algorithms/refinesigns.py" line="230" />
         <source>{} review chips in {}</source>
         <translation>{} miniaturas de revisión en {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="108" />
+        <location filename="../algorithms/refinesigns.py" line="109" />
         <source>Cloud CRS (when the file has none)</source>
         <translation>SRC de la nube (si el archivo no tiene)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="108" />
+        <location filename="../algorithms/refinesigns.py" line="109" />
         <source>The cloud's CRS when the file records none (it must be the candidates' CRS); it overrides a CRS in the file. The CRS is never guessed.</source>
         <translation>El SRC de la nube cuando el archivo no registra ninguno (debe ser el SRC de los candidatos); sustituye al SRC del archivo. El SRC nunca se adivina.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="148" />
+        <location filename="../algorithms/refinesigns.py" line="149" />
         <source>Panorama folder not found: {}</source>
         <translation>No se encontró la carpeta de panoramas: {}</translation>
     </message>
@@ -1754,24 +1754,24 @@
         <translation>Confianza mínima de código</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="92" />
-        <source>A sign's voted code is kept when its support (its share of the views' weighted vote x the mean probability the classifier gave it, 0-1: the code_score field) is at least this; else the code field stays empty. 0 keeps every code but 'other'.</source>
-        <translation>El código votado de una señal se conserva cuando su apoyo (su proporción en la votación ponderada de las vistas x la probabilidad media que le dio el clasificador, 0-1: el campo code_score) es al menos este valor; si no, el campo code queda vacío. 0 conserva todos los códigos salvo 'other'.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/refinesigns.py" line="98" />
+        <location filename="../algorithms/refinesigns.py" line="99" />
         <source>Sign codes table (empty: the bundled one)</source>
         <translation>Tabla de códigos de señal (vacío: la incluida)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="98" />
+        <location filename="../algorithms/refinesigns.py" line="99" />
         <source>The codes table the classifier of Detect signs was run with: it gives each code its name (code_name) and its class (for the class check). Format in models/README.md; empty uses the bundled table of German codes (models/sign-codes-de.csv).</source>
         <translation>La tabla de códigos con la que se ejecutó el clasificador de «Detectar señales en panoramas»: da a cada código su nombre (code_name) y su clase (para la comprobación de clase). Formato en models/README.md; vacío usa la tabla incluida de códigos alemanes (models/sign-codes-de.csv).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="98" />
+        <location filename="../algorithms/refinesigns.py" line="99" />
         <source>CSV files (*.csv *.txt);;All files (*.*)</source>
         <translation>Archivos CSV (*.csv *.txt);;Todos los archivos (*.*)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="92" />
+        <source>A sign's voted code is kept when its support (its share of the views' weighted vote x the mean probability the classifier gave it, 0-1: the code_score field) is at least this; else the code field stays empty. 0 keeps every code but 'other' and 'unlisted:...' (a sign whose code the table lacks).</source>
+        <translation>El código votado de una señal se conserva cuando su apoyo (su proporción en la votación ponderada de las vistas x la probabilidad media que le dio el clasificador, 0-1: el campo code_score) es al menos este valor; si no, el campo code queda vacío. 0 conserva todos los códigos salvo 'other' y 'unlisted:...' (una señal cuyo código no está en la tabla).</translation>
     </message>
 </context>
 <context>
@@ -3048,253 +3048,253 @@
         <translation>{path} no tiene puntos dentro de los troncos de visión de las detecciones; no se encontró ningún candidato</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="134" />
+        <location filename="../core/refine.py" line="135" />
         <source>curved surface (a convex mirror?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>superficie curva (¿un espejo convexo?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="135" />
+        <location filename="../core/refine.py" line="136" />
         <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>parte de una superficie plana mayor (¿una imagen en una valla publicitaria o una pared?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="968" />
+        <location filename="../core/refine.py" line="970" />
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} señales a partir de {candidates} candidatos ({from_images} situadas solo a partir de las imágenes)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1619" />
+        <location filename="../core/refine.py" line="1621" />
         <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{coded} de {signs} señales tienen código de señal; {from_code} tomaron su clase del código, {dropped} códigos se descartaron por la votación de clase (code_check)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1628" />
+        <location filename="../core/refine.py" line="1630" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>la altura de las estaciones menos {height} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="382" />
+        <location filename="../core/refine.py" line="384" />
         <source>Detection {det_id} has the sign code {code}, which is not in the sign codes table {table}: give the codes table the classifier was run with</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La detección {det_id} tiene el código de señal {code}, que no está en la tabla de códigos de señal {table}: indique la tabla de códigos con la que se ejecutó el clasificador</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="947" />
+        <location filename="../core/refine.py" line="949" />
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El radio de fusión debe ser positivo; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="950" />
+        <location filename="../core/refine.py" line="952" />
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay candidatos que refinar; la capa de señales está vacía</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1428" />
+        <location filename="../core/refine.py" line="1430" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids}: {reason}; situados en la mediana de los candidatos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1568" />
+        <location filename="../core/refine.py" line="1570" />
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: un panel de {width:.2f} x {height:.2f} m es demasiado grande para una señal {sign_class} (¿una valla publicitaria?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1573" />
+        <location filename="../core/refine.py" line="1575" />
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: vistos en una sola panorámica, con una puntuación de {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="478" />
+        <location filename="../core/refine.py" line="480" />
         <source>too few points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="481" />
+        <location filename="../core/refine.py" line="483" />
         <source>too few points in the boxes</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos en los recuadros</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="487" />
+        <location filename="../core/refine.py" line="489" />
         <source>no near-vertical plane</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>ningún plano casi vertical</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="491" />
+        <location filename="../core/refine.py" line="493" />
         <source>too few planar points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos planos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1422" />
+        <location filename="../core/refine.py" line="1424" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>sin nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1425" />
+        <location filename="../core/refine.py" line="1427" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: {reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1629" />
+        <location filename="../core/refine.py" line="1631" />
         <source>the lowest points below the sign</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>los puntos más bajos bajo la señal</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1633" />
+        <location filename="../core/refine.py" line="1635" />
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} señal(es) no tienen puntos de suelo (clase 2) a menos de {radius} m: su altura se mide desde {source}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="179" />
+        <location filename="../core/signcodes.py" line="205" />
         <source>Sign codes table {path} is empty: expected the header {expected} and one row per code</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La tabla de códigos de señal {path} está vacía: se esperaba la cabecera {expected} y una fila por código</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="182" />
+        <location filename="../core/signcodes.py" line="208" />
         <source>Sign codes table {path} holds no codes: expected one row per code after the header {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La tabla de códigos de señal {path} no contiene códigos: se esperaba una fila por código tras la cabecera {expected}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="394" />
+        <location filename="../core/signcodes.py" line="423" />
         <source>The box {box} is not four finite pixel coordinates u0, v0, u1, v1</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El recuadro {box} no son cuatro coordenadas de píxel finitas u0, v0, u1, v1</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="125" />
+        <location filename="../core/signcodes.py" line="151" />
         <source>Sign codes table not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró la tabla de códigos de señal: {path}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="127" />
+        <location filename="../core/signcodes.py" line="153" />
         <source>Cannot read the sign codes table {path}: it is not UTF-8 text (byte {position}); save it as UTF-8</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer la tabla de códigos de señal {path}: no es texto UTF-8 (byte {position}); guárdela como UTF-8</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="130" />
+        <location filename="../core/signcodes.py" line="156" />
         <source>Cannot read the sign codes table {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer la tabla de códigos de señal {path}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="155" />
+        <location filename="../core/signcodes.py" line="181" />
         <source>Sign codes table {path}, line {line}: expected 3 fields separated by semicolons ({expected}), found {count}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: se esperaban 3 campos separados por punto y coma ({expected}), se encontraron {count}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="160" />
+        <location filename="../core/signcodes.py" line="186" />
         <source>Sign codes table {path}, line {line}: the code is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: el código está vacío</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="163" />
+        <location filename="../core/signcodes.py" line="189" />
         <source>Sign codes table {path}, line {line}: the code {code} is reserved for signs the classifier cannot read and must not be in the table</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: el código {code} está reservado para las señales que el clasificador no puede leer y no debe figurar en la tabla</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="167" />
+        <location filename="../core/signcodes.py" line="193" />
         <source>Sign codes table {path}, line {line}: the name of {code} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: el nombre de {code} está vacío</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="170" />
+        <location filename="../core/signcodes.py" line="196" />
         <source>Sign codes table {path}, lines {first} and {line}: the code {code} is there twice</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, líneas {first} y {line}: el código {code} aparece dos veces</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="173" />
+        <location filename="../core/signcodes.py" line="199" />
         <source>Sign codes table {path}, line {line}: unknown class {found} for {code}; expected one of {classes}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: clase desconocida {found} para {code}; se esperaba una de {classes}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="219" />
+        <location filename="../core/signcodes.py" line="245" />
         <source>The model {path} is a {task} model; reading sign codes needs a classify model (metadata task = classify)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} es un modelo de {task}; la lectura de códigos de señal necesita un modelo de clasificación (metadatos task = classify)</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="229" />
+        <location filename="../core/signcodes.py" line="255" />
         <source>The model {path} takes an input {name} of shape {shape} and type {type}; supported: float [batch, 3, S, S] (RGB crops S x S pixels, values 0..1)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} recibe una entrada {name} de forma {shape} y tipo {type}; admitido: float [batch, 3, S, S] (recortes RGB de S x S píxeles, valores 0..1)</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="247" />
+        <location filename="../core/signcodes.py" line="273" />
         <source>The model {path} has an output of shape {shape} for a batch of {batch}; supported: [batch, C] with C = {count}, its number of names</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} tiene una salida de forma {shape} para un lote de {batch}; admitida: [batch, C] con C = {count}, su número de nombres</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="255" />
+        <location filename="../core/signcodes.py" line="281" />
         <source>The model {path} names no codes: its metadata needs 'names', a JSON list of the sign codes in output order (such as ["DE:206", "other"])</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} no nombra ningún código: sus metadatos necesitan 'names', una lista JSON de los códigos de señal en el orden de salida (como ["DE:206", "other"])</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="261" />
+        <location filename="../core/signcodes.py" line="287" />
         <source>The model {path} names {names} more than once in its metadata 'names'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} nombra {names} más de una vez en sus metadatos 'names'</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="267" />
+        <location filename="../core/signcodes.py" line="294" />
         <source>The model {path} answers codes that are not in the sign codes table {table}: {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} responde códigos que no están en la tabla de códigos de señal {table}: {names}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="275" />
+        <location filename="../core/signcodes.py" line="302" />
         <source>The model {path} has the metadata output = {found}; expected {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} tiene en sus metadatos output = {found}; se esperaba {expected}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="288" />
+        <location filename="../core/signcodes.py" line="315" />
         <source>The model {path} has the metadata crop_margin = {found}; expected a number from 0 to 2 (the fraction of the box's longer side added on each side)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} tiene en sus metadatos crop_margin = {found}; se esperaba un número de 0 a 2 (la fracción del lado mayor del recuadro que se añade a cada lado)</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="143" />
+        <location filename="../core/signcodes.py" line="169" />
         <source>Sign codes table {path}, line {line}: cannot split the line into fields ({error})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: no se puede dividir la línea en campos ({error})</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="149" />
+        <location filename="../core/signcodes.py" line="175" />
         <source>Sign codes table {path}, line {line}: expected the header {expected}, found {found}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: se esperaba la cabecera {expected}, se encontró {found}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="244" />
+        <location filename="../core/signcodes.py" line="270" />
         <source>The model {path} failed on a blank {side} x {side} crop: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} falló con un recorte en blanco de {side} x {side}: {error}</translation>

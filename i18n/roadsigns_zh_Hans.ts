@@ -247,11 +247,6 @@
         <translation>LineStringZ 图层，每个检测一条射线，包含字段 det_id、station_id、image、class、score、code、code_score、u0、v0、u1、v1、n_views 以及站点的位姿字段。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="228" />
-        <source>Sign codes read in {} of the {} detections (the others: other).</source>
-        <translation>{} 个检测读出了标志代码（共 {} 个检测；其余为 other）。</translation>
-    </message>
-    <message>
         <location filename="../algorithms/detectsigns.py" line="131" />
         <source>Skip stations closer than (m)</source>
         <translation>跳过间距小于此值的站点 (m)</translation>
@@ -305,6 +300,11 @@
         <location filename="../algorithms/detectsigns.py" line="82" />
         <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a class of signs in it with a probability of at least {score} (the probabilities of the codes of that class added up: a speed limit whose digits are unsure is still a prohibitory sign), its box is at least {px} px on its shorter side and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes that class and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.930 of the signs at a precision of 0.971, against 0.831 at 0.967 without it, for under 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
         <translation>检测器评分介于此值与最低置信度之间的框会接受二次检查：当标志代码分类器以至少 {score} 的概率在框中读出一类标志（该类别各代码的概率之和：数字不确定的限速标志仍是禁令标志）、框的短边至少 {px} 像素且至少 {share:.0%} 的像素为标志颜色（饱和的红、蓝或黄色）时，该框被保留；它随后采用该类别并保留自身的评分。在真实街道照片（GTSDB 500-599）上，使用默认的最低置信度时，它找到 0.930 的标志，精确率为 0.971；不使用时为 0.831，精确率为 0.967。代价不到检测时间的 5 %。需要读取标志代码；取值等于或高于最低置信度时关闭此功能。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="228" />
+        <source>Sign codes read in {} of the {} detections (the others: other, or a sign whose code the table lacks).</source>
+        <translation>{} 个检测读出了标志代码（共 {} 个检测；其余为 other，或代码表中没有其代码的标志）。</translation>
     </message>
 </context>
 <context>
@@ -1547,48 +1547,48 @@
     </message>
     <message>
         <location filename="../algorithms/codeparams.py" line="26" />
-        <source>An ONNX classifier of sign crops: float input [N, 3, S, S] (RGB, 0..1), output [N, C], the codes it answers in its metadata 'names' (each in the codes table, or 'other'). The format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;). Empty uses the classifier bundled with the plugin (models/signcodes.onnx).</source>
-        <translation>标志裁剪图像的 ONNX 分类器：float 输入 [N, 3, S, S]（RGB，0..1），输出 [N, C]，其可给出的代码写在元数据 'names' 中（每个代码都须在代码表中，或为 'other'）。格式见 models/README.md（&lt;i&gt;Sign-code classifier: the format&lt;/i&gt; 一节）。留空则使用插件内置的分类器（models/signcodes.onnx）。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/codeparams.py" line="26" />
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>ONNX 模型 (*.onnx);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/codeparams.py" line="33" />
+        <location filename="../algorithms/codeparams.py" line="34" />
         <source>Sign codes table (empty: the bundled one)</source>
         <translation>标志代码表（留空：使用内置代码表）</translation>
     </message>
     <message>
-        <location filename="../algorithms/codeparams.py" line="33" />
+        <location filename="../algorithms/codeparams.py" line="34" />
         <source>The codes the classifier may answer, with their names and classes: UTF-8 text, semicolon-separated, the header code;name;class (format in models/README.md). Empty uses the bundled table of German codes (models/sign-codes-de.csv).</source>
         <translation>分类器可给出的代码及其名称和类别：UTF-8 文本，以分号分隔，表头为 code;name;class（格式见 models/README.md）。留空则使用内置的德国代码表（models/sign-codes-de.csv）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/codeparams.py" line="33" />
+        <location filename="../algorithms/codeparams.py" line="34" />
         <source>CSV files (*.csv *.txt);;All files (*.*)</source>
         <translation>CSV 文件 (*.csv *.txt);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/codeparams.py" line="46" />
+        <location filename="../algorithms/codeparams.py" line="47" />
         <source>Sign codes are not read (Read the sign codes is off).</source>
         <translation>不读取标志代码（“读取标志代码”未勾选）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/codeparams.py" line="52" />
+        <location filename="../algorithms/codeparams.py" line="53" />
         <source>The bundled sign-code classifier {} is missing: no sign code is read.</source>
         <translation>内置标志代码分类器 {} 缺失：不读取任何标志代码。</translation>
     </message>
     <message>
-        <location filename="../algorithms/codeparams.py" line="56" />
+        <location filename="../algorithms/codeparams.py" line="57" />
         <source>Sign-code classifier not found: {}</source>
         <translation>未找到标志代码分类器：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/codeparams.py" line="59" />
+        <location filename="../algorithms/codeparams.py" line="60" />
         <source>Sign codes: {}</source>
         <translation>标志代码：{}</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/codeparams.py" line="26" />
+        <source>An ONNX classifier of sign crops: float input [N, 3, S, S] (RGB, 0..1), output [N, C], the codes it answers in its metadata 'names' (each in the codes table, 'other', or 'unlisted:' and a class for a sign whose code the table lacks). The format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;). Empty uses the classifier bundled with the plugin (models/signcodes.onnx).</source>
+        <translation>标志裁剪图像的 ONNX 分类器：float 输入 [N, 3, S, S]（RGB，0..1），输出 [N, C]，其可给出的代码写在元数据 'names' 中（每个代码都须在代码表中，或为 'other'，或为 'unlisted:' 加类别，表示代码表中没有其代码的标志）。格式见 models/README.md（&lt;i&gt;Sign-code classifier: the format&lt;/i&gt; 一节）。留空则使用插件内置的分类器（models/signcodes.onnx）。</translation>
     </message>
 </context>
 <context>
@@ -1604,7 +1604,7 @@
         <translation>合并每个标志的多个视图，并在点云中对其精化：生成标志图层。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="143" />
+        <location filename="../algorithms/refinesigns.py" line="144" />
         <source>Sign candidates</source>
         <translation>标志候选</translation>
     </message>
@@ -1634,112 +1634,112 @@
         <translation>类别相同、距离小于此值（米）且平面法向量一致的候选被视为同一个标志。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="104" />
+        <location filename="../algorithms/refinesigns.py" line="105" />
         <source>Panorama folder (for review chips)</source>
         <translation>全景图文件夹（用于审核切片）</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="104" />
+        <location filename="../algorithms/refinesigns.py" line="105" />
         <source>The folder of the panoramas (as for Import trajectory). When given, an image chip of each sign is cut from its best panorama for review.</source>
         <translation>全景图所在的文件夹（与“导入轨迹和全景图”相同）。提供时，将从每个标志的最佳全景图中截取一张图像切片用于审核。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="112" />
+        <location filename="../algorithms/refinesigns.py" line="113" />
         <source>Signs</source>
         <translation>标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="112" />
+        <location filename="../algorithms/refinesigns.py" line="113" />
         <source>PointZ sign layer at the panel centres (fields in docs/formats.md), and chip: the relative path of the sign's review picture.</source>
         <translation>位于标志牌中心的 PointZ 标志图层（字段见 docs/formats.md），以及 chip：标志审核图片的相对路径。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="116" />
+        <location filename="../algorithms/refinesigns.py" line="117" />
         <source>Panel outlines</source>
         <translation>标志牌轮廓</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="116" />
+        <location filename="../algorithms/refinesigns.py" line="117" />
         <source>PolygonZ layer of each panel's rectangle in its plane (signs placed from the cloud).</source>
         <translation>每个标志牌在其所在平面内的矩形的 PolygonZ 图层（由点云定位的标志）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="120" />
+        <location filename="../algorithms/refinesigns.py" line="121" />
         <source>Sign points</source>
         <translation>标志点</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="120" />
+        <location filename="../algorithms/refinesigns.py" line="121" />
         <source>LAZ (*.laz);;LAS (*.las)</source>
         <translation>LAZ (*.laz);;LAS (*.las)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="120" />
+        <location filename="../algorithms/refinesigns.py" line="121" />
         <source>A LAS/LAZ file of the points of every sign panel, all dimensions kept.</source>
         <translation>包含每个标志牌所有点的 LAS/LAZ 文件，保留全部维度。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="123" />
+        <location filename="../algorithms/refinesigns.py" line="124" />
         <source>Review report</source>
         <translation>审核报告</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="123" />
+        <location filename="../algorithms/refinesigns.py" line="124" />
         <source>HTML files (*.html)</source>
         <translation>HTML 文件 (*.html)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="123" />
+        <location filename="../algorithms/refinesigns.py" line="124" />
         <source>An HTML page with every sign's chip and attributes, to confirm signs without opening panoramas (needs the panorama folder).</source>
         <translation>一个 HTML 页面，列出每个标志的切片和属性，无需打开全景图即可确认标志（需要全景图文件夹）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="141" />
+        <location filename="../algorithms/refinesigns.py" line="142" />
         <source>The candidates</source>
         <translation>候选</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="173" />
+        <location filename="../algorithms/refinesigns.py" line="174" />
         <source>The review report needs the panorama folder: not written.</source>
         <translation>审核报告需要全景图文件夹：未写入。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="179" />
+        <location filename="../algorithms/refinesigns.py" line="180" />
         <source>{} sign points written to {}</source>
         <translation>已将 {} 个标志点写入 {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="204" />
+        <location filename="../algorithms/refinesigns.py" line="205" />
         <source>{} signs from {} candidates ({})</source>
         <translation>{} 个标志，来自 {} 个候选（{}）</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="214" />
+        <location filename="../algorithms/refinesigns.py" line="215" />
         <source>Review chips need a sign layer written to a file: skipped.</source>
         <translation>审核切片需要写入文件的标志图层：已跳过。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="227" />
+        <location filename="../algorithms/refinesigns.py" line="228" />
         <source>Road signs for review</source>
         <translation>待审核的道路标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="229" />
+        <location filename="../algorithms/refinesigns.py" line="230" />
         <source>{} review chips in {}</source>
         <translation>{} 张审核切片，位于 {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="108" />
+        <location filename="../algorithms/refinesigns.py" line="109" />
         <source>Cloud CRS (when the file has none)</source>
         <translation>点云坐标参考系（文件中没有时）</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="108" />
+        <location filename="../algorithms/refinesigns.py" line="109" />
         <source>The cloud's CRS when the file records none (it must be the candidates' CRS); it overrides a CRS in the file. The CRS is never guessed.</source>
         <translation>文件中没有记录坐标参考系时点云的坐标参考系（必须与候选的坐标参考系相同）；它会覆盖文件中的坐标参考系。坐标参考系从不猜测。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="148" />
+        <location filename="../algorithms/refinesigns.py" line="149" />
         <source>Panorama folder not found: {}</source>
         <translation>未找到全景图文件夹：{}</translation>
     </message>
@@ -1754,24 +1754,24 @@
         <translation>最低代码置信度</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="92" />
-        <source>A sign's voted code is kept when its support (its share of the views' weighted vote x the mean probability the classifier gave it, 0-1: the code_score field) is at least this; else the code field stays empty. 0 keeps every code but 'other'.</source>
-        <translation>当标志投票得出的代码的支持度（其在各视图加权投票中的占比 x 分类器给出的平均概率，0-1：即 code_score 字段）不低于此值时保留该代码；否则 code 字段保持为空。0 保留除 'other' 以外的所有代码。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/refinesigns.py" line="98" />
+        <location filename="../algorithms/refinesigns.py" line="99" />
         <source>Sign codes table (empty: the bundled one)</source>
         <translation>标志代码表（留空：使用内置代码表）</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="98" />
+        <location filename="../algorithms/refinesigns.py" line="99" />
         <source>The codes table the classifier of Detect signs was run with: it gives each code its name (code_name) and its class (for the class check). Format in models/README.md; empty uses the bundled table of German codes (models/sign-codes-de.csv).</source>
         <translation>运行“在全景图中检测标志”的分类器时所用的代码表：为每个代码提供名称（code_name）和类别（用于类别检查）。格式见 models/README.md；留空则使用内置的德国代码表（models/sign-codes-de.csv）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="98" />
+        <location filename="../algorithms/refinesigns.py" line="99" />
         <source>CSV files (*.csv *.txt);;All files (*.*)</source>
         <translation>CSV 文件 (*.csv *.txt);;所有文件 (*.*)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="92" />
+        <source>A sign's voted code is kept when its support (its share of the views' weighted vote x the mean probability the classifier gave it, 0-1: the code_score field) is at least this; else the code field stays empty. 0 keeps every code but 'other' and 'unlisted:...' (a sign whose code the table lacks).</source>
+        <translation>当标志投票得出的代码的支持度（其在各视图加权投票中的占比 x 分类器给出的平均概率，0-1：即 code_score 字段）不低于此值时保留该代码；否则 code 字段保持为空。0 保留除 'other' 和 'unlisted:...'（代码表中没有其代码的标志）以外的所有代码。</translation>
     </message>
 </context>
 <context>
@@ -3048,253 +3048,253 @@
         <translation>{path} 在检测结果的视锥内没有点；未找到候选</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="134" />
+        <location filename="../core/refine.py" line="135" />
         <source>curved surface (a convex mirror?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>曲面（凸面镜？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="135" />
+        <location filename="../core/refine.py" line="136" />
         <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>较大平面的一部分（广告牌或墙上的图案？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="968" />
+        <location filename="../core/refine.py" line="970" />
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>从 {candidates} 个候选得到 {signs} 个标志（{from_images} 个仅由图像定位）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1619" />
+        <location filename="../core/refine.py" line="1621" />
         <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} 个标志中有 {coded} 个带有标志代码；{from_code} 个的类别取自代码，{dropped} 个代码因类别投票被舍弃（code_check）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1628" />
+        <location filename="../core/refine.py" line="1630" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>站点高度减去 {height} 米</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="382" />
+        <location filename="../core/refine.py" line="384" />
         <source>Detection {det_id} has the sign code {code}, which is not in the sign codes table {table}: give the codes table the classifier was run with</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id} 的标志代码 {code} 不在标志代码表 {table} 中：请提供运行分类器时所用的代码表</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="947" />
+        <location filename="../core/refine.py" line="949" />
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>合并半径必须为正数，实际为 {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="950" />
+        <location filename="../core/refine.py" line="952" />
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有要精化的候选；标志图层为空</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1428" />
+        <location filename="../core/refine.py" line="1430" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>候选 {ids}：{reason}；位置取候选的中位数</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1568" />
+        <location filename="../core/refine.py" line="1570" />
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{width:.2f} x {height:.2f} 米的面板对 {sign_class} 标志来说太大（广告牌？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1573" />
+        <location filename="../core/refine.py" line="1575" />
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：只在一张全景图中出现，得分为 {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="478" />
+        <location filename="../core/refine.py" line="480" />
         <source>too few points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="481" />
+        <location filename="../core/refine.py" line="483" />
         <source>too few points in the boxes</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>框内的点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="487" />
+        <location filename="../core/refine.py" line="489" />
         <source>no near-vertical plane</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有近似竖直的平面</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="491" />
+        <location filename="../core/refine.py" line="493" />
         <source>too few planar points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>平面点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1422" />
+        <location filename="../core/refine.py" line="1424" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有点云</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1425" />
+        <location filename="../core/refine.py" line="1427" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1629" />
+        <location filename="../core/refine.py" line="1631" />
         <source>the lowest points below the sign</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志下方的最低点</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1633" />
+        <location filename="../core/refine.py" line="1635" />
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 个标志在 {radius} 米内没有地面点（类别 2）：其高度从{source}起算</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="179" />
+        <location filename="../core/signcodes.py" line="205" />
         <source>Sign codes table {path} is empty: expected the header {expected} and one row per code</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path} 为空：应有表头 {expected}，且每个代码一行</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="182" />
+        <location filename="../core/signcodes.py" line="208" />
         <source>Sign codes table {path} holds no codes: expected one row per code after the header {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path} 中没有代码：表头 {expected} 之后应每个代码一行</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="394" />
+        <location filename="../core/signcodes.py" line="423" />
         <source>The box {box} is not four finite pixel coordinates u0, v0, u1, v1</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测框 {box} 不是四个有限的像素坐标 u0、v0、u1、v1</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="125" />
+        <location filename="../core/signcodes.py" line="151" />
         <source>Sign codes table not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到标志代码表：{path}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="127" />
+        <location filename="../core/signcodes.py" line="153" />
         <source>Cannot read the sign codes table {path}: it is not UTF-8 text (byte {position}); save it as UTF-8</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取标志代码表 {path}：不是 UTF-8 文本（第 {position} 字节）；请另存为 UTF-8</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="130" />
+        <location filename="../core/signcodes.py" line="156" />
         <source>Cannot read the sign codes table {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取标志代码表 {path}：{error}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="155" />
+        <location filename="../core/signcodes.py" line="181" />
         <source>Sign codes table {path}, line {line}: expected 3 fields separated by semicolons ({expected}), found {count}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：应有 3 个以分号分隔的字段（{expected}），实际为 {count} 个</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="160" />
+        <location filename="../core/signcodes.py" line="186" />
         <source>Sign codes table {path}, line {line}: the code is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：代码为空</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="163" />
+        <location filename="../core/signcodes.py" line="189" />
         <source>Sign codes table {path}, line {line}: the code {code} is reserved for signs the classifier cannot read and must not be in the table</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：代码 {code} 保留给分类器无法识别的标志，不得出现在表中</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="167" />
+        <location filename="../core/signcodes.py" line="193" />
         <source>Sign codes table {path}, line {line}: the name of {code} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：{code} 的名称为空</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="170" />
+        <location filename="../core/signcodes.py" line="196" />
         <source>Sign codes table {path}, lines {first} and {line}: the code {code} is there twice</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {first} 行和第 {line} 行：代码 {code} 出现了两次</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="173" />
+        <location filename="../core/signcodes.py" line="199" />
         <source>Sign codes table {path}, line {line}: unknown class {found} for {code}; expected one of {classes}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：{code} 的类别 {found} 未知；应为以下之一：{classes}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="219" />
+        <location filename="../core/signcodes.py" line="245" />
         <source>The model {path} is a {task} model; reading sign codes needs a classify model (metadata task = classify)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 是 {task} 模型；读取标志代码需要分类模型（元数据 task = classify）</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="229" />
+        <location filename="../core/signcodes.py" line="255" />
         <source>The model {path} takes an input {name} of shape {shape} and type {type}; supported: float [batch, 3, S, S] (RGB crops S x S pixels, values 0..1)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 的输入 {name} 形状为 {shape}，类型为 {type}；支持：float [batch, 3, S, S]（S x S 像素的 RGB 裁剪图像，值为 0..1）</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="247" />
+        <location filename="../core/signcodes.py" line="273" />
         <source>The model {path} has an output of shape {shape} for a batch of {batch}; supported: [batch, C] with C = {count}, its number of names</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 在批大小为 {batch} 时的输出形状为 {shape}；支持：[batch, C]，其中 C = {count}，即其名称数量</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="255" />
+        <location filename="../core/signcodes.py" line="281" />
         <source>The model {path} names no codes: its metadata needs 'names', a JSON list of the sign codes in output order (such as ["DE:206", "other"])</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 未给出任何代码：其元数据需要 'names'，即按输出顺序排列的标志代码 JSON 列表（例如 ["DE:206", "other"]）</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="261" />
+        <location filename="../core/signcodes.py" line="287" />
         <source>The model {path} names {names} more than once in its metadata 'names'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 在其元数据 'names' 中多次给出 {names}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="267" />
+        <location filename="../core/signcodes.py" line="294" />
         <source>The model {path} answers codes that are not in the sign codes table {table}: {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 给出的代码不在标志代码表 {table} 中：{names}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="275" />
+        <location filename="../core/signcodes.py" line="302" />
         <source>The model {path} has the metadata output = {found}; expected {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 的元数据 output = {found}；应为 {expected}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="288" />
+        <location filename="../core/signcodes.py" line="315" />
         <source>The model {path} has the metadata crop_margin = {found}; expected a number from 0 to 2 (the fraction of the box's longer side added on each side)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 的元数据 crop_margin = {found}；应为 0 到 2 之间的数字（在每一侧添加的边距占检测框长边的比例）</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="143" />
+        <location filename="../core/signcodes.py" line="169" />
         <source>Sign codes table {path}, line {line}: cannot split the line into fields ({error})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：无法将该行拆分为字段（{error}）</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="149" />
+        <location filename="../core/signcodes.py" line="175" />
         <source>Sign codes table {path}, line {line}: expected the header {expected}, found {found}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：应为表头 {expected}，实际为 {found}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="244" />
+        <location filename="../core/signcodes.py" line="270" />
         <source>The model {path} failed on a blank {side} x {side} crop: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 在一张 {side} x {side} 的空白裁剪图像上运行失败：{error}</translation>

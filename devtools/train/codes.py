@@ -61,7 +61,10 @@ MIN_PANO_BOX_PX = 10
 #: every this-many-th training track of each class (offset 1) is validation
 VAL_EVERY = 9
 #: share of each source in a batch
-MIX = {"gtsrb": 0.42, "drawn": 0.13, "pano": 0.20, "other": 0.25}
+MIX = {"gtsrb": 0.40, "drawn": 0.12, "pano": 0.18, "unlisted": 0.12, "other": 0.18}
+#: share of the ``unlisted`` draws that are faces of many countries (``signfaces``); the rest
+#: are :func:`unknown_sign`'s legends no code has
+FACES_SHARE = 0.6
 #: composites (a drawn sign or a look-alike warped onto a street) are kept in a pool and
 #: re-cut with a new jitter; each draw replaces a pooled one with this probability
 POOL_SIZE, POOL_RENEW = 2000, 0.15
@@ -75,11 +78,18 @@ EXPOSURE_SHARE = 0.3
 # --- labels --------------------------------------------------------------------------------
 
 def read_table_codes(path: str = TABLE_PATH):
-    """The codes of the table (file order): the classifier's names, ``other`` last."""
+    """The codes of the table (file order)."""
     with open(path, encoding="utf-8-sig") as f:
         lines = [ln for ln in f if ln.strip() and not ln.startswith("#")]
     rows = list(csv.DictReader(lines, delimiter=";"))
     return [r["code"] for r in rows]
+
+
+def classifier_names(path: str = TABLE_PATH):
+    """The classifier's names: the table's codes, a sign of each class whose code the
+    table lacks (``signcodes.unlisted_code``), ``other`` last."""
+    signcodes = import_roadsigns("roadsigns.core.signcodes")
+    return read_table_codes(path) + [signcodes.unlisted_code(c) for c in data.CLASSES] + [OTHER]
 
 
 def gtsrb_codes(path: str = GTSRB_CODES_PATH):
@@ -261,8 +271,13 @@ _UNKNOWN_LEGENDS = ("10", "15", "25", "35", "45", "90", "110", "130", "3.5t", "7
                     "AB", "X", "Z", "30t", "5", "B", "H", "E", "KM", "12", "U")
 
 
-def unknown_sign(rng, size_px: int = 128) -> np.ndarray:
-    """A sign of one of the six shapes whose legend no code in the table has (BGRA)."""
+#: The class of each kind :func:`unknown_sign` draws.
+UNKNOWN_SIGN_CLASS = {"ring": "prohibitory", "triangle": "warning", "blue_disc": "mandatory",
+                      "blue_panel": "information", "white_panel": "information", "yellow_diamond": "information"}
+
+
+def unknown_sign(rng, size_px: int = 128):
+    """A sign of one of the six shapes whose legend no code in the table has: (BGRA, class)."""
     tx = data.import_textures()
     kind = rng.choice(["ring", "ring", "triangle", "blue_disc", "blue_panel", "white_panel", "yellow_diamond"])
     if kind == "ring":
@@ -314,7 +329,7 @@ def unknown_sign(rng, size_px: int = 128) -> np.ndarray:
                      (w / 2, h / 2), max(2, w // 25))
         img[..., 3] = np.where(img[..., :3].max(-1) > 0, 255, 0).astype(np.uint8)
     img = cv2.cvtColor(img, cv2.COLOR_RGBA2BGRA)
-    return img
+    return img, UNKNOWN_SIGN_CLASS[str(kind)]
 
 
 def far_frames(items, indices, n: int = FAR_FRAMES):
@@ -333,6 +348,8 @@ class Sampler:
     def __init__(self, names, seed: int = 0, pano_cache: str = ""):
         self.names = list(names)
         self.other = self.names.index(OTHER)
+        signcodes = import_roadsigns("roadsigns.core.signcodes")
+        self.unlisted = {c: self.names.index(signcodes.unlisted_code(c)) for c in data.CLASSES}
         self.rng = np.random.default_rng(seed)
         self.pools: dict = {}
         self.gtsrb = load_gtsrb("train", self.names)
@@ -431,14 +448,29 @@ class Sampler:
 
     def _other_composite(self):
         r = self.rng.random()
-        if r < 0.35:
+        if r < 0.7:
             patch, _ = data.hard_negative(self.rng, self.background(128))
-        elif r < 0.85:
-            patch = unknown_sign(self.rng)
         else:
             patch = cv2.cvtColor(self.tx.billboard_texture(self.rng, 256), cv2.COLOR_RGBA2BGRA)
         image, box = self.composite(patch, self.rng.uniform(14, 100))
         return image, box, self.other
+
+    def _unlisted_composite(self):
+        from . import signfaces
+
+        if self.rng.random() < FACES_SHARE:
+            face, klass, _ = signfaces.random_face(self.rng, 128)
+            patch = cv2.cvtColor(face, cv2.COLOR_RGBA2BGRA)
+        else:
+            patch, klass = unknown_sign(self.rng)
+        image, box = self.composite(patch, self.rng.uniform(14, 90))
+        image = data.degrade(np.dstack([image, np.full(image.shape[:2], 255, np.uint8)]), self.rng)[..., :3]
+        return image, box, self.unlisted[klass]
+
+    def from_unlisted(self):
+        """A sign whose code the table lacks, labelled with its class only."""
+        image, box, label = self.pooled("unlisted", self._unlisted_composite)
+        return far_camera(crop_square(image, box, **self.jitter()), self.rng, 0.7), label
 
     def from_drawn(self):
         image, box, label = self.pooled("drawn", self._drawn_composite)
@@ -630,15 +662,16 @@ class BatchFeeder:
 
 def train(out_path: str, minutes: float, work: str, threads: int = 1, batch: int = 128, lr: float = 3e-3,
           seed: int = 0, resume: str = "", device: str = "auto", checkpoint_every_min: float = 5.0,
-          workers: int = 1, use_pano: bool = True, crop_px: int = 0, log=print) -> dict:
+          workers: int = 1, use_pano: bool = True, crop_px: int = 0, init: str = "", log=print) -> dict:
     """Train (or go on from ``resume``) for ``minutes`` in all; ``crop_px`` (0: the
-    checkpoint's, else :data:`CROP_PX`) sets the crop side (:func:`set_crop_px`)."""
+    checkpoint's, else :data:`CROP_PX`) sets the crop side (:func:`set_crop_px`); ``init``:
+    an exported classifier to start from (:func:`init_from_onnx`)."""
     import torch
     import torch.nn.functional as F
 
     torch.set_num_threads(threads)
     os.makedirs(work, exist_ok=True)
-    names = read_table_codes() + [OTHER]
+    names = classifier_names()
     dev = pick_device(device)
     net = build_net(len(names)).to(dev)
     opt = torch.optim.AdamW(net.parameters(), lr=lr, weight_decay=5e-4)
@@ -661,6 +694,9 @@ def train(out_path: str, minutes: float, work: str, threads: int = 1, batch: int
     torch.manual_seed(seed)
     if state is not None and "rng" in state:
         sampler.rng.bit_generator.state = state["rng"]
+    if init and state is None:
+        init_from_onnx(net, names, init, [to_tensor(sampler.batch(batch)[0], dev) for _ in range(8)])
+        log(f"codes: started from {init}")
     val_x, val_y, _ = heldout_gtsrb(names, "val")
     log(f"codes: {len(names)} names, {len(sampler.gtsrb)} GTSRB train crops, {len(sampler.drawn)} drawn, "
         f"{len(sampler.pano)} panorama crops; validation {len(val_y)} crops; {CROP_PX} px crops; device {dev}")
@@ -712,6 +748,39 @@ def train(out_path: str, minutes: float, work: str, threads: int = 1, batch: int
     export_onnx(net, names, out_path, dict(figures, steps=step, minutes=round(elapsed / 60, 1)))
     log(f"exported {out_path}")
     return figures
+
+
+def init_from_onnx(net, names, onnx_path: str, calibration_batches):
+    """Start ``net`` (its outputs ``names``) from an exported classifier: the convolutions
+    from the file (``train.recover_from_onnx``), the last layer's row of each name the file
+    answers too; a name it lacks starts from the mean row of the codes of its class (an
+    ``unlisted:`` name) or of all codes."""
+    import onnx
+    import torch
+    from onnx import numpy_helper
+
+    from .train import recover_from_onnx
+
+    recover_from_onnx(net, onnx_path, calibration_batches)
+    proto = onnx.load(onnx_path)
+    init = {i.name: numpy_helper.to_array(i) for i in proto.graph.initializer}
+    gemm = next(n for n in proto.graph.node if n.op_type == "Gemm")
+    weight, bias = init[gemm.input[1]], init[gemm.input[2]]
+    old = json.loads({p.key: p.value for p in proto.metadata_props}["names"])
+    signcodes = import_roadsigns("roadsigns.core.signcodes")
+    table = signcodes.read_codes_table(TABLE_PATH)
+    linear = net.head[-1]
+    with torch.no_grad():
+        for k, name in enumerate(names):
+            if name in old:
+                rows = [old.index(name)]
+            else:
+                klass = signcodes.unlisted_code_class(name)
+                rows = [j for j, n in enumerate(old)
+                        if n in table and (klass is None or table.entry(n).class_name == klass)]
+            linear.weight[k] = torch.from_numpy(weight[rows].mean(0))
+            linear.bias[k] = float(bias[rows].mean())
+    return net
 
 
 def held_out_scenes():
@@ -784,6 +853,8 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--device", default="auto")
     ap.add_argument("--resume", default="")
+    ap.add_argument("--init", default="", metavar="ONNX",
+                    help="start from an exported classifier (its codes' weights; new names from their class's)")
     ap.add_argument("--crop-px", type=int, default=0,
                     help=f"crop side in pixels (default {CROP_PX}, or the resumed checkpoint's)")
     a = ap.parse_args(argv)
@@ -792,7 +863,7 @@ def main(argv=None):
         print(json.dumps(evaluate_onnx(a.evaluate, a.work), indent=1))
         return 0
     train(a.out, a.minutes, a.work, a.threads, a.batch, a.lr, a.seed, a.resume, a.device,
-          a.checkpoint_every, a.workers, not a.no_pano, a.crop_px)
+          a.checkpoint_every, a.workers, not a.no_pano, a.crop_px, a.init)
     return 0
 
 

@@ -98,6 +98,23 @@ def test_the_class_reading_adds_up_the_codes_of_each_class(tmp_path):
     assert rescue.class_reading(np.zeros((0, 5)), columns, len(detector_classes))[0].tolist() == []
 
 
+def test_a_sign_whose_code_the_table_lacks_counts_for_its_class(tmp_path):
+    """A foreign no-parking sign read as ``unlisted:prohibitory`` adds to the prohibitory
+    codes; ``unlisted:`` of a class the detector lacks adds up apart, like such a code."""
+    path = tmp_path / "codes.csv"
+    path.write_text("code;name;class\nDE:274[30];30;prohibitory\nDE:206;stop;stop\n")
+    table = SC.read_codes_table(str(path))
+    names = ["DE:274[30]", "DE:206", SC.unlisted_code("prohibitory"), SC.unlisted_code("warning"), "other"]
+    detector_classes = ("prohibitory", "stop")
+    columns = rescue.code_classes(names, table, detector_classes)
+    assert columns.tolist() == [0, 1, 0, rescue.UNMAPPED_COLUMN, rescue.OTHER_COLUMN]
+    probs = np.array([[0.05, 0.0, 0.9, 0.0, 0.05],     # a prohibitory sign without a code
+                      [0.0, 0.0, 0.05, 0.05, 0.9]])    # a look-alike
+    best, score = rescue.class_reading(probs, columns, len(detector_classes))
+    assert best.tolist() == [0, 0] and rescue.confirmed(score).tolist() == [True, False]
+    np.testing.assert_allclose(score, [0.95, 0.05])
+
+
 def test_class_of_a_code(classifier):
     assert rescue.class_of_code("DE:215", classifier.table, CLASSES) == "mandatory"
     assert rescue.class_of_code("DE:215", classifier.table, ["sign"]) is None   # a detector without it

@@ -71,6 +71,7 @@ HEADER = "code;name;class\n"
     (HEADER + "DE:206;stop;octagon\n", "line 2",
      "unknown class octagon for DE:206; expected one of warning, prohibitory, mandatory, information, stop, yield"),
     (HEADER + "other;no code;warning\n", "line 2", "the code other is reserved"),
+    (HEADER + "unlisted:warning;a warning;warning\n", "line 2", "the code unlisted:warning is reserved"),
     ("# c\n" + HEADER + "# no rows\n", "", "holds no codes"),
     ("# c\n\n", "", "is empty: expected the header code;name;class"),
 ])
@@ -205,6 +206,29 @@ def test_unknown_names_are_listed_with_the_table(tmp_path, table):
     assert message.endswith(": XX:1, XX:2, XX:3, XX:4, XX:5 and 3 more")
     with pytest.raises(InputError, match="not found"):
         sc.CodeClassifier(str(tmp_path / "missing.onnx"), table)
+
+
+def test_a_classifier_may_answer_signs_whose_code_the_table_lacks(tmp_path, table):
+    """``unlisted:<class>`` names one of the six classes; another word after the prefix is
+    an unknown name like any code the table lacks."""
+    names = ["DE:206", sc.unlisted_code("prohibitory"), sc.unlisted_code("stop"), "other"]
+    path = make_classifier(tmp_path / "k.onnx", meta={"names": json.dumps(names)},
+                           weights=np.zeros((3, len(names))), bias=np.zeros(len(names)))
+    clf = sc.CodeClassifier(path, table)
+    assert clf.names == tuple(names)
+    assert clf.describe().startswith("k.onnx: 1 codes, 2 classes of signs without a code and 'other'")
+    names[1] = "unlisted:octagon"
+    path = make_classifier(tmp_path / "bad.onnx", meta={"names": json.dumps(names)},
+                           weights=np.zeros((3, len(names))), bias=np.zeros(len(names)))
+    with pytest.raises(InputError, match="not in the sign codes table .*: unlisted:octagon$"):
+        sc.CodeClassifier(path, table)
+
+
+def test_only_codes_of_the_table_are_codes():
+    assert [sc.is_code(n) for n in ("DE:206", "other", "", "unlisted:stop")] == [True, False, False, False]
+    assert [sc.unlisted_code_class(n) for n in ("unlisted:stop", "unlisted:octagon", "DE:206", "stop")] == [
+        "stop", None, None, None]
+    assert sc.unlisted_code_class(sc.unlisted_code("yield")) == "yield"
 
 
 # --- crops --------------------------------------------------------------------------------
@@ -406,6 +430,8 @@ def test_code_support_and_decision():
     low = sc.decide_code("DE:206", 0.3, 2, "stop", never, table)
     assert (low.code, low.score, low.views) == ("", 0.3, 2)
     assert sc.decide_code("other", 0.9, 3, "stop", never, table).code == ""
+    unknown = sc.decide_code(sc.unlisted_code("stop"), 0.9, 3, "stop", never, table)
+    assert (unknown.code, unknown.name, unknown.check, unknown.klass, unknown.views) == ("", "", "", "stop", 3)
     won = sc.decide_code("DE:206", 0.8, 2, "mandatory", lambda: 0.5, table)
     assert (won.code, won.check, won.klass) == ("DE:206", sc.CLASS_FROM_CODE, "stop")
     lost = sc.decide_code("DE:206", 0.8, 2, "mandatory", lambda: 0.9, table)

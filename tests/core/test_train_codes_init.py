@@ -1,0 +1,52 @@
+"""devtools.train.codes.init_from_onnx: a sign-code classifier with more names starts from an
+exported one, computing the same probabilities over the names they share.
+
+Training needs torch (devtools/train/requirements.txt), which the plugin's own setup does not
+install: these tests run where it is installed and are skipped elsewhere.
+"""
+import json
+
+import numpy as np
+import onnx
+import pytest
+
+torch = pytest.importorskip("torch")
+
+from devtools.train import codes  # noqa: E402
+
+OLD_NAMES = ["DE:206", "DE:274[30]", "DE:274[50]", "other"]
+NEW_NAMES = ["DE:206", "DE:274[30]", "DE:274[50]", "unlisted:prohibitory", "unlisted:stop", "other"]
+
+
+def _trained_looking(net):
+    gen = torch.Generator().manual_seed(3)
+    with torch.no_grad():
+        for name, value in net.state_dict().items():
+            if value.dtype.is_floating_point:
+                if name.endswith("running_var"):
+                    value.copy_(0.5 + torch.rand(value.shape, generator=gen))
+                else:
+                    value.copy_(0.2 * torch.randn(value.shape, generator=gen))
+    return net.eval()
+
+
+def test_a_classifier_with_more_names_starts_from_the_exported_one(tmp_path):
+    torch.manual_seed(0)
+    old = _trained_looking(codes.build_net(len(OLD_NAMES)))
+    path = str(tmp_path / "old.onnx")
+    codes.export_onnx(old, OLD_NAMES, path, {})
+    old.eval()   # the export leaves its wrapper's training mode on the network
+    crops = np.random.default_rng(1).integers(0, 256, (16, codes.CROP_PX, codes.CROP_PX, 3), dtype=np.uint8)
+    x = codes.to_tensor(crops, "cpu")
+    new = codes.init_from_onnx(codes.build_net(len(NEW_NAMES)), NEW_NAMES, path, [x]).eval()
+    with torch.no_grad():
+        p_old = torch.softmax(old(x), 1).numpy()
+        logits = new(x)
+    shared = [NEW_NAMES.index(n) for n in OLD_NAMES]
+    p_new_shared = torch.softmax(logits[:, shared], 1).numpy()
+    np.testing.assert_allclose(p_new_shared, p_old, atol=1e-4)
+    # a new name starts from its class's codes (the prohibitory ones: the two limits), not from zero
+    rows = new.head[-1].weight.detach().numpy()
+    np.testing.assert_allclose(rows[NEW_NAMES.index("unlisted:prohibitory")], rows[[1, 2]].mean(0), atol=1e-6)
+    np.testing.assert_allclose(rows[NEW_NAMES.index("unlisted:stop")], rows[0], atol=1e-6)
+    assert json.loads(onnx.load(path).metadata_props[0].value) == OLD_NAMES
