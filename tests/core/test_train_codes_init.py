@@ -38,7 +38,10 @@ def test_a_classifier_with_more_names_starts_from_the_exported_one(tmp_path):
     old.eval()   # the export leaves its wrapper's training mode on the network
     crops = np.random.default_rng(1).integers(0, 256, (16, codes.CROP_PX, codes.CROP_PX, 3), dtype=np.uint8)
     x = codes.to_tensor(crops, "cpu")
-    new = codes.init_from_onnx(codes.build_net(len(NEW_NAMES)), NEW_NAMES, path, [x]).eval()
+    new = codes.build_net(len(NEW_NAMES))
+    copied = codes.init_from_onnx(new, NEW_NAMES, path, [x])
+    assert copied.tolist() == [n in OLD_NAMES for n in NEW_NAMES]
+    new.eval()
     with torch.no_grad():
         p_old = torch.softmax(old(x), 1).numpy()
         logits = new(x)
@@ -50,3 +53,30 @@ def test_a_classifier_with_more_names_starts_from_the_exported_one(tmp_path):
     np.testing.assert_allclose(rows[NEW_NAMES.index("unlisted:prohibitory")], rows[[1, 2]].mean(0), atol=1e-6)
     np.testing.assert_allclose(rows[NEW_NAMES.index("unlisted:stop")], rows[0], atol=1e-6)
     assert json.loads(onnx.load(path).metadata_props[0].value) == OLD_NAMES
+
+
+def test_only_the_new_rows_learn():
+    """train_new_rows_only: after some steps the features and the file's rows are as they
+    were, the new names' rows moved."""
+    torch.manual_seed(0)
+    net = _trained_looking(codes.build_net(len(NEW_NAMES)))
+    before = {k: v.clone() for k, v in net.state_dict().items()}
+    copied = np.array([n in OLD_NAMES for n in NEW_NAMES])
+    opt = codes.train_new_rows_only(net, copied, lr=1e-2)
+    x = torch.rand(8, 3, codes.CROP_PX, codes.CROP_PX)
+    y = torch.tensor([3, 4] * 4)
+    for _ in range(5):
+        net.train()
+        net.features.eval()
+        loss = torch.nn.functional.cross_entropy(net(x), y)
+        opt.zero_grad()
+        loss.backward()
+        opt.step()
+    after = net.state_dict()
+    for key, value in before.items():
+        if not key.startswith("head."):
+            assert torch.equal(after[key], value), key
+    weight, bias = after["head.1.weight"], after["head.1.bias"]
+    assert torch.equal(weight[copied], before["head.1.weight"][copied])
+    assert torch.equal(bias[copied], before["head.1.bias"][copied])
+    assert not torch.allclose(weight[~copied], before["head.1.weight"][~copied])
