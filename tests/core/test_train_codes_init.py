@@ -9,6 +9,7 @@ import json
 import numpy as np
 import onnx
 import pytest
+from helpers.trainedlooking import trained_looking
 
 torch = pytest.importorskip("torch")
 
@@ -18,21 +19,9 @@ OLD_NAMES = ["DE:206", "DE:274[30]", "DE:274[50]", "other"]
 NEW_NAMES = ["DE:206", "DE:274[30]", "DE:274[50]", "unlisted:prohibitory", "unlisted:stop", "other"]
 
 
-def _trained_looking(net):
-    gen = torch.Generator().manual_seed(3)
-    with torch.no_grad():
-        for name, value in net.state_dict().items():
-            if value.dtype.is_floating_point:
-                if name.endswith("running_var"):
-                    value.copy_(0.5 + torch.rand(value.shape, generator=gen))
-                else:
-                    value.copy_(0.2 * torch.randn(value.shape, generator=gen))
-    return net.eval()
-
-
 def test_a_classifier_with_more_names_starts_from_the_exported_one(tmp_path):
     torch.manual_seed(0)
-    old = _trained_looking(codes.build_net(len(OLD_NAMES)))
+    old = trained_looking(codes.build_net(len(OLD_NAMES)), seed=3)
     path = str(tmp_path / "old.onnx")
     codes.export_onnx(old, OLD_NAMES, path, {})
     old.eval()   # the export leaves its wrapper's training mode on the network
@@ -59,7 +48,7 @@ def test_only_the_new_rows_learn():
     """train_new_rows_only: after some steps the features and the file's rows are as they
     were, the new names' rows moved."""
     torch.manual_seed(0)
-    net = _trained_looking(codes.build_net(len(NEW_NAMES)))
+    net = trained_looking(codes.build_net(len(NEW_NAMES)), seed=3)
     before = {k: v.clone() for k, v in net.state_dict().items()}
     copied = np.array([n in OLD_NAMES for n in NEW_NAMES])
     opt = codes.train_new_rows_only(net, copied, lr=1e-2)

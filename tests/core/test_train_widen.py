@@ -4,28 +4,16 @@ Training needs torch (devtools/train/requirements.txt), which the plugin's own s
 install: these tests run where it is installed and are skipped elsewhere.
 """
 import pytest
+from helpers.trainedlooking import trained_looking
 
 torch = pytest.importorskip("torch")
 
 from devtools.train.model import ARCH_DEFAULT, SignNet, widened  # noqa: E402
 
 
-def _trained_looking(net):
-    """Non-trivial weights and batch-norm statistics, as a trained network has."""
-    gen = torch.Generator().manual_seed(1)
-    with torch.no_grad():
-        for name, value in net.state_dict().items():
-            if value.dtype.is_floating_point:
-                if name.endswith("running_var"):
-                    value.copy_(0.5 + torch.rand(value.shape, generator=gen))
-                else:
-                    value.copy_(0.2 * torch.randn(value.shape, generator=gen))
-    return net.eval()
-
-
 def test_widened_network_computes_the_same_heatmaps_and_boxes():
     torch.manual_seed(0)
-    small = _trained_looking(SignNet(6))
+    small = trained_looking(SignNet(6))
     big = widened(small, widths=(48, 64, 160, 256), fpn=96, head=48).eval()
     assert big.arch == {"widths": (48, 64, 160, 256), "fpn": 96, "head": 48}
     assert sum(p.numel() for p in big.parameters()) > 2 * sum(p.numel() for p in small.parameters())
@@ -40,7 +28,7 @@ def test_widened_network_computes_the_same_heatmaps_and_boxes():
     assert hidden.abs().sum() > 0
 
 def test_widening_only_part_of_the_network_and_refusing_to_narrow():
-    small = _trained_looking(SignNet(6))
+    small = trained_looking(SignNet(6))
     deep = widened(small, widths=(32, 48, 128, 224), fpn=ARCH_DEFAULT["fpn"], head=ARCH_DEFAULT["head"]).eval()
     x = torch.rand(1, 3, 64, 64)
     with torch.no_grad():
