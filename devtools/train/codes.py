@@ -3,6 +3,7 @@
     python -m devtools.train.codes --minutes 30 --out models/signcodes.onnx
     python -m devtools.train.codes --resume bench/out/codes/last.pt --minutes 60   # go on
     python -m devtools.train.codes --evaluate models/signcodes.onnx                # figures only
+    python -m devtools.train.codes --init models/signcodes.onnx --minutes 60 --lr 1e-3   # from the bundled file
 
 A crop is cut the way the chain cuts it (:func:`roadsigns.core.signcodes.cut_crop`): a square
 around the sign's box, the box's longer side plus :data:`CROP_MARGIN` of it on each side, at
@@ -20,10 +21,14 @@ Sources (``models/README.md``, "Sign-code classifier"):
   distant camera sees them;
 - crops cut from generated panoramas of training scenes (seeds >= 100) around each sign's
   box, with the box jittered as a detector's would be;
+- ``unlisted``: signs whose code the table lacks, as ``unlisted:<class>`` for the classes
+  of :data:`UNLISTED_CLASSES`: faces of many countries (``signfaces``; the families that
+  are one code in any country take that code, :data:`FAMILY_CODES`) and signs of the
+  shapes with legends no code in the table has (weight and height limits, other numbers,
+  letters); information panels of either kind are ``other``;
 - ``other``: street backgrounds, procedural look-alikes (``data.hard_negative``: traffic
   lights, shop signs, red-ringed logos, mirrors, roundels, sign backs), the generator's
-  billboards and gantry panels, signs of the six shapes with legends no code in the table
-  has (weight and height limits, other numbers, letters), and boxes mostly off a sign.
+  billboards, and boxes mostly off a sign.
 
 No horizontal flips: left and right are different codes.
 """
