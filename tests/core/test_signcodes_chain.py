@@ -249,6 +249,16 @@ def test_a_code_not_in_the_table_is_an_error(table):
         R.vote_code(cand, rows, "stop", table)
 
 
+def test_a_sign_whose_code_the_table_lacks_gets_no_code_and_no_error(table):
+    """Views read as ``unlisted:prohibitory`` (a foreign no-parking sign): not a code of the
+    table, yet no error; the sign keeps its class and no code, like ``other``."""
+    cand, rows = views([("prohibitory", 0.9, SC.unlisted_code("prohibitory"), 0.95, 40),
+                        ("prohibitory", 0.8, SC.unlisted_code("prohibitory"), 0.9, 40)])
+    v = R.vote_code(cand, rows, "prohibitory", table)
+    assert (v.code, v.name, v.check, v.klass, v.views) == ("", "", "", "prohibitory", 2)
+    assert v.score > 0.9
+
+
 # --- refine, fusion, handover, review --------------------------------------------------------
 
 @pytest.fixture(scope="module")
