@@ -76,8 +76,9 @@ FACES_SHARE = 0.6
 FAMILY_CODES = {"triangle_down": "DE:205", "octagon": "DE:206", "no_entry": "DE:267", "panel_p": "DE:314"}
 #: The classes with an ``unlisted:`` name: those whose shape and colours make a sign on their
 #: own while the legend varies by country. Not ``information``: a crop cannot tell a panel of
-#: words from a shop sign (a first run with ``unlisted:information`` confirmed three shop
-#: signs on GTSDB 500-599, models/README.md); its other faces stay ``other`` as before.
+#: words from a shop sign (with ``unlisted:information`` a first run kept three boxes on no
+#: sign in GTSDB 500-599 as information panels, models/README.md); those faces stay
+#: ``other`` as before.
 #: Stop and yield faces are the table's codes (:data:`FAMILY_CODES`).
 UNLISTED_CLASSES = ("warning", "prohibitory", "mandatory")
 #: composites (a drawn sign or a look-alike warped onto a street) are kept in a pool and
