@@ -11,7 +11,8 @@ Three pieces, used by the chain in this order:
   ``code;name;class``, then one row per code.
 * the **classifier** (:class:`CodeClassifier`): an ONNX model taking square RGB crops;
   the format is in ``models/README.md`` ("Sign-code classifier: the format"). Its answer
-  :data:`OTHER_CODE` means "no code it knows" (or no sign at all).
+  :data:`OTHER_CODE` means "no code it knows" (or no sign at all), an :func:`unlisted_code`
+  "a sign of this class whose code the table lacks".
 * the **crops** (:func:`cut_crop`) and the **vote** (:func:`vote`).
 
 Conventions: panoramas are ``H x W x 3`` uint8 **BGR** arrays (OpenCV's order, as
@@ -620,9 +621,10 @@ def decide_code(winner: str, support: float, n_views: int, klass: str,
                 confidence: float = DEFAULT_CODE_CONFIDENCE) -> CodeVote:
     """What a sign keeps of the code :func:`code_support` voted, with its class ``klass``.
 
-    ``code`` and ``code_name`` are empty when the winner is :data:`OTHER_CODE`, nothing was
-    read (``winner`` empty) or the support is below ``confidence`` (``code_score`` and
-    ``code_views`` still describe the winner). **Class check**, for a kept code whose class in
+    ``code`` and ``code_name`` are empty when the winner is :data:`OTHER_CODE` or an
+    :func:`unlisted_code` (:func:`is_code`), nothing was read (``winner`` empty) or the
+    support is below ``confidence`` (``code_score`` and ``code_views`` still describe the
+    winner). **Class check**, for a kept code whose class in
     ``table`` differs from ``klass`` (when ``klass`` is one of :data:`SIGN_CLASSES`):
     ``class_support()`` is the class's support (0..1); a code with a strictly larger support
     gives the sign its class (``code_check = class_from_code``), else the code is emptied
