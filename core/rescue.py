@@ -98,12 +98,11 @@ def code_classes(names: Sequence[str], table, class_names: Sequence[str]) -> np.
     detector lacks (or not in the codes ``table``), :data:`OTHER_COLUMN` for ``other``. An
     ``unlisted:`` name (a sign of a class whose code the table lacks,
     :func:`.signcodes.unlisted_code`) counts for its class."""
-    out = np.empty(len(names), np.int64)
+    out = np.full(len(names), OTHER_COLUMN, np.int64)
     for k, name in enumerate(names):
-        klass = unlisted_code_class(name) or (class_of_code(name, table, class_names) if name != OTHER_CODE else None)
-        klass = klass if klass in class_names else None
-        out[k] = (OTHER_COLUMN if name == OTHER_CODE else
-                  UNMAPPED_COLUMN if klass is None else list(class_names).index(klass))
+        if name != OTHER_CODE:
+            klass = unlisted_code_class(name) or class_of_code(name, table, class_names)
+            out[k] = list(class_names).index(klass) if klass is not None and klass in class_names else UNMAPPED_COLUMN
     return out
 
 

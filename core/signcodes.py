@@ -287,8 +287,7 @@ class CodeClassifier:
         if twice:
             raise InputError("The model {path} names {names} more than once in its metadata "
                              "'names'", path=self.model_path, names=", ".join(twice))
-        unknown = [n for n in names if (is_code(n) and n not in self.table)
-                   or (n.startswith(UNLISTED_CODE_PREFIX) and unlisted_code_class(n) is None)]
+        unknown = [n for n in names if n != OTHER_CODE and not unlisted_code_class(n) and n not in self.table]
         if unknown:
             shown = ", ".join(unknown[:5]) + (" and {} more".format(len(unknown) - 5)
                                               if len(unknown) > 5 else "")
