@@ -28,7 +28,10 @@ Sources (``models/README.md``, "Sign-code classifier"):
   letters); information panels of either kind are ``other``;
 - ``other``: street backgrounds, procedural look-alikes (``data.hard_negative``: traffic
   lights, shop signs, red-ringed logos, mirrors, roundels, sign backs), the generator's
-  billboards, and boxes mostly off a sign.
+  billboards, and boxes mostly off a sign;
+- ``mined``: ``other`` crops of what the bundled detector boxes on no sign in the training
+  scenes' panoramas (its second look's candidates: billboard decals, windows, bins), the
+  look-alikes the classifier must turn down (:func:`mined_negatives`).
 
 No horizontal flips: left and right are different codes.
 """
@@ -66,7 +69,12 @@ MIN_PANO_BOX_PX = 10
 #: every this-many-th training track of each class (offset 1) is validation
 VAL_EVERY = 9
 #: share of each source in a batch
-MIX = {"gtsrb": 0.40, "drawn": 0.12, "pano": 0.18, "unlisted": 0.12, "other": 0.18}
+MIX = {"gtsrb": 0.40, "drawn": 0.12, "pano": 0.18, "unlisted": 0.12, "other": 0.14, "mined": 0.04}
+#: the detector whose boxes on no sign of the training scenes are mined (:func:`mined_negatives`)
+MINED_DETECTOR = os.path.join(REPO_ROOT, "models", "roadsigns-int8.onnx")
+#: a mined box overlapping any sign's box (either face, hidden parts included) by more than
+#: this share of its own area is left out: it may be part of a sign
+MINED_MAX_OVERLAP = 0.1
 #: share of the ``unlisted`` draws that are faces of many countries (``signfaces``); the rest
 #: are :func:`unknown_sign`'s legends no code has
 FACES_SHARE = 0.6
@@ -283,6 +291,52 @@ def pano_crops(scene_dirs, names, cache_path: str):
     return list(zip(crops, labels, sides))
 
 
+def off_every_sign(boxes: np.ndarray, sign_boxes: np.ndarray, max_overlap: float = MINED_MAX_OVERLAP) -> np.ndarray:
+    """Which ``boxes`` (N x 4, x0 y0 x1 y1) have no more than ``max_overlap`` of their own
+    area inside any of ``sign_boxes`` (M x 4): a box on part of a sign is not a look-alike."""
+    boxes = np.asarray(boxes, np.float64).reshape(-1, 4)
+    sign_boxes = np.asarray(sign_boxes, np.float64).reshape(-1, 4)
+    if not len(sign_boxes):
+        return np.ones(len(boxes), bool)
+    w = np.minimum(boxes[:, None, 2], sign_boxes[None, :, 2]) - np.maximum(boxes[:, None, 0], sign_boxes[None, :, 0])
+    h = np.minimum(boxes[:, None, 3], sign_boxes[None, :, 3]) - np.maximum(boxes[:, None, 1], sign_boxes[None, :, 1])
+    area = np.maximum((boxes[:, 2] - boxes[:, 0]) * (boxes[:, 3] - boxes[:, 1]), 1.0)
+    inside = np.clip(w, 0, None) * np.clip(h, 0, None) / area[:, None]
+    return inside.max(1) <= max_overlap
+
+
+def mined_negatives(scene_dirs, cache_path: str, detector_path: str = MINED_DETECTOR):
+    """Native-density crops (as :func:`pano_crops`) of the boxes the detector finds from the
+    second look's ``RESCUE_CONFIDENCE`` on no sign of the ``scene_dirs``' panoramas, with
+    the default views: list of crops (BGR). Every sign of ``scene.json`` is complete truth
+    there, so these are look-alikes, not unlabelled signs (which is why real photographs,
+    whose truth lists only some signs, give none). Cached."""
+    if os.path.isfile(cache_path):
+        return list(np.load(cache_path, allow_pickle=True)["crops"])
+    detector_mod = import_roadsigns("roadsigns.core.detector")
+    panorama = import_roadsigns("roadsigns.core.panorama")
+    rescue = import_roadsigns("roadsigns.core.rescue")
+    signcodes = import_roadsigns("roadsigns.core.signcodes")
+    detector = detector_mod.Detector(detector_path, threads=1)
+    views = panorama.ViewSet.default(size_px=detector.input_size)
+    crops = []
+    for scene_dir in scene_dirs:
+        with open(os.path.join(scene_dir, "scene.json")) as f:
+            scene = json.load(f)
+        for meta in scene["images"]:
+            pano = panorama.read_panorama(os.path.join(scene_dir, "images", meta["image"]))
+            found = detector_mod.detect_panorama(detector, pano, views, confidence=rescue.DEFAULT_RESCUE_CONFIDENCE,
+                                                 min_box_px=chain_min_box_px())
+            signs = np.array([s["box"] for s in meta["signs"]], np.float64).reshape(-1, 4)
+            signs[:, 2:] += 1   # inclusive pixel boxes
+            boxes = found.boxes()
+            for box in boxes[off_every_sign(boxes, signs)]:
+                crop = signcodes.cut_crop(pano, tuple(box), margin=CROP_MARGIN + 0.1, max_side_px=128)
+                crops.append(cv2.cvtColor(crop, cv2.COLOR_RGB2BGR))
+    np.savez(cache_path, crops=np.array(crops, dtype=object))
+    return crops
+
+
 _UNKNOWN_LEGENDS = ("10", "15", "25", "35", "45", "90", "110", "130", "3.5t", "7.5t", "2.8m", "3m", "6t",
                     "AB", "X", "Z", "30t", "5", "B", "H", "E", "KM", "12", "U")
 
@@ -361,7 +415,7 @@ def far_frames(items, indices, n: int = FAR_FRAMES):
 class Sampler:
     """Draws labelled training crops (``CROP_PX`` square, BGR) from every source."""
 
-    def __init__(self, names, seed: int = 0, pano_cache: str = ""):
+    def __init__(self, names, seed: int = 0, pano_cache: str = "", mined_cache: str = ""):
         self.names = list(names)
         self.other = self.names.index(OTHER)
         signcodes = import_roadsigns("roadsigns.core.signcodes")
@@ -395,6 +449,7 @@ class Sampler:
         for d in sorted(set(TRAIN_SCENES) - set(present)):
             print(f"codes: training scene {d} missing, its panoramas left out", flush=True)
         self.pano = pano_crops(present, self.names, pano_cache) if pano_cache else []
+        self.mined = mined_negatives(present, mined_cache) if mined_cache else []
 
     # backgrounds
     def background(self, side: int) -> np.ndarray:
@@ -504,6 +559,13 @@ class Sampler:
         box = ((n - inner) / 2, (n - inner) / 2, (n + inner) / 2, (n + inner) / 2)
         return far_camera(crop_square(crop, box, **self.jitter()), self.rng, 0.5), int(label)
 
+    def from_mined(self):
+        crop = self.mined[int(self.rng.integers(len(self.mined)))]
+        n = crop.shape[0]
+        inner = n / (1.0 + 2.0 * (CROP_MARGIN + 0.1))  # the box inside the cached crop
+        box = ((n - inner) / 2, (n - inner) / 2, (n + inner) / 2, (n + inner) / 2)
+        return far_camera(crop_square(crop, box, **self.jitter()), self.rng, 0.5), self.other
+
     def from_other(self):
         r = self.rng.random()
         if r < 0.25:
@@ -522,7 +584,7 @@ class Sampler:
         return far_camera(crop, self.rng, 0.7), self.other
 
     def sample(self):
-        sources = [k for k in MIX if k != "pano" or self.pano]
+        sources = [k for k in MIX if (k != "pano" or self.pano) and (k != "mined" or self.mined)]
         p = np.array([MIX[k] for k in sources])
         which = sources[int(self.rng.choice(len(sources), p=p / p.sum()))]
         return getattr(self, "from_" + which)()
@@ -652,9 +714,9 @@ def accuracy(prob: np.ndarray, labels: np.ndarray) -> float:
     return float((prob.argmax(1) == labels).mean()) if len(labels) else float("nan")
 
 
-def _feed(names, seed, pano_cache, batch, queue):
+def _feed(names, seed, pano_cache, mined_cache, batch, queue):
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    sampler = Sampler(names, seed, pano_cache)
+    sampler = Sampler(names, seed, pano_cache, mined_cache)
     while True:
         queue.put(sampler.batch(batch))
 
@@ -663,12 +725,13 @@ class BatchFeeder:
     """Training batches drawn in worker processes (the cut-and-warp work is the slow part on a
     CPU); each worker has its own random stream (``seed`` + 1000 k)."""
 
-    def __init__(self, names, seed, pano_cache, batch, workers):
+    def __init__(self, names, seed, pano_cache, mined_cache, batch, workers):
         import multiprocessing as mp
 
         ctx = mp.get_context("fork")
         self.queue = ctx.Queue(maxsize=16)
-        self.procs = [ctx.Process(target=_feed, args=(names, seed + 1000 * (k + 1), pano_cache, batch, self.queue),
+        self.procs = [ctx.Process(target=_feed, args=(names, seed + 1000 * (k + 1), pano_cache, mined_cache,
+                                                               batch, self.queue),
                                   daemon=True) for k in range(workers)]
         for p in self.procs:
             p.start()
@@ -714,7 +777,8 @@ def train(out_path: str, minutes: float, work: str, threads: int = 1, batch: int
         seed = seed + step
     set_crop_px(crop_px or CROP_PX)
     pano_cache = os.path.join(work, "pano-train.npz") if use_pano else ""  # native density: any CROP_PX
-    sampler = Sampler(names, seed, pano_cache)
+    mined_cache = os.path.join(work, "mined-train.npz") if use_pano else ""
+    sampler = Sampler(names, seed, pano_cache, mined_cache)
     torch.manual_seed(seed)
     if state is not None and "rng" in state:
         sampler.rng.bit_generator.state = state["rng"]
@@ -729,8 +793,9 @@ def train(out_path: str, minutes: float, work: str, threads: int = 1, batch: int
             log(f"codes: only the rows of {', '.join(n for n, c in zip(names, copied) if not c)} are trained")
     val_x, val_y, _ = heldout_gtsrb(names, "val")
     log(f"codes: {len(names)} names, {len(sampler.gtsrb)} GTSRB train crops, {len(sampler.drawn)} drawn, "
-        f"{len(sampler.pano)} panorama crops; validation {len(val_y)} crops; {CROP_PX} px crops; device {dev}")
-    feeder = BatchFeeder(names, seed, pano_cache, batch, workers) if workers else None
+        f"{len(sampler.pano)} panorama crops, {len(sampler.mined)} mined look-alikes; "
+        f"validation {len(val_y)} crops; {CROP_PX} px crops; device {dev}")
+    feeder = BatchFeeder(names, seed, pano_cache, mined_cache, batch, workers) if workers else None
     stop = {"now": False}
 
     def on_signal(signum, frame):
