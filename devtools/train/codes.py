@@ -56,6 +56,9 @@ from . import data
 
 CROP_PX = 32
 CROP_MARGIN = 0.15
+#: the margin of the cached native crops (:func:`pano_crops`, :func:`mined_negatives`): room
+#: for the jitter round the chain's margin
+CACHED_MARGIN = CROP_MARGIN + 0.1
 OTHER = "other"
 TABLE_PATH = os.path.join(REPO_ROOT, "models", "sign-codes-de.csv")
 GTSRB_CODES_PATH = os.path.join(data.DATA_DIR, "sign-codes-de.csv")
@@ -282,13 +285,21 @@ def pano_crops(scene_dirs, names, cache_path: str):
                     continue
                 if min(b[2] - b[0], b[3] - b[1]) < MIN_PANO_BOX_PX:
                     continue
-                crop = signcodes.cut_crop(pano, (b[0], b[1], b[2] + 1, b[3] + 1), margin=CROP_MARGIN + 0.1,
+                crop = signcodes.cut_crop(pano, (b[0], b[1], b[2] + 1, b[3] + 1), margin=CACHED_MARGIN,
                                           max_side_px=128)
                 crops.append(cv2.cvtColor(crop, cv2.COLOR_RGB2BGR))
                 labels.append(index.get(code[s["sign_id"]], index[OTHER]))
                 sides.append(float(min(b[2] - b[0], b[3] - b[1]) + 1))
     np.savez(cache_path, crops=np.array(crops, dtype=object), labels=np.array(labels), min_side=np.array(sides))
     return list(zip(crops, labels, sides))
+
+
+def cached_box(crop: np.ndarray):
+    """The box inside a cached native crop (:func:`pano_crops`, :func:`mined_negatives`: cut
+    with :data:`CACHED_MARGIN` round it), as ``(x0, y0, x1, y1)``."""
+    n = crop.shape[0]
+    inner = n / (1.0 + 2.0 * CACHED_MARGIN)
+    return ((n - inner) / 2, (n - inner) / 2, (n + inner) / 2, (n + inner) / 2)
 
 
 def off_every_sign(boxes: np.ndarray, sign_boxes: np.ndarray, max_overlap: float = MINED_MAX_OVERLAP) -> np.ndarray:
@@ -331,7 +342,7 @@ def mined_negatives(scene_dirs, cache_path: str, detector_path: str = MINED_DETE
             signs[:, 2:] += 1   # inclusive pixel boxes
             boxes = found.boxes()
             for box in boxes[off_every_sign(boxes, signs)]:
-                crop = signcodes.cut_crop(pano, tuple(box), margin=CROP_MARGIN + 0.1, max_side_px=128)
+                crop = signcodes.cut_crop(pano, tuple(box), margin=CACHED_MARGIN, max_side_px=128)
                 crops.append(cv2.cvtColor(crop, cv2.COLOR_RGB2BGR))
     np.savez(cache_path, crops=np.array(crops, dtype=object))
     return crops
@@ -554,17 +565,11 @@ class Sampler:
 
     def from_pano(self):
         crop, label, _ = self.pano[int(self.rng.integers(len(self.pano)))]
-        n = crop.shape[0]
-        inner = n / (1.0 + 2.0 * (CROP_MARGIN + 0.1))  # the sign's box inside the cached crop
-        box = ((n - inner) / 2, (n - inner) / 2, (n + inner) / 2, (n + inner) / 2)
-        return far_camera(crop_square(crop, box, **self.jitter()), self.rng, 0.5), int(label)
+        return far_camera(crop_square(crop, cached_box(crop), **self.jitter()), self.rng, 0.5), int(label)
 
     def from_mined(self):
         crop = self.mined[int(self.rng.integers(len(self.mined)))]
-        n = crop.shape[0]
-        inner = n / (1.0 + 2.0 * (CROP_MARGIN + 0.1))  # the box inside the cached crop
-        box = ((n - inner) / 2, (n - inner) / 2, (n + inner) / 2, (n + inner) / 2)
-        return far_camera(crop_square(crop, box, **self.jitter()), self.rng, 0.5), self.other
+        return far_camera(crop_square(crop, cached_box(crop), **self.jitter()), self.rng, 0.5), self.other
 
     def from_other(self):
         r = self.rng.random()
@@ -615,9 +620,7 @@ def heldout_pano(names, scene_dirs, cache_path: str):
     :data:`MIN_PANO_BOX_PX`)."""
     out, labels, sides = [], [], []
     for crop, label, side in pano_crops(scene_dirs, names, cache_path):
-        n = crop.shape[0]
-        inner = n / (1.0 + 2.0 * (CROP_MARGIN + 0.1))
-        out.append(crop_square(crop, ((n - inner) / 2, (n - inner) / 2, (n + inner) / 2, (n + inner) / 2)))
+        out.append(crop_square(crop, cached_box(crop)))
         labels.append(int(label))
         sides.append(float(side))
     crops = np.stack(out) if out else np.zeros((0, CROP_PX, CROP_PX, 3), np.uint8)
