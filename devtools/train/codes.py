@@ -72,7 +72,7 @@ MIN_PANO_BOX_PX = 10
 #: every this-many-th training track of each class (offset 1) is validation
 VAL_EVERY = 9
 #: share of each source in a batch
-MIX = {"gtsrb": 0.40, "drawn": 0.12, "pano": 0.18, "unlisted": 0.12, "other": 0.14, "mined": 0.04}
+MIX = {"gtsrb": 0.40, "drawn": 0.12, "pano": 0.18, "unlisted": 0.12, "other": 0.15, "mined": 0.03}
 #: the detector whose boxes on no sign of the training scenes are mined (:func:`mined_negatives`)
 MINED_DETECTOR = os.path.join(REPO_ROOT, "models", "roadsigns-int8.onnx")
 #: a mined box overlapping any sign's box (either face, hidden parts included) by more than
