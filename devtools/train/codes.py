@@ -85,6 +85,9 @@ FACES_SHARE = 0.6
 #: (a yield sign is ``DE:205`` whatever its shades): labelled with that code, not
 #: ``unlisted:``, or the classifier learns to read real German yield signs as unlisted.
 FAMILY_CODES = {"triangle_down": "DE:205", "octagon": "DE:206", "no_entry": "DE:267", "panel_p": "DE:314"}
+#: The code of a red ring that states a speed limit (``signfaces.random_face_with_limit``):
+#: a 50 in any country's font is ``DE:274[50]`` where the table has it, not ``unlisted:``.
+SPEED_LIMIT_CODE = "DE:274[{}]"
 #: The classes with an ``unlisted:`` name: those whose shape and colours make a sign on their
 #: own while the legend varies by country. Not ``information``: a crop cannot tell a panel of
 #: words from a shop sign (with ``unlisted:information`` a first run kept three boxes on no
@@ -357,6 +360,14 @@ UNKNOWN_SIGN_CLASS = {"ring": "prohibitory", "triangle": "warning", "blue_disc":
                       "blue_panel": "information", "white_panel": "information", "yellow_diamond": "information"}
 
 
+def face_label(names, family: str, limit: Optional[str], unlisted_label: int) -> int:
+    """The label of a face of many countries: its family's code (:data:`FAMILY_CODES`), or
+    the speed-limit code of the number a red ring states, where ``names`` has that code;
+    else ``unlisted_label``."""
+    code = FAMILY_CODES.get(family) or (SPEED_LIMIT_CODE.format(limit) if family == "ring_legend" and limit else None)
+    return names.index(code) if code in names else unlisted_label
+
+
 def unknown_sign(rng, size_px: int = 128):
     """A sign of one of the six shapes whose legend no code in the table has: (BGRA, class)."""
     tx = data.import_textures()
@@ -542,10 +553,9 @@ class Sampler:
         from . import signfaces
 
         if self.rng.random() < FACES_SHARE:
-            face, klass, family = signfaces.random_face(self.rng, 128)
+            face, klass, family, limit = signfaces.random_face_with_limit(self.rng, 128)
             patch = cv2.cvtColor(face, cv2.COLOR_RGBA2BGRA)
-            code = FAMILY_CODES.get(family)
-            label = self.names.index(code) if code in self.names else self.unlisted[klass]
+            label = face_label(self.names, family, limit, self.unlisted[klass])
         else:
             patch, klass = unknown_sign(self.rng)
             label = self.unlisted[klass]

@@ -221,8 +221,9 @@ def _silhouette(img, rng, cx, cy, r, rgb) -> None:
             _line(img, (cx + p[0], cy + p[1]), (cx + q[0], cy + q[1]), rgb, t)
 
 
-def _legend(img, rng, cx, cy, r, rgb, numbers: float = 0.4) -> None:
-    """Numbers, letters, an arrow or a silhouette inside a circle of radius ``r``."""
+def _legend(img, rng, cx, cy, r, rgb, numbers: float = 0.4) -> Optional[str]:
+    """Numbers, letters, an arrow or a silhouette inside a circle of radius ``r``; returns
+    the number or limit drawn (``"50"``, ``"3.5m"``), else None."""
     u = rng.random()
     if u < numbers:
         text = str(int(rng.choice([5, 10, 20, 30, 40, 50, 60, 70, 80, 90, 100, 110, 120, 130])))
@@ -230,6 +231,7 @@ def _legend(img, rng, cx, cy, r, rgb, numbers: float = 0.4) -> None:
             text = f"{rng.uniform(2.0, 4.5):.1f}m" if rng.random() < 0.5 else f"{int(rng.integers(3, 40))}t"
         w = r * (1.2 if len(text) >= 3 else 1.0)
         draw_text(img, text, rgb, (cx - w / 2 * 1.1, cy - 0.45 * r, cx + w / 2 * 1.1, cy + 0.45 * r), rng)
+        return text
     elif u < numbers + 0.15:
         text = "".join(rng.choice(list(LETTERS), int(rng.integers(1, 3))))
         draw_text(img, text, rgb, (cx - 0.55 * r, cy - 0.5 * r, cx + 0.55 * r, cy + 0.5 * r), rng)
@@ -237,6 +239,7 @@ def _legend(img, rng, cx, cy, r, rgb, numbers: float = 0.4) -> None:
         _random_arrow(img, rng, cx, cy, r, rgb, max(1.0, r * rng.uniform(0.1, 0.16)))
     else:
         _silhouette(img, rng, cx, cy, 0.85 * r, rgb)
+    return None
 
 
 # --- the families ------------------------------------------------------------------------
@@ -255,11 +258,12 @@ def _ring_legend(rng, size_px):
     _disc(img, (cx, cy), r - rim, sheeting(rng, "red"))
     inner = (r - rim) * rng.uniform(0.68, 0.82)
     _disc(img, (cx, cy), inner, field)
-    _legend(img, rng, cx, cy, inner * 0.85, sheeting(rng, "black"), numbers=0.45)
+    legend = _legend(img, rng, cx, cy, inner * 0.85, sheeting(rng, "black"), numbers=0.45)
     if rng.random() < 0.35:   # crossed out: a red bar from upper left to lower right
         d = inner * 0.7
         _line(img, (cx - d, cy - d), (cx + d, cy + d), sheeting(rng, "red"), inner * rng.uniform(0.14, 0.22))
-    return img
+        legend = None         # not a limit any more
+    return img, legend
 
 
 def _no_parking(rng, size_px, cross: bool = False):
@@ -514,6 +518,16 @@ def random_face(rng, size_px: int = 160, cls: Optional[str] = None,
                 families: Optional[Sequence[str]] = None) -> Tuple[np.ndarray, str, str]:
     """One face drawn at random: ``(rgba, class, family)``. ``cls`` picks the class (else
     each of the six equally), ``families`` limits the families drawn from."""
+    face, cls, family, _ = random_face_with_limit(rng, size_px, cls, families)
+    return face, cls, family
+
+
+def random_face_with_limit(rng, size_px: int = 160, cls: Optional[str] = None,
+                           families: Optional[Sequence[str]] = None
+                           ) -> Tuple[np.ndarray, str, str, Optional[str]]:
+    """:func:`random_face` (the same draws from ``rng``) and the limit a red ring states:
+    its number or limit (``"50"``, ``"3.5m"``) when the face is a ``ring_legend`` with one
+    and not crossed out, else None."""
     pool = [f for f in (families or FAMILIES) if cls is None or FAMILIES[f][0] == cls]
     if not pool:
         raise ValueError(f"no family of class {cls!r} among {families}")
@@ -523,9 +537,10 @@ def random_face(rng, size_px: int = 160, cls: Optional[str] = None,
         pool = [f for f in pool if FAMILIES[f][0] == cls]
     weights = np.array([FAMILIES[f][1] for f in pool])
     family = pool[int(rng.choice(len(pool), p=weights / weights.sum()))]
-    face = _DRAW[family](rng, int(size_px))
+    drawn = _DRAW[family](rng, int(size_px))
+    face, limit = drawn if isinstance(drawn, tuple) else (drawn, None)
     face[..., 3] = np.where(face[..., 3] >= 128, 255, 0).astype(np.uint8)
-    return weathered(face, rng), cls, family
+    return weathered(face, rng), cls, family, limit
 
 
 def random_faces(n: int, seed: int = 0, size_px: int = 160) -> List[Tuple[np.ndarray, str, str]]:

@@ -139,3 +139,29 @@ def test_the_face_set_pastes_every_family_in_every_band_once_and_is_repeatable()
             assert train_data.CLASSES[cls] == signfaces.family_class(family)
         heights = frame.boxes[:, 3] - frame.boxes[:, 1]
         assert np.all((heights >= 0.5 * bd.FACE_SIZES_PX[0][0]) & (heights <= 1.5 * bd.FACE_SIZES_PX[-1][1]))
+
+
+def test_a_red_ring_tells_the_limit_it_states_and_the_same_draws_make_the_same_faces():
+    rng_a, rng_b = np.random.default_rng(11), np.random.default_rng(11)
+    limits = {}
+    for _ in range(120):
+        face, cls, family = signfaces.random_face(rng_a, 96)
+        face_b, cls_b, family_b, limit = signfaces.random_face_with_limit(rng_b, 96)
+        assert np.array_equal(face, face_b) and (cls, family) == (cls_b, family_b)
+        if limit is not None:
+            assert family == "ring_legend"
+        limits.setdefault(family, set()).add(limit)
+    assert limits["ring_legend"] - {None}   # some rings state a limit, ...
+    assert None in limits["ring_legend"]    # ... others a letter, a pictogram, or are crossed out
+
+
+def test_a_face_takes_a_code_where_the_table_has_one_else_its_unlisted_class():
+    from devtools.train import codes
+
+    names = codes.classifier_names()
+    unlisted = names.index("unlisted:prohibitory")
+    assert codes.face_label(names, "ring_legend", "50", unlisted) == names.index("DE:274[50]")
+    assert codes.face_label(names, "ring_legend", "90", unlisted) == unlisted     # no 90 in the table
+    assert codes.face_label(names, "ring_legend", "3.5m", unlisted) == unlisted
+    assert codes.face_label(names, "ring_legend", None, unlisted) == unlisted
+    assert codes.face_label(names, "octagon", None, unlisted) == names.index("DE:206")
