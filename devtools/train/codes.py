@@ -743,9 +743,9 @@ class BatchFeeder:
 
         ctx = mp.get_context("fork")
         self.queue = ctx.Queue(maxsize=16)
-        self.procs = [ctx.Process(target=_feed, args=(names, seed + 1000 * (k + 1), pano_cache, mined_cache,
-                                                               batch, self.queue),
-                                  daemon=True) for k in range(workers)]
+        self.procs = [ctx.Process(target=_feed, daemon=True,
+                                  args=(names, seed + 1000 * (k + 1), pano_cache, mined_cache, batch, self.queue))
+                      for k in range(workers)]
         for p in self.procs:
             p.start()
 
