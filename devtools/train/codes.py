@@ -305,18 +305,17 @@ def cached_box(crop: np.ndarray):
     return ((n - inner) / 2, (n - inner) / 2, (n + inner) / 2, (n + inner) / 2)
 
 
-def off_every_sign(boxes: np.ndarray, sign_boxes: np.ndarray, max_overlap: float = MINED_MAX_OVERLAP) -> np.ndarray:
-    """Which ``boxes`` (N x 4, x0 y0 x1 y1) have no more than ``max_overlap`` of their own
-    area inside any of ``sign_boxes`` (M x 4): a box on part of a sign is not a look-alike."""
+def off_every_sign(boxes: np.ndarray, sign_boxes: np.ndarray, pano_width_px: float,
+                   max_overlap: float = MINED_MAX_OVERLAP) -> np.ndarray:
+    """Which panorama ``boxes`` (N x 4, u0 v0 u1 v1) overlap none of ``sign_boxes`` (M x 4)
+    by more than ``max_overlap`` of the smaller box (``core.detector.seam_aware_overlap``,
+    across the seam too): a box on part of a sign, or round one, is not a look-alike."""
+    overlap = import_roadsigns("roadsigns.core.detector").seam_aware_overlap
     boxes = np.asarray(boxes, np.float64).reshape(-1, 4)
     sign_boxes = np.asarray(sign_boxes, np.float64).reshape(-1, 4)
     if not len(sign_boxes):
         return np.ones(len(boxes), bool)
-    w = np.minimum(boxes[:, None, 2], sign_boxes[None, :, 2]) - np.maximum(boxes[:, None, 0], sign_boxes[None, :, 0])
-    h = np.minimum(boxes[:, None, 3], sign_boxes[None, :, 3]) - np.maximum(boxes[:, None, 1], sign_boxes[None, :, 1])
-    area = np.maximum((boxes[:, 2] - boxes[:, 0]) * (boxes[:, 3] - boxes[:, 1]), 1.0)
-    inside = np.clip(w, 0, None) * np.clip(h, 0, None) / area[:, None]
-    return inside.max(1) <= max_overlap
+    return np.array([overlap(box, sign_boxes, pano_width_px).max() <= max_overlap for box in boxes], bool)
 
 
 def mined_negatives(scene_dirs, cache_path: str, detector_path: str = MINED_DETECTOR):
@@ -344,7 +343,7 @@ def mined_negatives(scene_dirs, cache_path: str, detector_path: str = MINED_DETE
             signs = np.array([s["box"] for s in meta["signs"]], np.float64).reshape(-1, 4)
             signs[:, 2:] += 1   # inclusive pixel boxes
             boxes = found.boxes()
-            for box in boxes[off_every_sign(boxes, signs)]:
+            for box in boxes[off_every_sign(boxes, signs, pano.shape[1])]:
                 crop = signcodes.cut_crop(pano, tuple(box), margin=CACHED_MARGIN, max_side_px=128)
                 crops.append(cv2.cvtColor(crop, cv2.COLOR_RGB2BGR))
     np.savez(cache_path, crops=np.array(crops, dtype=object))
@@ -364,7 +363,7 @@ def face_label(names, family: str, limit: Optional[str], unlisted_label: int) ->
     """The label of a face of many countries: its family's code (:data:`FAMILY_CODES`), or
     the speed-limit code of the number a red ring states, where ``names`` has that code;
     else ``unlisted_label``."""
-    code = FAMILY_CODES.get(family) or (SPEED_LIMIT_CODE.format(limit) if family == "ring_legend" and limit else None)
+    code = FAMILY_CODES.get(family) or (SPEED_LIMIT_CODE.format(limit) if limit else None)
     return names.index(code) if code in names else unlisted_label
 
 

@@ -472,19 +472,26 @@ def _panel_text(rng, size_px):
     return img
 
 
+def _no_limit(draw: Callable) -> Callable:
+    """A family's drawing that states no limit, as :data:`_DRAW` calls it: ``(rgba, None)``."""
+    return lambda rng, size_px: (draw(rng, size_px), None)
+
+
+#: Each family's drawing: ``(rng, size_px) -> (rgba, limit)``, the limit a face states
+#: (:func:`random_face_with_limit`) or None.
 _DRAW: Dict[str, Callable] = {
     "ring_legend": _ring_legend,
-    "no_parking": _no_parking,
-    "no_stopping": lambda rng, s: _no_parking(rng, s, cross=True),
-    "no_entry": _no_entry,
-    "blue_disc": _blue_disc,
-    "triangle_up": lambda rng, s: _triangle(rng, s, up=True),
-    "triangle_down": lambda rng, s: _triangle(rng, s, up=False),
-    "octagon": _octagon,
-    "panel_p": _panel_p,
-    "panel_one_way": _panel_one_way,
-    "panel_pictogram": _panel_pictogram,
-    "panel_text": _panel_text,
+    "no_parking": _no_limit(_no_parking),
+    "no_stopping": _no_limit(lambda rng, s: _no_parking(rng, s, cross=True)),
+    "no_entry": _no_limit(_no_entry),
+    "blue_disc": _no_limit(_blue_disc),
+    "triangle_up": _no_limit(lambda rng, s: _triangle(rng, s, up=True)),
+    "triangle_down": _no_limit(lambda rng, s: _triangle(rng, s, up=False)),
+    "octagon": _no_limit(_octagon),
+    "panel_p": _no_limit(_panel_p),
+    "panel_one_way": _no_limit(_panel_one_way),
+    "panel_pictogram": _no_limit(_panel_pictogram),
+    "panel_text": _no_limit(_panel_text),
 }
 
 
@@ -537,8 +544,7 @@ def random_face_with_limit(rng, size_px: int = 160, cls: Optional[str] = None,
         pool = [f for f in pool if FAMILIES[f][0] == cls]
     weights = np.array([FAMILIES[f][1] for f in pool])
     family = pool[int(rng.choice(len(pool), p=weights / weights.sum()))]
-    drawn = _DRAW[family](rng, int(size_px))
-    face, limit = drawn if isinstance(drawn, tuple) else (drawn, None)
+    face, limit = _DRAW[family](rng, int(size_px))
     face[..., 3] = np.where(face[..., 3] >= 128, 255, 0).astype(np.uint8)
     return weathered(face, rng), cls, family, limit
 

@@ -16,8 +16,10 @@ def test_a_box_counts_as_off_the_signs_unless_it_lies_mostly_on_one():
                       [102, 101, 139, 141],     # the sign itself
                       [136, 100, 176, 140],     # 4 of its 40 px inside the sign: a tenth
                       [130, 100, 170, 140]])    # a quarter inside
-    assert codes.off_every_sign(boxes, signs).tolist() == [True, False, True, False]
-    assert codes.off_every_sign(boxes, np.zeros((0, 4))).all()
+    assert codes.off_every_sign(boxes, signs, 2048).tolist() == [True, False, True, False]
+    assert codes.off_every_sign(boxes, np.zeros((0, 4)), 2048).all()
+    # a box across the seam (u1 past W) lies on a sign at the panorama's left edge
+    assert not codes.off_every_sign(np.array([[2040, 100, 2060, 140]]), np.array([[0, 100, 12, 140]]), 2048)[0]
 
 
 def _scene_with_two_signs(scene_dir, listed):
