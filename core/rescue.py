@@ -102,7 +102,7 @@ def code_classes(names: Sequence[str], table, class_names: Sequence[str]) -> np.
     for k, name in enumerate(names):
         if name != OTHER_CODE:
             klass = unlisted_code_class(name) or class_of_code(name, table, class_names)
-            out[k] = list(class_names).index(klass) if klass in class_names else UNMAPPED_COLUMN
+            out[k] = list(class_names).index(klass) if klass is not None and klass in class_names else UNMAPPED_COLUMN
     return out
 
 
