@@ -436,8 +436,10 @@ def far_frames(items, indices, n: int = FAR_FRAMES):
 class Sampler:
     """Draws labelled training crops (``CROP_PX`` square, BGR) from every source."""
 
-    def __init__(self, names, seed: int = 0, pano_cache: str = "", mined_cache: str = ""):
+    def __init__(self, names, seed: int = 0, pano_cache: str = "", mined_cache: str = "",
+                 far_share: float = FAR_SHARE):
         self.names = list(names)
+        self.far_share = far_share
         self.other = self.names.index(OTHER)
         signcodes = import_roadsigns("roadsigns.core.signcodes")
         self.unlisted = {c: self.names.index(signcodes.unlisted_code(c)) if c in UNLISTED_CLASSES else self.other
@@ -529,7 +531,7 @@ class Sampler:
     # sources
     def from_gtsrb(self):
         c = self.rng.choice(len(self.gtsrb_classes), p=self.gtsrb_p)
-        pool = self.gtsrb_far_by_class[c] if self.rng.random() < FAR_SHARE else self.gtsrb_by_class[c]
+        pool = self.gtsrb_far_by_class[c] if self.rng.random() < self.far_share else self.gtsrb_by_class[c]
         image, box, label, _ = self.gtsrb[int(self.rng.choice(pool))]
         return far_camera(crop_square(image, box, **self.jitter()), self.rng), label
 
@@ -726,9 +728,9 @@ def accuracy(prob: np.ndarray, labels: np.ndarray) -> float:
     return float((prob.argmax(1) == labels).mean()) if len(labels) else float("nan")
 
 
-def _feed(names, seed, pano_cache, mined_cache, batch, queue):
+def _feed(names, seed, pano_cache, mined_cache, far_share, batch, queue):
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    sampler = Sampler(names, seed, pano_cache, mined_cache)
+    sampler = Sampler(names, seed, pano_cache, mined_cache, far_share)
     while True:
         queue.put(sampler.batch(batch))
 
@@ -737,13 +739,14 @@ class BatchFeeder:
     """Training batches drawn in worker processes (the cut-and-warp work is the slow part on a
     CPU); each worker has its own random stream (``seed`` + 1000 k)."""
 
-    def __init__(self, names, seed, pano_cache, mined_cache, batch, workers):
+    def __init__(self, names, seed, pano_cache, mined_cache, far_share, batch, workers):
         import multiprocessing as mp
 
         ctx = mp.get_context("fork")
         self.queue = ctx.Queue(maxsize=16)
         self.procs = [ctx.Process(target=_feed, daemon=True,
-                                  args=(names, seed + 1000 * (k + 1), pano_cache, mined_cache, batch, self.queue))
+                                  args=(names, seed + 1000 * (k + 1), pano_cache, mined_cache, far_share, batch,
+                                        self.queue))
                       for k in range(workers)]
         for p in self.procs:
             p.start()
@@ -759,7 +762,7 @@ class BatchFeeder:
 def train(out_path: str, minutes: float, work: str, threads: int = 1, batch: int = 128, lr: float = 3e-3,
           seed: int = 0, resume: str = "", device: str = "auto", checkpoint_every_min: float = 5.0,
           workers: int = 1, use_pano: bool = True, crop_px: int = 0, init: str = "", new_rows_only: bool = False,
-          log=print) -> dict:
+          far_share: float = FAR_SHARE, log=print) -> dict:
     """Train (or go on from ``resume``) for ``minutes`` in all; ``crop_px`` (0: the
     checkpoint's, else :data:`CROP_PX`) sets the crop side (:func:`set_crop_px`); ``init``:
     an exported classifier to start from (:func:`init_from_onnx`); ``new_rows_only`` (with
@@ -790,7 +793,7 @@ def train(out_path: str, minutes: float, work: str, threads: int = 1, batch: int
     set_crop_px(crop_px or CROP_PX)
     pano_cache = os.path.join(work, "pano-train.npz") if use_pano else ""  # native density: any CROP_PX
     mined_cache = os.path.join(work, "mined-train.npz") if use_pano else ""
-    sampler = Sampler(names, seed, pano_cache, mined_cache)
+    sampler = Sampler(names, seed, pano_cache, mined_cache, far_share)
     torch.manual_seed(seed)
     if state is not None and "rng" in state:
         sampler.rng.bit_generator.state = state["rng"]
@@ -807,7 +810,7 @@ def train(out_path: str, minutes: float, work: str, threads: int = 1, batch: int
     log(f"codes: {len(names)} names, {len(sampler.gtsrb)} GTSRB train crops, {len(sampler.drawn)} drawn, "
         f"{len(sampler.pano)} panorama crops, {len(sampler.mined)} mined look-alikes; "
         f"validation {len(val_y)} crops; {CROP_PX} px crops; device {dev}")
-    feeder = BatchFeeder(names, seed, pano_cache, mined_cache, batch, workers) if workers else None
+    feeder = BatchFeeder(names, seed, pano_cache, mined_cache, far_share, batch, workers) if workers else None
     stop = {"now": False}
 
     def on_signal(signum, frame):
@@ -982,6 +985,8 @@ def main(argv=None):
                     help="start from an exported classifier (its codes' weights; new names from their class's)")
     ap.add_argument("--new-rows-only", action="store_true",
                     help="with --init: train only the last layer's rows of the names the file lacks")
+    ap.add_argument("--far-share", type=float, default=FAR_SHARE,
+                    help="share of GTSRB draws from each track's farthest frames (the rest from all of them)")
     ap.add_argument("--crop-px", type=int, default=0,
                     help=f"crop side in pixels (default {CROP_PX}, or the resumed checkpoint's)")
     a = ap.parse_args(argv)
@@ -990,7 +995,7 @@ def main(argv=None):
         print(json.dumps(evaluate_onnx(a.evaluate, a.work), indent=1))
         return 0
     train(a.out, a.minutes, a.work, a.threads, a.batch, a.lr, a.seed, a.resume, a.device,
-          a.checkpoint_every, a.workers, not a.no_pano, a.crop_px, a.init, a.new_rows_only)
+          a.checkpoint_every, a.workers, not a.no_pano, a.crop_px, a.init, a.new_rows_only, a.far_share)
     return 0
 
 
