@@ -632,6 +632,11 @@ class TiledIndex:
     def tile_keys(self) -> List[Tuple[int, int]]:
         return sorted(self._ranges)
 
+    def tile_rows(self, key: Tuple[int, int]) -> Tuple[int, int]:
+        """``(start, end)``: the rows of tile ``key`` (column, row) in the stored arrays, so
+        ``xyz_world[start:end]`` is its points as a view (``(0, 0)`` for an empty tile)."""
+        return self._ranges.get(key, (0, 0))
+
     # -- queries -----------------------------------------------------------------------
 
     def _tiles_in(self, xy_min, xy_max) -> Iterator[Tuple[Tuple[int, int], int, int]]:

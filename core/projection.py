@@ -15,10 +15,9 @@ How the cloud is searched (cost ~ linear in points + detections):
   of at most ``ProjectionParams.block_m`` metres and ``block_max_points`` points
   (:func:`slice_blocks`), each held in a :class:`~.pointcloud.TiledIndex` of small tiles,
   so memory follows the block, not the drive;
-* within a block, one pass over its tiles serves all its detections together: each tile is
-  visited once and tested against the detections whose footprint crosses it, so a
-  detection only ever touches the tiles under its own frustum
-  (``ProjectionResult.tiles_visited``);
+* within a block, each detection tests the tiles its footprint crosses, as views of the
+  block index's arrays (no copies), so a detection only ever touches the tiles under its
+  own frustum (``ProjectionResult.tiles_visited``), and nothing it allocates outlives it;
 * points of class 2 (ground) are never candidates, nor stored.
 
 Conventions: world ENU metres; boxes in the detections layer's form (``u0 < W``, ``u1`` may exceed
@@ -28,7 +27,6 @@ Conventions: world ENU metres; boxes in the detections layer's form (``u0 < W``,
 from __future__ import annotations
 
 import math
-from collections import Counter
 from dataclasses import dataclass, field
 from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
 
@@ -452,16 +450,6 @@ def _footprint_cells(frusta: Frusta, rows: np.ndarray, cell_m: float, present: O
             yield k, i[hit], j[hit]
 
 
-def _assign_tiles(frusta: Frusta, tile_size_m: float, present: set,
-                  rows: np.ndarray) -> Dict[Tuple[int, int], List[int]]:
-    """Tile key -> detections (of ``rows``) whose footprint crosses that (non-empty) tile."""
-    per_tile: Dict[Tuple[int, int], List[int]] = {}
-    for k, i, j in _footprint_cells(frusta, rows, tile_size_m, present):
-        for key in zip(i.tolist(), j.tolist()):
-            per_tile.setdefault(key, []).append(k)
-    return per_tile
-
-
 def _frustum_members(xyz, det: Detections, k: int, frusta: Frusta, R: np.ndarray,
                      max_range_m: float, min_range_m: float) -> np.ndarray:
     """Rows of ``xyz`` inside detection ``k``'s frustum (grown box, range window)."""
@@ -760,41 +748,37 @@ def _project_block(det: Detections, rows: np.ndarray, index: TiledIndex, frusta:
                    rays: np.ndarray, max_range_m: float, params: ProjectionParams,
                    result: ProjectionResult, keep_point_index: bool) -> None:
     """Project the detections ``rows`` into ``index`` (non-ground points only), filling
-    their rows of ``result``: one pass over the tiles, every detection crossing a tile
-    tested there; a detection's surface is searched as soon as its last tile is passed, and
-    its points let go, so the frustum points held are those of the detections the pass is
-    in the middle of, not the block's (overlapping frusta hold the same points many times)."""
+    their rows of ``result``: one detection at a time, its frustum tested on each tile its
+    footprint crosses (views of the index's arrays, no copies), its surface searched among
+    the points inside. Nothing a detection allocates outlives it, so the heap a block leaves
+    does not depend on how its detections' tiles interleave."""
     if len(index) == 0:
         return
-    tile = index.tile_size_m
-    per_tile = _assign_tiles(frusta, tile, set(index.tile_keys), rows)
-    tiles_left = Counter(k for members in per_tile.values() for k in members)
-    found: Dict[int, List[Tuple[np.ndarray, np.ndarray]]] = {k: [] for k in tiles_left}
-    for key, members in sorted(per_tile.items()):
-        pts = index.query_box([key[0] * tile, key[1] * tile, -np.inf],
-                              [(key[0] + 1) * tile, (key[1] + 1) * tile, np.inf])
-        for k in members:
+    present = set(index.tile_keys)
+    for k, i, j in _footprint_cells(frusta, rows, index.tile_size_m, present):
+        parts = []
+        for key in zip(i.tolist(), j.tolist()):
+            start, end = index.tile_rows(key)
             result.tiles_visited[k] += 1
-            result.points_tested[k] += len(pts)
-            inside = _frustum_members(pts.xyz_world, det, k, frusta, R, max_range_m, params.min_range_m)
+            result.points_tested[k] += end - start
+            inside = _frustum_members(index.xyz_world[start:end], det, k, frusta, R, max_range_m,
+                                      params.min_range_m)
             if inside.size:
-                found[k].append((pts.xyz_world[inside], pts.point_index[inside]))
-            tiles_left[k] -= 1
-            if tiles_left[k] == 0:
-                _search_surface(det, k, found.pop(k), R, rays, params, result, keep_point_index)
+                parts.append(start + inside)
+        if parts:
+            _search_surface(det, k, np.concatenate(parts), index, R, rays, params, result, keep_point_index)
 
 
-def _search_surface(det: Detections, k: int, parts: List[Tuple[np.ndarray, np.ndarray]], R: np.ndarray,
+def _search_surface(det: Detections, k: int, members: np.ndarray, index: TiledIndex, R: np.ndarray,
                     rays: np.ndarray, params: ProjectionParams, result: ProjectionResult,
                     keep_point_index: bool) -> None:
-    """The surface of detection ``k`` among its frustum's points ``parts`` (``(xyz, point
-    index)`` per tile), into row ``k`` of ``result``; nothing without points."""
-    if not parts:
-        return
-    xyz = np.concatenate([f[0] for f in parts])
-    pidx = np.concatenate([f[1] for f in parts])
-    pidx, first = np.unique(pidx, return_index=True)  # a point on a tile edge comes twice
-    xyz = xyz[first]
+    """The surface of detection ``k`` among its frustum's points (``members``: rows of
+    ``index``), into row ``k`` of ``result``. The points are taken in the cloud's order
+    (point index), whatever the tiles' order."""
+    pidx = index.point_index[members]
+    order = np.argsort(pidx, kind="stable")
+    pidx = pidx[order]
+    xyz = index.xyz_world[members[order]]
     W, H = det.pano_size_px[k]
     u, v, _ = geometry.world_to_pixel(xyz, det.centre_world[k], R[k], W, H)
     a, b = box_coordinates(u, v, det.box_px[k], W)

@@ -159,19 +159,28 @@ def test_frusta_and_their_cells_built_in_batches_are_the_same(detections):
     assert np.all(np.diff(cells) > 0)
 
 
-def test_a_detection_is_searched_once_its_last_tile_is_passed(detections, las_path, result, monkeypatch):
-    """The pass over a block's tiles searches each detection's surface as soon as it has
-    seen its last tile, letting its points go, so the frustum points held are not the whole
-    block's; each detection with points is searched once, and the candidates are unchanged."""
-    queries, searched = [], []
-    real_query, real_search = P.TiledIndex.query_box, P._search_surface
-    monkeypatch.setattr(P.TiledIndex, "query_box", lambda self, lo, hi: queries.append(1) or real_query(self, lo, hi))
-    monkeypatch.setattr(P, "_search_surface", lambda det, k, parts, *a: searched.append((k, len(queries)))
-                        or real_search(det, k, parts, *a))
+def test_a_block_is_worked_one_detection_at_a_time(detections, las_path, result, monkeypatch):
+    """Within a block, each detection tests its own tiles (views of the index, never a copied
+    query) and is searched right after them, so nothing one detection allocates waits on
+    another's; each detection with points is searched once, and the candidates are those of
+    the fixture."""
+    events, copies = [], []
+    real_members, real_search = P._frustum_members, P._search_surface
+    monkeypatch.setattr(P.TiledIndex, "query_box", lambda self, lo, hi: copies.append(1))
+    monkeypatch.setattr(P, "_frustum_members", lambda xyz, det, k, *a: events.append(("tile", k))
+                        or real_members(xyz, det, k, *a))
+    monkeypatch.setattr(P, "_search_surface", lambda det, k, *a: events.append(("search", k))
+                        or real_search(det, k, *a))
     again = P.project_detections(detections, las_path, max_range_m=30.0, keep_point_index=True)
-    ks = [k for k, _ in searched]
-    assert len(ks) == len(set(ks)) == int(np.sum(again.tiles_visited > 0))
-    assert searched[0][1] < len(queries)           # the first search comes before the last tile
+    assert not copies
+    searched = [k for what, k in events if what == "search"]
+    assert len(searched) == len(set(searched)) == int(np.sum(np.array(again.status) != P.STATUS_NO_POINTS))
+    runs = [k for n, (what, k) in enumerate(events) if what == "tile" and (n == 0 or events[n - 1][1] != k)]
+    assert len(runs) == len(set(runs)) == int(np.sum(again.tiles_visited > 0))   # one run of tiles each
+    for n, (what, k) in enumerate(events):
+        if what == "search":
+            assert events[n - 1] == ("tile", k)                 # straight after its own last tile
+            assert ("tile", k) not in events[n + 1:]
     assert again.status == result.status
     np.testing.assert_array_equal(again.xyz_world, result.xyz_world)
     assert all(np.array_equal(a, b) for a, b in zip(again.point_index, result.point_index))
