@@ -599,14 +599,16 @@ DEFAULT_MIN_BOX_PX = 14.0
 def _merged(detector, rows: Sequence[np.ndarray], W: int, overlap_threshold: float, min_box_px: float,
             class_agnostic: bool = False) -> PanoramaDetections:
     """:func:`merge_view_detections` of the view boxes ``rows`` = (boxes in panorama pixels,
-    scores, class ids, views, complete, central) as rows; merged boxes whose shorter side is
-    under ``min_box_px`` are dropped. ``class_agnostic``: boxes of any class merge (the kept
-    one gives the class)."""
-    boxes, scores, ids, views, complete, central = rows
+    scores, class ids, views, complete, central, cut at an upward view's side) as rows;
+    merged boxes whose shorter side is under ``min_box_px`` are dropped, and so is a box
+    an upward view cut at its side that no other view's box joined (:func:`detect_panorama`).
+    ``class_agnostic``: boxes of any class merge (the kept one gives the class)."""
+    boxes, scores, ids, views, complete, central, side_cut_up = rows
     kept, merged, counts = merge_view_detections(
         boxes, scores, np.zeros_like(ids) if class_agnostic else ids, complete, central, W, overlap_threshold)
     big_enough = np.minimum(merged[:, 2] - merged[:, 0], merged[:, 3] - merged[:, 1]) >= min_box_px
-    kept, merged, counts = kept[big_enough], merged[big_enough], counts[big_enough]
+    wanted = big_enough & ~(side_cut_up[kept] & (counts == 1))
+    kept, merged, counts = kept[wanted], merged[wanted], counts[wanted]
     names = list(detector.class_names)
     return PanoramaDetections(ids[kept], [names[c] for c in ids[kept]], scores[kept],
                               merged[:, 0], merged[:, 1], merged[:, 2], merged[:, 3], views[kept], counts)
@@ -624,6 +626,12 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
     view and merged by :func:`merge_view_detections`; merged boxes whose shorter side is
     under ``min_box_px`` panorama pixels are dropped.
 
+    A box an upward view (:attr:`~.panorama.PerspectiveView.looks_up`) cuts at its left or
+    right side is dropped unless another view's box joins it: those views look over the
+    road for panels overhead, and a sign they cut at the side stands beside it, seen whole
+    by the horizon views of the stations before; mapped to the panorama, the lone cut box
+    lies on part of the sign only.
+
     ``candidate_confidence`` (under ``confidence``): the boxes scoring from it up to
     ``confidence`` are merged apart (across classes) and added as rows marked ``candidate``,
     except where they overlap a detection; the detections are the same as without it.
@@ -633,6 +641,7 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
     lowest = confidence if candidate_confidence is None else min(confidence, candidate_confidence)
     batch = max(1, int(getattr(detector, "max_batch", 1)))
     all_boxes, all_scores, all_ids, all_views, all_complete, all_central = [], [], [], [], [], []
+    all_side_cut_up: List[np.ndarray] = []
     for start in range(0, len(views), batch):
         chunk = list(range(start, min(start + batch, len(views))))
         images = [view_images[k] for k in chunk]
@@ -650,12 +659,14 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
             all_views.append(np.full(len(det), k, dtype=np.int64))
             all_complete.append(~view.touches_edge(det.boxes_xyxy))
             all_central.append(view.centrality(det.boxes_xyxy))
+            all_side_cut_up.append(view.touches_side(det.boxes_xyxy) & view.looks_up)
         progress.report((chunk[-1] + 1) / len(views))
     if not all_boxes:
         z = np.zeros(0)
         return PanoramaDetections(np.zeros(0, np.int64), [], z, z, z, z, z,
                                   np.zeros(0, np.int64), np.zeros(0, np.int64))
-    rows = [np.concatenate(a) for a in (all_boxes, all_scores, all_ids, all_views, all_complete, all_central)]
+    rows = [np.concatenate(a) for a in (all_boxes, all_scores, all_ids, all_views, all_complete, all_central,
+                                        all_side_cut_up)]
     sure = rows[1] >= confidence
     found = _merged(detector, [a[sure] for a in rows], W, overlap_threshold, min_box_px)
     if lowest >= confidence or sure.all():

@@ -222,13 +222,26 @@ class PerspectiveView:
         off = np.degrees(np.arccos(np.clip(d @ self.axes()[:, 2], -1.0, 1.0)))
         return 1.0 - off / (0.5 * self.hfov_deg)
 
+    def _edge_margin_px(self, margin_px: Optional[float]) -> float:
+        return max(2.0, 0.01 * max(self.width_px, self.height_px)) if margin_px is None else margin_px
+
     def touches_edge(self, boxes_xyxy, margin_px: Optional[float] = None) -> np.ndarray:
         """Boxes within ``margin_px`` (default 1 % of the view size, at least 2) of the border:
         likely cut by the view edge."""
         b = np.asarray(boxes_xyxy, float).reshape(-1, 4)
-        m = max(2.0, 0.01 * max(self.width_px, self.height_px)) if margin_px is None else margin_px
-        return ((b[:, 0] <= m) | (b[:, 1] <= m)
-                | (b[:, 2] >= self.width_px - m) | (b[:, 3] >= self.height_px - m))
+        m = self._edge_margin_px(margin_px)
+        return self.touches_side(b, m) | (b[:, 1] <= m) | (b[:, 3] >= self.height_px - m)
+
+    def touches_side(self, boxes_xyxy, margin_px: Optional[float] = None) -> np.ndarray:
+        """Boxes within ``margin_px`` (as :meth:`touches_edge`) of the left or right border."""
+        b = np.asarray(boxes_xyxy, float).reshape(-1, 4)
+        m = self._edge_margin_px(margin_px)
+        return (b[:, 0] <= m) | (b[:, 2] >= self.width_px - m)
+
+    @property
+    def looks_up(self) -> bool:
+        """Whether the view is pitched above the horizon (the upward views)."""
+        return self.pitch_deg > 0.0
 
     def max_density_px_per_rad(self) -> float:
         """Highest sampling density of the view along its horizontal (at its left/right edge)."""

@@ -14,6 +14,7 @@ from helpers.tinyonnx import make_model
 
 from devtools import REPO_ROOT
 from roadsigns.core import detector as det
+from roadsigns.core import geometry
 from roadsigns.core.detector import Detector, ImageDetections, detect_panorama, merge_view_detections
 from roadsigns.core.errors import InputError
 from roadsigns.core.panorama import ViewSet
@@ -260,6 +261,33 @@ def test_sign_across_the_seam_is_found_once_in_the_right_place():
     assert found.view_index[seam] == 4 and found.n_views[seam] >= 2  # yaw 180 wins over the cut ones
     other = 1 - seam
     assert 0.5 * (found.u0[other] + found.u1[other]) == pytest.approx((60 / 360 + 0.5) * W, abs=2.0)
+
+
+def test_an_upward_view_drops_what_it_cuts_at_its_sides_and_keeps_the_rest():
+    """An upward view looks over the road for panels overhead: a sign it cuts at its left or
+    right side stands beside the road (the horizon views see it whole from the stations
+    before), and its box alone would lie on part of the sign only: it is dropped unless
+    another view's box joins it. A sign whole in the view stays."""
+    W = 2048
+    horizon = ViewSet.ring(8, 0.0, 80.0, (320, 192))          # up to +26.7 deg
+    upward = ViewSet.ring(2, 35.0, 90.0, (320, 192))
+    for row_px, horizon_sees_it in ((96.0, True), (30.0, False)):   # on the right side, lower and higher
+        side = upward[0].pixel_to_ray(np.array([320.0]), np.array([row_px]))[0]
+        side_yaw, side_pitch = (float(np.degrees(a)) for a in geometry.ray_to_angles_rad(side))
+        pano = paint_discs([(0.0, 40.0, 5.0, (0, 0, 255)), (side_yaw, side_pitch, 4.0, (0, 0, 255))], W)
+        seen = ColourBlobDetector().detect(upward[0].cut(pano), 0.5, 0.5)
+        assert len(seen) == 2 and np.count_nonzero(upward[0].touches_side(seen.boxes_xyxy)) == 1
+        from_horizon = detect_panorama(ColourBlobDetector(), pano, horizon)
+        assert len(from_horizon) == int(horizon_sees_it)
+        found = detect_panorama(ColourBlobDetector(), pano, horizon + upward)
+        assert len(found) == 1 + int(horizon_sees_it)
+        if horizon_sees_it:     # the horizon views cut it at their top: the upward box joins theirs
+            k = int(np.argmax(found.view_index < len(horizon)))
+            assert found.n_views[k] == from_horizon.n_views[0] + 1
+        found = found.subset(found.view_index >= len(horizon))
+        assert len(found) == 1
+    assert 0.5 * (found.v0[0] + found.v1[0]) == pytest.approx((0.5 - 40.0 / 180.0) * W / 2, abs=3.0)
+    assert 0.5 * (found.u0[0] + found.u1[0]) == pytest.approx(0.5 * W, abs=3.0)
 
 
 def test_boxes_under_the_minimum_size_are_dropped():
