@@ -284,10 +284,10 @@ def test_an_upward_view_drops_what_it_cuts_at_its_sides_and_keeps_the_rest():
         if horizon_sees_it:     # the horizon views cut it at their top: the upward box joins theirs
             k = int(np.argmax(found.view_index < len(horizon)))
             assert found.n_views[k] == from_horizon.n_views[0] + 1
-        found = found.subset(found.view_index >= len(horizon))
-        assert len(found) == 1
-    assert 0.5 * (found.v0[0] + found.v1[0]) == pytest.approx((0.5 - 40.0 / 180.0) * W / 2, abs=3.0)
-    assert 0.5 * (found.u0[0] + found.u1[0]) == pytest.approx(0.5 * W, abs=3.0)
+        overhead = found.subset(found.view_index >= len(horizon))    # whole in the upward view: kept
+        assert len(overhead) == 1
+        assert 0.5 * (overhead.v0[0] + overhead.v1[0]) == pytest.approx((0.5 - 40.0 / 180.0) * W / 2, abs=3.0)
+        assert 0.5 * (overhead.u0[0] + overhead.u1[0]) == pytest.approx(0.5 * W, abs=3.0)
 
 
 def test_boxes_under_the_minimum_size_are_dropped():
