@@ -46,7 +46,7 @@ import signal
 import sys
 import time
 from collections import defaultdict
-from typing import Optional
+from typing import Dict, Optional
 
 import cv2
 import numpy as np
@@ -437,9 +437,14 @@ class Sampler:
     """Draws labelled training crops (``CROP_PX`` square, BGR) from every source."""
 
     def __init__(self, names, seed: int = 0, pano_cache: str = "", mined_cache: str = "",
-                 far_share: float = FAR_SHARE):
+                 far_share: float = FAR_SHARE, mix: Optional[Dict[str, float]] = None):
+        """``far_share``: as :data:`FAR_SHARE`; ``mix``: shares that replace :data:`MIX`'s."""
+        unknown = set(mix or {}) - set(MIX)
+        if unknown:
+            raise ValueError(f"no source {', '.join(sorted(unknown))} in the mix (sources: {', '.join(MIX)})")
         self.names = list(names)
         self.far_share = far_share
+        self.mix = dict(MIX, **(mix or {}))
         self.other = self.names.index(OTHER)
         signcodes = import_roadsigns("roadsigns.core.signcodes")
         self.unlisted = {c: self.names.index(signcodes.unlisted_code(c)) if c in UNLISTED_CLASSES else self.other
@@ -600,8 +605,8 @@ class Sampler:
         return far_camera(crop, self.rng, 0.7), self.other
 
     def sample(self):
-        sources = [k for k in MIX if (k != "pano" or self.pano) and (k != "mined" or self.mined)]
-        p = np.array([MIX[k] for k in sources])
+        sources = [k for k in self.mix if (k != "pano" or self.pano) and (k != "mined" or self.mined)]
+        p = np.array([self.mix[k] for k in sources])
         which = sources[int(self.rng.choice(len(sources), p=p / p.sum()))]
         return getattr(self, "from_" + which)()
 
@@ -728,9 +733,9 @@ def accuracy(prob: np.ndarray, labels: np.ndarray) -> float:
     return float((prob.argmax(1) == labels).mean()) if len(labels) else float("nan")
 
 
-def _feed(names, seed, pano_cache, mined_cache, far_share, batch, queue):
+def _feed(names, seed, pano_cache, mined_cache, options, batch, queue):
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    sampler = Sampler(names, seed, pano_cache, mined_cache, far_share)
+    sampler = Sampler(names, seed, pano_cache, mined_cache, **options)
     while True:
         queue.put(sampler.batch(batch))
 
@@ -739,13 +744,13 @@ class BatchFeeder:
     """Training batches drawn in worker processes (the cut-and-warp work is the slow part on a
     CPU); each worker has its own random stream (``seed`` + 1000 k)."""
 
-    def __init__(self, names, seed, pano_cache, mined_cache, far_share, batch, workers):
+    def __init__(self, names, seed, pano_cache, mined_cache, options, batch, workers):
         import multiprocessing as mp
 
         ctx = mp.get_context("fork")
         self.queue = ctx.Queue(maxsize=16)
         self.procs = [ctx.Process(target=_feed, daemon=True,
-                                  args=(names, seed + 1000 * (k + 1), pano_cache, mined_cache, far_share, batch,
+                                  args=(names, seed + 1000 * (k + 1), pano_cache, mined_cache, options, batch,
                                         self.queue))
                       for k in range(workers)]
         for p in self.procs:
@@ -762,7 +767,7 @@ class BatchFeeder:
 def train(out_path: str, minutes: float, work: str, threads: int = 1, batch: int = 128, lr: float = 3e-3,
           seed: int = 0, resume: str = "", device: str = "auto", checkpoint_every_min: float = 5.0,
           workers: int = 1, use_pano: bool = True, crop_px: int = 0, init: str = "", new_rows_only: bool = False,
-          far_share: float = FAR_SHARE, log=print) -> dict:
+          far_share: float = FAR_SHARE, mix: Optional[Dict[str, float]] = None, log=print) -> dict:
     """Train (or go on from ``resume``) for ``minutes`` in all; ``crop_px`` (0: the
     checkpoint's, else :data:`CROP_PX`) sets the crop side (:func:`set_crop_px`); ``init``:
     an exported classifier to start from (:func:`init_from_onnx`); ``new_rows_only`` (with
@@ -793,7 +798,8 @@ def train(out_path: str, minutes: float, work: str, threads: int = 1, batch: int
     set_crop_px(crop_px or CROP_PX)
     pano_cache = os.path.join(work, "pano-train.npz") if use_pano else ""  # native density: any CROP_PX
     mined_cache = os.path.join(work, "mined-train.npz") if use_pano else ""
-    sampler = Sampler(names, seed, pano_cache, mined_cache, far_share)
+    options = {"far_share": far_share, "mix": mix}   # the Sampler's, in the feeders too
+    sampler = Sampler(names, seed, pano_cache, mined_cache, **options)
     torch.manual_seed(seed)
     if state is not None and "rng" in state:
         sampler.rng.bit_generator.state = state["rng"]
@@ -810,7 +816,7 @@ def train(out_path: str, minutes: float, work: str, threads: int = 1, batch: int
     log(f"codes: {len(names)} names, {len(sampler.gtsrb)} GTSRB train crops, {len(sampler.drawn)} drawn, "
         f"{len(sampler.pano)} panorama crops, {len(sampler.mined)} mined look-alikes; "
         f"validation {len(val_y)} crops; {CROP_PX} px crops; device {dev}")
-    feeder = BatchFeeder(names, seed, pano_cache, mined_cache, far_share, batch, workers) if workers else None
+    feeder = BatchFeeder(names, seed, pano_cache, mined_cache, options, batch, workers) if workers else None
     stop = {"now": False}
 
     def on_signal(signum, frame):
@@ -987,6 +993,8 @@ def main(argv=None):
                     help="with --init: train only the last layer's rows of the names the file lacks")
     ap.add_argument("--far-share", type=float, default=FAR_SHARE,
                     help="share of GTSRB draws from each track's farthest frames (the rest from all of them)")
+    ap.add_argument("--mix", default=None, metavar="NAME=W,...",
+                    help=f"shares that replace the mix's (names: {', '.join(MIX)}), e.g. mined=0.015")
     ap.add_argument("--crop-px", type=int, default=0,
                     help=f"crop side in pixels (default {CROP_PX}, or the resumed checkpoint's)")
     a = ap.parse_args(argv)
@@ -995,7 +1003,8 @@ def main(argv=None):
         print(json.dumps(evaluate_onnx(a.evaluate, a.work), indent=1))
         return 0
     train(a.out, a.minutes, a.work, a.threads, a.batch, a.lr, a.seed, a.resume, a.device,
-          a.checkpoint_every, a.workers, not a.no_pano, a.crop_px, a.init, a.new_rows_only, a.far_share)
+          a.checkpoint_every, a.workers, not a.no_pano, a.crop_px, a.init, a.new_rows_only, a.far_share,
+          {k: float(v) for k, v in (x.split("=") for x in a.mix.split(","))} if a.mix else None)
     return 0
 
 
