@@ -3,6 +3,7 @@ import dataclasses
 
 import numpy as np
 import pytest
+import shapely
 from helpers import signscene
 
 from roadsigns.core import projection as P
@@ -157,6 +158,20 @@ def test_frusta_and_their_cells_built_in_batches_are_the_same(detections):
     cells = P.frustum_cells(whole, P.FRUSTUM_CELL_M, batch=len(detections))
     assert len(cells) and np.array_equal(cells, P.frustum_cells(whole, P.FRUSTUM_CELL_M, batch=2))
     assert np.all(np.diff(cells) > 0)
+
+
+def test_the_cover_holds_every_footprint_in_a_shape_a_group(detections):
+    """The reads are planned on the footprints' cover: each footprint inside its group's
+    hull, one shape for every COVER_GROUP detections."""
+    frusta = P.Frusta.build(detections, 30.0, 0.25, 0.1)
+    order = np.arange(len(frusta))[::-1]
+    cover = frusta.cover(order, group=4)
+    assert len(cover) == -(-len(frusta) // 4)
+    assert all(shapely.equals(a, b) for a, b in zip(cover, frusta.cover(order, group=4, batch=8)))
+    footprints = frusta.footprints(order)
+    for k, footprint in enumerate(footprints):
+        assert shapely.covers(shapely.buffer(cover[k // 4], 1e-6), footprint)
+    assert shapely.union_all(cover).area < 0.9 * shapely.box(*shapely.total_bounds(footprints)).area
 
 
 def test_a_block_is_worked_one_detection_at_a_time(detections, las_path, result, monkeypatch):
