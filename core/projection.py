@@ -58,7 +58,8 @@ SLICE_M = 25.0
 FRUSTA_BATCH = 1024
 #: Detections, consecutive along the drive, whose footprints one shape covers when the
 #: reads of the cloud are planned (:meth:`Frusta.cover`): shapes of the whole drive are
-#: held then, one a group rather than one a detection (5 MB more on a 9 km drive).
+#: held then, one a group rather than one a detection (one a detection held 5 MB more on
+#: a 9 km drive than on 1 km; bench/README.md).
 COVER_GROUP = 64
 #: Standard errors by which :func:`convex_radius_m` moves a fitted curvature towards flat.
 CURVATURE_CONFIDENCE = 2.0
