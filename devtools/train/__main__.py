@@ -13,6 +13,7 @@ import os
 import sys
 
 from .. import REPO_ROOT
+from .data import parse_shares
 
 
 def main(argv=None):
@@ -42,7 +43,7 @@ def main(argv=None):
                     help="share of pasted real signs drawn at 14-35 px (far signs), 0..1")
     ap.add_argument("--faces", type=int, default=None,
                     help="faces of many countries drawn at the start for faces_paste (default train.FACES; 0: none)")
-    ap.add_argument("--source-weights", default=None, metavar="NAME=W,...",
+    ap.add_argument("--source-weights", type=parse_shares, default=None, metavar="NAME=W,...",
                     help="override the data mix's shares, e.g. views=0.5,gtsdb=0.2 (names: gtsdb, gtsrb_paste, "
                          "drawn_paste, views, faces_paste, gtsdb_hard)")
     ap.add_argument("--resume", default=None, help="a checkpoint (WORK/last.pt) to go on from, with its "
@@ -74,8 +75,7 @@ def main(argv=None):
           faces=FACES if a.faces is None else a.faces,
           arch={k: v for k, v in (("widths", tuple(int(c) for c in a.widths.split(",")) if a.widths else None),
                                   ("fpn", a.fpn), ("head", a.head)) if v is not None} or None,
-          source_weights={k: float(v) for k, v in (x.split("=") for x in a.source_weights.split(","))}
-          if a.source_weights else None)
+          source_weights=a.source_weights)
     return 0
 
 

@@ -993,7 +993,7 @@ def main(argv=None):
                     help="with --init: train only the last layer's rows of the names the file lacks")
     ap.add_argument("--far-share", type=float, default=FAR_SHARE,
                     help="share of GTSRB draws from each track's farthest frames (the rest from all of them)")
-    ap.add_argument("--mix", default=None, metavar="NAME=W,...",
+    ap.add_argument("--mix", type=data.parse_shares, default=None, metavar="NAME=W,...",
                     help=f"shares that replace the mix's (names: {', '.join(MIX)}), e.g. mined=0.015")
     ap.add_argument("--crop-px", type=int, default=0,
                     help=f"crop side in pixels (default {CROP_PX}, or the resumed checkpoint's)")
@@ -1003,8 +1003,7 @@ def main(argv=None):
         print(json.dumps(evaluate_onnx(a.evaluate, a.work), indent=1))
         return 0
     train(a.out, a.minutes, a.work, a.threads, a.batch, a.lr, a.seed, a.resume, a.device,
-          a.checkpoint_every, a.workers, not a.no_pano, a.crop_px, a.init, a.new_rows_only, a.far_share,
-          {k: float(v) for k, v in (x.split("=") for x in a.mix.split(","))} if a.mix else None)
+          a.checkpoint_every, a.workers, not a.no_pano, a.crop_px, a.init, a.new_rows_only, a.far_share, a.mix)
     return 0
 
 

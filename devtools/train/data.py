@@ -36,6 +36,19 @@ GTSDB_TRAIN_IDS = range(0, 500)
 GTSDB_HELDOUT_IDS = range(500, 600)
 
 
+def parse_shares(text: str) -> dict:
+    """``"name=w,name=w"`` -> ``{name: w}``: the command lines' shares of a training mix
+    (``--source-weights``, ``--mix``). A ``type`` for argparse: a malformed item raises
+    ValueError."""
+    shares = {}
+    for item in text.split(","):
+        name, sep, value = item.partition("=")
+        if not sep or not name.strip():
+            raise ValueError(f"{item!r} is not NAME=WEIGHT")
+        shares[name.strip()] = float(value)
+    return shares
+
+
 def gtsrb_class(class_id: int) -> str:
     """GTSRB / GTSDB class id (0-42) -> default class (shared/data/README.md)."""
     c = int(class_id)

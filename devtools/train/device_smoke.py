@@ -3,9 +3,10 @@
 ``python -m devtools.train.device_smoke --out .devdata`` writes, in a folder the device tool
 can carry (list it in ``.git/info/exclude``, name it in ``carry``):
 
-- ``shared/data``: a subset of ``../shared/data`` small enough to travel (about 27 MB):
-  GTSDB frames 0-39 and 500-539, :data:`GTSRB_TRACKS_PER_CLASS` gtsrb-train tracks and
-  :data:`SUBSET_PER_CLASS` gtsrb-subset crops a class, the code table;
+- ``shared/data``: a subset of ``../shared/data`` small enough to travel (about 24 MB):
+  the first :data:`GTSDB_PER_PART` GTSDB frames of each part (0-39, 500-539),
+  :data:`GTSRB_TRACKS_PER_CLASS` gtsrb-train tracks and :data:`SUBSET_PER_CLASS`
+  gtsrb-subset crops a class, the code table;
 - ``scenes/tiny-100``: the smallest training scene (``bench/out/train/scenes``);
 - ``run.sh``: on the device (``bash .devdata/run.sh``, ``OUT`` set), it puts the data where
   the scripts read it (``../shared/data``; it refuses where that exists, so it never
@@ -26,9 +27,11 @@ import shutil
 import sys
 
 from .. import REPO_ROOT
-from .data import DATA_DIR
+from .data import DATA_DIR, GTSDB_HELDOUT_IDS, GTSDB_TRAIN_IDS
 
-GTSDB_FRAMES = tuple(range(0, 40)) + tuple(range(500, 540))
+#: GTSDB frames carried: the first of the training part and of the held-out part
+GTSDB_PER_PART = 40
+GTSDB_FRAMES = tuple(GTSDB_TRAIN_IDS[:GTSDB_PER_PART]) + tuple(GTSDB_HELDOUT_IDS[:GTSDB_PER_PART])
 GTSRB_TRACKS_PER_CLASS = 4
 SUBSET_PER_CLASS = 4
 SCENE = os.path.join(REPO_ROOT, "bench", "out", "train", "scenes", "tiny-100")
@@ -42,8 +45,8 @@ HERE="$(basename "$(dirname "$0")")"
 mkdir -p ../shared && cp -r "$HERE/shared/data" ../shared/
 cd ../shared/data/gtsdb-train/images
 set +x
-for k in $(seq 0 599); do
-  f=$(printf %05d $k).jpg; [ -e $f ] || ln -s $(printf %05d $(( k < 500 ? k % 40 : 500 + k % 40 ))).jpg $f
+for k in $(seq 0 @LAST@); do
+  f=$(printf %05d $k).jpg; [ -e $f ] || ln -s $(printf %05d $(( k < @HELD@ ? k % @EACH@ : @HELD@ + k % @EACH@ ))).jpg $f
 done
 set -x
 cd - > /dev/null
@@ -124,7 +127,8 @@ def pack(out_dir: str, data_dir: str = DATA_DIR, scene: str = SCENE) -> None:
         _copy(os.path.join(data_dir, name), os.path.join(data, name))
     shutil.copytree(scene, os.path.join(out_dir, "scenes", os.path.basename(scene)))
     with open(os.path.join(out_dir, "run.sh"), "w") as f:
-        f.write(RUN_SH)
+        f.write(RUN_SH.replace("@HELD@", str(GTSDB_HELDOUT_IDS[0])).replace("@EACH@", str(GTSDB_PER_PART))
+                .replace("@LAST@", str(GTSDB_HELDOUT_IDS[-1])))
     os.chmod(os.path.join(out_dir, "run.sh"), 0o755)
 
 
