@@ -369,11 +369,13 @@ VIEW_SETS = {
     # twice the density ahead and behind (40 deg across: 16 px/deg, 1.4 x a 4096 px panorama's)
     "horizon+fore-aft-2x": lambda size: (panorama_mod.ViewSet.default(size_px=size, upward=False, fore_aft=False)
                                          + panorama_mod.ViewSet.ring(2, 0.0, 40.0, size)),
-    # the default and the upward ring (6 views at pitch +35 deg)
-    "default+upward": lambda size: panorama_mod.ViewSet.default(size_px=size, upward=True),
-    # the default and two upward views ahead and behind, over the road, where gantries are
-    "default+up-fore-aft": lambda size: (panorama_mod.ViewSet.default(size_px=size)
-                                         + panorama_mod.ViewSet.ring(2, 35.0, 90.0, size)),
+    # the default and the whole upward ring (6 views at pitch +35 deg), as training cuts
+    "default+upward": lambda size: (panorama_mod.ViewSet.default(size_px=size, upward=False)
+                                    + panorama_mod.ViewSet.ring(panorama_mod.UPWARD_RING_VIEWS,
+                                                                panorama_mod.UPWARD_PITCH_DEG,
+                                                                panorama_mod.UPWARD_HFOV_DEG, size)),
+    # the default and the two upward views ahead and behind (detectsigns' UPWARD_VIEWS)
+    "default+up-fore-aft": lambda size: panorama_mod.ViewSet.default(size_px=size, upward=True),
 }
 
 

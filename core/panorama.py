@@ -24,9 +24,17 @@ from .errors import InputError
 #: bound when it reads panoramas (never lowers it) and refuses larger images with a message.
 MAX_PANORAMA_PIXELS = 32768 * 16384
 MAX_PANORAMA_SIZE = "32768 x 16384"
-#: Whether detection also looks upwards by default (``detectsigns``' ``UPWARD_VIEWS``): no,
-#: the horizon ring alone found every sign on the held-out streets (bench/README.md, "Fewer
-#: views"); training cuts both rings.
+#: The upward views (``detectsigns``' ``UPWARD_VIEWS``): two views of this width at this
+#: pitch, straight ahead and behind, over the road where gantries and overhead panels are
+#: (square views: elevations -10..+80 deg at their centres). Two rather than a ring of six
+#: since 28 November: a view to the side cuts the signs beside the road, which the horizon
+#: views see whole (models/README.md, "Upward views: the pair").
+UPWARD_PITCH_DEG = 35.0
+UPWARD_HFOV_DEG = 90.0
+#: The whole upward ring (six views at the same pitch and width), which training cuts.
+UPWARD_RING_VIEWS = 6
+#: Whether detection also looks upwards by default: no, the horizon ring alone found every
+#: sign on the held-out streets (bench/README.md, "Fewer views").
 DEFAULT_UPWARD_VIEWS = False
 #: Two more horizon views, straight ahead and behind, of this width: 1.5 x the pixels per
 #: degree of the 80 deg ring on average, 1.67 x at the views' centres (a 4096 px panorama's
@@ -281,8 +289,8 @@ class ViewSet:
                 fore_aft: Optional[bool] = None) -> "ViewSet":
         """Horizon ring: 8 views of 80 deg across (35 deg overlap; square views span
         elevations -40..+40 deg at their centres, about +-33 deg at their edges, 640 x 384
-        views +-26.7 deg); upward ring for overhead and gantry signs: 6 views of 90 deg at
-        pitch +35 deg (square: elevations -10..+80 deg at their centres). ``size_px``: the
+        views +-26.7 deg); for overhead and gantry signs, ``upward``: two views ahead and
+        behind of :data:`UPWARD_HFOV_DEG` at pitch :data:`UPWARD_PITCH_DEG`. ``size_px``: the
         detector's input size, an int or ``(width, height)``; ``upward`` None:
         :data:`DEFAULT_UPWARD_VIEWS`. ``fore_aft`` (None: :data:`DEFAULT_FORE_AFT_VIEWS`) adds
         two views of :data:`FORE_AFT_HFOV_DEG` ahead and behind, after the horizon ring."""
@@ -290,8 +298,16 @@ class ViewSet:
         if fore_aft if fore_aft is not None else DEFAULT_FORE_AFT_VIEWS:
             views = views + cls.ring(2, 0.0, FORE_AFT_HFOV_DEG, size_px)
         if upward if upward is not None else DEFAULT_UPWARD_VIEWS:
-            views = views + cls.ring(6, 35.0, 90.0, size_px)
+            views = views + cls.ring(2, UPWARD_PITCH_DEG, UPWARD_HFOV_DEG, size_px)
         return views
+
+    @classmethod
+    def training(cls, size_px=640) -> "ViewSet":
+        """What training cuts from a panorama: the default views (the fore-and-aft pair as
+        :data:`DEFAULT_FORE_AFT_VIEWS` says) and the whole upward ring of
+        :data:`UPWARD_RING_VIEWS`, whose side views show signs cut at their edges too."""
+        return (cls.default(size_px, upward=False)
+                + cls.ring(UPWARD_RING_VIEWS, UPWARD_PITCH_DEG, UPWARD_HFOV_DEG, size_px))
 
     def __add__(self, other: "ViewSet") -> "ViewSet":
         return ViewSet(self.views + other.views)

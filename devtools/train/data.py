@@ -282,7 +282,7 @@ def scene_view_samples(scene_dir: str, cache_dir: str, keep_empty: float = 0.2, 
     with open(os.path.join(scene_dir, "scene.json")) as f:
         scene = json.load(f)
     sign_class = {s["sign_id"]: s["class"] for s in scene["signs"]}
-    views = panorama.ViewSet.default(size_px=640, upward=True)
+    views = panorama.ViewSet.training(size_px=640)
     os.makedirs(cache_dir, exist_ok=True)
     rows = []
     for k, meta in enumerate(scene["images"]):

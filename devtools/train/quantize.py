@@ -50,7 +50,7 @@ def calibration_images(n: int, scene_root: str = DEFAULT_SCENES, seed: int = 0, 
         out.append(image[y:y + 640, x:x + 640])
     panos = sorted(glob.glob(os.path.join(scene_root, "*", "images", "*.jpg")))
     if panos and n > n_gtsdb:
-        views = panorama.ViewSet.default(size_px=640, upward=True)
+        views = panorama.ViewSet.training(size_px=640)
         per_pano = 4
         for path in rng.choice(panos, -(-(n - n_gtsdb) // per_pano), replace=False):
             pano = panorama.read_panorama(str(path))

@@ -16,6 +16,9 @@ from roadsigns.core.panorama import (
     DEFAULT_FORE_AFT_VIEWS,
     DEFAULT_UPWARD_VIEWS,
     FORE_AFT_HFOV_DEG,
+    UPWARD_HFOV_DEG,
+    UPWARD_PITCH_DEG,
+    UPWARD_RING_VIEWS,
     PerspectiveView,
     ViewSet,
     read_panorama,
@@ -128,20 +131,29 @@ def test_maps_are_cached_per_view_and_size():
 
 def test_view_sets():
     views = ViewSet.default(640, upward=True, fore_aft=False)
-    assert len(views) == 14 and [v.yaw_deg for v in views][:8] == [k * 45.0 for k in range(8)]
+    assert len(views) == 10 and [v.yaw_deg for v in views][:8] == [k * 45.0 for k in range(8)]
     assert len(ViewSet.default(640, upward=False, fore_aft=False)) == 8
     hfov = views[0].hfov_deg
     assert hfov - 45.0 >= 20.0  # neighbours overlap by at least 20 deg
     assert views.working_width(4096) == 4096
     assert 4000 <= views.working_width(8192) < 4200
     assert hash(views) == hash(ViewSet.default(640, upward=True, fore_aft=False))
-    assert len(ViewSet.default(640)) == 8 + 6 * DEFAULT_UPWARD_VIEWS + 2 * DEFAULT_FORE_AFT_VIEWS  # the plugin's
+    assert len(ViewSet.default(640)) == 8 + 2 * DEFAULT_UPWARD_VIEWS + 2 * DEFAULT_FORE_AFT_VIEWS  # the plugin's
     # fore and aft: two narrower views straight ahead and behind, after the horizon ring
     fa = ViewSet.default(640, upward=False, fore_aft=True)
     assert len(fa) == 10 and fa[:8] == ViewSet.default(640, upward=False, fore_aft=False)[:8]
     assert [(v.yaw_deg, v.pitch_deg) for v in fa[8:]] == [(0.0, 0.0), (180.0, 0.0)]
     assert all(v.hfov_deg == FORE_AFT_HFOV_DEG < 0.7 * views[0].hfov_deg for v in fa[8:])
-    assert len(ViewSet.default(640, upward=True, fore_aft=True)) == 16
+    both = ViewSet.default(640, upward=True, fore_aft=True)
+    assert len(both) == 12 and both[:10] == fa[:10]
+    # upward: two views over the road ahead and behind
+    assert [(v.yaw_deg, v.pitch_deg, v.hfov_deg) for v in both[10:]] == [
+        (0.0, UPWARD_PITCH_DEG, UPWARD_HFOV_DEG), (180.0, UPWARD_PITCH_DEG, UPWARD_HFOV_DEG)]
+    # training cuts the default views and the whole upward ring
+    training = ViewSet.training(640)
+    assert training[:len(ViewSet.default(640, upward=False))] == ViewSet.default(640, upward=False).views
+    assert len(training) == len(ViewSet.default(640, upward=False)) + UPWARD_RING_VIEWS
+    assert sorted(v.yaw_deg for v in training if v.looks_up) == [k * 60.0 for k in range(UPWARD_RING_VIEWS)]
 
 
 def test_denser_views_do_not_change_how_the_others_are_cut_from_a_large_panorama():

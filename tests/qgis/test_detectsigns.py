@@ -77,8 +77,8 @@ def test_one_ray_per_view_along_the_box_centre(qgis_process, stations, tmp_path)
     for r in rows:
         per_image.setdefault(r["image"], []).append(r)
     assert len(per_image) == 3
-    assert all(len(v) == 14 for v in per_image.values())  # 8 horizon + 6 upward views
-    assert run.json["results"]["DETECTIONS"] == len(rows) == 42
+    assert all(len(v) == 10 for v in per_image.values())  # 8 horizon + 2 upward views
+    assert run.json["results"]["DETECTIONS"] == len(rows) == 30
     for r in rows:
         assert r["class"] == "stop" and r["score"] == pytest.approx(0.9)
         assert r["type"] == "3D Line String"
@@ -113,7 +113,7 @@ def test_boxes_under_min_size_are_dropped(qgis_process, stations, tmp_path):
         assert run.returncode == 0, run.text
         return sorted(min(r["u1"] - r["u0"], r["v1"] - r["v0"]) for r in read_rays(out))
     every = sizes(0)
-    assert len(every) == 3 * 14 and every[0] < every[-1]  # upward views' boxes are taller
+    assert len(every) == 3 * 10 and every[0] < every[-1]  # upward views' boxes are taller
     cut = 0.5 * (every[0] + every[-1])
     kept = sizes(cut)
     assert kept == [s for s in every if s >= cut] and 0 < len(kept) < len(every)

@@ -70,7 +70,7 @@ def inputs(qgis_process, work):
 
 
 def detect(qgis_process, inputs, out, **extra):
-    # the detector boxes the centre of every view: 14 a panorama with the upward ring
+    # the detector boxes the centre of every view: 10 a panorama with the upward views
     parameters = dict(STATIONS=inputs["stations"], MODEL=inputs["detector"], CLASSIFIER=inputs["classifier"],
                       CODES_TABLE=inputs["table"], MIN_SIZE=0, UPWARD_VIEWS=True, OUTPUT=str(out))
     parameters.update(extra)
@@ -82,9 +82,9 @@ def test_each_detection_gets_its_code(qgis_process, inputs, work):
     run = detect(qgis_process, inputs, out)
     assert run.returncode == 0, run.text
     assert "classifier.onnx: 2 codes and 'other'" in run.text
-    assert "Sign codes read in 4 of the 28 detections" in run.text
+    assert "Sign codes read in 4 of the 20 detections" in run.text
     rows = features(str(out))
-    assert len(rows) == 2 * 14
+    assert len(rows) == 2 * 10
     for r in rows:
         u, v = ((r["u0"] + r["u1"]) / 2) % WIDTH, (r["v0"] + r["v1"]) / 2
         expected = "other"
@@ -102,7 +102,7 @@ def test_codes_can_be_switched_off(qgis_process, inputs, work):
     assert run.returncode == 0, run.text
     assert "Sign codes are not read" in run.text
     rows = features(str(out))
-    assert len(rows) == 28 and all(not r["code"] and r["code_score"] is None for r in rows)
+    assert len(rows) == 20 and all(not r["code"] and r["code_score"] is None for r in rows)
 
 
 @pytest.mark.parametrize("case,fragments", [
