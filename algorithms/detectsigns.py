@@ -51,9 +51,10 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
     def shortHelpString(self):
         return self.tr(
             "Cuts each station's equirectangular panorama into overlapping perspective views "
-            "(a horizon ring, and optionally an upward ring for overhead signs), runs the ONNX detector on "
-            "each view, maps the boxes back to panorama pixels and merges the same sign found in "
-            "two views.<br><br>The <b>model</b> is the bundled one when left empty, or your own "
+            "(a horizon ring, two closer views ahead and behind, and two views upwards for overhead "
+            "signs), runs the ONNX detector on each view, maps the boxes back to panorama pixels and "
+            "merges the same sign found in two views.<br><br>The <b>model</b> is the bundled one when "
+            "left empty, or your own "
             "ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model "
             "with NMS built in ([1, N, 6]). Class names come from the model's metadata (Ultralytics "
             "<i>names</i>) or a labels file (one name per line).<br><br>Output: one line per "
@@ -111,12 +112,12 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
             minimum=1.0, advanced=True)
         self.add_boolean(
             self.UPWARD_VIEWS, self.tr("Also look upwards (overhead and gantry signs)"), DEFAULT_UPWARD_VIEWS,
-            self.tr("Adds a ring of 6 views tilted 35° up to the 8 horizon views, for signs high above the road "
-                    "close to the vehicle. Off by default: a sign overhead is in the horizon views from every "
-                    "station more than a few metres away, and on two held-out test streets (panoramas every "
-                    "5 m, 6 gantry panels each) the horizon views alone found every sign, as many as with "
-                    "the upward ring, in 1.3 to 1.6 times less detection time. Check it for drives with "
-                    "panoramas far apart."), advanced=True)
+            self.tr("Adds two views tilted 35° up, over the road ahead and behind, for gantry and overhead signs "
+                    "close to the vehicle, above the horizon views. On by default: on five held-out test streets "
+                    "they raised the gantry panels found in a single panorama from 86 % to 91 % for 1.2 times "
+                    "the detection time. A box these views cut at their left or right edge is dropped unless "
+                    "another view finds the same sign: signs beside the road are seen whole in the horizon "
+                    "views. Switch it off to save that time where a drive has no overhead signs."), advanced=True)
         self.add_boolean(
             self.FORE_AFT_VIEWS, self.tr("Look ahead and behind more closely (small, far signs)"),
             DEFAULT_FORE_AFT_VIEWS,

@@ -94,7 +94,7 @@ def main(argv=None):
     ap.add_argument("--rounds", type=int, default=2, help="rounds of the prefetch off/on comparison")
     ap.add_argument("--confidence", type=float, default=0.4)
     ap.add_argument("--upward", action="store_true",
-                    help="also the upward ring (detectsigns' UPWARD_VIEWS; default: the plugin's default)")
+                    help="also the upward views (detectsigns' UPWARD_VIEWS; default: the plugin's default)")
     args = ap.parse_args(argv)
 
     paths = sorted(glob.glob(os.path.join(args.scene, "images", "*.jpg")))[:args.max_images]

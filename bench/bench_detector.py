@@ -353,7 +353,7 @@ class PanoramaBench:
 
 #: View sets ``--views`` can measure (each a function of the detector's input size):
 #: ``default`` is what ``detectsigns`` cuts with its defaults (``ViewSet.default``, the
-#: upward ring and the fore-and-aft views as ``DEFAULT_UPWARD_VIEWS`` and
+#: upward views and the fore-and-aft views as ``DEFAULT_UPWARD_VIEWS`` and
 #: ``DEFAULT_FORE_AFT_VIEWS`` say); the others add views at a higher pixel density for small
 #: signs (issue 15): ``FORE_AFT_HFOV_DEG`` (53.3 deg across) is 1.5 x the pixels per degree of
 #: the 80 deg horizon views (12 against 8 px/deg at 640 px; a 4096 px panorama has 11.4).
@@ -374,7 +374,8 @@ VIEW_SETS = {
                                     + panorama_mod.ViewSet.ring(panorama_mod.UPWARD_RING_VIEWS,
                                                                 panorama_mod.UPWARD_PITCH_DEG,
                                                                 panorama_mod.UPWARD_HFOV_DEG, size)),
-    # the default and the two upward views ahead and behind (detectsigns' UPWARD_VIEWS)
+    # the default views with the two upward views ahead and behind (detectsigns' UPWARD_VIEWS,
+    # on by default since 28 November)
     "default+up-fore-aft": lambda size: panorama_mod.ViewSet.default(size_px=size, upward=True),
 }
 

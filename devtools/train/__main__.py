@@ -41,6 +41,9 @@ def main(argv=None):
     ap.add_argument("--ema-decay", type=float, default=0.998, help="EMA of the weights (lower follows faster)")
     ap.add_argument("--small-share", type=float, default=0.0,
                     help="share of pasted real signs drawn at 14-35 px (far signs), 0..1")
+    ap.add_argument("--large-share", type=float, default=0.0,
+                    help="share of the crops of generated views with a large sign that show it whole "
+                         "(data.LARGE_SIGN_FILL of the crop), 0..1")
     ap.add_argument("--faces", type=int, default=None,
                     help="faces of many countries drawn at the start for faces_paste (default train.FACES; 0: none)")
     ap.add_argument("--source-weights", type=parse_shares, default=None, metavar="NAME=W,...",
@@ -71,7 +74,7 @@ def main(argv=None):
           crop_px=a.crop, batch_size=a.batch, lr=a.lr, threads=a.threads, validate_every_min=a.validate_every,
           seed=a.seed, resume=a.resume, val_images=a.val_images, init=a.init, device=a.device,
           checkpoint_every_min=a.checkpoint_every, until=a.until, warmup_steps=a.warmup, amp=not a.no_amp,
-          export=not a.no_export, ema_decay=a.ema_decay, small_share=a.small_share,
+          export=not a.no_export, ema_decay=a.ema_decay, small_share=a.small_share, large_share=a.large_share,
           faces=FACES if a.faces is None else a.faces,
           arch={k: v for k, v in (("widths", tuple(int(c) for c in a.widths.split(",")) if a.widths else None),
                                   ("fpn", a.fpn), ("head", a.head)) if v is not None} or None,

@@ -339,6 +339,33 @@ def crop_sample(sample: Sample, out_px: int, scale: float, centre, flip: bool,
     return Sample(image, boxes, classes, ignore)
 
 
+#: :func:`whole_sign_crop`: a sign at least this share of the crop long is shown whole,
+#: filling this range of the crop (log-uniform). A 320 px training crop at the ordinary scales
+#: cuts the panels a station passes under (5 m from a gantry they are 200-1,000 panorama px
+#: across), so the network would never see them whole.
+LARGE_SIGN_MIN = 0.25
+LARGE_SIGN_FILL = (0.3, 0.85)
+
+
+def whole_sign_crop(boxes, crop_px: int, rng, min_share: float = LARGE_SIGN_MIN, fill=LARGE_SIGN_FILL):
+    """``(scale, centre)`` for :func:`crop_sample` that shows the largest of ``boxes`` (source
+    pixels) whole in a ``crop_px`` crop, its longer side a log-uniform share in ``fill`` of the
+    crop and its centre moved no farther than keeps it inside; None when that box is shorter
+    than ``min_share`` of the crop (or there is none)."""
+    boxes = _arr(boxes)
+    if not len(boxes):
+        return None
+    size_px = np.maximum(boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1])
+    k = int(np.argmax(size_px))
+    if size_px[k] < min_share * crop_px:
+        return None
+    share = math.exp(rng.uniform(math.log(fill[0]), math.log(fill[1])))
+    scale = share * crop_px / float(size_px[k])
+    room = 0.5 * (crop_px / scale - np.array([boxes[k, 2] - boxes[k, 0], boxes[k, 3] - boxes[k, 1]]))
+    centre = 0.5 * (boxes[k, :2] + boxes[k, 2:]) + rng.uniform(-0.9, 0.9, 2) * room
+    return scale, (float(centre[0]), float(centre[1]))
+
+
 def _overlaps(box, boxes, margin=2.0):
     if len(boxes) == 0:
         return False

@@ -50,6 +50,10 @@ SMALL_PASTE_PX = (14.0, 35.0)
 NEGATIVE_SHARE = 0.45
 #: Mandatory signs (GTSDB's weakest class) are drawn this many times more often.
 MANDATORY_BOOST = 2.5
+#: The scales a crop of a generated view is taken at (log-uniform): a 320 px crop at these
+#: scales shows a sign of more than ~150 view pixels whole only now and then, and none over
+#: 490 (``--large-share``: :func:`.data.whole_sign_crop`).
+VIEW_CROP_SCALES = (0.65, 1.6)
 
 
 def scene_dir_name(preset, seed, width):
@@ -81,9 +85,10 @@ class DataMix:
 
     def __init__(self, crop_px: int, work_dir: str, seed: int = 0, mandatory_boost: float = MANDATORY_BOOST,
                  source_weights=None, small_share: float = 0.0, faces: int = FACES,
-                 mined_path: str = mine.MINED_PATH):
+                 mined_path: str = mine.MINED_PATH, large_share: float = 0.0):
         self.crop_px = crop_px
         self.small_share = small_share
+        self.large_share = large_share
         w = dict(SOURCE_WEIGHTS, **(source_weights or {}))
         self.source_names = list(w)
         self.source_p = np.array([w[k] for k in self.source_names], float) / sum(w.values())
@@ -155,6 +160,17 @@ class DataMix:
             centre = (rng.uniform(0, w), rng.uniform(0, h))
         return data.crop_sample(sample, S, scale, centre, flip=bool(rng.random() < 0.5))
 
+    def _view_crop(self, s: Sample) -> Sample:
+        """A crop of a generated view at :data:`VIEW_CROP_SCALES`, or, with probability
+        ``large_share``, one that shows its largest sign whole if that sign is large
+        (:func:`.data.whole_sign_crop`)."""
+        rng, S = self.rng, self.crop_px
+        whole = data.whole_sign_crop(s.boxes, S, rng) if self.large_share and rng.random() < self.large_share else None
+        if whole is not None:
+            scale, centre = whole
+            return data.crop_sample(s, S, scale, centre, flip=bool(rng.random() < 0.5))
+        return self._crop(s, log_uniform(rng, *VIEW_CROP_SCALES), 0.75)
+
     def _paste_many(self, s: Sample, patches, classes, n, lo, hi, degraded: bool = False):
         """``n`` of ``patches`` at heights drawn in [lo, hi] px; ``degraded``: as distant signs."""
         post = (lambda p: data.degrade(p, self.rng)) if degraded else None
@@ -225,7 +241,7 @@ class DataMix:
             s = self._load(self.views[int(rng.integers(len(self.views)))])
             if rng.random() < 0.3:
                 s.image = data.resample_blur(s.image, rng)
-            s = self._crop(s, log_uniform(rng, 0.65, 1.6), 0.75)
+            s = self._view_crop(s)
         if rng.random() < NEGATIVE_SHARE:
             self._paste_negatives(s, int(rng.integers(1, 4)))
         s.image = data.colour_jitter(s.image, rng)
@@ -474,7 +490,7 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
           init: str = None, device: str = "auto", checkpoint_every_min: float = 10.0, until: str = None,
           warmup_steps: int = 300, amp: bool = True, scenes=TRAIN_SCENES, export: bool = True,
           ema_decay: float = 0.998, source_weights=None, small_share: float = 0.0, faces: int = FACES,
-          arch=None):
+          arch=None, large_share: float = 0.0):
     """Train (or go on training) for ``minutes`` of training time in all (a resumed run
     counts the time already spent), or until the wall-clock time ``until``; validate every
     ``validate_every_min`` (best by AP50 on GTSDB 500-599), checkpoint every
@@ -491,7 +507,8 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
     os.makedirs(work_dir, exist_ok=True)
     t_start = time.perf_counter()
     scene_folders = ensure_scenes(scene_root, specs=scenes, generate=generate_scenes)
-    mix = DataMix(crop_px, work_dir, seed, source_weights=source_weights, small_share=small_share, faces=faces)
+    mix = DataMix(crop_px, work_dir, seed, source_weights=source_weights, small_share=small_share, faces=faces,
+                  large_share=large_share)
     mix.add_scenes(scene_folders)
     # GTSDB 500-599 picks the best checkpoint; views and pasted held-out tracks are watched
     val_sets = {"gtsdb_500_599": data.read_gtsdb(data.GTSDB_HELDOUT_IDS)[:val_images],
