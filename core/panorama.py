@@ -26,9 +26,10 @@ MAX_PANORAMA_PIXELS = 32768 * 16384
 MAX_PANORAMA_SIZE = "32768 x 16384"
 #: The upward views (``detectsigns``' ``UPWARD_VIEWS``): two views of this width at this
 #: pitch, straight ahead and behind, over the road where gantries and overhead panels are
-#: (square views: elevations -10..+80 deg at their centres). Two rather than a ring of six
-#: since 28 November: a view to the side cuts the signs beside the road, which the horizon
-#: views see whole (models/README.md, "Upward views: the pair").
+#: (640 x 384 views: elevations +4..+66 deg at their centres; square ones -10..+80). Two
+#: rather than a ring of six since 28 November: a view to the side cuts the signs beside the
+#: road, which the horizon views see whole (models/README.md, "Upward views: the pair, on by
+#: default").
 UPWARD_PITCH_DEG = 35.0
 UPWARD_HFOV_DEG = 90.0
 #: The whole upward ring (six views at the same pitch and width), which training cuts.
