@@ -376,10 +376,7 @@ VIEW_SETS = {
     "horizon+fore-aft-2x": lambda size: (panorama_mod.ViewSet.default(size_px=size, upward=False, fore_aft=False)
                                          + panorama_mod.ViewSet.ring(2, 0.0, 40.0, size)),
     # the default and the whole upward ring (6 views at pitch +35 deg), as training cuts
-    "default+upward": lambda size: (panorama_mod.ViewSet.default(size_px=size, upward=False)
-                                    + panorama_mod.ViewSet.ring(panorama_mod.UPWARD_RING_VIEWS,
-                                                                panorama_mod.UPWARD_PITCH_DEG,
-                                                                panorama_mod.UPWARD_HFOV_DEG, size)),
+    "default+upward": lambda size: panorama_mod.ViewSet.training(size_px=size),
     # the default views with the two upward views ahead and behind (detectsigns' UPWARD_VIEWS,
     # on by default since 28 November)
     "default+up-fore-aft": lambda size: panorama_mod.ViewSet.default(size_px=size, upward=True),

@@ -36,6 +36,11 @@ GTSDB_TRAIN_IDS = range(0, 500)
 GTSDB_HELDOUT_IDS = range(500, 600)
 
 
+def log_uniform(rng, lo: float, hi: float) -> float:
+    """A number drawn from ``rng`` between ``lo`` and ``hi``, uniform in its logarithm."""
+    return float(math.exp(rng.uniform(math.log(lo), math.log(hi))))
+
+
 def parse_shares(text: str) -> dict:
     """``"name=w,name=w"`` -> ``{name: w}``: the command lines' shares of a training mix
     (``--source-weights``, ``--mix``). A ``type`` for argparse: a malformed item raises
@@ -359,7 +364,7 @@ def whole_sign_crop(boxes, crop_px: int, rng, min_share: float = LARGE_SIGN_MIN,
     k = int(np.argmax(size_px))
     if size_px[k] < min_share * crop_px:
         return None
-    share = math.exp(rng.uniform(math.log(fill[0]), math.log(fill[1])))
+    share = log_uniform(rng, *fill)
     scale = share * crop_px / float(size_px[k])
     room = 0.5 * (crop_px / scale - np.array([boxes[k, 2] - boxes[k, 0], boxes[k, 3] - boxes[k, 1]]))
     centre = 0.5 * (boxes[k, :2] + boxes[k, 2:]) + rng.uniform(-0.9, 0.9, 2) * room

@@ -14,7 +14,7 @@ import torch
 import torch.nn.functional as F
 
 from . import data, mine
-from .data import CLASS_INDEX, CLASSES, Sample
+from .data import CLASS_INDEX, CLASSES, Sample, log_uniform
 from .metrics import average_precision, best_f1_threshold, match_image, summarise
 from .model import (
     ARCH_DEFAULT,
@@ -75,10 +75,6 @@ def ensure_scenes(scene_root: str, specs=TRAIN_SCENES, generate: bool = True):
 
 
 # --- the data mix ------------------------------------------------------------------------
-
-def log_uniform(rng, lo, hi):
-    return float(math.exp(rng.uniform(math.log(lo), math.log(hi))))
-
 
 class DataMix:
     """Random training crops from every source (see :mod:`devtools.train.data`)."""
