@@ -19,7 +19,8 @@ itself, so the long drive is N times the same work:
 
 Each stage then runs through ``qgis_process`` on the drive and on its copies, each in a
 process of its own: wall time, peak RSS and their ratios are printed (memory ratio 1.00:
-flat). Nothing is timed against a threshold: read the ratios.
+flat), and the growth per kilometre of drive (``drive.json``'s length, the gaps between the
+copies not counted). Nothing is timed against a threshold: read the ratios.
 
     .venv/bin/python bench/bench_drive_repeat.py --copies 3
     .venv/bin/python bench/bench_drive_repeat.py --copies 3 9 27 --stages findsignsincloud \\
@@ -117,6 +118,16 @@ def make_drive(chain: str, folder: str, copies: int, spacing_m: float) -> dict:
     return counts
 
 
+def drive_length_km(drive: str) -> float:
+    """The drive's length (``drive.json``'s ``length_m``) in km, 0 when it does not say: the
+    memory a longer drive needs is also printed per km of drive (the copies' gaps not counted)."""
+    try:
+        with open(os.path.join(drive, "drive.json")) as f:
+            return float(json.load(f).get("length_m", 0.0)) / 1000.0
+    except (OSError, ValueError, TypeError):
+        return 0.0
+
+
 def stage_args(stage: str, folder: str) -> list:
     cloud, out = os.path.join(folder, "tiles"), os.path.join(folder, "out")
     os.makedirs(out, exist_ok=True)
@@ -158,6 +169,7 @@ def main(argv=None) -> int:
               f"{drives[copies]['features']} in {folder}", flush=True)
     print("the repeated drive's station times repeat: its stages take sensor positions from the track, "
           "the drive alone from its times")
+    length_km = drive_length_km(a.drive)
     q = QgisProcess()
     results = []
     for stage in a.stages:
@@ -175,9 +187,12 @@ def main(argv=None) -> int:
             rec = {"stage": stage, "copies": copies, "x1": one, f"x{copies}": many,
                    "memory_ratio": round(many["peak_rss_mb"] / one["peak_rss_mb"], 3),
                    "time_ratio": round(many["wall_s"] / one["wall_s"], 3)}
+            if length_km:
+                rec["mb_per_km"] = round((many["peak_rss_mb"] - one["peak_rss_mb"]) / ((copies - 1) * length_km), 2)
             results.append(rec)
-            print(f"{stage:<18} x{copies} / x1: memory {rec['memory_ratio']:.2f}, time {rec['time_ratio']:.2f} "
-                  f"(linear: {copies:.2f})", flush=True)
+            per_km = f", {rec['mb_per_km']:+.1f} MB a km of drive" if "mb_per_km" in rec else ""
+            print(f"{stage:<18} x{copies} / x1: memory {rec['memory_ratio']:.2f}{per_km}, time "
+                  f"{rec['time_ratio']:.2f} (linear: {copies:.2f})", flush=True)
     if a.json:
         with open(a.json, "w") as f:
             json.dump({"drive": a.drive, "copies": counts[1:], "spacing_m": a.spacing, "stages": results,
