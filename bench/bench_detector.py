@@ -586,7 +586,7 @@ def heldout_track_frames(ids=GTSDB_HELDOUT_IDS, seed: int = 2024, sizes_px=TRACK
     for sample, gt, frame_jobs in _frames_with_jobs(ids, jobs, rng):
         n_own = len(gt)
         for key, lo, hi in frame_jobs:
-            height = float(np.exp(rng.uniform(np.log(lo), np.log(hi))))
+            height = train_data.log_uniform(rng, lo, hi)
             frames = sorted(by_track[key], key=lambda k: heights[k])
             tall_enough = [k for k in frames if heights[k] >= height]
             k = tall_enough[0] if tall_enough else frames[-1]
@@ -616,7 +616,7 @@ def drawn_face_frames(ids=GTSDB_HELDOUT_IDS, seed: int = FACES_SEED, per_family:
         families = []
         for family, lo, hi in frame_jobs:
             face, klass, _ = signfaces.random_face(rng, 160, families=[family])
-            height = float(np.exp(rng.uniform(np.log(lo), np.log(hi))))
+            height = train_data.log_uniform(rng, lo, hi)
             before = len(sample.boxes)
             train_data.paste(sample, cv2.cvtColor(face, cv2.COLOR_RGBA2BGRA), height,
                              train_data.CLASS_INDEX[klass], rng, post=lambda p: train_data.degrade(p, rng))

@@ -119,13 +119,12 @@ def make_drive(chain: str, folder: str, copies: int, spacing_m: float) -> dict:
 
 
 def drive_length_km(drive: str) -> float:
-    """The drive's length (``drive.json``'s ``length_m``) in km, 0 when it does not say: the
-    memory a longer drive needs is also printed per km of drive (the copies' gaps not counted)."""
-    try:
-        with open(os.path.join(drive, "drive.json")) as f:
-            return float(json.load(f).get("length_m", 0.0)) / 1000.0
-    except (OSError, ValueError, TypeError):
-        return 0.0
+    """The drive's length (``drive.json``'s ``length_m``, :func:`devtools.scenegen.drive.read_drive`)
+    in km, 0 when it does not say: the memory a longer drive needs is also printed per km of
+    drive (the copies' gaps not counted)."""
+    from devtools.scenegen.drive import read_drive
+
+    return float((read_drive(drive) or {}).get("length_m", 0.0)) / 1000.0
 
 
 def stage_args(stage: str, folder: str) -> list:
