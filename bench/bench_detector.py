@@ -380,7 +380,19 @@ VIEW_SETS = {
     # the default views with the two upward views ahead and behind (detectsigns' UPWARD_VIEWS,
     # on by default since 28 November)
     "default+up-fore-aft": lambda size: panorama_mod.ViewSet.default(size_px=size, upward=True),
+    # the upward pair at half its pixels a degree (127 deg across instead of 90: tan of the
+    # half-width doubled), for the panels overhead too big for the 90 deg views
+    "default-wide-upward": lambda size: (panorama_mod.ViewSet.default(size_px=size, upward=False)
+                                         + panorama_mod.ViewSet.ring(2, panorama_mod.UPWARD_PITCH_DEG,
+                                                                     half_density_hfov_deg(panorama_mod.UPWARD_HFOV_DEG),
+                                                                     size)),
 }
+
+
+def half_density_hfov_deg(hfov_deg: float) -> float:
+    """The width of a view with the same pixels across and half the pixels a degree at its
+    centre as a view ``hfov_deg`` across."""
+    return float(2.0 * np.degrees(np.arctan(2.0 * np.tan(np.radians(0.5 * hfov_deg)))))
 
 
 def bench_panoramas(entries, scene_dirs, confidence, max_images=None, min_box_px=0.0, classifier=None):

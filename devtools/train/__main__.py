@@ -13,7 +13,7 @@ import os
 import sys
 
 from .. import REPO_ROOT
-from .data import parse_shares
+from .data import parse_scale_range, parse_shares
 
 
 def main(argv=None):
@@ -44,6 +44,10 @@ def main(argv=None):
     ap.add_argument("--large-share", type=float, default=0.0,
                     help="share of the crops of generated views with a large sign that show it whole "
                          "(data.LARGE_SIGN_FILL of the crop), 0..1")
+    ap.add_argument("--view-scales", type=parse_scale_range, default=None, metavar="LO,HI",
+                    help="the scales crops of generated views are taken at, log-uniform "
+                         "(default train.VIEW_CROP_SCALES, 0.65,1.6; under 0.65 the views' facades and "
+                         "overhead panels are also seen at fewer pixels a degree)")
     ap.add_argument("--faces", type=int, default=None,
                     help="faces of many countries drawn at the start for faces_paste (default train.FACES; 0: none)")
     ap.add_argument("--source-weights", type=parse_shares, default=None, metavar="NAME=W,...",
@@ -76,6 +80,7 @@ def main(argv=None):
           checkpoint_every_min=a.checkpoint_every, until=a.until, warmup_steps=a.warmup, amp=not a.no_amp,
           export=not a.no_export, ema_decay=a.ema_decay, small_share=a.small_share, large_share=a.large_share,
           faces=FACES if a.faces is None else a.faces,
+          view_scales=a.view_scales,
           arch={k: v for k, v in (("widths", tuple(int(c) for c in a.widths.split(",")) if a.widths else None),
                                   ("fpn", a.fpn), ("head", a.head)) if v is not None} or None,
           source_weights=a.source_weights)

@@ -54,6 +54,18 @@ def parse_shares(text: str) -> dict:
     return shares
 
 
+def parse_scale_range(text: str) -> tuple:
+    """``"lo,hi"`` -> ``(lo, hi)``, two scales with 0 < lo < hi (``--view-scales``). A ``type``
+    for argparse: anything else raises ValueError."""
+    parts = text.split(",")
+    if len(parts) != 2:
+        raise ValueError(f"{text!r} is not LO,HI")
+    lo, hi = (float(p) for p in parts)
+    if not 0.0 < lo < hi:
+        raise ValueError(f"{text!r}: the scales must be 0 < LO < HI")
+    return lo, hi
+
+
 def gtsrb_class(class_id: int) -> str:
     """GTSRB / GTSDB class id (0-42) -> default class (shared/data/README.md)."""
     c = int(class_id)

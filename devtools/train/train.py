@@ -52,7 +52,7 @@ NEGATIVE_SHARE = 0.45
 MANDATORY_BOOST = 2.5
 #: The scales a crop of a generated view is taken at (log-uniform): a 320 px crop at these
 #: scales shows a sign of more than ~150 view pixels whole only now and then, and none over
-#: 490 (``--large-share``: :func:`.data.whole_sign_crop`).
+#: 490 (``--large-share``: :func:`.data.whole_sign_crop`). ``--view-scales`` sets others.
 VIEW_CROP_SCALES = (0.65, 1.6)
 
 
@@ -81,8 +81,9 @@ class DataMix:
 
     def __init__(self, crop_px: int, work_dir: str, seed: int = 0, mandatory_boost: float = MANDATORY_BOOST,
                  source_weights=None, small_share: float = 0.0, faces: int = FACES,
-                 mined_path: str = mine.MINED_PATH, large_share: float = 0.0):
+                 mined_path: str = mine.MINED_PATH, large_share: float = 0.0, view_scales=None):
         self.crop_px = crop_px
+        self.view_scales = tuple(view_scales or VIEW_CROP_SCALES)
         self.small_share = small_share
         self.large_share = large_share
         w = dict(SOURCE_WEIGHTS, **(source_weights or {}))
@@ -157,7 +158,7 @@ class DataMix:
         return data.crop_sample(sample, S, scale, centre, flip=bool(rng.random() < 0.5))
 
     def _view_crop(self, s: Sample) -> Sample:
-        """A crop of a generated view at :data:`VIEW_CROP_SCALES`, or, with probability
+        """A crop of a generated view at ``view_scales`` (:data:`VIEW_CROP_SCALES`), or, with probability
         ``large_share``, one that shows its largest sign whole if that sign is large
         (:func:`.data.whole_sign_crop`)."""
         rng, S = self.rng, self.crop_px
@@ -165,7 +166,7 @@ class DataMix:
         if whole is not None:
             scale, centre = whole
             return data.crop_sample(s, S, scale, centre, flip=bool(rng.random() < 0.5))
-        return self._crop(s, log_uniform(rng, *VIEW_CROP_SCALES), 0.75)
+        return self._crop(s, log_uniform(rng, *self.view_scales), 0.75)
 
     def _paste_many(self, s: Sample, patches, classes, n, lo, hi, degraded: bool = False):
         """``n`` of ``patches`` at heights drawn in [lo, hi] px; ``degraded``: as distant signs."""
@@ -486,7 +487,7 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
           init: str = None, device: str = "auto", checkpoint_every_min: float = 10.0, until: str = None,
           warmup_steps: int = 300, amp: bool = True, scenes=TRAIN_SCENES, export: bool = True,
           ema_decay: float = 0.998, source_weights=None, small_share: float = 0.0, faces: int = FACES,
-          arch=None, large_share: float = 0.0):
+          arch=None, large_share: float = 0.0, view_scales=None):
     """Train (or go on training) for ``minutes`` of training time in all (a resumed run
     counts the time already spent), or until the wall-clock time ``until``; validate every
     ``validate_every_min`` (best by AP50 on GTSDB 500-599), checkpoint every
@@ -504,7 +505,7 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
     t_start = time.perf_counter()
     scene_folders = ensure_scenes(scene_root, specs=scenes, generate=generate_scenes)
     mix = DataMix(crop_px, work_dir, seed, source_weights=source_weights, small_share=small_share, faces=faces,
-                  large_share=large_share)
+                  large_share=large_share, view_scales=view_scales)
     mix.add_scenes(scene_folders)
     # GTSDB 500-599 picks the best checkpoint; views and pasted held-out tracks are watched
     val_sets = {"gtsdb_500_599": data.read_gtsdb(data.GTSDB_HELDOUT_IDS)[:val_images],

@@ -1,8 +1,9 @@
-"""The training command lines' mix shares (``--source-weights``, ``--mix``)."""
+"""The training command lines' mix shares (``--source-weights``, ``--mix``) and view scales
+(``--view-scales``)."""
 import pytest
 
 from devtools.train import codes
-from devtools.train.data import parse_shares
+from devtools.train.data import parse_scale_range, parse_shares
 
 
 def test_shares_parse_and_a_malformed_item_is_refused():
@@ -17,3 +18,10 @@ def test_the_classifier_command_line_takes_the_mix_and_refuses_an_unknown_source
         codes.main(["--mix", "mined", "--evaluate", "unused.onnx"])
     with pytest.raises(ValueError, match="no source"):
         codes.Sampler.__init__(object.__new__(codes.Sampler), [], mix={"billboards": 0.1})
+
+
+def test_view_scales_parse_and_a_range_that_is_not_one_is_refused():
+    assert parse_scale_range("0.45,1.6") == (0.45, 1.6)
+    for bad in ("0.5", "0.5,1,2", "1.6,0.45", "0,1", "-1,1", "a,1"):
+        with pytest.raises(ValueError):
+            parse_scale_range(bad)
