@@ -13,7 +13,7 @@ import os
 import sys
 
 from .. import REPO_ROOT
-from .data import parse_scale_range, parse_shares
+from .data import parse_scale_range, parse_scene_specs, parse_shares
 
 
 def main(argv=None):
@@ -25,6 +25,9 @@ def main(argv=None):
     ap.add_argument("--work", default=os.path.join(REPO_ROOT, "bench", "out", "train"),
                     help="checkpoints, cut views, history.json")
     ap.add_argument("--scenes", default=None, help="folder of the generated training scenes (default WORK/scenes)")
+    ap.add_argument("--train-scenes", type=parse_scene_specs, default=None, metavar="PRESET:SEED,...",
+                    help="the generated training scenes (default train.TRAIN_SCENES: default:100, tiny:100, "
+                         "default:101, default:102); seeds from 100 up, the bench's are below")
     ap.add_argument("--no-generate", action="store_true",
                     help="use only the training scenes already there (others join when they appear)")
     ap.add_argument("--device", default="auto", help="auto (CUDA when present), cpu, cuda, cuda:1, ...")
@@ -70,7 +73,7 @@ def main(argv=None):
     ap.add_argument("--maps-to", type=float, default=None, metavar="SCORE",
                     help="with --export-only: the exported score the operating point becomes (default 0.4)")
     a = ap.parse_args(argv)
-    from .train import FACES, export_checkpoint, train
+    from .train import FACES, TRAIN_SCENES, export_checkpoint, train
     if a.export_only:
         export_checkpoint(a.export_only, a.out, operating_point=a.operating_point, maps_to=a.maps_to)
         return 0
@@ -80,7 +83,7 @@ def main(argv=None):
           checkpoint_every_min=a.checkpoint_every, until=a.until, warmup_steps=a.warmup, amp=not a.no_amp,
           export=not a.no_export, ema_decay=a.ema_decay, small_share=a.small_share, large_share=a.large_share,
           faces=FACES if a.faces is None else a.faces,
-          view_scales=a.view_scales,
+          view_scales=a.view_scales, scenes=a.train_scenes or TRAIN_SCENES,
           arch={k: v for k, v in (("widths", tuple(int(c) for c in a.widths.split(",")) if a.widths else None),
                                   ("fpn", a.fpn), ("head", a.head)) if v is not None} or None,
           source_weights=a.source_weights)

@@ -66,6 +66,20 @@ def parse_scale_range(text: str) -> tuple:
     return lo, hi
 
 
+def parse_scene_specs(text: str) -> tuple:
+    """``"default:100,tiny:100,default:103"`` -> ``(("default", 100, None), ...)``: the
+    training scenes (``--train-scenes``: generator preset and seed, with an optional
+    panorama width as a third part). A ``type`` for argparse: a malformed item raises
+    ValueError."""
+    specs = []
+    for item in text.split(","):
+        parts = item.strip().split(":")
+        if len(parts) not in (2, 3) or not parts[0]:
+            raise ValueError(f"{item!r} is not PRESET:SEED[:WIDTH]")
+        specs.append((parts[0], int(parts[1]), int(parts[2]) if len(parts) == 3 else None))
+    return tuple(specs)
+
+
 def gtsrb_class(class_id: int) -> str:
     """GTSRB / GTSDB class id (0-42) -> default class (shared/data/README.md)."""
     c = int(class_id)
