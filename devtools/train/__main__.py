@@ -26,8 +26,8 @@ def main(argv=None):
                     help="checkpoints, cut views, history.json")
     ap.add_argument("--scenes", default=None, help="folder of the generated training scenes (default WORK/scenes)")
     ap.add_argument("--train-scenes", type=parse_scene_specs, default=None, metavar="PRESET:SEED,...",
-                    help="the generated training scenes (default train.TRAIN_SCENES: default:100, tiny:100, "
-                         "default:101, default:102); seeds from 100 up, the bench's are below")
+                    help="the generated training scenes (default train.TRAIN_SCENES); seeds from "
+                         "data.FIRST_TRAINING_SEED up, the bench's are below")
     ap.add_argument("--no-generate", action="store_true",
                     help="use only the training scenes already there (others join when they appear)")
     ap.add_argument("--device", default="auto", help="auto (CUDA when present), cpu, cuda, cuda:1, ...")
@@ -49,8 +49,8 @@ def main(argv=None):
                          "(data.LARGE_SIGN_FILL of the crop), 0..1")
     ap.add_argument("--view-scales", type=parse_scale_range, default=None, metavar="LO,HI",
                     help="the scales crops of generated views are taken at, log-uniform "
-                         "(default train.VIEW_CROP_SCALES, 0.65,1.6; under 0.65 the views' facades and "
-                         "overhead panels are also seen at fewer pixels a degree)")
+                         "(default train.VIEW_CROP_SCALES; lower, the views' facades and overhead panels "
+                         "are also seen at fewer pixels a degree)")
     ap.add_argument("--faces", type=int, default=None,
                     help="faces of many countries drawn at the start for faces_paste (default train.FACES; 0: none)")
     ap.add_argument("--source-weights", type=parse_shares, default=None, metavar="NAME=W,...",
@@ -73,7 +73,7 @@ def main(argv=None):
     ap.add_argument("--maps-to", type=float, default=None, metavar="SCORE",
                     help="with --export-only: the exported score the operating point becomes (default 0.4)")
     a = ap.parse_args(argv)
-    from .train import FACES, TRAIN_SCENES, export_checkpoint, train
+    from .train import FACES, export_checkpoint, train
     if a.export_only:
         export_checkpoint(a.export_only, a.out, operating_point=a.operating_point, maps_to=a.maps_to)
         return 0
@@ -83,7 +83,7 @@ def main(argv=None):
           checkpoint_every_min=a.checkpoint_every, until=a.until, warmup_steps=a.warmup, amp=not a.no_amp,
           export=not a.no_export, ema_decay=a.ema_decay, small_share=a.small_share, large_share=a.large_share,
           faces=FACES if a.faces is None else a.faces,
-          view_scales=a.view_scales, scenes=a.train_scenes or TRAIN_SCENES,
+          view_scales=a.view_scales, scenes=a.train_scenes,
           arch={k: v for k, v in (("widths", tuple(int(c) for c in a.widths.split(",")) if a.widths else None),
                                   ("fpn", a.fpn), ("head", a.head)) if v is not None} or None,
           source_weights=a.source_weights)

@@ -66,17 +66,24 @@ def parse_scale_range(text: str) -> tuple:
     return lo, hi
 
 
+#: Generated training scenes have seeds from this one up; the bench's held-out scenes are below.
+FIRST_TRAINING_SEED = 100
+
+
 def parse_scene_specs(text: str) -> tuple:
     """``"default:100,tiny:100,default:103"`` -> ``(("default", 100, None), ...)``: the
     training scenes (``--train-scenes``: generator preset and seed, with an optional
-    panorama width as a third part). A ``type`` for argparse: a malformed item raises
-    ValueError."""
+    panorama width as a third part). A ``type`` for argparse: a malformed item, or a seed
+    under :data:`FIRST_TRAINING_SEED` (a bench scene), raises ValueError."""
     specs = []
     for item in text.split(","):
         parts = item.strip().split(":")
         if len(parts) not in (2, 3) or not parts[0]:
             raise ValueError(f"{item!r} is not PRESET:SEED[:WIDTH]")
-        specs.append((parts[0], int(parts[1]), int(parts[2]) if len(parts) == 3 else None))
+        seed = int(parts[1])
+        if seed < FIRST_TRAINING_SEED:
+            raise ValueError(f"{item!r}: seeds under {FIRST_TRAINING_SEED} are the bench's held-out scenes")
+        specs.append((parts[0], seed, int(parts[2]) if len(parts) == 3 else None))
     return tuple(specs)
 
 

@@ -485,7 +485,7 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
           crop_px: int = 320, batch_size: int = 16, lr: float = 3e-3, threads: int = 2,
           validate_every_min: float = 5.0, seed: int = 0, resume: str = None, val_images: int = 60,
           init: str = None, device: str = "auto", checkpoint_every_min: float = 10.0, until: str = None,
-          warmup_steps: int = 300, amp: bool = True, scenes=TRAIN_SCENES, export: bool = True,
+          warmup_steps: int = 300, amp: bool = True, scenes=None, export: bool = True,
           ema_decay: float = 0.998, source_weights=None, small_share: float = 0.0, faces: int = FACES,
           arch=None, large_share: float = 0.0, view_scales=None):
     """Train (or go on training) for ``minutes`` of training time in all (a resumed run
@@ -503,7 +503,7 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
     use_amp = amp and dev.type == "cuda"
     os.makedirs(work_dir, exist_ok=True)
     t_start = time.perf_counter()
-    scene_folders = ensure_scenes(scene_root, specs=scenes, generate=generate_scenes)
+    scene_folders = ensure_scenes(scene_root, specs=scenes or TRAIN_SCENES, generate=generate_scenes)
     mix = DataMix(crop_px, work_dir, seed, source_weights=source_weights, small_share=small_share, faces=faces,
                   large_share=large_share, view_scales=view_scales)
     mix.add_scenes(scene_folders)

@@ -30,6 +30,6 @@ def test_view_scales_parse_and_a_range_that_is_not_one_is_refused():
 def test_training_scenes_parse_and_a_malformed_item_is_refused():
     assert parse_scene_specs("default:100, tiny:101,default:103:3072") == (
         ("default", 100, None), ("tiny", 101, None), ("default", 103, 3072))
-    for bad in ("default", ":100", "default:x", "default:100:1:2"):
+    for bad in ("default", ":100", "default:x", "default:100:1:2", "default:7"):
         with pytest.raises(ValueError):
             parse_scene_specs(bad)
