@@ -117,7 +117,9 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
                     "they raised the gantry panels found in a single panorama from 86 % to 91 % for 1.2 times "
                     "the detection time. A box these views cut at their left or right edge is dropped unless "
                     "another view finds the same sign: signs beside the road are seen whole in the horizon "
-                    "views. Switch it off to save that time where a drive has no overhead signs."), advanced=True)
+                    "views. With the second look, a box these views find alone and the sign-code classifier reads "
+                    "as no sign ('other': a facade's dark window, say) is dropped too. Switch it off to save that "
+                    "time where a drive has no overhead signs."), advanced=True)
         self.add_boolean(
             self.FORE_AFT_VIEWS, self.tr("Look ahead and behind more closely (small, far signs)"),
             DEFAULT_FORE_AFT_VIEWS,

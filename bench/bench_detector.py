@@ -35,9 +35,13 @@ measures several models in one run, on the same images, timed alternately.
    the sign-code classifier (``--classifier``, the bundled one) confirms a code; on panoramas
    the codes are read in both runs, as detectsigns reads them, so the speeds compare the
    plugin's two paths. Kept candidates count as detections at the confidence.
+   ``on-keep-overhead-other``: the second look without dropping what an upward view boxed
+   alone and the classifier reads ``other`` (``RescueRule.drop_lone_upward_other``; only
+   panoramas have upward views, so the photographs are measured once for both ``on``s).
 
     .venv/bin/python bench/bench_detector.py [--model M | --compare A.onnx B.onnx ...]
-        [--scene DIR ...] [--threads 2] [--second-look off|on|both] [--json bench/out/detector.json]
+        [--scene DIR ...] [--threads 2] [--second-look off|on|both|on-keep-overhead-other ...]
+        [--json bench/out/detector.json]
 """
 from __future__ import annotations
 
@@ -46,6 +50,7 @@ import json
 import os
 import sys
 import time
+from dataclasses import replace
 from typing import NamedTuple
 
 import numpy as np
@@ -261,11 +266,12 @@ def curve(matches, thresholds=CURVE_THRESHOLDS):
 
 class PanoramaBench:
     """One detector and view set on the panoramas; with a ``classifier``, as detectsigns runs
-    with its defaults: the codes read, and with ``second_look`` the candidates from the
-    plugin's ``RESCUE_CONFIDENCE`` kept when the classifier confirms them (they count as
-    detections at the confidence: the curve then only spans what the plugin keeps)."""
+    with its defaults: the codes read, and with ``second_look`` (a :class:`RescueRule`, or
+    None) the candidates from the plugin's ``RESCUE_CONFIDENCE`` kept when the classifier
+    confirms them (they count as detections at the confidence: the curve then only spans
+    what the plugin keeps)."""
 
-    def __init__(self, detector, views, confidence, min_box_px, classifier=None, second_look=False):
+    def __init__(self, detector, views, confidence, min_box_px, classifier=None, second_look=None):
         self.d, self.views, self.confidence, self.min_box_px = detector, views, confidence, min_box_px
         self.classifier, self.second_look = classifier, second_look
         self.matches, self.small, self.hidden, self.face_on, self.reportable = [], [], [], [], []
@@ -284,7 +290,7 @@ class PanoramaBench:
         iou = seam_iou(pano.shape[1])
         counted, classes, small, hidden, back, counted_ids = scene_truth(meta, sign_class)
         boxes, scores, ids = found.boxes(), found.score, found.class_id
-        if self.second_look:
+        if self.second_look is not None:
             scores = np.maximum(scores, self.confidence)
         uncounted = np.array([b for b, _ in small + hidden]).reshape(-1, 8)
         self.matches.append(match_image(boxes, scores, ids, counted, classes, 0.5, ignore_boxes=uncounted,
@@ -324,7 +330,7 @@ class PanoramaBench:
         """What the bench counts: every box from 0.05 (the curve), or what the plugin keeps."""
         if self.classifier is None:
             return detector_mod.detect_panorama(self.d, pano, self.views, confidence=0.05, min_box_px=self.min_box_px)
-        if not self.second_look:  # the curve needs the boxes from 0.05; the plugin reads the codes of its own
+        if self.second_look is None:  # the curve needs the boxes from 0.05; the plugin reads the codes of its own
             found = detector_mod.detect_panorama(self.d, pano, self.views, confidence=0.05,
                                                  min_box_px=self.min_box_px)
             detections_mod.read_codes(self.classifier, pano, found.subset(found.score >= self.confidence))
@@ -332,7 +338,7 @@ class PanoramaBench:
         found = detector_mod.detect_panorama(self.d, pano, self.views, confidence=self.confidence,
                                              min_box_px=self.min_box_px,
                                              candidate_confidence=rescue_mod.DEFAULT_RESCUE_CONFIDENCE)
-        return rescue_mod.second_look(self.classifier, pano, found, self.d.class_names)
+        return rescue_mod.second_look(self.classifier, pano, found, self.d.class_names, self.second_look)
 
     def result(self):
         c = self.confidence
@@ -355,6 +361,12 @@ class PanoramaBench:
                 # included): compares models when other jobs load the machine and wall time drifts
                 "cpu_seconds_per_panorama": self.cpu_s / max(self.n, 1),
                 "curve": curve(self.matches)}
+
+
+#: The second looks ``--second-look`` can measure: None is none (the detector alone).
+SECOND_LOOKS = {"off": None, "on": rescue_mod.DEFAULT_RULE,
+                "on-keep-overhead-other": replace(rescue_mod.DEFAULT_RULE, drop_lone_upward_other=False)}
+LOOK_LABELS = {"off": "", "on": " +2nd", "on-keep-overhead-other": " +2nd keep"}
 
 
 #: View sets ``--views`` can measure (each a function of the detector's input size):
@@ -396,13 +408,13 @@ def half_density_hfov_deg(hfov_deg: float) -> float:
 
 
 def bench_panoramas(entries, scene_dirs, confidence, max_images=None, min_box_px=0.0, classifier=None):
-    """Every ``(detector, view set name, second look)`` of ``entries`` on every panorama,
+    """Every ``(detector, view set name, second look name)`` of ``entries`` on every panorama,
     alternating which goes first; with a ``classifier`` the codes are read as detectsigns
     reads them."""
     benches = []
     for d, views_name, look in entries:
         benches.append(PanoramaBench(d, VIEW_SETS[views_name](d.input_size), confidence, min_box_px,
-                                     classifier, look))
+                                     classifier, SECOND_LOOKS[look]))
     decode_s, n = 0.0, 0
     warm = False
     for scene_dir in scene_dirs:
@@ -846,9 +858,11 @@ def main(argv=None):
     ap.add_argument("--whole-frame", action="store_true", help="also GTSDB whole frames letterboxed to 640 px")
     ap.add_argument("--views", nargs="+", default=["default"], choices=sorted(VIEW_SETS),
                     help="view sets, each measured with every model in the same run (default: the plugin's)")
-    ap.add_argument("--second-look", choices=("off", "on", "both"), default="both",
+    ap.add_argument("--second-look", nargs="+", choices=sorted(SECOND_LOOKS) + ["both"], default=["both"],
                     help="detectsigns' second look (RESCUE_CONFIDENCE, core/rescue.py): off (the detector alone, "
-                         "the codes read on panoramas), on (the plugin's default) or both, in the same run")
+                         "the codes read on panoramas), on (the plugin's default), both (off and on), or "
+                         "on-keep-overhead-other (on, keeping the upward views' lone boxes read 'other'); "
+                         "each measured in the same run")
     ap.add_argument("--classifier", default=os.path.join(REPO_ROOT, "models", "signcodes.onnx"),
                     help="the sign-code classifier of the second look (and of the codes read on panoramas)")
     ap.add_argument("--photo-scales", nargs="+", default=["1"], metavar="SCALES",
@@ -870,12 +884,13 @@ def main(argv=None):
     detectors = [detector_mod.Detector(m, threads=a.threads) for m in models]
     for d in detectors:
         print(d.info().describe())
-    looks = {"off": [False], "on": [True], "both": [False, True]}[a.second_look]
+    looks = list(dict.fromkeys(n for name in a.second_look for n in (["off", "on"] if name == "both" else [name])))
     table = signcodes_mod.read_codes_table(os.path.join(REPO_ROOT, "models", "sign-codes-de.csv"))
     classifier = signcodes_mod.CodeClassifier(a.classifier, table, threads=a.threads)
     entries = [(k, v, look) for k in range(len(models)) for v in a.views for look in looks]
     results = [{"model": os.path.relpath(models[k], REPO_ROOT), "model_mb": os.path.getsize(models[k]) / 1e6,
-                "views": v, "n_views": len(VIEW_SETS[v](detectors[k].input_size)), "second_look": look,
+                "views": v, "n_views": len(VIEW_SETS[v](detectors[k].input_size)), "second_look": look != "off",
+                "second_look_rule": look,
                 "classifier": os.path.relpath(a.classifier, REPO_ROOT), "threads": a.threads,
                 "cpus": os.cpu_count(), "load_average_at_start": os.getloadavg()[0],
                 "confidence": a.confidence, "scenes": scenes, "min_size_px": a.min_size} for k, v, look in entries]
@@ -884,7 +899,8 @@ def main(argv=None):
         r["panoramas"] = p
         r["panoramas_per_second"] = p["panoramas_per_second"]
     # photographs: tiles of the model's input size, at each --photo-scales item (the view set plays no part)
-    runs = [(k, look, spec) for k in range(len(models)) for look in looks for spec in a.photo_scales]
+    photo_looks = list(dict.fromkeys(look != "off" for look in looks))   # no upward views on photographs
+    runs = [(k, look, spec) for k in range(len(models)) for look in photo_looks for spec in a.photo_scales]
     photo_detectors = [(detectors[k], look, parse_scales(spec, detectors[k].input_size)) for k, look, spec in runs]
     photo_sets = []
     if not a.skip_gtsdb:
@@ -901,21 +917,21 @@ def main(argv=None):
             classifier=classifier)))
     for key, measured in photo_sets:
         for r, (k, _, look) in zip(results, entries):
-            by_scale = {spec: measured[runs.index((k, look, spec))] for spec in a.photo_scales}
+            by_scale = {spec: measured[runs.index((k, look != "off", spec))] for spec in a.photo_scales}
             for spec, res in by_scale.items():
-                res["tiles_640"]["scales"] = list(photo_detectors[runs.index((k, look, spec))][2])
+                res["tiles_640"]["scales"] = list(photo_detectors[runs.index((k, look != "off", spec))][2])
             r[key] = by_scale[a.photo_scales[0]]
             if key == "heldout_tracks":
                 r[key]["part"] = a.tracks_part
             if len(a.photo_scales) > 1:
                 r[key + "_by_scale"] = by_scale
     for r in results:
-        print_model(f"{r['model']}, views {r['views']} ({r['n_views']}), second look "
-                    f"{'on' if r['second_look'] else 'off'}", r, a.confidence)
+        print_model(f"{r['model']}, views {r['views']} ({r['n_views']}), second look {r['second_look_rule']}",
+                    r, a.confidence)
     print("\n===== summary (confidence %.2f) =====" % a.confidence)
     heads = [headline(r) for r in results]
     keys = list(heads[0])
-    labels = [os.path.basename(r["model"]) + " " + r["views"] + (" +2nd" if r["second_look"] else "") for r in results]
+    labels = [os.path.basename(r["model"]) + " " + r["views"] + LOOK_LABELS[r["second_look_rule"]] for r in results]
     print(f"{'':<26}" + "".join(f"{label[-22:]:>24}" for label in labels))
     for k in keys:
         print(f"{k:<26}" + "".join(f"{_f(h.get(k)):>24}" for h in heads))

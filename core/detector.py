@@ -449,7 +449,10 @@ class PanoramaDetections:
     the sign code a classifier read in the box and its probability
     (:func:`.detections.read_codes`; ``""`` and NaN without a classifier). ``candidate``:
     a box scored under the confidence, kept only for a second look (:mod:`.rescue`);
-    :func:`detect_drive` drops the candidates that are left after it.
+    :func:`detect_drive` drops the candidates that are left after it. ``lone_upward``: the
+    box is one upward view's (:attr:`~.panorama.PerspectiveView.looks_up`) alone, no other
+    view's box merged into it; the second look drops such a box when the classifier reads
+    no sign code in it (:attr:`.rescue.RescueRule.drop_lone_upward_other`).
     """
 
     class_id: np.ndarray
@@ -464,6 +467,7 @@ class PanoramaDetections:
     code: List[str] = field(default_factory=list)
     code_score: np.ndarray = field(default_factory=lambda: np.zeros(0))
     candidate: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))
+    lone_upward: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))
 
     def __post_init__(self) -> None:
         n = len(self.score)
@@ -473,6 +477,8 @@ class PanoramaDetections:
             self.code_score = np.full(n, np.nan)
         if len(self.candidate) != n:
             self.candidate = np.zeros(n, bool)
+        if len(self.lone_upward) != n:
+            self.lone_upward = np.zeros(n, bool)
 
     def __len__(self) -> int:
         return len(self.score)
@@ -483,7 +489,7 @@ class PanoramaDetections:
         return PanoramaDetections(
             self.class_id[rows], [self.class_name[k] for k in rows], self.score[rows], self.u0[rows],
             self.v0[rows], self.u1[rows], self.v1[rows], self.view_index[rows], self.n_views[rows],
-            [self.code[k] for k in rows], self.code_score[rows], self.candidate[rows])
+            [self.code[k] for k in rows], self.code_score[rows], self.candidate[rows], self.lone_upward[rows])
 
     @staticmethod
     def concatenate(parts: Sequence["PanoramaDetections"]) -> "PanoramaDetections":
@@ -493,7 +499,7 @@ class PanoramaDetections:
         return PanoramaDetections(
             cat("class_id"), [n for p in parts for n in p.class_name], cat("score"), cat("u0"), cat("v0"),
             cat("u1"), cat("v1"), cat("view_index"), cat("n_views"), [c for p in parts for c in p.code],
-            cat("code_score"), cat("candidate"))
+            cat("code_score"), cat("candidate"), cat("lone_upward"))
 
     def boxes(self) -> np.ndarray:
         return np.stack([self.u0, self.v0, self.u1, self.v1], axis=1).reshape(-1, 4)
@@ -599,19 +605,22 @@ DEFAULT_MIN_BOX_PX = 14.0
 def _merged(detector, rows: Sequence[np.ndarray], W: int, overlap_threshold: float, min_box_px: float,
             class_agnostic: bool = False) -> PanoramaDetections:
     """:func:`merge_view_detections` of the view boxes ``rows`` = (boxes in panorama pixels,
-    scores, class ids, views, complete, central, cut at an upward view's side) as rows;
-    merged boxes whose shorter side is under ``min_box_px`` are dropped, and so is a box
-    an upward view cut at its side that no other view's box joined (:func:`detect_panorama`).
-    ``class_agnostic``: boxes of any class merge (the kept one gives the class)."""
-    boxes, scores, ids, views, complete, central, side_cut_up = rows
+    scores, class ids, views, complete, central, from an upward view, cut at an upward view's
+    side) as rows; merged boxes whose shorter side is under ``min_box_px`` are dropped, and so
+    is a box an upward view cut at its side that no other view's box joined
+    (:func:`detect_panorama`). ``class_agnostic``: boxes of any class merge (the kept one
+    gives the class)."""
+    boxes, scores, ids, views, complete, central, upward, side_cut_up = rows
     kept, merged, counts = merge_view_detections(
         boxes, scores, np.zeros_like(ids) if class_agnostic else ids, complete, central, W, overlap_threshold)
     big_enough = np.minimum(merged[:, 2] - merged[:, 0], merged[:, 3] - merged[:, 1]) >= min_box_px
-    wanted = big_enough & ~(side_cut_up[kept] & (counts == 1))
-    kept, merged, counts = kept[wanted], merged[wanted], counts[wanted]
+    lone = counts == 1
+    wanted = big_enough & ~(side_cut_up[kept] & lone)
+    kept, merged, counts, lone = kept[wanted], merged[wanted], counts[wanted], lone[wanted]
     names = list(detector.class_names)
     return PanoramaDetections(ids[kept], [names[c] for c in ids[kept]], scores[kept],
-                              merged[:, 0], merged[:, 1], merged[:, 2], merged[:, 3], views[kept], counts)
+                              merged[:, 0], merged[:, 1], merged[:, 2], merged[:, 3], views[kept], counts,
+                              lone_upward=upward[kept] & lone)
 
 
 def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: float = 0.25,
@@ -641,6 +650,7 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
     lowest = confidence if candidate_confidence is None else min(confidence, candidate_confidence)
     batch = max(1, int(getattr(detector, "max_batch", 1)))
     all_boxes, all_scores, all_ids, all_views, all_complete, all_central = [], [], [], [], [], []
+    all_upward: List[np.ndarray] = []
     all_side_cut_up: List[np.ndarray] = []
     for start in range(0, len(views), batch):
         chunk = list(range(start, min(start + batch, len(views))))
@@ -659,6 +669,7 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
             all_views.append(np.full(len(det), k, dtype=np.int64))
             all_complete.append(~view.touches_edge(det.boxes_xyxy))
             all_central.append(view.centrality(det.boxes_xyxy))
+            all_upward.append(np.full(len(det), view.looks_up))
             all_side_cut_up.append(view.touches_side(det.boxes_xyxy) & view.looks_up)
         progress.report((chunk[-1] + 1) / len(views))
     if not all_boxes:
@@ -666,7 +677,7 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
         return PanoramaDetections(np.zeros(0, np.int64), [], z, z, z, z, z,
                                   np.zeros(0, np.int64), np.zeros(0, np.int64))
     rows = [np.concatenate(a) for a in (all_boxes, all_scores, all_ids, all_views, all_complete, all_central,
-                                        all_side_cut_up)]
+                                        all_upward, all_side_cut_up)]
     sure = rows[1] >= confidence
     found = _merged(detector, [a[sure] for a in rows], W, overlap_threshold, min_box_px)
     if lowest >= confidence or sure.all():

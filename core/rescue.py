@@ -44,10 +44,18 @@ class RescueRule:
     best single code had to reach the score; the class's codes added up gave more recall at
     the same precision on held-out real signs (models/README.md, "The second look reads
     classes").
+
+    ``drop_lone_upward_other``: a detection one upward view found alone
+    (:attr:`.detector.PanoramaDetections.lone_upward`) is dropped when the classifier's best
+    reading is ``other``. Those views look over the road for panels overhead; beside it they
+    see facades, whose dark windows they may box (models/README.md, "Overhead panels read").
+    Elsewhere a detection read ``other`` stays: a sign whose legend the table lacks (a
+    foreign no-parking sign) reads ``other`` too.
     """
     min_class_score: float = 0.9
     min_box_px: float = 16.0
     min_sheeting: float = 0.05
+    drop_lone_upward_other: bool = True
 
 
 DEFAULT_RULE = RescueRule()
@@ -150,7 +158,8 @@ def second_look(classifier, pano: np.ndarray, found, class_names: Sequence[str],
     every detection are read (:func:`.detections.read_code_probabilities`); a candidate whose class reading
     is :func:`confirmed` becomes a detection of that class (:func:`class_reading`; its own
     class for codes of classes the detector lacks) and keeps its detector score and its best
-    code; the others are dropped. Returns the new
+    code; the others are dropped. A detection an upward view found alone is dropped when its
+    code reads ``other`` (``rule.drop_lone_upward_other``). Returns the new
     :class:`~.detector.PanoramaDetections`.
     """
     from .detections import read_code_probabilities
@@ -164,6 +173,11 @@ def second_look(classifier, pano: np.ndarray, found, class_names: Sequence[str],
         readable = ~candidate | worth_reading(boxes, sheeting, rule)
         found = found.subset(readable)
     probabilities = read_code_probabilities(classifier, pano, found)
+    if rule.drop_lone_upward_other:
+        overhead_other = found.lone_upward & (np.array(found.code, dtype=object) == OTHER_CODE)
+        if overhead_other.any():
+            keep = ~overhead_other
+            found, probabilities = found.subset(keep), probabilities[keep]
     if not found.candidate.any():
         return found
     names = list(class_names)

@@ -179,3 +179,36 @@ def test_second_look_keeps_the_read_candidates_with_their_codes_class(tmp_path, 
     assert strict.per_image[0].class_name == ["stop"]
     bare = DT.detect_drive(ColourBlobDetector(), [path], views, 0.5, candidate_confidence=0.1)
     assert bare.per_image[0].class_name == ["stop"] and not bare.per_image[0].candidate.any()
+
+
+def test_a_box_an_upward_view_found_alone_and_read_other_is_dropped(classifier):
+    """The upward views look over the road for panels overhead; beside it they may box a
+    facade's dark window. What one of them boxed alone and the classifier reads ``other`` is
+    dropped; what it reads as a sign stays, and so does a box read ``other`` that a horizon
+    view found (a sign whose legend the table lacks reads ``other`` too)."""
+    class SureBlobs(ColourBlobDetector):
+        SCORES = {RED: 0.9, BLUE: 0.9, DARK: 0.9}
+
+    horizon = ViewSet.ring(8, 0.0, 80.0, (320, 192))          # up to +26.7 deg
+    views = horizon + ViewSet.ring(2, 35.0, 90.0, (320, 192))
+    # overhead: red (a sign) ahead, dark (a window) behind; on the horizon: dark at the side;
+    # red at 20 deg yaw, 22 deg up: seen by a horizon view and an upward one
+    pano = paint_discs([(0.0, 42.0, 4.0, RED), (180.0, 42.0, 4.0, DARK), (-90.0, 0.0, 4.0, DARK),
+                        (20.0, 22.0, 3.0, RED)], 2048)
+    found = DT.detect_panorama(SureBlobs(), pano, views, 0.5)
+    assert len(found) == 4
+    yaw_deg = (((found.u0 + found.u1) / 2 / 2048) * 360.0 - 180.0).round()
+    by_yaw = {int(y): k for k, y in enumerate(yaw_deg)}
+    assert sorted(by_yaw) == [-90, 0, 20, 180]
+    assert [bool(found.lone_upward[by_yaw[y]]) for y in (-90, 0, 20, 180)] == [False, True, False, True]
+    assert found.n_views[by_yaw[20]] >= 2                      # horizon views boxed it too
+
+    def codes_by_yaw(rule):
+        kept = rescue.second_look(classifier, pano, found.subset(np.arange(len(found))), CLASSES, rule)
+        yaws = (((kept.u0 + kept.u1) / 2 / 2048) * 360.0 - 180.0).round().astype(int)
+        return dict(zip(yaws.tolist(), kept.code))
+
+    assert codes_by_yaw(RULE) == {-90: "other", 0: "DE:206", 20: "DE:206"}
+    from dataclasses import replace
+    assert codes_by_yaw(replace(RULE, drop_lone_upward_other=False)) == {
+        -90: "other", 0: "DE:206", 20: "DE:206", 180: "other"}
