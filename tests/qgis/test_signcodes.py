@@ -79,7 +79,7 @@ def detect(qgis_process, inputs, out, **extra):
 
 def test_each_detection_gets_its_code(qgis_process, inputs, work):
     out = work / "detections.gpkg"
-    run = detect(qgis_process, inputs, out)
+    run = detect(qgis_process, inputs, out, RESCUE_CONFIDENCE=1.0)   # codes read, no second look
     assert run.returncode == 0, run.text
     assert "classifier.onnx: 2 codes and 'other'" in run.text
     assert "Sign codes read in 4 of the 20 detections" in run.text
@@ -94,6 +94,20 @@ def test_each_detection_gets_its_code(qgis_process, inputs, work):
             expected = "DE:215"      # azimuth 90: the blue one
         assert r["code"] == expected, r
         assert 0.5 < r["code_score"] <= 1.0
+
+
+def test_the_second_look_drops_the_upward_views_lone_boxes_read_as_no_sign(qgis_process, inputs, work):
+    """With the second look (on by default) a box an upward view found alone is dropped when
+    the classifier reads ``other`` in it: here the model boxes every view's centre, and the
+    upward views' centres (35 deg up) show no sign; the horizon views' boxes stay, ``other``
+    or not."""
+    out = work / "detections_second_look.gpkg"
+    run = detect(qgis_process, inputs, out)
+    assert run.returncode == 0, run.text
+    rows = features(str(out))
+    assert len(rows) == 2 * 8
+    assert all(abs((r["v0"] + r["v1"]) / 2 - WIDTH / 4) < 2 for r in rows)     # all on the horizon
+    assert sorted(r["code"] for r in rows).count("other") == 2 * 6
 
 
 def test_codes_can_be_switched_off(qgis_process, inputs, work):
