@@ -899,7 +899,8 @@ def main(argv=None):
         r["panoramas"] = p
         r["panoramas_per_second"] = p["panoramas_per_second"]
     # photographs: tiles of the model's input size, at each --photo-scales item (the view set plays no part)
-    photo_looks = list(dict.fromkeys(look != "off" for look in looks))   # no upward views on photographs
+    # the photographs have no upward views: one run with the second look serves every "on" rule
+    photo_looks = list(dict.fromkeys(look != "off" for look in looks))
     runs = [(k, look, spec) for k in range(len(models)) for look in photo_looks for spec in a.photo_scales]
     photo_detectors = [(detectors[k], look, parse_scales(spec, detectors[k].input_size)) for k, look, spec in runs]
     photo_sets = []
@@ -916,10 +917,11 @@ def main(argv=None):
             photo_detectors, a.confidence, drawn_face_frames(GTSDB_HELDOUT_IDS[:a.gtsdb_images]),
             classifier=classifier)))
     for key, measured in photo_sets:
-        for r, (k, _, look) in zip(results, entries):
-            by_scale = {spec: measured[runs.index((k, look != "off", spec))] for spec in a.photo_scales}
+        for r, (k, _, _) in zip(results, entries):
+            run_of = {spec: runs.index((k, r["second_look"], spec)) for spec in a.photo_scales}
+            by_scale = {spec: measured[i] for spec, i in run_of.items()}
             for spec, res in by_scale.items():
-                res["tiles_640"]["scales"] = list(photo_detectors[runs.index((k, look != "off", spec))][2])
+                res["tiles_640"]["scales"] = list(photo_detectors[run_of[spec]][2])
             r[key] = by_scale[a.photo_scales[0]]
             if key == "heldout_tracks":
                 r[key]["part"] = a.tracks_part

@@ -605,22 +605,22 @@ DEFAULT_MIN_BOX_PX = 14.0
 def _merged(detector, rows: Sequence[np.ndarray], W: int, overlap_threshold: float, min_box_px: float,
             class_agnostic: bool = False) -> PanoramaDetections:
     """:func:`merge_view_detections` of the view boxes ``rows`` = (boxes in panorama pixels,
-    scores, class ids, views, complete, central, from an upward view, cut at an upward view's
-    side) as rows; merged boxes whose shorter side is under ``min_box_px`` are dropped, and so
-    is a box an upward view cut at its side that no other view's box joined
+    scores, class ids, views, complete, central, from an upward view, cut at the view's left or
+    right side) as rows; merged boxes whose shorter side is under ``min_box_px`` are dropped,
+    and so is a box an upward view cut at its side that no other view's box joined
     (:func:`detect_panorama`). ``class_agnostic``: boxes of any class merge (the kept one
     gives the class)."""
-    boxes, scores, ids, views, complete, central, upward, side_cut_up = rows
+    boxes, scores, ids, views, complete, central, upward, side_cut = rows
     kept, merged, counts = merge_view_detections(
         boxes, scores, np.zeros_like(ids) if class_agnostic else ids, complete, central, W, overlap_threshold)
     big_enough = np.minimum(merged[:, 2] - merged[:, 0], merged[:, 3] - merged[:, 1]) >= min_box_px
-    lone = counts == 1
-    wanted = big_enough & ~(side_cut_up[kept] & lone)
-    kept, merged, counts, lone = kept[wanted], merged[wanted], counts[wanted], lone[wanted]
+    lone_upward = upward[kept] & (counts == 1)
+    wanted = big_enough & ~(lone_upward & side_cut[kept])
+    kept, merged, counts = kept[wanted], merged[wanted], counts[wanted]
     names = list(detector.class_names)
     return PanoramaDetections(ids[kept], [names[c] for c in ids[kept]], scores[kept],
                               merged[:, 0], merged[:, 1], merged[:, 2], merged[:, 3], views[kept], counts,
-                              lone_upward=upward[kept] & lone)
+                              lone_upward=lone_upward[wanted])
 
 
 def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: float = 0.25,
@@ -651,7 +651,7 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
     batch = max(1, int(getattr(detector, "max_batch", 1)))
     all_boxes, all_scores, all_ids, all_views, all_complete, all_central = [], [], [], [], [], []
     all_upward: List[np.ndarray] = []
-    all_side_cut_up: List[np.ndarray] = []
+    all_side_cut: List[np.ndarray] = []
     for start in range(0, len(views), batch):
         chunk = list(range(start, min(start + batch, len(views))))
         images = [view_images[k] for k in chunk]
@@ -670,14 +670,14 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
             all_complete.append(~view.touches_edge(det.boxes_xyxy))
             all_central.append(view.centrality(det.boxes_xyxy))
             all_upward.append(np.full(len(det), view.looks_up))
-            all_side_cut_up.append(view.touches_side(det.boxes_xyxy) & view.looks_up)
+            all_side_cut.append(view.touches_side(det.boxes_xyxy))
         progress.report((chunk[-1] + 1) / len(views))
     if not all_boxes:
         z = np.zeros(0)
         return PanoramaDetections(np.zeros(0, np.int64), [], z, z, z, z, z,
                                   np.zeros(0, np.int64), np.zeros(0, np.int64))
     rows = [np.concatenate(a) for a in (all_boxes, all_scores, all_ids, all_views, all_complete, all_central,
-                                        all_upward, all_side_cut_up)]
+                                        all_upward, all_side_cut)]
     sure = rows[1] >= confidence
     found = _merged(detector, [a[sure] for a in rows], W, overlap_threshold, min_box_px)
     if lowest >= confidence or sure.all():
