@@ -3,6 +3,8 @@ when the sign-code classifier reads a class of signs in them (the class's codes 
 and they are big and coloured enough);
 the detections themselves stay as they were. The classifier is the tiny real ONNX model of
 tests/helpers/tinyclassifier.py (red crop: DE:206 stop, blue: DE:215 roundabout, grey: other)."""
+from dataclasses import replace
+
 import cv2
 import numpy as np
 import pytest
@@ -204,11 +206,11 @@ def test_a_box_an_upward_view_found_alone_and_read_other_is_dropped(classifier):
     assert found.n_views[by_yaw[20]] >= 2                      # horizon views boxed it too
 
     def codes_by_yaw(rule):
-        kept = rescue.second_look(classifier, pano, found.subset(np.arange(len(found))), CLASSES, rule)
+        copy = found.subset(np.arange(len(found)))      # second_look sets the codes in place
+        kept = rescue.second_look(classifier, pano, copy, CLASSES, rule)
         yaws = (((kept.u0 + kept.u1) / 2 / 2048) * 360.0 - 180.0).round().astype(int)
         return dict(zip(yaws.tolist(), kept.code))
 
     assert codes_by_yaw(RULE) == {-90: "other", 0: "DE:206", 20: "DE:206"}
-    from dataclasses import replace
     assert codes_by_yaw(replace(RULE, drop_lone_upward_other=False)) == {
         -90: "other", 0: "DE:206", 20: "DE:206", 180: "other"}

@@ -107,7 +107,7 @@ def test_the_second_look_drops_the_upward_views_lone_boxes_read_as_no_sign(qgis_
     rows = features(str(out))
     assert len(rows) == 2 * 8
     assert all(abs((r["v0"] + r["v1"]) / 2 - WIDTH / 4) < 2 for r in rows)     # all on the horizon
-    assert sorted(r["code"] for r in rows).count("other") == 2 * 6
+    assert [r["code"] for r in rows].count("other") == 2 * 6
 
 
 def test_codes_can_be_switched_off(qgis_process, inputs, work):
