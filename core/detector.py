@@ -598,8 +598,10 @@ DEFAULT_CONFIDENCE = 0.5
 
 #: Shorter side (panorama pixels) under which ``roadsigns:detectsigns`` drops a box by
 #: default: signs that small are boxed a few pixels off and their class is unsure, and a
-#: drive sees them again, larger, from the next stations.
-DEFAULT_MIN_BOX_PX = 14.0
+#: drive sees them again, larger, from the next stations. 12 since 28 November (14 before):
+#: the network's boxes of signs 14-20 px high are often 12-13 px wide, and 14 dropped them
+#: (models/README.md, "The smallest box kept").
+DEFAULT_MIN_BOX_PX = 12.0
 
 
 def _merged(detector, rows: Sequence[np.ndarray], W: int, overlap_threshold: float, min_box_px: float,

@@ -2,8 +2,8 @@
 qgis_process with the default parameters: on the generated panoramas of scenes never
 trained on (preset tiny; the classifier trains on seeds from 100 up), the speed limit 50 of
 seed 23 comes out as DE:274[50] and the stop sign of seed 8 as DE:206. (Seed 23's stop sign
-is 6-14 px wide in every panorama, at or under detectsigns' MIN_SIZE: seed 8's is seen at
-22 and 27 px.)
+is 6-14 px wide in every panorama, too narrow for a sure reading of its code: seed 8's is
+seen at 22 and 27 px.)
 
 Each sign's detections (its own class, IoU >= 0.5 with its visible or whole box in a
 panorama that sees its front) are put to the vote refine makes (core.signcodes.vote,
