@@ -13,8 +13,8 @@ Everything runs through the plugin's own engine (``core.signcodes``: ``CodeClass
 - **held-out generated panoramas**: every front face of ``bench/out/scene-default-7``,
   ``scene-tiny-3`` and ``scene-default-11`` (bench seeds, never trained on) at least 10 px
   and under 30 % occluded, cut from the panorama with ``cut_crop`` around its true box; and
-  the same for boxes of at least 14 px, the smallest detection the chain reads (detectsigns'
-  MIN_SIZE default);
+  the same for boxes of at least detectsigns' MIN_SIZE default (12 px), the smallest detection
+  the chain reads;
 - **GTSDB 500-599, through the detector**: the bundled detector on tiles of its input size of each
   photograph (as ``bench_detector``); each detection matching a true sign (IoU >= 0.5) is cut
   with the model's margin and read; accuracy among them against the sign's GTSRB code;
@@ -182,14 +182,14 @@ def main(argv=None):
         train_codes.set_crop_px(c.input_px)  # held-out crops cut at this model's input size, as the chain's are
         results[p]["gtsrb_heldout_tracks"] = bench_gtsrb(c)
         (results[p]["heldout_generated_panoramas"],
-         results[p]["heldout_generated_panoramas_min14px"]) = bench_panoramas(c, a.work)
+         results[p]["heldout_generated_panoramas_min_size"]) = bench_panoramas(c, a.work)
         results[p]["speed"] = bench_speed(c, a.threads)
     if not a.skip_gtsdb:
         for p, r in zip(paths, bench_gtsdb(classifiers, a.detector, a.confidence)):
             results[p]["gtsdb_500_599_detected"] = r
     for p, r in results.items():
         print("\n==", os.path.relpath(p, REPO_ROOT), "--", r["model"])
-        for key in ("gtsrb_heldout_tracks", "heldout_generated_panoramas", "heldout_generated_panoramas_min14px",
+        for key in ("gtsrb_heldout_tracks", "heldout_generated_panoramas", "heldout_generated_panoramas_min_size",
                     "gtsdb_500_599_detected"):
             v = r.get(key)
             if not v or not v.get("n"):

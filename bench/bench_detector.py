@@ -523,7 +523,7 @@ def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, cla
     sure, cands = photo_candidates(boxes, scores, confidence)
     if len(cands):
         sheeting = np.array([rescue_mod.sheeting_fraction(image_bgr, boxes[j]) for j in cands])
-        cands = cands[rescue_mod.worth_reading(boxes[cands], sheeting)]
+        cands = cands[rescue_mod.worth_reading(boxes[cands], sheeting, scores[cands])]
     kept_ids = ids.copy()
     rescued = np.zeros(len(boxes), bool)
     if len(cands):

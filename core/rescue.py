@@ -35,7 +35,8 @@ SHEETING_HUES = ((0, 10), (160, 179), (95, 130), (15, 35))
 class RescueRule:
     """When a candidate is kept: the codes (not ``other``) of one of the detector's classes
     add up to at least ``min_class_score`` in the classifier's reading (:func:`class_reading`),
-    its box is at least ``min_box_px`` on its shorter side, and at least ``min_sheeting`` of
+    its box is at least ``min_box_px`` on its shorter side (a box under ``small_box_px`` needs
+    a detector score of at least ``small_min_score``), and at least ``min_sheeting`` of
     its pixels are sheeting colours (red, blue or yellow: grey and dark shapes such as pylon
     insulators are not signs).
 
@@ -45,6 +46,11 @@ class RescueRule:
     the same precision on held-out real signs (models/README.md, "The second look reads
     classes").
 
+    Boxes of 12-16 px since 28 November (16 px and more before): far signs 14-20 px high,
+    which the detector boxes at scores 0.3-0.5, and whose boxes are often 12-15 px wide. Of
+    such small candidates, those the detector scores under 0.35 are mostly boxes on nothing
+    (models/README.md, "Small candidates").
+
     ``drop_lone_upward_other``: a detection one upward view found alone
     (:attr:`.detector.PanoramaDetections.lone_upward`) is dropped when the classifier's best
     reading is ``other``. Those views look over the road for panels overhead; beside it they
@@ -53,7 +59,9 @@ class RescueRule:
     foreign no-parking sign) reads ``other`` too.
     """
     min_class_score: float = 0.9
-    min_box_px: float = 16.0
+    min_box_px: float = 12.0
+    small_box_px: float = 16.0
+    small_min_score: float = 0.35
     min_sheeting: float = 0.05
     drop_lone_upward_other: bool = True
 
@@ -87,12 +95,15 @@ def sheeting_fraction(image_bgr: np.ndarray, box, wrap: bool = False) -> float:
     return float(np.mean(saturated & coloured))
 
 
-def worth_reading(box_px: np.ndarray, sheeting: np.ndarray, rule: RescueRule = DEFAULT_RULE) -> np.ndarray:
-    """Which candidates (``box_px`` (n, 4), their :func:`sheeting_fraction`) may be kept if the
-    classifier reads them: the checks that need no classifier, done first to read fewer."""
+def worth_reading(box_px: np.ndarray, sheeting: np.ndarray, scores: np.ndarray,
+                  rule: RescueRule = DEFAULT_RULE) -> np.ndarray:
+    """Which candidates (``box_px`` (n, 4), their :func:`sheeting_fraction`, their detector
+    ``scores``) may be kept if the classifier reads them: the checks that need no classifier,
+    done first to read fewer."""
     box_px = np.asarray(box_px, float).reshape(-1, 4)
     side = np.minimum(box_px[:, 2] - box_px[:, 0], box_px[:, 3] - box_px[:, 1])
-    return (side >= rule.min_box_px) & (np.asarray(sheeting, float) >= rule.min_sheeting)
+    scored_enough = (side >= rule.small_box_px) | (np.asarray(scores, float).reshape(-1) >= rule.small_min_score)
+    return (side >= rule.min_box_px) & scored_enough & (np.asarray(sheeting, float) >= rule.min_sheeting)
 
 
 #: :func:`code_classes`' mark for the column of ``other``, and for a code of a class the
@@ -170,7 +181,7 @@ def second_look(classifier, pano: np.ndarray, found, class_names: Sequence[str],
         sheeting = np.zeros(len(found))
         for k in np.flatnonzero(candidate):
             sheeting[k] = sheeting_fraction(pano, boxes[k], wrap=True)
-        readable = ~candidate | worth_reading(boxes, sheeting, rule)
+        readable = ~candidate | worth_reading(boxes, sheeting, found.score, rule)
         found = found.subset(readable)
     probabilities = read_code_probabilities(classifier, pano, found)
     if rule.drop_lone_upward_other:

@@ -945,7 +945,7 @@ def panorama_figures(probabilities, names, work: str) -> dict:
         return {}
     predicted = np.asarray(probabilities(px)).argmax(axis=1)
     figures = {}
-    for key, keep in (("", np.ones(len(py), bool)), ("_min14px", sides >= chain_min_box_px())):
+    for key, keep in (("", np.ones(len(py), bool)), ("_min_size", sides >= chain_min_box_px())):
         figures["heldout_panorama_accuracy" + key] = round(float(np.mean(predicted[keep] == py[keep])), 4)
         figures["heldout_panorama_crops" + key] = int(keep.sum())
     return figures

@@ -73,7 +73,8 @@ def test_sheeting_fraction_counts_sign_colours_and_wraps_the_seam():
 
 def test_the_rule_needs_size_colour_and_a_confident_class():
     boxes = np.array([[0, 0, 20, 20], [0, 0, 15, 40], [0, 0, 20, 20]], float)
-    np.testing.assert_array_equal(rescue.worth_reading(boxes, [0.5, 0.5, 0.01]), [True, False, False])
+    np.testing.assert_array_equal(rescue.worth_reading(boxes, [0.5, 0.5, 0.01], [0.3, 0.3, 0.3], RULE),
+                                  [True, False, False])
     np.testing.assert_array_equal(rescue.confirmed([0.95, 0.9, 0.89, 0.0, np.nan]),
                                   [True, True, False, False, False])
 
@@ -214,3 +215,18 @@ def test_a_box_an_upward_view_found_alone_and_read_other_is_dropped(classifier):
     assert codes_by_yaw(RULE) == {-90: "other", 0: "DE:206", 20: "DE:206"}
     assert codes_by_yaw(replace(RULE, drop_lone_upward_other=False)) == {
         -90: "other", 0: "DE:206", 20: "DE:206", 180: "other"}
+
+
+def test_a_small_candidate_needs_a_higher_detector_score():
+    """Under ``small_box_px`` on its shorter side a candidate is read only when the detector
+    scored it at least ``small_min_score``; under ``min_box_px`` never; from ``small_box_px``
+    up the score plays no part."""
+    rule = rescue.RescueRule(min_box_px=12.0, small_box_px=16.0, small_min_score=0.35)
+    boxes = np.array([[0, 0, 14, 20],    # small, scored high enough
+                      [0, 0, 14, 20],    # small, scored low
+                      [0, 0, 11, 20],    # under min_box_px, scored high
+                      [0, 0, 16, 16],    # not small, scored low
+                      [0, 0, 12, 30]], float)  # exactly min_box_px, scored at the floor
+    scores = [0.4, 0.3, 0.45, 0.2, 0.35]
+    np.testing.assert_array_equal(rescue.worth_reading(boxes, np.full(5, 0.5), scores, rule),
+                                  [True, False, False, True, True])
