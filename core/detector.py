@@ -542,7 +542,7 @@ def _fused_box(kept_box: np.ndarray, boxes: np.ndarray, scores: np.ndarray, pano
 
 def merge_view_detections(boxes: np.ndarray, scores: np.ndarray, class_ids: np.ndarray,
                           complete: np.ndarray, centrality: np.ndarray, pano_width_px: int,
-                          overlap_threshold: float = 0.5):
+                          overlap_threshold: float = 0.5, fuse_class_ids: Optional[np.ndarray] = None):
     """Merge the same sign seen in overlapping views.
 
     Candidates are ranked complete (not touching a view edge) first, then by score, then by
@@ -551,9 +551,12 @@ def merge_view_detections(boxes: np.ndarray, scores: np.ndarray, class_ids: np.n
     inside the complete one). The box of a complete sign is the score-weighted mean of its
     complete boxes (weighted box fusion: views that see the sign whole each locate it); a
     kept box that is itself cut grows to the union with the cut boxes merged into it.
-    The kept candidate gives the class and score. Returns (kept indices, merged boxes,
-    merge counts).
+    The kept candidate gives the class and score. ``fuse_class_ids`` (default
+    ``class_ids``): only members of the kept box's class in it move its box, so boxes merged
+    across classes (``class_ids`` all alike) keep the place of the best one, not a place
+    between two neighbouring signs. Returns (kept indices, merged boxes, merge counts).
     """
+    fuse_ids = class_ids if fuse_class_ids is None else fuse_class_ids
     order = np.lexsort((-centrality, -scores, ~complete.astype(bool)))
     kept: List[int] = []
     kept_boxes: List[np.ndarray] = []
@@ -572,10 +575,10 @@ def merge_view_detections(boxes: np.ndarray, scores: np.ndarray, class_ids: np.n
             members.append([i])
             continue
         members[match].append(i)
-        if not complete[kept[match]] and not complete[i]:
+        if not complete[kept[match]] and not complete[i] and fuse_ids[i] == fuse_ids[kept[match]]:
             kept_boxes[match] = _union_box(kept_boxes[match], boxes[i], pano_width_px)
     for k, i in enumerate(kept):
-        whole = [j for j in members[k] if complete[j]]
+        whole = [j for j in members[k] if complete[j] and fuse_ids[j] == fuse_ids[i]]
         if complete[i] and len(whole) > 1:
             kept_boxes[k] = _fused_box(kept_boxes[k], boxes[whole], scores[whole], pano_width_px)
     out = np.array(kept_boxes).reshape(-1, 4)
@@ -611,10 +614,11 @@ def _merged(detector, rows: Sequence[np.ndarray], W: int, overlap_threshold: flo
     right side) as rows; merged boxes whose shorter side is under ``min_box_px`` are dropped,
     and so is a box an upward view cut at its side that no other view's box joined
     (:func:`detect_panorama`). ``class_agnostic``: boxes of any class merge (the kept one
-    gives the class)."""
+    gives the class and, with the boxes of its class, the place)."""
     boxes, scores, ids, views, complete, central, upward, side_cut = rows
     kept, merged, counts = merge_view_detections(
-        boxes, scores, np.zeros_like(ids) if class_agnostic else ids, complete, central, W, overlap_threshold)
+        boxes, scores, np.zeros_like(ids) if class_agnostic else ids, complete, central, W, overlap_threshold,
+        fuse_class_ids=ids)
     big_enough = np.minimum(merged[:, 2] - merged[:, 0], merged[:, 3] - merged[:, 1]) >= min_box_px
     lone_upward = upward[kept] & (counts == 1)
     wanted = big_enough & ~(lone_upward & side_cut[kept])

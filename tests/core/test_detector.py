@@ -230,6 +230,26 @@ def test_merge_fuses_complete_boxes_by_score_across_the_seam():
     assert dict(zip(kept.tolist(), counts.tolist())) == {0: 3, 3: 1}
 
 
+def test_boxes_merged_across_classes_keep_the_best_ones_place():
+    """Candidates are merged whatever their class (``class_ids`` alike), but only the boxes of
+    the kept one's own class (``fuse_class_ids``) move its box: a neighbouring sign boxed in
+    another class joins the count without dragging the box towards itself."""
+    W = 1000
+    boxes = np.array([[100, 50, 116, 64],    # a warning sign, best score
+                      [107, 51, 125, 65],    # the yield sign beside it: 0.52 of the smaller box overlaps
+                      [101, 50, 117, 64]])   # the warning sign again, another view
+    scores = np.array([0.46, 0.41, 0.30])
+    complete = np.ones(3, bool)
+    anyclass = np.zeros(3, np.int64)
+    kept, merged, counts = merge_view_detections(boxes, scores, anyclass, complete, np.zeros(3), W,
+                                                 fuse_class_ids=np.array([0, 1, 0]))
+    assert kept.tolist() == [0] and counts.tolist() == [3]
+    expected = (0.46 * boxes[0] + 0.30 * boxes[2]) / 0.76   # the warning sign's boxes only
+    assert np.allclose(merged[0], expected)
+    _, fused_all, _ = merge_view_detections(boxes, scores, anyclass, complete, np.zeros(3), W)
+    assert fused_all[0][2] > expected[2] + 1   # without it the yield box pulls the box right
+
+
 class ColourBlobDetector:
     """Stands in for a model on the views: each red blob is a 'warning' sign."""
 
