@@ -13,7 +13,7 @@ them:
 * ``gtsdb``: GTSDB 500-599 as they are (the set the first rule was chosen on; shown, not used).
 
 For each box under the confidence that overlaps no detection (a *candidate*, merged as
-``core.rescue`` merges them): its shorter side, its share of sheeting colours and the
+``core.rescue`` merges them): its box, its share of sheeting colours and the
 classifier's probabilities. Every rule of a grid is then scored on each set without running a
 network again: precision, recall and F1 of the detections plus the kept candidates, and
 mandatory recall. Three kinds of rule: ``code`` (the rule until 27 November: the best code,
@@ -33,6 +33,7 @@ import json
 import os
 import sys
 import time
+from dataclasses import replace
 
 import numpy as np
 
@@ -57,7 +58,7 @@ FLOORS = (0.05, 0.1, 0.2)
 def collect(detector, classifier, frames, confidence):
     """Per frame: truth, ignored boxes (the road signs the truth leaves out among them), the
     detections at ``confidence`` and the candidates with their features (score, class id,
-    box, side, sheeting, probabilities)."""
+    box, sheeting, probabilities)."""
     rows = []
     for frame in frames:   # bench_detector.Frame
         image, gt, classes = frame.image, frame.boxes, frame.classes
@@ -73,7 +74,6 @@ def collect(detector, classifier, frames, confidence):
             "gt": gt, "classes": classes, "ignore": ignore,
             "sure": (boxes[sure].reshape(-1, 4), scores[sure], ids[sure]),
             "cand_boxes": c_boxes, "cand_scores": scores[cands], "cand_ids": ids[cands],
-            "side": np.minimum(c_boxes[:, 2] - c_boxes[:, 0], c_boxes[:, 3] - c_boxes[:, 1]),
             "sheeting": np.array([bd.rescue_mod.sheeting_fraction(image, b) for b in c_boxes]),
             "probs": probs})
     return rows
@@ -113,15 +113,18 @@ class Reader:
 
 def score_rule(rows, reads, rule, confidence):
     """Precision, recall, F1 and mandatory recall of the detections plus the candidates ``rule``
-    keeps (kind, probability, side, sheeting, floor), on ``rows``."""
+    keeps (kind, probability, side, sheeting, floor), on ``rows``. The size and colour checks
+    are the plugin's own (``rescue.worth_reading`` with that side and sheeting share, so a
+    candidate under ``small_box_px`` also needs ``small_min_score``, as in detectsigns)."""
     kind, p_min, side_min, sheet_min, floor = rule
+    gate = replace(bd.rescue_mod.DEFAULT_RULE, min_box_px=side_min, min_sheeting=sheet_min)
     n_det = n_tp = n_true = n_hit = 0
     mand = CLASSES.index("mandatory")
     m_true = m_hit = 0
     for row, read in zip(rows, reads):
         prob, cls = read[kind]
-        keep = ((row["cand_scores"] >= floor) & (row["side"] >= side_min) & (row["sheeting"] >= sheet_min)
-                & (prob >= p_min))
+        keep = ((row["cand_scores"] >= floor) & (prob >= p_min)
+                & bd.rescue_mod.worth_reading(row["cand_boxes"], row["sheeting"], row["cand_scores"], gate))
         b, s, i = row["sure"]
         boxes = np.concatenate([b, row["cand_boxes"][keep]])
         scores = np.concatenate([s, np.full(int(keep.sum()), confidence)])

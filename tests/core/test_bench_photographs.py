@@ -55,14 +55,14 @@ def test_the_pasted_tracks_are_the_heldout_split_and_each_half_pastes_half_of_th
     assert 0 < sum(a) <= 8 and 0 < sum(b) <= 8
 
 
-def _row(gt, sure, cand_boxes, cand_scores, sides, sheeting, probs):
+def _row(gt, sure, cand_boxes, cand_scores, sheeting, probs):
     gt = np.asarray(gt, float).reshape(-1, 4)
     sb = np.asarray(sure, float).reshape(-1, 4)
     cb = np.asarray(cand_boxes, float).reshape(-1, 4)
     return {"gt": gt, "classes": np.zeros(len(gt), np.int64), "ignore": np.zeros((0, 4)),
             "sure": (sb, np.full(len(sb), 0.9), np.zeros(len(sb), np.int64)),
             "cand_boxes": cb, "cand_scores": np.asarray(cand_scores, float), "cand_ids": np.zeros(len(cb), np.int64),
-            "side": np.asarray(sides, float), "sheeting": np.asarray(sheeting, float),
+            "sheeting": np.asarray(sheeting, float),
             "probs": np.asarray(probs, float)}
 
 
@@ -71,7 +71,7 @@ def test_a_rule_keeps_only_the_candidates_that_pass_every_check():
     two_signs = [[0, 0, 20, 20], [100, 100, 130, 130]]
     # one sign detected; a candidate on the other sign (read as a code at 0.8) and one on nothing
     row = _row(two_signs, [[0, 0, 20, 20]], [[100, 100, 130, 130], [300, 300, 330, 330]], [0.3, 0.3],
-               [30, 30], [0.2, 0.2], [[0.8, 0.2], [0.85, 0.15]])
+               [0.2, 0.2], [[0.8, 0.2], [0.85, 0.15]])
     reads = [reader.read(row["probs"], row["cand_ids"])]
     alone = tune.score_rule([row], reads, ("code", 2.0, 0.0, 0.0, 1.0), 0.5)
     assert (alone["hits"], alone["detections"], alone["P"], alone["R"]) == (1, 1, 1.0, 0.5)
@@ -88,13 +88,26 @@ def test_a_rule_keeps_only_the_candidates_that_pass_every_check():
 
 
 
+def test_a_rule_gates_small_candidates_as_the_plugin_does():
+    """score_rule's size and colour checks are rescue.worth_reading's: a candidate under the
+    plugin's ``small_box_px`` is kept only from ``small_min_score``, whatever the rule's side."""
+    reader = tune.Reader(other=1, column_class=[0, -2], n_classes=6)
+    rule = ("code", 0.8, 12.0, 0.05, 0.05)
+    small = bd.rescue_mod.DEFAULT_RULE.small_min_score
+
+    def kept(score):
+        row = _row([[100, 100, 114, 114]], [], [[100, 100, 114, 114]], [score], [0.5], [[0.95, 0.05]])
+        return tune.score_rule([row], [reader.read(row["probs"], row["cand_ids"])], rule, 0.5)["hits"]
+    assert kept(small - 0.05) == 0 and kept(small + 0.05) == 1
+
+
 def test_a_class_rule_adds_up_the_codes_of_a_class():
     """Two codes of class 2 (a speed limit whose digits are unsure) read 0.5 and 0.45: no code
     reaches 0.8, their class does (0.95) and is the class given; a crop read as other is not
     kept by either."""
     reader = tune.Reader(other=2, column_class=[2, 2, -2], n_classes=6)
     sign = [[100, 100, 130, 130]]
-    row = _row(sign, [], [[100, 100, 130, 130], [300, 300, 330, 330]], [0.3, 0.3], [30, 30], [0.2, 0.2],
+    row = _row(sign, [], [[100, 100, 130, 130], [300, 300, 330, 330]], [0.3, 0.3], [0.2, 0.2],
                [[0.5, 0.45, 0.05], [0.1, 0.1, 0.8]])
     row["classes"] = np.array([2])
     read = reader.read(row["probs"], row["cand_ids"])
