@@ -38,10 +38,13 @@ measures several models in one run, on the same images, timed alternately.
    ``on-keep-overhead-other``: the second look without dropping what an upward view boxed
    alone and the classifier reads ``other`` (``RescueRule.drop_lone_upward_other``; only
    panoramas have upward views, so the photographs are measured once for both ``on``s).
+6. ``--fit-tall`` (default ``on``): detectsigns' fit of boxes much taller than wide (signs
+   seen nearly edge-on) to the columns that show sheeting colours (``core/sheeting.py``);
+   ``--fit-tall on off`` measures with and without it in the same run.
 
     .venv/bin/python bench/bench_detector.py [--model M | --compare A.onnx B.onnx ...]
         [--scene DIR ...] [--threads 2] [--second-look off|on|both|on-keep-overhead-other ...]
-        [--json bench/out/detector.json]
+        [--fit-tall on off] [--json bench/out/detector.json]
 """
 from __future__ import annotations
 
@@ -68,6 +71,7 @@ panorama_mod = import_roadsigns("roadsigns.core.panorama")
 detections_mod = import_roadsigns("roadsigns.core.detections")
 rescue_mod = import_roadsigns("roadsigns.core.rescue")
 signcodes_mod = import_roadsigns("roadsigns.core.signcodes")
+sheeting_mod = import_roadsigns("roadsigns.core.sheeting")
 
 MIN_HEIGHT_PX = 20.0
 EDGE_ON_MAX_WIDTH_PX = 8.0  # a counted sign seen this narrow is a sliver (edge-on): reported apart
@@ -271,8 +275,9 @@ class PanoramaBench:
     confirms them (they count as detections at the confidence: the curve then only spans
     what the plugin keeps)."""
 
-    def __init__(self, detector, views, confidence, min_box_px, classifier=None, second_look=None):
+    def __init__(self, detector, views, confidence, min_box_px, classifier=None, second_look=None, fit_tall=True):
         self.d, self.views, self.confidence, self.min_box_px = detector, views, confidence, min_box_px
+        self.fit_tall = fit_tall
         self.classifier, self.second_look = classifier, second_look
         self.matches, self.small, self.hidden, self.face_on, self.reportable = [], [], [], [], []
         self.back_hits, self.detect_s, self.cpu_s, self.n = 0, 0.0, 0.0, 0
@@ -329,15 +334,17 @@ class PanoramaBench:
     def detect(self, pano):
         """What the bench counts: every box from 0.05 (the curve), or what the plugin keeps."""
         if self.classifier is None:
-            return detector_mod.detect_panorama(self.d, pano, self.views, confidence=0.05, min_box_px=self.min_box_px)
+            return detector_mod.detect_panorama(self.d, pano, self.views, confidence=0.05, min_box_px=self.min_box_px,
+                                                fit_tall=self.fit_tall)
         if self.second_look is None:  # the curve needs the boxes from 0.05; the plugin reads the codes of its own
             found = detector_mod.detect_panorama(self.d, pano, self.views, confidence=0.05,
-                                                 min_box_px=self.min_box_px)
+                                                 min_box_px=self.min_box_px, fit_tall=self.fit_tall)
             detections_mod.read_codes(self.classifier, pano, found.subset(found.score >= self.confidence))
             return found
         found = detector_mod.detect_panorama(self.d, pano, self.views, confidence=self.confidence,
                                              min_box_px=self.min_box_px,
-                                             candidate_confidence=rescue_mod.DEFAULT_RESCUE_CONFIDENCE)
+                                             candidate_confidence=rescue_mod.DEFAULT_RESCUE_CONFIDENCE,
+                                             fit_tall=self.fit_tall)
         return rescue_mod.second_look(self.classifier, pano, found, self.d.class_names, self.second_look)
 
     def result(self):
@@ -408,13 +415,13 @@ def half_density_hfov_deg(hfov_deg: float) -> float:
 
 
 def bench_panoramas(entries, scene_dirs, confidence, max_images=None, min_box_px=0.0, classifier=None):
-    """Every ``(detector, view set name, second look name)`` of ``entries`` on every panorama,
-    alternating which goes first; with a ``classifier`` the codes are read as detectsigns
-    reads them."""
+    """Every ``(detector, view set name, second look name, tall boxes fitted)`` of ``entries``
+    on every panorama, alternating which goes first; with a ``classifier`` the codes are read
+    as detectsigns reads them."""
     benches = []
-    for d, views_name, look in entries:
+    for d, views_name, look, fit_tall in entries:
         benches.append(PanoramaBench(d, VIEW_SETS[views_name](d.input_size), confidence, min_box_px,
-                                     classifier, SECOND_LOOKS[look]))
+                                     classifier, SECOND_LOOKS[look], fit_tall))
     decode_s, n = 0.0, 0
     warm = False
     for scene_dir in scene_dirs:
@@ -512,27 +519,41 @@ def photo_candidates(boxes, scores, confidence, floor=None):
     return sure, np.array(cands, np.int64)
 
 
-def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, class_names):
+def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, class_names,
+                      rule=rescue_mod.DEFAULT_RULE):
     """:func:`roadsigns.core.rescue.second_look` on a photograph's boxes (from 0.05): the
     boxes from ``DEFAULT_RESCUE_CONFIDENCE`` under ``confidence`` that lie on no detection
     (overlap of the smaller box >= 0.5) are merged across classes (the best-scored kept) and
-    kept when the rule and the classifier confirm them, with the class read, counted at
-    ``confidence``. Returns the plugin's boxes, scores and class ids."""
+    kept when ``rule`` (a ``RescueRule``) and the classifier confirm them, with the class read,
+    counted at ``confidence``; with ``rule.drop_other_below``, detections of a shape class
+    under that score read ``other`` are dropped (as the plugin's second look does). A
+    photograph has no upward views (``drop_lone_upward_other`` plays no part). Returns the
+    plugin's boxes, scores and class ids."""
     from devtools.train.codes import crop_square
 
     sure, cands = photo_candidates(boxes, scores, confidence)
+    rgb = image_bgr[..., ::-1]
+
+    def read(rows):
+        return classifier.probabilities([crop_square(rgb, boxes[j], margin=classifier.crop_margin,
+                                                     out_px=classifier.input_px) for j in rows])
+
+    if rule.drop_other_below > 0 and rescue_mod.unlisted_columns(classifier.names).any():
+        shape = np.isin(np.asarray(class_names, dtype=object)[ids], rescue_mod.SHAPE_CLASSES)
+        doubtful = np.flatnonzero(sure & (scores < rule.drop_other_below) & shape)
+        if len(doubtful):
+            best_name = np.asarray(classifier.names, dtype=object)[read(doubtful).argmax(1)]
+            sure[doubtful[best_name == signcodes_mod.OTHER_CODE]] = False
     if len(cands):
-        sheeting = np.array([rescue_mod.sheeting_fraction(image_bgr, boxes[j]) for j in cands])
-        cands = cands[rescue_mod.worth_reading(boxes[cands], sheeting, scores[cands])]
+        sheeting = np.array([sheeting_mod.sheeting_fraction(image_bgr, boxes[j]) for j in cands])
+        cands = cands[rescue_mod.worth_reading(boxes[cands], sheeting, scores[cands], rule)]
     kept_ids = ids.copy()
     rescued = np.zeros(len(boxes), bool)
     if len(cands):
-        rgb = image_bgr[..., ::-1]
-        crops = [crop_square(rgb, boxes[j], margin=classifier.crop_margin, out_px=classifier.input_px)
-                 for j in cands]
         columns = rescue_mod.code_classes(classifier.names, classifier.table, class_names)
-        best, score = rescue_mod.class_reading(classifier.probabilities(crops), columns, len(class_names))
-        for j, klass, ok in zip(cands, best, rescue_mod.confirmed(score)):
+        unlisted = rescue_mod.unlisted_columns(classifier.names) if rule.unlisted_when_best else None
+        best, score = rescue_mod.class_reading(read(cands), columns, len(class_names), unlisted)
+        for j, klass, ok in zip(cands, best, rescue_mod.confirmed(score, rule)):
             if ok:
                 rescued[j] = True
                 if klass >= 0:
@@ -664,10 +685,18 @@ def match_frame(boxes, scores, class_ids, frame):
     return out
 
 
+def photo_second_look(rule):
+    """The rule a photograph's second look runs (None for none): a photograph has no upward
+    views, so rules that differ only in ``drop_lone_upward_other`` give one run."""
+    return None if rule is None else replace(rule, drop_lone_upward_other=False)
+
+
 def bench_photographs(detectors, confidence, frames, whole_frame=False, classifier=None):
     """Each detector on street photographs ``frames`` (:class:`Frame`) cut
     into tiles of the model's input size (and whole letterboxed frames if asked);
-    ``detectors``: ``(detector, second look, scales)`` (the second look with ``classifier``;
+    ``detectors``: ``(detector, (second look, tall boxes fitted), scales)`` (the second look a
+    ``RescueRule``, or None for none, with ``classifier``; the fit as detectsigns' on
+    panoramas, ``core.sheeting.fit_tall_boxes``;
     the tiles of the photograph resized by each scale and merged, :func:`detect_scaled`;
     ``(1.0,)``: as it is)."""
     modes = ("tiles_640", "whole_frame_letterboxed") if whole_frame else ("tiles_640",)
@@ -679,7 +708,7 @@ def bench_photographs(detectors, confidence, frames, whole_frame=False, classifi
         n_frames += 1
         n_unlabelled += len(frame.unlabelled)
         order = list(enumerate(detectors)) if k % 2 == 0 else list(enumerate(detectors))[::-1]
-        for i, (d, look, scales) in order:
+        for i, (d, (look, fit_tall), scales) in order:
             for mode in modes:
                 t0 = time.perf_counter()
                 if mode == "tiles_640":
@@ -687,9 +716,11 @@ def bench_photographs(detectors, confidence, frames, whole_frame=False, classifi
                 else:
                     r = d.detect(image, 0.05)
                     boxes, scores, found_ids = r.boxes_xyxy, r.scores, r.class_ids
-                if look:
+                if fit_tall:
+                    boxes = sheeting_mod.fit_tall_boxes(image, boxes)
+                if look is not None:
                     boxes, scores, found_ids = second_look_image(classifier, image, boxes, scores, found_ids,
-                                                                 confidence, d.class_names)
+                                                                 confidence, d.class_names, look)
                 a = acc[i][mode]
                 a["s"] += time.perf_counter() - t0
                 for key, m in match_frame(boxes, scores, found_ids, frame).items():
@@ -863,6 +894,9 @@ def main(argv=None):
                          "the codes read on panoramas), on (the plugin's default), both (off and on), or "
                          "on-keep-overhead-other (on, keeping the upward views' lone boxes read 'other'); "
                          "each measured in the same run")
+    ap.add_argument("--fit-tall", nargs="+", choices=("on", "off"), default=["on"],
+                    help="detectsigns' fit of boxes much taller than wide to the sign's sheeting colours "
+                         "(core/sheeting.py): on (the plugin's), off, or both, each measured in the same run")
     ap.add_argument("--classifier", default=os.path.join(REPO_ROOT, "models", "signcodes.onnx"),
                     help="the sign-code classifier of the second look (and of the codes read on panoramas)")
     ap.add_argument("--photo-scales", nargs="+", default=["1"], metavar="SCALES",
@@ -887,20 +921,22 @@ def main(argv=None):
     looks = list(dict.fromkeys(n for name in a.second_look for n in (["off", "on"] if name == "both" else [name])))
     table = signcodes_mod.read_codes_table(os.path.join(REPO_ROOT, "models", "sign-codes-de.csv"))
     classifier = signcodes_mod.CodeClassifier(a.classifier, table, threads=a.threads)
-    entries = [(k, v, look) for k in range(len(models)) for v in a.views for look in looks]
+    fits = [f == "on" for f in dict.fromkeys(a.fit_tall)]
+    entries = [(k, v, look, fit) for k in range(len(models)) for v in a.views for look in looks for fit in fits]
     results = [{"model": os.path.relpath(models[k], REPO_ROOT), "model_mb": os.path.getsize(models[k]) / 1e6,
                 "views": v, "n_views": len(VIEW_SETS[v](detectors[k].input_size)), "second_look": look != "off",
-                "second_look_rule": look,
+                "second_look_rule": look, "fit_tall": fit,
                 "classifier": os.path.relpath(a.classifier, REPO_ROOT), "threads": a.threads,
                 "cpus": os.cpu_count(), "load_average_at_start": os.getloadavg()[0],
-                "confidence": a.confidence, "scenes": scenes, "min_size_px": a.min_size} for k, v, look in entries]
-    for r, p in zip(results, bench_panoramas([(detectors[k], v, look) for k, v, look in entries], scenes,
+                "confidence": a.confidence, "scenes": scenes, "min_size_px": a.min_size} for k, v, look, fit in entries]
+    for r, p in zip(results, bench_panoramas([(detectors[k], v, look, fit) for k, v, look, fit in entries], scenes,
                                              a.confidence, a.max_images, a.min_size, classifier)):
         r["panoramas"] = p
         r["panoramas_per_second"] = p["panoramas_per_second"]
     # photographs: tiles of the model's input size, at each --photo-scales item (the view set plays no part)
-    # the photographs have no upward views: one run with the second look serves every "on" rule
-    photo_looks = list(dict.fromkeys(look != "off" for look in looks))
+    # the photographs have no upward views: one run serves the rules that differ only there
+    photo_rule = {look: photo_second_look(SECOND_LOOKS[look]) for look in looks}
+    photo_looks = list(dict.fromkeys((photo_rule[look], fit) for look in looks for fit in fits))
     runs = [(k, look, spec) for k in range(len(models)) for look in photo_looks for spec in a.photo_scales]
     photo_detectors = [(detectors[k], look, parse_scales(spec, detectors[k].input_size)) for k, look, spec in runs]
     photo_sets = []
@@ -917,8 +953,8 @@ def main(argv=None):
             photo_detectors, a.confidence, drawn_face_frames(GTSDB_HELDOUT_IDS[:a.gtsdb_images]),
             classifier=classifier)))
     for key, measured in photo_sets:
-        for r, (k, _, _) in zip(results, entries):
-            run_of = {spec: runs.index((k, r["second_look"], spec)) for spec in a.photo_scales}
+        for r, (k, _, _, fit) in zip(results, entries):
+            run_of = {spec: runs.index((k, (photo_rule[r["second_look_rule"]], fit), spec)) for spec in a.photo_scales}
             by_scale = {spec: measured[i] for spec, i in run_of.items()}
             for spec, res in by_scale.items():
                 res["tiles_640"]["scales"] = list(photo_detectors[run_of[spec]][2])
@@ -928,12 +964,14 @@ def main(argv=None):
             if len(a.photo_scales) > 1:
                 r[key + "_by_scale"] = by_scale
     for r in results:
-        print_model(f"{r['model']}, views {r['views']} ({r['n_views']}), second look {r['second_look_rule']}",
+        print_model(f"{r['model']}, views {r['views']} ({r['n_views']}), second look {r['second_look_rule']}, "
+                    f"tall boxes {'fitted' if r['fit_tall'] else 'not fitted'}",
                     r, a.confidence)
     print("\n===== summary (confidence %.2f) =====" % a.confidence)
     heads = [headline(r) for r in results]
     keys = list(heads[0])
-    labels = [os.path.basename(r["model"]) + " " + r["views"] + LOOK_LABELS[r["second_look_rule"]] for r in results]
+    labels = [os.path.basename(r["model"]) + " " + r["views"] + LOOK_LABELS[r["second_look_rule"]]
+              + ("" if r["fit_tall"] else " nofit") for r in results]
     print(f"{'':<26}" + "".join(f"{label[-22:]:>24}" for label in labels))
     for k in keys:
         print(f"{k:<26}" + "".join(f"{_f(h.get(k)):>24}" for h in heads))

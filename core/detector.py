@@ -37,6 +37,7 @@ from typing import Callable, List, Optional, Sequence, Tuple
 
 import numpy as np
 
+from . import sheeting
 from .errors import SILENT, InputError, Progress
 from .panorama import ViewSet
 
@@ -632,7 +633,7 @@ def _merged(detector, rows: Sequence[np.ndarray], W: int, overlap_threshold: flo
 def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: float = 0.25,
                     iou_threshold: float = 0.45, overlap_threshold: float = 0.5,
                     min_box_px: float = 0.0, candidate_confidence: Optional[float] = None,
-                    progress: Progress = SILENT) -> PanoramaDetections:
+                    progress: Progress = SILENT, fit_tall: bool = True) -> PanoramaDetections:
     """Run ``detector`` on each view of ``pano`` (BGR array) and merge the results.
 
     ``detector``: a :class:`Detector`, or any object with ``class_names`` and
@@ -686,14 +687,27 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
                                         all_upward, all_side_cut)]
     sure = rows[1] >= confidence
     found = _merged(detector, [a[sure] for a in rows], W, overlap_threshold, min_box_px)
-    if lowest >= confidence or sure.all():
-        return found
-    low = _merged(detector, [a[~sure] for a in rows], W, overlap_threshold, min_box_px, class_agnostic=True)
-    on_sign = np.array([len(found) > 0 and seam_aware_overlap(box, found.boxes(), W).max() >= overlap_threshold
-                        for box in low.boxes()], bool).reshape(-1)
-    low = low.subset(~on_sign)
-    low.candidate[:] = True
-    return PanoramaDetections.concatenate([found, low])
+    if lowest < confidence and not sure.all():
+        low = _merged(detector, [a[~sure] for a in rows], W, overlap_threshold, min_box_px, class_agnostic=True)
+        on_sign = np.array([len(found) > 0 and seam_aware_overlap(box, found.boxes(), W).max() >= overlap_threshold
+                            for box in low.boxes()], bool).reshape(-1)
+        low = low.subset(~on_sign)
+        low.candidate[:] = True
+        found = PanoramaDetections.concatenate([found, low])
+    return fit_tall_boxes(pano, found) if fit_tall else found
+
+
+def fit_tall_boxes(pano: np.ndarray, found: PanoramaDetections) -> PanoramaDetections:
+    """``found`` (detections of the panorama ``pano``, BGR) with each box much taller than
+    wide narrowed to the columns that show sign sheeting colours
+    (:func:`.sheeting.fit_tall_boxes`), in place; returns it. A sign passed close by is seen
+    nearly edge-on, and the network boxes it about twice as wide as its face."""
+    if len(found):
+        W = pano.shape[1]
+        fitted = sheeting.fit_tall_boxes(pano, found.boxes(), wrap=True)
+        shift = np.floor(fitted[:, 0] / W) * W        # u0 back into [0, W) across the seam
+        found.u0, found.u1 = fitted[:, 0] - shift, fitted[:, 2] - shift
+    return found
 
 
 # --- a drive ------------------------------------------------------------------------------

@@ -10,7 +10,8 @@ limit whose digits are unsure is still a prohibitory sign) and the box shows sig
 colours.
 
 Conventions: boxes ``(u0, v0, u1, v1)`` in image (or panorama) pixels, ``u1`` past the
-width across a panorama's seam; colours in OpenCV's BGR and 8-bit HSV (hue 0-179).
+width across a panorama's seam; images in OpenCV's BGR order. The sheeting colours are
+:mod:`.sheeting`'s.
 """
 from __future__ import annotations
 
@@ -19,18 +20,13 @@ from typing import Optional, Sequence, Tuple
 
 import numpy as np
 
+from .sheeting import sheeting_fraction
 from .signcodes import OTHER_CODE, unlisted_code_class
 
 #: Default of detectsigns' RESCUE_CONFIDENCE: the lowest detector score of a candidate. 0.2
 #: since the wider detector (27 November): at 0.05 its candidates cost precision on
 #: held-out real signs for little recall (models/README.md, "A wider detector").
 DEFAULT_RESCUE_CONFIDENCE = 0.2
-#: Saturation (8-bit HSV) from which a pixel counts as coloured sheeting.
-SHEETING_MIN_SATURATION = 80
-#: Hue ranges (8-bit HSV, inclusive) of the sheeting colours: red (both ends), blue, yellow.
-SHEETING_HUES = ((0, 10), (160, 179), (95, 130), (15, 35))
-
-
 @dataclass(frozen=True)
 class RescueRule:
     """When a candidate is kept: the codes (not ``other``) of one of the detector's classes
@@ -65,35 +61,15 @@ class RescueRule:
     small_min_score: float = 0.35
     min_sheeting: float = 0.05
     drop_lone_upward_other: bool = True
+    unlisted_when_best: bool = False
+    drop_other_below: float = 0.0
 
 
 DEFAULT_RULE = RescueRule()
-
-
-def sheeting_fraction(image_bgr: np.ndarray, box, wrap: bool = False) -> float:
-    """The share of the pixels of ``box`` in ``image_bgr`` whose colour is sign sheeting
-    (saturated red, blue or yellow). ``wrap``: columns wrap around the width (a panorama's
-    seam); else the box is clipped to the image. 0 for an empty box."""
-    import cv2
-
-    h, w = image_bgr.shape[:2]
-    u0, v0, u1, v1 = (int(round(float(c))) for c in box)
-    v0, v1 = max(v0, 0), min(v1, h)
-    if v1 <= v0 or u1 <= u0:
-        return 0.0
-    if wrap:
-        patch = np.take(image_bgr[v0:v1], np.arange(u0, u1) % w, axis=1)
-    else:
-        u0, u1 = max(u0, 0), min(u1, w)
-        if u1 <= u0:
-            return 0.0
-        patch = image_bgr[v0:v1, u0:u1]
-    hsv = cv2.cvtColor(np.ascontiguousarray(patch), cv2.COLOR_BGR2HSV).reshape(-1, 3)
-    hue, saturated = hsv[:, 0], hsv[:, 1] >= SHEETING_MIN_SATURATION
-    coloured = np.zeros(len(hsv), bool)
-    for lo, hi in SHEETING_HUES:
-        coloured |= (hue >= lo) & (hue <= hi)
-    return float(np.mean(saturated & coloured))
+#: The classes a sign of any country shows by its shape and colours (a red ring, a blue
+#: disc, a triangle, an octagon), which a classifier with ``unlisted:`` names reads as a code
+#: or as ``unlisted:``; a panel of words whose code the table lacks reads ``other``.
+SHAPE_CLASSES = ("warning", "prohibitory", "mandatory", "stop", "yield")
 
 
 def worth_reading(box_px: np.ndarray, sheeting: np.ndarray, scores: np.ndarray,
@@ -126,13 +102,24 @@ def code_classes(names: Sequence[str], table, class_names: Sequence[str]) -> np.
     return out
 
 
-def class_reading(probabilities, column_class: np.ndarray, n_classes: int) -> Tuple[np.ndarray, np.ndarray]:
+def unlisted_columns(names: Sequence[str]) -> np.ndarray:
+    """Which classifier columns (``names``) are ``unlisted:`` names (signs whose code the
+    table lacks, :func:`.signcodes.unlisted_code`)."""
+    return np.array([unlisted_code_class(name) is not None for name in names], bool)
+
+
+def class_reading(probabilities, column_class: np.ndarray, n_classes: int,
+                  unlisted: Optional[np.ndarray] = None) -> Tuple[np.ndarray, np.ndarray]:
     """Per crop, the class whose codes' probabilities add up to most in ``probabilities``
     (``(n, C)``; ``column_class``: :func:`code_classes` of its columns), and that sum. The
     class is an index into the detector's ``n_classes``, or -1 for the codes of classes the
     detector lacks, added up together: the box then keeps the detector's class. ``other``
-    counts for no class."""
+    counts for no class. ``unlisted`` (:func:`unlisted_columns`, optional): the ``unlisted:``
+    columns count only in the crops whose single most probable column is one of them."""
     probs = np.asarray(probabilities, float).reshape(-1, len(column_class))
+    if unlisted is not None and np.any(unlisted) and len(probs):
+        unlisted = np.asarray(unlisted, bool)
+        probs = np.where(~unlisted[probs.argmax(1)][:, None] & unlisted[None, :], 0.0, probs)
     per_class = np.zeros((len(probs), n_classes + 1))     # the last column: classes the detector lacks
     for k, c in enumerate(np.asarray(column_class)):
         if c != OTHER_COLUMN:
@@ -190,11 +177,19 @@ def second_look(classifier, pano: np.ndarray, found, class_names: Sequence[str],
         if overhead_other.any():
             keep = ~overhead_other
             found, probabilities = found.subset(keep), probabilities[keep]
+    if rule.drop_other_below > 0 and unlisted_columns(classifier.names).any():
+        doubtful_other = (~found.candidate & (found.score < rule.drop_other_below)
+                          & (np.array(found.code, dtype=object) == OTHER_CODE)
+                          & np.isin(np.array(found.class_name, dtype=object), SHAPE_CLASSES))
+        if doubtful_other.any():
+            keep = ~doubtful_other
+            found, probabilities = found.subset(keep), probabilities[keep]
     if not found.candidate.any():
         return found
     names = list(class_names)
     columns = code_classes(classifier.names, getattr(classifier, "table", None), names)
-    best, score = class_reading(probabilities, columns, len(names))
+    best, score = class_reading(probabilities, columns, len(names),
+                                unlisted_columns(classifier.names) if rule.unlisted_when_best else None)
     kept = ~found.candidate | confirmed(score, rule)
     for k in np.flatnonzero(found.candidate & kept & (best >= 0)):
         found.class_name[k] = names[best[k]]
