@@ -525,10 +525,8 @@ def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, cla
     boxes from ``DEFAULT_RESCUE_CONFIDENCE`` under ``confidence`` that lie on no detection
     (overlap of the smaller box >= 0.5) are merged across classes (the best-scored kept) and
     kept when ``rule`` (a ``RescueRule``) and the classifier confirm them, with the class read,
-    counted at ``confidence``; with ``rule.drop_other_below``, detections of a shape class
-    under that score read ``other`` are dropped (as the plugin's second look does). A
-    photograph has no upward views (``drop_lone_upward_other`` plays no part). Returns the
-    plugin's boxes, scores and class ids."""
+    counted at ``confidence``. A photograph has no upward views (``drop_lone_upward_other``
+    plays no part). Returns the plugin's boxes, scores and class ids."""
     from devtools.train.codes import crop_square
 
     sure, cands = photo_candidates(boxes, scores, confidence)
@@ -538,12 +536,6 @@ def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, cla
         return classifier.probabilities([crop_square(rgb, boxes[j], margin=classifier.crop_margin,
                                                      out_px=classifier.input_px) for j in rows])
 
-    if rule.drop_other_below > 0 and rescue_mod.unlisted_columns(classifier.names).any():
-        shape = np.isin(np.asarray(class_names, dtype=object)[ids], rescue_mod.SHAPE_CLASSES)
-        doubtful = np.flatnonzero(sure & (scores < rule.drop_other_below) & shape)
-        if len(doubtful):
-            best_name = np.asarray(classifier.names, dtype=object)[read(doubtful).argmax(1)]
-            sure[doubtful[best_name == signcodes_mod.OTHER_CODE]] = False
     if len(cands):
         sheeting = np.array([sheeting_mod.sheeting_fraction(image_bgr, boxes[j]) for j in cands])
         cands = cands[rescue_mod.worth_reading(boxes[cands], sheeting, scores[cands], rule)]
@@ -551,8 +543,7 @@ def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, cla
     rescued = np.zeros(len(boxes), bool)
     if len(cands):
         columns = rescue_mod.code_classes(classifier.names, classifier.table, class_names)
-        unlisted = rescue_mod.unlisted_columns(classifier.names) if rule.unlisted_when_best else None
-        best, score = rescue_mod.class_reading(read(cands), columns, len(class_names), unlisted)
+        best, score = rescue_mod.class_reading(read(cands), columns, len(class_names))
         for j, klass, ok in zip(cands, best, rescue_mod.confirmed(score, rule)):
             if ok:
                 rescued[j] = True

@@ -27,6 +27,8 @@ from .signcodes import OTHER_CODE, unlisted_code_class
 #: since the wider detector (27 November): at 0.05 its candidates cost precision on
 #: held-out real signs for little recall (models/README.md, "A wider detector").
 DEFAULT_RESCUE_CONFIDENCE = 0.2
+
+
 @dataclass(frozen=True)
 class RescueRule:
     """When a candidate is kept: the codes (not ``other``) of one of the detector's classes
@@ -61,15 +63,9 @@ class RescueRule:
     small_min_score: float = 0.35
     min_sheeting: float = 0.05
     drop_lone_upward_other: bool = True
-    unlisted_when_best: bool = False
-    drop_other_below: float = 0.0
 
 
 DEFAULT_RULE = RescueRule()
-#: The classes a sign of any country shows by its shape and colours (a red ring, a blue
-#: disc, a triangle, an octagon), which a classifier with ``unlisted:`` names reads as a code
-#: or as ``unlisted:``; a panel of words whose code the table lacks reads ``other``.
-SHAPE_CLASSES = ("warning", "prohibitory", "mandatory", "stop", "yield")
 
 
 def worth_reading(box_px: np.ndarray, sheeting: np.ndarray, scores: np.ndarray,
@@ -102,24 +98,13 @@ def code_classes(names: Sequence[str], table, class_names: Sequence[str]) -> np.
     return out
 
 
-def unlisted_columns(names: Sequence[str]) -> np.ndarray:
-    """Which classifier columns (``names``) are ``unlisted:`` names (signs whose code the
-    table lacks, :func:`.signcodes.unlisted_code`)."""
-    return np.array([unlisted_code_class(name) is not None for name in names], bool)
-
-
-def class_reading(probabilities, column_class: np.ndarray, n_classes: int,
-                  unlisted: Optional[np.ndarray] = None) -> Tuple[np.ndarray, np.ndarray]:
+def class_reading(probabilities, column_class: np.ndarray, n_classes: int) -> Tuple[np.ndarray, np.ndarray]:
     """Per crop, the class whose codes' probabilities add up to most in ``probabilities``
     (``(n, C)``; ``column_class``: :func:`code_classes` of its columns), and that sum. The
     class is an index into the detector's ``n_classes``, or -1 for the codes of classes the
     detector lacks, added up together: the box then keeps the detector's class. ``other``
-    counts for no class. ``unlisted`` (:func:`unlisted_columns`, optional): the ``unlisted:``
-    columns count only in the crops whose single most probable column is one of them."""
+    counts for no class."""
     probs = np.asarray(probabilities, float).reshape(-1, len(column_class))
-    if unlisted is not None and np.any(unlisted) and len(probs):
-        unlisted = np.asarray(unlisted, bool)
-        probs = np.where(~unlisted[probs.argmax(1)][:, None] & unlisted[None, :], 0.0, probs)
     per_class = np.zeros((len(probs), n_classes + 1))     # the last column: classes the detector lacks
     for k, c in enumerate(np.asarray(column_class)):
         if c != OTHER_COLUMN:
@@ -177,19 +162,11 @@ def second_look(classifier, pano: np.ndarray, found, class_names: Sequence[str],
         if overhead_other.any():
             keep = ~overhead_other
             found, probabilities = found.subset(keep), probabilities[keep]
-    if rule.drop_other_below > 0 and unlisted_columns(classifier.names).any():
-        doubtful_other = (~found.candidate & (found.score < rule.drop_other_below)
-                          & (np.array(found.code, dtype=object) == OTHER_CODE)
-                          & np.isin(np.array(found.class_name, dtype=object), SHAPE_CLASSES))
-        if doubtful_other.any():
-            keep = ~doubtful_other
-            found, probabilities = found.subset(keep), probabilities[keep]
     if not found.candidate.any():
         return found
     names = list(class_names)
     columns = code_classes(classifier.names, getattr(classifier, "table", None), names)
-    best, score = class_reading(probabilities, columns, len(names),
-                                unlisted_columns(classifier.names) if rule.unlisted_when_best else None)
+    best, score = class_reading(probabilities, columns, len(names))
     kept = ~found.candidate | confirmed(score, rule)
     for k in np.flatnonzero(found.candidate & kept & (best >= 0)):
         found.class_name[k] = names[best[k]]

@@ -103,30 +103,6 @@ def test_a_sign_whose_code_the_table_lacks_counts_for_its_class(tmp_path):
     np.testing.assert_allclose(score, [0.95, 0.05])
 
 
-def test_unlisted_counts_only_where_it_is_the_best_reading(tmp_path):
-    """With ``unlisted`` columns given, ``unlisted:`` adds to its class only in a crop whose
-    single most probable column is an ``unlisted:`` one: a disc read half as a German speed
-    limit and half as some prohibitory sign is neither, a foreign no-parking sign read as
-    ``unlisted:prohibitory`` first still adds the German codes it resembles."""
-    path = tmp_path / "codes.csv"
-    path.write_text("code;name;class\nDE:274[30];30;prohibitory\nDE:206;stop;stop\n")
-    table = SC.read_codes_table(str(path))
-    names = ["DE:274[30]", "DE:206", SC.unlisted_code("prohibitory"), SC.unlisted_code("warning"), "other"]
-    detector_classes = ("prohibitory", "stop")
-    columns = rescue.code_classes(names, table, detector_classes)
-    unlisted = rescue.unlisted_columns(names)
-    assert unlisted.tolist() == [False, False, True, True, False]
-    probs = np.array([[0.5, 0.0, 0.42, 0.0, 0.08],     # a roundel on a billboard: a speed limit first
-                      [0.1, 0.0, 0.85, 0.0, 0.05],     # a foreign no-parking sign
-                      [0.0, 0.5, 0.0, 0.45, 0.05]])    # a stop sign first, a foreign warning sign second
-    best, score = rescue.class_reading(probs, columns, len(detector_classes))
-    np.testing.assert_allclose(score, [0.92, 0.95, 0.5])      # every column added: the roundel passes
-    best, score = rescue.class_reading(probs, columns, len(detector_classes), unlisted)
-    assert best.tolist() == [0, 0, 1]
-    np.testing.assert_allclose(score, [0.5, 0.95, 0.5])
-    assert rescue.confirmed(score).tolist() == [False, True, False]
-
-
 def test_class_of_a_code(classifier):
     assert rescue.class_of_code("DE:215", classifier.table, CLASSES) == "mandatory"
     assert rescue.class_of_code("DE:215", classifier.table, ["sign"]) is None   # a detector without it
@@ -239,52 +215,3 @@ def test_a_small_candidate_needs_a_higher_detector_score():
     scores = [0.4, 0.3, 0.45, 0.2, 0.35]
     np.testing.assert_array_equal(rescue.worth_reading(boxes, np.full(5, 0.5), scores, rule),
                                   [True, False, False, True, True])
-
-
-def test_a_doubtful_detection_read_other_is_dropped(tmp_path, classifier):
-    """``drop_other_below``, with a classifier that has ``unlisted:`` names: a detection of a
-    shape class the detector scored under it and the classifier reads ``other`` is dropped;
-    one scored at or over it stays whatever it reads, and so do a doubtful one read as a
-    sign and a doubtful information panel read ``other`` (a panel of words the table lacks).
-    With a classifier without ``unlisted:`` names (a foreign sign reads ``other`` there) the
-    rule does nothing."""
-    GREY = (128, 128, 128)
-
-    class Doubtful(ColourBlobDetector):
-        SCORES = {RED: 0.55, DARK: 0.55, BLUE: 0.9, GREY: 0.55}
-        CLASS = {RED: "stop", DARK: "stop", BLUE: "stop", GREY: "information"}
-
-        def detect(self, image, confidence, iou_threshold):
-            boxes, scores, ids = [], [], []
-            for colour, score in self.SCORES.items():
-                mask = np.all(np.abs(image.astype(int) - colour) < 25, axis=2).astype(np.uint8)
-                for x, y, w, h, area in cv2.connectedComponentsWithStats(mask)[2][1:]:
-                    if area >= 4 and score >= confidence:
-                        boxes.append([x, y, x + w, y + h])
-                        scores.append(score)
-                        ids.append(CLASSES.index(self.CLASS[colour]))
-            return DT.ImageDetections(np.array(boxes, float).reshape(-1, 4), np.array(scores, float),
-                                      np.array(ids, np.int64))
-
-    names = ("DE:206", "DE:215", SC.unlisted_code("prohibitory"), "other")
-    with_unlisted = SC.CodeClassifier(
-        make_classifier(tmp_path / "u.onnx", names=names,
-                        weights=np.array([[10.0, 0, 0, 0], [0, 0, 0, 0], [0, 10.0, 0, 0]], np.float32),
-                        bias=np.array([0.0, 0.0, 0.0, 5.0], np.float32)), classifier.table)
-    views = ViewSet.default(size_px=128, upward=False)
-    # red (a sign), dark (a look-alike) and grey (a panel) doubtful; blue sure
-    pano = paint_discs([(0.0, 0.0, 4.0, RED), (-90.0, 0.0, 4.0, DARK), (90.0, 0.0, 4.0, BLUE),
-                        (180.0, 0.0, 4.0, GREY)], 1024)
-
-    def kept(clf, rule):
-        found = DT.detect_panorama(Doubtful(), pano, views, 0.5)
-        assert len(found) == 4 and not found.candidate.any()
-        out = rescue.second_look(clf, pano, found, CLASSES, rule)
-        return sorted(zip(out.class_name, out.code))
-
-    every = [("information", "other"), ("stop", "DE:206"), ("stop", "DE:215"), ("stop", "other")]
-    assert kept(with_unlisted, RULE) == every                                  # off by default
-    assert kept(with_unlisted, replace(RULE, drop_other_below=0.6)) == [
-        ("information", "other"), ("stop", "DE:206"), ("stop", "DE:215")]
-    assert kept(with_unlisted, replace(RULE, drop_other_below=0.55)) == every
-    assert kept(classifier, replace(RULE, drop_other_below=0.6)) == every     # no unlisted: names
