@@ -530,20 +530,17 @@ def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, cla
     from devtools.train.codes import crop_square
 
     sure, cands = photo_candidates(boxes, scores, confidence)
-    rgb = image_bgr[..., ::-1]
-
-    def read(rows):
-        return classifier.probabilities([crop_square(rgb, boxes[j], margin=classifier.crop_margin,
-                                                     out_px=classifier.input_px) for j in rows])
-
     if len(cands):
         sheeting = np.array([sheeting_mod.sheeting_fraction(image_bgr, boxes[j]) for j in cands])
         cands = cands[rescue_mod.worth_reading(boxes[cands], sheeting, scores[cands], rule)]
     kept_ids = ids.copy()
     rescued = np.zeros(len(boxes), bool)
     if len(cands):
+        rgb = image_bgr[..., ::-1]
+        crops = [crop_square(rgb, boxes[j], margin=classifier.crop_margin, out_px=classifier.input_px)
+                 for j in cands]
         columns = rescue_mod.code_classes(classifier.names, classifier.table, class_names)
-        best, score = rescue_mod.class_reading(read(cands), columns, len(class_names))
+        best, score = rescue_mod.class_reading(classifier.probabilities(crops), columns, len(class_names))
         for j, klass, ok in zip(cands, best, rescue_mod.confirmed(score, rule)):
             if ok:
                 rescued[j] = True

@@ -74,7 +74,7 @@ def collect(detector, classifier, frames, confidence):
             "gt": gt, "classes": classes, "ignore": ignore,
             "sure": (boxes[sure].reshape(-1, 4), scores[sure], ids[sure]),
             "cand_boxes": c_boxes, "cand_scores": scores[cands], "cand_ids": ids[cands],
-            "sheeting": np.array([bd.rescue_mod.sheeting_fraction(image, b) for b in c_boxes]),
+            "sheeting": np.array([bd.sheeting_mod.sheeting_fraction(image, b) for b in c_boxes]),
             "probs": probs})
     return rows
 

@@ -39,7 +39,7 @@ import numpy as np
 
 from . import sheeting
 from .errors import SILENT, InputError, Progress
-from .panorama import ViewSet
+from .panorama import ViewSet, boxes_from_seam
 
 #: Output layouts this module decodes, as named in messages.
 LAYOUTS = {
@@ -582,11 +582,7 @@ def merge_view_detections(boxes: np.ndarray, scores: np.ndarray, class_ids: np.n
         whole = [j for j in members[k] if complete[j] and fuse_ids[j] == fuse_ids[i]]
         if complete[i] and len(whole) > 1:
             kept_boxes[k] = _fused_box(kept_boxes[k], boxes[whole], scores[whole], pano_width_px)
-    out = np.array(kept_boxes).reshape(-1, 4)
-    if len(out):  # the detections layer: u0 in [0, W)
-        shift = np.floor(out[:, 0] / pano_width_px) * pano_width_px
-        out[:, 0] -= shift
-        out[:, 2] -= shift
+    out = boxes_from_seam(np.array(kept_boxes).reshape(-1, 4), pano_width_px)  # the detections layer's form
     counts = np.array([len(m) for m in members], dtype=np.int64)
     return np.array(kept, dtype=np.int64), out, counts
 
@@ -703,10 +699,8 @@ def fit_tall_boxes(pano: np.ndarray, found: PanoramaDetections) -> PanoramaDetec
     (:func:`.sheeting.fit_tall_boxes`), in place; returns it. A sign passed close by is seen
     nearly edge-on, and the network boxes it about twice as wide as its face."""
     if len(found):
-        W = pano.shape[1]
-        fitted = sheeting.fit_tall_boxes(pano, found.boxes(), wrap=True)
-        shift = np.floor(fitted[:, 0] / W) * W        # u0 back into [0, W) across the seam
-        found.u0, found.u1 = fitted[:, 0] - shift, fitted[:, 2] - shift
+        fitted = boxes_from_seam(sheeting.fit_tall_boxes(pano, found.boxes(), wrap=True), pano.shape[1])
+        found.u0, found.u1 = fitted[:, 0], fitted[:, 2]
     return found
 
 

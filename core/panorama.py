@@ -54,6 +54,17 @@ FORE_AFT_HFOV_DEG = 80.0 / 1.5
 DEFAULT_FORE_AFT_VIEWS = True
 
 
+def boxes_from_seam(boxes_px: np.ndarray, width_px: float) -> np.ndarray:
+    """Panorama boxes ``(n, 4)`` shifted by whole widths so that ``u0`` is in [0, W): the
+    detection layers' form (``u1`` past W across the seam; docs/formats.md, boxes). In place;
+    returns them."""
+    if len(boxes_px):
+        shift = np.floor(boxes_px[:, 0] / width_px) * width_px
+        boxes_px[:, 0] -= shift
+        boxes_px[:, 2] -= shift
+    return boxes_px
+
+
 def allow_large_panoramas() -> None:
     """Raise Pillow's decompression-bomb limit to :data:`MAX_PANORAMA_PIXELS` (process-wide)."""
     from PIL import Image
@@ -215,10 +226,7 @@ class PerspectiveView:
         # either side of it, so this makes the boundary continuous.
         uc = self.centre_u_px(W)
         u = uc + np.mod(u - uc + 0.5 * W, W) - 0.5 * W
-        out = np.stack([u.min(axis=1), v.min(axis=1), u.max(axis=1), v.max(axis=1)], axis=1)
-        shift = np.floor(out[:, 0] / W) * W
-        out[:, 0] -= shift
-        out[:, 2] -= shift
+        out = boxes_from_seam(np.stack([u.min(axis=1), v.min(axis=1), u.max(axis=1), v.max(axis=1)], axis=1), W)
         for pole, row in ((np.array([0.0, 0.0, -1.0]), 0.0), (np.array([0.0, 0.0, 1.0]), float(H))):
             px, py, front = self.ray_to_pixel(pole)
             if front:

@@ -13,13 +13,15 @@ from osgeo import ogr
 
 from devtools import REPO_ROOT
 from roadsigns.core.detector import DEFAULT_CONFIDENCE
-from roadsigns.core.signcodes import read_codes_table, unlisted_code
+from roadsigns.core.rescue import class_of_code
+from roadsigns.core.signcodes import read_codes_table, unlisted_code_class
 
 BUNDLED = os.path.join(REPO_ROOT, "models", "roadsigns-int8.onnx")
 MIN_HEIGHT_PX = 20
 MAX_OCCLUSION = 0.2
 MIN_RECALL = 0.8          # of clearly visible signs found with the right class
 MIN_ON_SIGN_SHARE = 0.9   # of detections lying on a true sign (front face)
+CODES_TABLE = read_codes_table(os.path.join(REPO_ROOT, "models", "sign-codes-de.csv"))
 
 pytestmark = pytest.mark.skipif(not os.path.isfile(BUNDLED), reason="no bundled model")
 
@@ -44,8 +46,7 @@ def read_as_its_class(detection):
     class, so the best code, the one the layer holds, is of that class (its own probability
     may be under 0.9: a speed limit whose digits are unsure)."""
     code, klass = detection["code"], detection["class"]
-    table = read_codes_table(os.path.join(REPO_ROOT, "models", "sign-codes-de.csv"))
-    return code == unlisted_code(klass) or (code in table and table.entry(code).class_name == klass)
+    return klass == (unlisted_code_class(code) or class_of_code(code, CODES_TABLE, [klass]))
 
 
 def read_detections(path):
