@@ -33,6 +33,8 @@ def main(argv=None):
     ap.add_argument("--device", default="auto", help="auto (CUDA when present), cpu, cuda, cuda:1, ...")
     ap.add_argument("--no-amp", action="store_true", help="no mixed precision on CUDA")
     ap.add_argument("--threads", type=int, default=2, help="CPU threads (torch.set_num_threads)")
+    ap.add_argument("--workers", type=int, default=0,
+                    help="processes drawing the training batches (0: this one); on a GPU, what keeps it fed")
     ap.add_argument("--batch", type=int, default=16)
     ap.add_argument("--crop", type=int, default=320)
     ap.add_argument("--lr", type=float, default=3e-3)
@@ -86,7 +88,7 @@ def main(argv=None):
           view_scales=a.view_scales, scenes=a.train_scenes,
           arch={k: v for k, v in (("widths", tuple(int(c) for c in a.widths.split(",")) if a.widths else None),
                                   ("fpn", a.fpn), ("head", a.head)) if v is not None} or None,
-          source_weights=a.source_weights)
+          source_weights=a.source_weights, workers=a.workers)
     return 0
 
 

@@ -93,6 +93,7 @@ class DataMix:
         self.cache = data.ImageCache()
         self.gtsdb = data.read_gtsdb(data.GTSDB_TRAIN_IDS)
         self.hard = self._add_mined(mined_path)
+        self._drop_missing_frames()
         # scenes with a mandatory sign come up more often (the weakest class on GTSDB)
         w = np.array([1.0 + (mandatory_boost - 1.0) * bool(np.any(r[2] == CLASS_INDEX["mandatory"]))
                       for r in self.gtsdb])
@@ -117,14 +118,32 @@ class DataMix:
         index = {frame_id: k for k, frame_id in enumerate(data.GTSDB_TRAIN_IDS)}
         return [(index[frame_id], box) for frame_id, boxes in sorted(false_alarms.items()) for box in boxes]
 
-    def add_scenes(self, folders):
-        """Cut the views of scenes not loaded yet (those whose scene.json exists)."""
+    def _drop_missing_frames(self):
+        """Leave out the GTSDB training frames whose image is not there (a device machine
+        gets a subset: devtools/train/device_run.py), and their mined false alarms."""
+        present = [os.path.isfile(row[0]) for row in self.gtsdb]
+        if all(present):
+            return
+        if not any(present):
+            raise SystemExit(f"no GTSDB training frame in {os.path.dirname(self.gtsdb[0][0])}")
+        new_index = {old: new for new, old in enumerate(k for k, there in enumerate(present) if there)}
+        self.gtsdb = [row for row, there in zip(self.gtsdb, present) if there]
+        self.hard = [(new_index[k], box) for k, box in self.hard if k in new_index]
+        print(f"[train] {present.count(False)} GTSDB training frames are missing: trained without them", flush=True)
+
+    def add_scenes(self, folders, cut: bool = True):
+        """Cut the views of scenes not loaded yet (those whose scene.json exists); ``cut``
+        False: only load scenes whose views are cut already (a worker process: the main
+        process cuts, so two processes never write one cache)."""
         for folder in folders:
             if folder in self.scenes or not os.path.isfile(os.path.join(folder, "scene.json")):
                 continue
             with open(os.path.join(folder, "scene.json")) as f:
                 n = len(json.load(f)["images"])
             cache = os.path.join(self.work_dir, "views", os.path.basename(os.path.normpath(folder)))
+            if not cut and not all(os.path.isfile(os.path.join(cache + part, "labels.json"))
+                                   for part in ("-train", "-val")):
+                continue
             t0 = time.perf_counter()
             last = n - min(VAL_PANORAMAS_PER_SCENE, n // 6)
             train = data.scene_view_samples(folder, cache + "-train", rng=self.rng, image_filter=lambda k: k < last)
@@ -295,11 +314,56 @@ def make_targets(sample: Sample, out_px: int, num_classes: int):
     return heat, valid, ind, reg, mask
 
 
-def batch_tensors(samples, out_px, num_classes):
+def batch_tensors(samples, out_px, num_classes, as_uint8: bool = False):
+    """Images [B, 3, S, S] RGB in 0..1 (``as_uint8``: 0..255 bytes, a quarter of the bytes
+    to pass between processes; :func:`to_unit` on the device) and the targets."""
     images = np.stack([cv2.cvtColor(s.image, cv2.COLOR_BGR2RGB) for s in samples])
-    x = torch.from_numpy(images).permute(0, 3, 1, 2).float().div_(255.0)
+    x = torch.from_numpy(images).permute(0, 3, 1, 2)
     targets = [make_targets(s, out_px, num_classes) for s in samples]
-    return x, [torch.from_numpy(np.stack(t)) for t in zip(*targets)]
+    return (x if as_uint8 else to_unit(x)), [torch.from_numpy(np.stack(t)) for t in zip(*targets)]
+
+
+def to_unit(x: torch.Tensor) -> torch.Tensor:
+    """Image bytes 0..255 to floats 0..1 (a float tensor passes unchanged)."""
+    return x.float().div_(255.0) if x.dtype == torch.uint8 else x
+
+
+class BatchStream(torch.utils.data.IterableDataset):
+    """Training batches drawn in ``DataLoader`` worker processes (forked: each starts from
+    the main process's :class:`DataMix`). Each worker draws from its own random stream,
+    seeded from (``seed``, ``first_step``, worker number), and loads the scenes the main
+    process has cut meanwhile every ``rescan_every_s`` seconds. A resumed run's batches are
+    therefore not the batches the run would have drawn uncut (the single-process path's
+    are)."""
+
+    def __init__(self, mix: "DataMix", scene_folders, batch_size: int, seed: int, first_step: int,
+                 rescan_every_s: float = 20.0):
+        super().__init__()
+        self.mix, self.scene_folders, self.batch_size = mix, list(scene_folders), batch_size
+        self.seed, self.first_step, self.rescan_every_s = seed, first_step, rescan_every_s
+
+    def __iter__(self):
+        info = torch.utils.data.get_worker_info()
+        worker = info.id if info is not None else 0
+        mix = self.mix
+        mix.rng = np.random.default_rng([self.seed, self.first_step, worker])
+        n_classes = len(CLASSES)
+        next_scan = 0.0
+        while True:
+            if time.monotonic() >= next_scan:
+                mix.add_scenes(self.scene_folders, cut=False)
+                next_scan = time.monotonic() + self.rescan_every_s
+            yield batch_tensors([mix.sample() for _ in range(self.batch_size)], mix.crop_px, n_classes,
+                                as_uint8=True)
+
+
+def batch_loader(mix: "DataMix", scene_folders, batch_size: int, seed: int, first_step: int, workers: int,
+                 pin: bool):
+    """An endless iterator of training batches drawn by ``workers`` processes."""
+    loader = torch.utils.data.DataLoader(
+        BatchStream(mix, scene_folders, batch_size, seed, first_step), batch_size=None, num_workers=workers,
+        pin_memory=pin, prefetch_factor=4, persistent_workers=True, multiprocessing_context="fork")
+    return iter(loader)  # the workers start (fork) here
 
 
 def focal_loss(logits, heat, valid):
@@ -487,16 +551,22 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
           init: str = None, device: str = "auto", checkpoint_every_min: float = 10.0, until: str = None,
           warmup_steps: int = 300, amp: bool = True, scenes=None, export: bool = True,
           ema_decay: float = 0.998, source_weights=None, small_share: float = 0.0, faces: int = FACES,
-          arch=None, large_share: float = 0.0, view_scales=None):
+          arch=None, large_share: float = 0.0, view_scales=None, workers: int = 0):
     """Train (or go on training) for ``minutes`` of training time in all (a resumed run
     counts the time already spent), or until the wall-clock time ``until``; validate every
     ``validate_every_min`` (best by AP50 on GTSDB 500-599), checkpoint every
     ``checkpoint_every_min`` and on SIGTERM/SIGINT, then export the best checkpoint.
     ``arch``: the network's widths (``model.ARCH_DEFAULT``'s keys; None: the start's own, or
     the default); wider than ``init``'s, the start is widened keeping its function
-    (:func:`model.widened`). A resumed run keeps its checkpoint's."""
+    (:func:`model.widened`). A resumed run keeps its checkpoint's. ``workers`` > 0: the
+    batches are drawn in that many processes (:class:`BatchStream`; what keeps a GPU fed),
+    else in this one."""
     import signal
 
+    if workers > 0:
+        # no OpenCV thread pool in this process: the batch workers fork from it, and a forked
+        # child's first parallel OpenCV call can wait forever on the parent's pool threads
+        cv2.setNumThreads(0)
     torch.set_num_threads(threads)
     torch.manual_seed(seed)
     dev = pick_device(device)
@@ -513,6 +583,11 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
                 "views": mix.val_views[::max(1, len(mix.val_views) // val_images)]}
 
     state = torch.load(resume, map_location="cpu", weights_only=False) if resume else None
+    # the batch workers fork here, before this process runs any torch computation: a
+    # process forked after torch's thread pool has started can hang in its first operation
+    loader = (batch_loader(mix, scene_folders, batch_size, seed, state.get("step", 0) if state else 0, workers,
+                           pin=dev.type == "cuda")
+              if workers > 0 else None)
     if state is not None:
         net = SignNet(len(CLASSES), **checkpoint_arch(state))
         net.load_state_dict(state.get("net", state["model"]))
@@ -583,7 +658,7 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
     losses = []
     resumed = state is not None
     print(f"[train] {sum(p.numel() for p in net.parameters())} parameters on {dev} (amp {use_amp}, "
-          f"{threads} threads); training to {budget_s / 60:.1f} min (setup took {t_train - t_start:.0f} s)",
+          f"{threads} threads, {workers or 'no'} batch workers); training to {budget_s / 60:.1f} min (setup took {t_train - t_start:.0f} s)",
           flush=True)
     while True:
         elapsed = elapsed0 + time.perf_counter() - t_train
@@ -618,9 +693,13 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
         for group in opt.param_groups:
             warm = 1.0 if resumed else min(1.0, (step + 1) / warmup_steps)
             group["lr"] = lr * warm * (0.02 + 0.98 * 0.5 * (1 + math.cos(math.pi * frac)))
-        samples = [mix.sample() for _ in range(batch_size)]
-        x, (heat, valid, ind, reg, mask) = batch_tensors(samples, crop_px, len(CLASSES))
+        if loader is not None:
+            x, (heat, valid, ind, reg, mask) = next(loader)
+        else:
+            x, (heat, valid, ind, reg, mask) = batch_tensors([mix.sample() for _ in range(batch_size)], crop_px,
+                                                             len(CLASSES))
         x, heat, valid, ind, reg, mask = (t.to(dev, non_blocking=True) for t in (x, heat, valid, ind, reg, mask))
+        x = to_unit(x)
         if dev.type == "cuda":
             x = x.contiguous(memory_format=torch.channels_last)
         with torch.autocast(device_type=dev.type, dtype=torch.float16, enabled=use_amp):

@@ -1,0 +1,273 @@
+"""Pack a training run of the detector for a device machine (a GPU lent for minutes).
+
+The data (``../shared/data``) and the training scenes do not travel in one call: a call
+carries at most 64 MiB, the repository included. So the run is two calls on one machine:
+
+1. ``python -m devtools.train.device_run --out .devdata`` writes here, in a folder the device
+   tool can carry (list ``/.devdata/`` in ``.git/info/exclude``):
+
+   - ``a/``: two thirds of the GTSDB training frames (those with ``k % 3 != 0``);
+   - ``b/``: the other third, GTSDB frames 500-539 (validation), six of the ten
+     ``gtsrb-train`` crops of every track (:data:`GTSRB_TRACK_FRAMES`; re-encoded as JPEG under its PNG name: OpenCV reads an image by its content),
+     the code table, the two ``tiny`` training scenes, and ``run.sh``.
+
+2. Call 1 (carry ``.devdata/a``): ``bash .devdata/a/stash.sh`` puts part a in ``/root/rsi-a``
+   and times a training step on random data with every CUDA path of the run (``--check-cuda``).
+3. Call 2 at once (carry ``.devdata/b``; the machine stays warm for seconds only):
+   ``MINUTES=7 bash .devdata/b/run.sh``. It puts the data where the scripts read it
+   (``../shared/data``; it refuses where that exists), adds part a when the machine still
+   has it (else it trains on part b's frames alone and says so), generates the six
+   ``default`` training streets in the background (the renderer; each joins the training
+   when written), and trains from the bundled float file on CUDA with batch workers.
+   ``$OUT`` gets the log, ``history.json``, the last checkpoint slimmed to its EMA weights
+   (``last-ema.pt``: ``--export-only`` takes it) and the exported best checkpoint.
+
+The flags are the bundled file's run (models/README.md, "Bundled on 28 November, tenth
+session") on the eight training streets, with batch 32 and :data:`WORKERS` workers.
+"""
+from __future__ import annotations
+
+import argparse
+import collections
+import csv
+import os
+import shutil
+import subprocess
+import sys
+
+import cv2
+
+from .. import REPO_ROOT
+from .data import DATA_DIR, GTSDB_HELDOUT_IDS, GTSDB_TRAIN_IDS
+
+#: GTSDB held-out frames carried for the run's validation (its first ``--val-images``)
+VAL_IMAGES = 30
+VAL_FRAMES = tuple(GTSDB_HELDOUT_IDS[:VAL_IMAGES])
+#: The frames of each gtsrb-train track carried, by their order far to near (of ten): the
+#: rest do not fit in a call; the scripts leave out the crops that are not there
+GTSRB_TRACK_FRAMES = (0, 2, 4, 6, 8, 9)
+GTSRB_JPEG_QUALITY = 88
+#: What one call may carry, the repository included (the device tool's limit), and a margin
+CALL_BYTES = 64 * 2**20
+MARGIN_BYTES = 3 * 2**19
+#: Wheels (Python 3.12, x86-64) of what the renderer needs and the device machine lacks
+WHEELS = os.path.join(REPO_ROOT, ".whl")
+WHEEL_NAMES = ("pyproj", "laspy")
+WHEEL_DOWNLOAD = ("python3 -m pip download --no-deps --only-binary=:all: --python-version 3.12 --implementation cp "
+                  "--platform manylinux_2_28_x86_64 --platform manylinux_2_17_x86_64 --platform manylinux2014_x86_64 "
+                  "-d .whl pyproj==3.7.1 laspy==2.7.0")
+WORKERS = 12
+SCENES = os.path.join(REPO_ROOT, "bench", "out", "train", "scenes")
+TINY_SCENES = ("tiny-100", "tiny-101")
+DEFAULT_SEEDS = (100, 101, 102, 103, 104, 105)
+
+STASH_SH = r"""#!/bin/bash
+# Call 1 of a device training run (devtools/train/device_run.py): keep part a on the machine,
+# and check every CUDA path of a training step on random data (seconds) before call 2.
+set -e
+HERE="$(cd "$(dirname "$0")" && pwd)"
+mkdir -p /root/rsi-a && cp -r "$HERE/images" /root/rsi-a/
+ls /root/rsi-a/images | wc -l
+python3 -m pip install -q --no-index --no-deps --no-compile --no-cache-dir --upgrade --target /root/rsi-a/site \
+  "$HERE"/whl/*.whl
+nvidia-smi --query-gpu=name,memory.total --format=csv
+cd "$HERE/../.."
+python3 -m devtools.train.device_run --check-cuda
+"""
+
+RUN_SH = r"""#!/bin/bash
+# Call 2 of a device training run (written by devtools/train/device_run.py).
+set -x
+HERE="$(cd "$(dirname "$0")" && pwd)"
+cd "$HERE/../.."
+[ -e ../shared/data ] && { echo "../shared/data exists: this script is for the bare device machine"; exit 1; }
+mkdir -p ../shared && cp -r "$HERE/shared/data" ../shared/
+if [ -d /root/rsi-a/images ]; then cp /root/rsi-a/images/* ../shared/data/gtsdb-train/images/;
+else echo "PART A IS NOT ON THIS MACHINE: training on part b's GTSDB frames alone"; fi
+ls ../shared/data/gtsdb-train/images | wc -l
+nvidia-smi --query-gpu=name,memory.total --format=csv
+export PYTHONUNBUFFERED=1 OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
+W=/tmp/w; mkdir -p $W/scenes && cp -r "$HERE"/scenes/* $W/scenes/
+[ -d /root/rsi-a/site ] || echo "NO PYPROJ: the default streets cannot be generated, only the tiny ones train"
+for s in @SEEDS@; do
+  [ -d /root/rsi-a/site ] && PYTHONPATH=/root/rsi-a/site \
+  python3 -m devtools.scenegen --preset default --seed $s --no-lidar --no-masks --out $W/scenes/default-$s \
+    > $OUT/scenegen-$s.log 2>&1 &
+done
+timeout -s TERM $(( ${MINUTES:-7} * 60 + 90 )) python3 -m devtools.train --device cuda --init models/roadsigns.onnx \
+  --no-generate --scenes $W/scenes --train-scenes @TRAIN_SCENES@ --work $W --out $OUT/roadsigns-gpu.onnx \
+  --minutes ${MINUTES:-7} --validate-every 1.5 --checkpoint-every 1.5 --val-images @VAL@ --workers @WORKERS@ \
+  --batch 32 --lr 3e-4 --warmup 100 --ema-decay 0.998 --small-share 0.3 --large-share 0.3 2>&1 \
+  | grep -v -i '^\[ WARN\|UserWarning\|tensor.detach' | tee $OUT/train.log
+cp $W/history.json $OUT/ 2>/dev/null
+python3 -c "
+import sys, torch
+s = torch.load(sys.argv[1], map_location='cpu', weights_only=False)
+torch.save({k: s[k] for k in ('model', 'arch', 'step', 'history', 'best_score') if k in s}
+           | {'entry': s['history'][-1]}, sys.argv[2])
+" $W/last.pt $OUT/last-ema.pt
+ls -la $OUT
+"""
+
+
+def _copy(src: str, dst: str) -> None:
+    os.makedirs(os.path.dirname(dst), exist_ok=True)
+    shutil.copy(src, dst)
+
+
+def _write_script(path: str, text: str) -> None:
+    with open(path, "w") as f:
+        f.write(text)
+    os.chmod(path, 0o755)
+
+
+def tree_bytes(folder: str) -> int:
+    return sum(os.path.getsize(os.path.join(d, f)) for d, _, files in os.walk(folder) for f in files)
+
+
+def repository_bytes() -> int:
+    """Bytes of the files git tracks: what travels with every call besides the carried folder."""
+    names = subprocess.run(["git", "ls-files", "-z"], cwd=REPO_ROOT, capture_output=True, check=True).stdout
+    return sum(os.path.getsize(os.path.join(REPO_ROOT, n)) for n in names.decode().split("\0")
+               if n and os.path.isfile(os.path.join(REPO_ROOT, n)))
+
+
+def pack(out_dir: str, data_dir: str = DATA_DIR, scenes: str = SCENES, wheels: str = WHEELS) -> dict:
+    """Write parts ``a`` and ``b`` into ``out_dir`` (replaced), each within a call's bytes;
+    returns their sizes and the GTSDB training frames neither could take."""
+    for name in TINY_SCENES:
+        if not os.path.isfile(os.path.join(scenes, name, "scene.json")):
+            raise SystemExit(f"{scenes}/{name} is missing: python -m devtools.scenegen --preset tiny "
+                             f"--seed {name.split('-')[1]} --no-lidar --no-masks --out {scenes}/{name}")
+    found = {w: [f for f in sorted(os.listdir(wheels)) if f.startswith(w + "-") and f.endswith(".whl")]
+             if os.path.isdir(wheels) else [] for w in WHEEL_NAMES}
+    if not all(found.values()):
+        raise SystemExit(f"the wheels {', '.join(WHEEL_NAMES)} are not in {wheels}: {WHEEL_DOWNLOAD}")
+    shutil.rmtree(out_dir, ignore_errors=True)
+    budget = CALL_BYTES - repository_bytes() - MARGIN_BYTES
+    part_a, part_b = os.path.join(out_dir, "a"), os.path.join(out_dir, "b")
+    # part b: what the run cannot do without
+    data = os.path.join(part_b, "shared", "data")
+    for name in ("README.md", "sign-codes-de.csv", os.path.join("gtsdb-train", "gt.txt")):
+        _copy(os.path.join(data_dir, name), os.path.join(data, name))
+    for k in VAL_FRAMES:
+        name = os.path.join("gtsdb-train", "images", f"{k:05d}.jpg")
+        _copy(os.path.join(data_dir, name), os.path.join(data, name))
+    src = os.path.join(data_dir, "gtsrb-train")
+    _copy(os.path.join(src, "GT-train.csv"), os.path.join(data, "gtsrb-train", "GT-train.csv"))
+    with open(os.path.join(src, "GT-train.csv"), newline="") as f:
+        rows = list(csv.DictReader(f, delimiter=";"))
+    tracks = collections.defaultdict(list)
+    for row in rows:
+        tracks[(row["ClassId"], row["Track"])].append(row)
+    for track in tracks.values():
+        for n, row in enumerate(sorted(track, key=lambda r: int(r["Frame"]))):
+            if n not in GTSRB_TRACK_FRAMES:
+                continue
+            dst = os.path.join(data, "gtsrb-train", "train", row["File"])
+            os.makedirs(os.path.dirname(dst), exist_ok=True)
+            image = cv2.imread(os.path.join(src, "train", row["File"]))
+            ok, enc = cv2.imencode(".jpg", image, [cv2.IMWRITE_JPEG_QUALITY, GTSRB_JPEG_QUALITY])
+            with open(dst, "wb") as out:
+                out.write(enc.tobytes())
+    for name in TINY_SCENES:
+        shutil.copytree(os.path.join(scenes, name), os.path.join(part_b, "scenes", name))
+    train_scenes = ",".join([f"default:{s}" for s in DEFAULT_SEEDS] + [n.replace("-", ":") for n in TINY_SCENES])
+    _write_script(os.path.join(part_b, "run.sh"),
+                  RUN_SH.replace("@SEEDS@", " ".join(str(s) for s in DEFAULT_SEEDS))
+                  .replace("@TRAIN_SCENES@", train_scenes).replace("@WORKERS@", str(WORKERS))
+                  .replace("@VAL@", str(VAL_IMAGES)))
+    # part a: the wheels the renderer needs, the check
+    for names in found.values():
+        _copy(os.path.join(wheels, names[-1]), os.path.join(part_a, "whl", names[-1]))
+    _write_script(os.path.join(part_a, "stash.sh"), STASH_SH)
+    # the GTSDB training frames: every third to b (so b alone trains on a spread), the rest to
+    # a, each while it has room; then what is left to whichever has room
+    sizes = {"a": tree_bytes(part_a), "b": tree_bytes(part_b)}
+    left = []
+    for k in sorted(GTSDB_TRAIN_IDS, key=lambda k: (k % 3 != 0, k)):
+        path = os.path.join(data_dir, "gtsdb-train", "images", f"{k:05d}.jpg")
+        size = os.path.getsize(path)
+        for part in (("b", "a") if k % 3 == 0 else ("a", "b")):
+            if sizes[part] + size <= budget:
+                where = os.path.join(part_a, "images") if part == "a" else os.path.join(data, "gtsdb-train", "images")
+                _copy(path, os.path.join(where, os.path.basename(path)))
+                sizes[part] += size
+                break
+        else:
+            left.append(k)
+    return {"a": sizes["a"], "b": sizes["b"], "budget": budget, "left_out": left}
+
+
+def check_cuda() -> None:
+    """One training step of the detector on random data on the GPU with every CUDA path the
+    run takes (channels-last, float16 autocast, the gradient scaler, the losses, decoding),
+    timed over 20 steps of batch 32, then an ONNX export from the trained weights."""
+    import tempfile
+    import time
+
+    import torch
+
+    from .data import CLASSES
+    from .model import SignNet, decode, export_onnx, onnx_arch
+    from .train import focal_loss, regression_loss
+
+    dev = torch.device("cuda" if torch.cuda.is_available() else "cpu")
+    net = SignNet(len(CLASSES), **onnx_arch(os.path.join(REPO_ROOT, "models", "roadsigns.onnx")))
+    net = net.to(dev).to(memory_format=torch.channels_last)
+    opt = torch.optim.AdamW(net.parameters(), lr=3e-4)
+    scaler = torch.amp.GradScaler("cuda") if dev.type == "cuda" else None
+    x = torch.rand(32, 3, 320, 320, device=dev).contiguous(memory_format=torch.channels_last)
+    g = 320 // 4
+    heat = torch.zeros(32, len(CLASSES), g, g, device=dev)
+    heat[:, 0, 10, 10] = 1.0
+    valid = torch.ones(32, g, g, device=dev)
+    ind = torch.full((32, 64), 10 * g + 10, dtype=torch.long, device=dev)
+    reg = torch.zeros(32, 64, 4, device=dev)
+    mask = torch.zeros(32, 64, device=dev)
+    mask[:, 0] = 1.0
+    for k in range(21):
+        if k == 1:
+            if dev.type == "cuda":
+                torch.cuda.synchronize()
+            t0 = time.perf_counter()
+        with torch.autocast(device_type=dev.type, dtype=torch.float16, enabled=dev.type == "cuda"):
+            logits, regression = net(x)
+        loss = focal_loss(logits.float(), heat, valid) + sum(regression_loss(regression.float(), ind, reg, mask))
+        opt.zero_grad(set_to_none=True)
+        if scaler is not None:
+            scaler.scale(loss).backward()
+            scaler.unscale_(opt)
+            scaler.step(opt)
+            scaler.update()
+        else:
+            loss.backward()
+            opt.step()
+    if dev.type == "cuda":
+        torch.cuda.synchronize()
+    step_ms = (time.perf_counter() - t0) / 20 * 1000
+    boxes = decode(logits.float(), regression.float())
+    path = os.path.join(tempfile.mkdtemp(), "check.onnx")
+    export_onnx(net.cpu().to(memory_format=torch.contiguous_format), path, CLASSES)
+    print(f"[check] {dev}: loss {float(loss):.3f}, {step_ms:.1f} ms a step of 32 at 320 px, decoded "
+          f"{tuple(boxes.shape)}, exported {os.path.getsize(path) / 1e6:.2f} MB")
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m devtools.train.device_run", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--out", default=os.path.join(REPO_ROOT, ".devdata"))
+    ap.add_argument("--check-cuda", action="store_true", help="only time a training step on the GPU (call 1)")
+    a = ap.parse_args(argv)
+    if a.check_cuda:
+        check_cuda()
+        return 0
+    packed = pack(a.out)
+    for part in ("a", "b"):
+        print(f"{a.out}/{part}: {packed[part] / 2**20:.1f} MiB (a call may carry {packed['budget'] / 2**20:.1f})")
+    print(f"GTSDB training frames left out: {len(packed['left_out'])}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
