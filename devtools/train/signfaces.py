@@ -128,7 +128,10 @@ def _rounded_polygon(pts: np.ndarray, radius: float, steps: int = 6) -> np.ndarr
 def _shrunk(pts: np.ndarray, by_px: float) -> np.ndarray:
     """A convex polygon moved inwards by ``by_px`` (towards its centroid, by the inradius' share)."""
     c = pts.mean(0)
-    inradius = min(abs(np.cross(pts[(k + 1) % len(pts)] - pts[k], c - pts[k])) /
+
+    def cross2(u, v):  # the z of the 3-D cross product (numpy 2 has no 2-D np.cross)
+        return u[0] * v[1] - u[1] * v[0]
+    inradius = min(abs(cross2(pts[(k + 1) % len(pts)] - pts[k], c - pts[k])) /
                    np.linalg.norm(pts[(k + 1) % len(pts)] - pts[k]) for k in range(len(pts)))
     return c + (pts - c) * max(0.05, 1.0 - by_px / inradius)
 

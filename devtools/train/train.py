@@ -658,8 +658,8 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
     losses = []
     resumed = state is not None
     print(f"[train] {sum(p.numel() for p in net.parameters())} parameters on {dev} (amp {use_amp}, "
-          f"{threads} threads, {workers or 'no'} batch workers); training to {budget_s / 60:.1f} min (setup took {t_train - t_start:.0f} s)",
-          flush=True)
+          f"{threads} threads, {workers or 'no'} batch workers); training to {budget_s / 60:.1f} min "
+          f"(setup took {t_train - t_start:.0f} s)", flush=True)
     while True:
         elapsed = elapsed0 + time.perf_counter() - t_train
         done = elapsed >= budget_s or stop["now"]

@@ -165,3 +165,16 @@ def test_a_face_takes_a_code_where_the_table_has_one_else_its_unlisted_class():
     assert codes.face_label(names, "ring_legend", "3.5m", unlisted) == unlisted
     assert codes.face_label(names, "ring_legend", None, unlisted) == unlisted
     assert codes.face_label(names, "octagon", None, unlisted) == names.index("DE:206")
+
+
+def test_a_polygon_shrunk_keeps_its_centroid_and_its_nearest_edge_moves_in_by_the_pixels_asked():
+    # a 3-4-5 right triangle; its centroid (4/3, 1) is 0.8 px from the hypotenuse, its nearest
+    # edge (2-D points: numpy 2 has no 2-D np.cross, the helper must not need it)
+    pts = np.array([[0.0, 0.0], [4.0, 0.0], [0.0, 3.0]])
+    centroid = pts.mean(0)
+    shrunk = signfaces._shrunk(pts, 0.5)
+    assert np.allclose(shrunk.mean(0), centroid)
+    assert np.allclose(shrunk - centroid, (pts - centroid) * (1.0 - 0.5 / 0.8))
+    a, b = shrunk[1], shrunk[2]
+    u, v = b - a, centroid - a
+    assert abs(u[0] * v[1] - u[1] * v[0]) / np.linalg.norm(u) == pytest.approx(0.8 - 0.5)
