@@ -345,7 +345,8 @@ class PanoramaBench:
                                              min_box_px=self.min_box_px,
                                              candidate_confidence=rescue_mod.DEFAULT_RESCUE_CONFIDENCE,
                                              fit_tall=self.fit_tall)
-        return rescue_mod.second_look(self.classifier, pano, found, self.d.class_names, self.second_look)
+        return rescue_mod.second_look(self.classifier, pano, found, self.d.class_names, self.second_look,
+                                      fit_tall=self.fit_tall)
 
     def result(self):
         c = self.confidence
@@ -520,13 +521,15 @@ def photo_candidates(boxes, scores, confidence, floor=None):
 
 
 def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, class_names,
-                      rule=rescue_mod.DEFAULT_RULE):
+                      rule=rescue_mod.DEFAULT_RULE, fit_tall=False):
     """:func:`roadsigns.core.rescue.second_look` on a photograph's boxes (from 0.05): the
     boxes from ``DEFAULT_RESCUE_CONFIDENCE`` under ``confidence`` that lie on no detection
     (overlap of the smaller box >= 0.5) are merged across classes (the best-scored kept) and
     kept when ``rule`` (a ``RescueRule``) and the classifier confirm them, with the class read,
     counted at ``confidence``. A photograph has no upward views (``drop_lone_upward_other``
-    plays no part). Returns the plugin's boxes, scores and class ids."""
+    plays no part). ``fit_tall``: the boxes kept are then fitted (``core.sheeting.fit_tall_boxes``;
+    the candidates judged on the network's boxes, as on panoramas). Returns the plugin's boxes,
+    scores and class ids."""
     from devtools.train.codes import crop_square
 
     sure, cands = photo_candidates(boxes, scores, confidence)
@@ -547,7 +550,8 @@ def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, cla
                 if klass >= 0:
                     kept_ids[j] = klass
     keep = sure | rescued
-    return boxes[keep], np.maximum(scores[keep], np.where(rescued[keep], confidence, 0.0)), kept_ids[keep]
+    kept = sheeting_mod.fit_tall_boxes(image_bgr, boxes[keep]) if fit_tall else boxes[keep]
+    return kept, np.maximum(scores[keep], np.where(rescued[keep], confidence, 0.0)), kept_ids[keep]
 
 
 class Frame(NamedTuple):
@@ -704,11 +708,11 @@ def bench_photographs(detectors, confidence, frames, whole_frame=False, classifi
                 else:
                     r = d.detect(image, 0.05)
                     boxes, scores, found_ids = r.boxes_xyxy, r.scores, r.class_ids
-                if fit_tall:
-                    boxes = sheeting_mod.fit_tall_boxes(image, boxes)
                 if look is not None:
                     boxes, scores, found_ids = second_look_image(classifier, image, boxes, scores, found_ids,
-                                                                 confidence, d.class_names, look)
+                                                                 confidence, d.class_names, look, fit_tall)
+                elif fit_tall:
+                    boxes = sheeting_mod.fit_tall_boxes(image, boxes)
                 a = acc[i][mode]
                 a["s"] += time.perf_counter() - t0
                 for key, m in match_frame(boxes, scores, found_ids, frame).items():

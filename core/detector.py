@@ -690,17 +690,23 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
         low = low.subset(~on_sign)
         low.candidate[:] = True
         found = PanoramaDetections.concatenate([found, low])
-    return fit_tall_boxes(pano, found) if fit_tall else found
+    # candidates keep the network's box: the second look judges them on it and fits the ones it keeps
+    return fit_tall_boxes(pano, found, rows=~found.candidate) if fit_tall else found
 
 
-def fit_tall_boxes(pano: np.ndarray, found: PanoramaDetections) -> PanoramaDetections:
+def fit_tall_boxes(pano: np.ndarray, found: PanoramaDetections, rows: Optional[np.ndarray] = None
+                   ) -> PanoramaDetections:
     """``found`` (detections of the panorama ``pano``, BGR) with each box much taller than
     wide narrowed to the columns that show sign sheeting colours
-    (:func:`.sheeting.fit_tall_boxes`), in place; returns it. A sign passed close by is seen
-    nearly edge-on, and the network boxes it about twice as wide as its face."""
-    if len(found):
-        fitted = boxes_from_seam(sheeting.fit_tall_boxes(pano, found.boxes(), wrap=True), pano.shape[1])
-        found.u0, found.u1 = fitted[:, 0], fitted[:, 2]
+    (:func:`.sheeting.fit_tall_boxes`), in place; returns it. ``rows``: a mask of the rows to
+    fit (default all). A sign passed close by is seen nearly edge-on, and the network boxes it
+    about twice as wide as its face."""
+    which = np.ones(len(found), bool) if rows is None else np.asarray(rows, bool)
+    if which.any():
+        fitted = boxes_from_seam(sheeting.fit_tall_boxes(pano, found.boxes()[which], wrap=True), pano.shape[1])
+        u0, u1 = np.array(found.u0, float), np.array(found.u1, float)
+        u0[which], u1[which] = fitted[:, 0], fitted[:, 2]
+        found.u0, found.u1 = u0, u1
     return found
 
 

@@ -131,7 +131,7 @@ def class_of_code(code: str, table, class_names: Sequence[str]) -> Optional[str]
 
 
 def second_look(classifier, pano: np.ndarray, found, class_names: Sequence[str],
-                rule: RescueRule = DEFAULT_RULE):
+                rule: RescueRule = DEFAULT_RULE, fit_tall: bool = True):
     """Read the sign codes of a panorama's detections and candidates and keep the candidates
     the classifier confirms: :func:`.detector.detect_drive`'s ``on_panorama``.
 
@@ -143,10 +143,14 @@ def second_look(classifier, pano: np.ndarray, found, class_names: Sequence[str],
     is :func:`confirmed` becomes a detection of that class (:func:`class_reading`; its own
     class for codes of classes the detector lacks) and keeps its detector score and its best
     code; the others are dropped. A detection an upward view found alone is dropped when its
-    code reads ``other`` (``rule.drop_lone_upward_other``). Returns the new
+    code reads ``other`` (``rule.drop_lone_upward_other``). ``fit_tall``: the candidates kept
+    then get the fit the detections got (:func:`.detector.fit_tall_boxes`): a candidate is
+    judged on the network's box, which a sign seen edge-on fills only in part (fitted first,
+    such a box fell under ``rule.small_box_px``). Returns the new
     :class:`~.detector.PanoramaDetections`.
     """
     from .detections import read_code_probabilities
+    from .detector import fit_tall_boxes
 
     candidate = found.candidate
     if candidate.any():
@@ -172,5 +176,7 @@ def second_look(classifier, pano: np.ndarray, found, class_names: Sequence[str],
         found.class_name[k] = names[best[k]]
         found.class_id[k] = best[k]
     found = found.subset(kept)
+    if fit_tall:
+        fit_tall_boxes(pano, found, rows=found.candidate)
     found.candidate[:] = False
     return found

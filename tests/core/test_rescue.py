@@ -215,3 +215,53 @@ def test_a_small_candidate_needs_a_higher_detector_score():
     scores = [0.4, 0.3, 0.45, 0.2, 0.35]
     np.testing.assert_array_equal(rescue.worth_reading(boxes, np.full(5, 0.5), scores, rule),
                                   [True, False, False, True, True])
+
+
+class WideSliverDetector:
+    """Boxes the red pixels of a view three times as wide as they are, scored 0.3 (a candidate
+    at confidence 0.5), as the network boxes a sign seen edge-on."""
+    class_names = list(CLASSES)
+
+    def detect(self, image, confidence, iou_threshold):
+        rows, cols = np.nonzero(np.all(image == RED, axis=2))
+        if len(cols) < 4 or confidence > 0.3:
+            return DT.ImageDetections(np.zeros((0, 4)), np.zeros(0), np.zeros(0, np.int64))
+        u0, u1, w = cols.min(), cols.max() + 1, cols.max() + 1 - cols.min()
+        box = [[u0 - w, rows.min(), u1 + w, rows.max() + 1]]
+        return DT.ImageDetections(np.array(box, float), np.array([0.3]), np.array([CLASSES.index("stop")]))
+
+
+def test_a_candidate_is_judged_on_the_networks_box_and_fitted_once_kept(classifier):
+    """A sign seen edge-on: the network's box is about three times the face's 12 px. Fitted
+    before the second look it would fall under the rule's small-box floor; judged on the
+    network's box it is kept, then fitted like a detection. (The tiny classifier reads colour
+    shares, and the wide box is mostly wall: here it reads what the real one reads on such a
+    sign, the stop code, so that the test is of the boxes.)"""
+
+    class ReadsStop:
+        names, table, crop_margin = classifier.names, classifier.table, classifier.crop_margin
+
+        def cut_crop(self, pano, box):
+            return classifier.cut_crop(pano, box)
+
+        def probabilities(self, crops):
+            return np.tile(np.array([[0.95, 0.0, 0.05]]), (len(crops), 1))
+
+    pano = np.full((1024, 2048, 3), (120, 120, 120), np.uint8)
+    pano[450:560, 1020:1032] = RED
+    views = ViewSet.default(size_px=256, upward=False)
+    found = DT.detect_panorama(WideSliverDetector(), pano, views, 0.5, candidate_confidence=0.2)
+    assert len(found) == 1 and found.candidate[0]
+    assert found.u1[0] - found.u0[0] > 30          # a candidate keeps the network's box
+    rule = replace(RULE, min_box_px=12.0, small_box_px=16.0, small_min_score=0.35)
+    kept = rescue.second_look(ReadsStop(), pano, found, CLASSES, rule)
+    assert len(kept) == 1 and not kept.candidate.any() and kept.code == ["DE:206"]
+    np.testing.assert_allclose([kept.u0[0], kept.u1[0]], [1020, 1032], atol=1)
+    # unfitted (the bench's "--fit-tall off") the kept box stays the network's
+    wide = DT.detect_panorama(WideSliverDetector(), pano, views, 0.5, candidate_confidence=0.2, fit_tall=False)
+    loose = rescue.second_look(ReadsStop(), pano, wide, CLASSES, rule, fit_tall=False)
+    assert len(loose) == 1 and loose.u1[0] - loose.u0[0] > 30
+    # fitted first (as before), the candidate is 12 px wide and scored 0.3: under the floor
+    fitted_first = DT.fit_tall_boxes(pano, DT.detect_panorama(WideSliverDetector(), pano, views, 0.5,
+                                                              candidate_confidence=0.2, fit_tall=False))
+    assert len(rescue.second_look(ReadsStop(), pano, fitted_first, CLASSES, rule)) == 0
