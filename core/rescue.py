@@ -143,10 +143,11 @@ def second_look(classifier, pano: np.ndarray, found, class_names: Sequence[str],
     is :func:`confirmed` becomes a detection of that class (:func:`class_reading`; its own
     class for codes of classes the detector lacks) and keeps its detector score and its best
     code; the others are dropped. A detection an upward view found alone is dropped when its
-    code reads ``other`` (``rule.drop_lone_upward_other``). ``fit_tall``: the candidates kept
-    then get the fit the detections got (:func:`.detector.fit_tall_boxes`): a candidate is
-    judged on the network's box, which a sign seen edge-on fills only in part (fitted first,
-    such a box fell under ``rule.small_box_px``). Returns the new
+    code reads ``other`` (``rule.drop_lone_upward_other``). ``fit_tall``: a candidate is judged
+    (:func:`worth_reading`) on the network's box, then fitted as the detections were
+    (:func:`.detector.fit_tall_boxes`) and read on the fitted box: a sign seen edge-on fills
+    the network's box only in part (fitted before the judging, such a box fell under
+    ``rule.small_box_px``; read unfitted, the pole and the wall beside it blur the reading). Returns the new
     :class:`~.detector.PanoramaDetections`.
     """
     from .detections import read_code_probabilities
@@ -160,6 +161,8 @@ def second_look(classifier, pano: np.ndarray, found, class_names: Sequence[str],
             sheeting[k] = sheeting_fraction(pano, boxes[k], wrap=True)
         readable = ~candidate | worth_reading(boxes, sheeting, found.score, rule)
         found = found.subset(readable)
+        if fit_tall:   # judged on the network's box, read on the fitted one
+            fit_tall_boxes(pano, found, rows=found.candidate)
     probabilities = read_code_probabilities(classifier, pano, found)
     if rule.drop_lone_upward_other:
         overhead_other = found.lone_upward & (np.array(found.code, dtype=object) == OTHER_CODE)
@@ -176,7 +179,5 @@ def second_look(classifier, pano: np.ndarray, found, class_names: Sequence[str],
         found.class_name[k] = names[best[k]]
         found.class_id[k] = best[k]
     found = found.subset(kept)
-    if fit_tall:
-        fit_tall_boxes(pano, found, rows=found.candidate)
     found.candidate[:] = False
     return found

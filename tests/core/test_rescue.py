@@ -231,10 +231,10 @@ class WideSliverDetector:
         return DT.ImageDetections(np.array(box, float), np.array([0.3]), np.array([CLASSES.index("stop")]))
 
 
-def test_a_candidate_is_judged_on_the_networks_box_and_fitted_once_kept(classifier):
+def test_a_candidate_is_judged_on_the_networks_box_and_read_and_kept_fitted(classifier):
     """A sign seen edge-on: the network's box is about three times the face's 12 px. Fitted
     before the second look it would fall under the rule's small-box floor; judged on the
-    network's box it is kept, then fitted like a detection. (The tiny classifier reads colour
+    network's box it is read and kept, fitted like a detection. (The tiny classifier reads colour
     shares, and the wide box is mostly wall: here it reads what the real one reads on such a
     sign, the stop code, so that the test is of the boxes.)"""
 
