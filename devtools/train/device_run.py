@@ -51,6 +51,7 @@ import cv2
 
 from .. import REPO_ROOT
 from .data import DATA_DIR, GTSDB_HELDOUT_IDS, GTSDB_TRAIN_IDS
+from .device_smoke import copy_file, copy_gtsdb
 
 #: GTSDB held-out frames carried for the run's validation (its first ``--val-images``)
 VAL_IMAGES = 30
@@ -122,11 +123,6 @@ ls -la $OUT
 """
 
 
-def _copy(src: str, dst: str) -> None:
-    os.makedirs(os.path.dirname(dst), exist_ok=True)
-    shutil.copy(src, dst)
-
-
 def _write_script(path: str, text: str) -> None:
     with open(path, "w") as f:
         f.write(text)
@@ -167,13 +163,9 @@ def pack(out_dir: str, data_dir: str = DATA_DIR, scenes: str = SCENES, wheels: s
     part_a, part_b = os.path.join(out_dir, "a"), os.path.join(out_dir, "b")
     # part b: what the run cannot do without
     data = os.path.join(part_b, "shared", "data")
-    for name in ("README.md", "sign-codes-de.csv", os.path.join("gtsdb-train", "gt.txt")):
-        _copy(os.path.join(data_dir, name), os.path.join(data, name))
-    for k in VAL_FRAMES:
-        name = os.path.join("gtsdb-train", "images", f"{k:05d}.jpg")
-        _copy(os.path.join(data_dir, name), os.path.join(data, name))
+    copy_gtsdb(data_dir, data, VAL_FRAMES)
     src = os.path.join(data_dir, "gtsrb-train")
-    _copy(os.path.join(src, "GT-train.csv"), os.path.join(data, "gtsrb-train", "GT-train.csv"))
+    copy_file(os.path.join(src, "GT-train.csv"), os.path.join(data, "gtsrb-train", "GT-train.csv"))
     with open(os.path.join(src, "GT-train.csv"), newline="") as f:
         rows = list(csv.DictReader(f, delimiter=";"))
     tracks = collections.defaultdict(list)
@@ -198,7 +190,7 @@ def pack(out_dir: str, data_dir: str = DATA_DIR, scenes: str = SCENES, wheels: s
                   .replace("@VAL@", str(VAL_IMAGES)))
     # part a: the wheels the renderer needs, the check
     for names in found.values():
-        _copy(os.path.join(wheels, names[-1]), os.path.join(part_a, "whl", names[-1]))
+        copy_file(os.path.join(wheels, names[-1]), os.path.join(part_a, "whl", names[-1]))
     _write_script(os.path.join(part_a, "stash.sh"), STASH_SH)
     # the GTSDB training frames: every third to b (so b alone trains on a spread), the rest to
     # a, each while it has room; then what is left to whichever has room
@@ -214,7 +206,7 @@ def pack(out_dir: str, data_dir: str = DATA_DIR, scenes: str = SCENES, wheels: s
         for part in (("b", "a") if k % 3 == 0 else ("a", "b")):
             if sizes[part] + size <= budget:
                 where = os.path.join(part_a, "images") if part == "a" else os.path.join(data, "gtsdb-train", "images")
-                _copy(path, os.path.join(where, os.path.basename(path)))
+                copy_file(path, os.path.join(where, os.path.basename(path)))
                 sizes[part] += size
                 break
         else:

@@ -80,9 +80,19 @@ def _subset_csv(src: str, dst: str, keep) -> list:
     return kept
 
 
-def _copy(src: str, dst: str) -> None:
+def copy_file(src: str, dst: str) -> None:
     os.makedirs(os.path.dirname(dst), exist_ok=True)
     shutil.copy(src, dst)
+
+
+def copy_gtsdb(data_dir: str, data: str, frames) -> None:
+    """The data folder's README, the code table, GTSDB's truth and the GTSDB images numbered
+    ``frames`` from ``data_dir`` into ``data`` (a subset of it that travels)."""
+    for name in ("README.md", "sign-codes-de.csv", os.path.join("gtsdb-train", "gt.txt")):
+        copy_file(os.path.join(data_dir, name), os.path.join(data, name))
+    for k in frames:
+        name = os.path.join("gtsdb-train", "images", f"{k:05d}.jpg")
+        copy_file(os.path.join(data_dir, name), os.path.join(data, name))
 
 
 def first_tracks(rows, n: int = GTSRB_TRACKS_PER_CLASS):
@@ -112,19 +122,15 @@ def pack(out_dir: str, data_dir: str = DATA_DIR, scene: str = SCENE) -> None:
                          f"--seed 100 --no-lidar --no-masks --out {scene})")
     shutil.rmtree(out_dir, ignore_errors=True)
     data = os.path.join(out_dir, "shared", "data")
-    for name in ("README.md", "sign-codes-de.csv", os.path.join("gtsdb-train", "gt.txt")):
-        _copy(os.path.join(data_dir, name), os.path.join(data, name))
-    for k in GTSDB_FRAMES:
-        name = os.path.join("gtsdb-train", "images", f"{k:05d}.jpg")
-        _copy(os.path.join(data_dir, name), os.path.join(data, name))
+    copy_gtsdb(data_dir, data, GTSDB_FRAMES)
     for row in _subset_csv(os.path.join(data_dir, "gtsrb-train", "GT-train.csv"),
                            os.path.join(data, "gtsrb-train", "GT-train.csv"), first_tracks):
         name = os.path.join("gtsrb-train", "train", row["File"])
-        _copy(os.path.join(data_dir, name), os.path.join(data, name))
+        copy_file(os.path.join(data_dir, name), os.path.join(data, name))
     for row in _subset_csv(os.path.join(data_dir, "gtsrb-subset", "GT-subset.csv"),
                            os.path.join(data, "gtsrb-subset", "GT-subset.csv"), first_per_class):
         name = os.path.join("gtsrb-subset", "train", row["ClassFolder"], row["Filename"])
-        _copy(os.path.join(data_dir, name), os.path.join(data, name))
+        copy_file(os.path.join(data_dir, name), os.path.join(data, name))
     shutil.copytree(scene, os.path.join(out_dir, "scenes", os.path.basename(scene)))
     with open(os.path.join(out_dir, "run.sh"), "w") as f:
         f.write(RUN_SH.replace("@HELD@", str(GTSDB_HELDOUT_IDS[0])).replace("@EACH@", str(GTSDB_PER_PART))
