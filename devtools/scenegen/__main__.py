@@ -26,11 +26,13 @@ def main(argv=None):
     ap.add_argument("--look", default="training", choices=sorted(LOOKS),
                     help="light and camera of the panoramas: training (every training and bench scene), or a "
                          "held-out look whose ranges the training never saw (dusk, glare)")
+    ap.add_argument("--jobs", type=int, default=1,
+                    help="processes rendering the panoramas (the same files as with one)")
     a = ap.parse_args(argv)
     t0 = time.perf_counter()
     paths = generate_scene(a.preset, a.seed, a.out, crs=a.crs, panoramas=not a.no_panoramas, lidar=not a.no_lidar,
                            pano_width=a.pano_width, masks=not a.no_masks, verbose=True,
-                           image_spacing_m=a.image_spacing, look=a.look)
+                           image_spacing_m=a.image_spacing, look=a.look, jobs=a.jobs)
     peak_mib = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     print(f"[scenegen] wrote {a.out} in {time.perf_counter() - t0:.1f} s (peak memory {peak_mib:.0f} MiB)")
     for k, v in sorted(paths.items()):

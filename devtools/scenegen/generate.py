@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import csv
 import json
+import multiprocessing
 import os
 import time
 
@@ -114,9 +115,34 @@ def _write_sbet(path, frames, motion, tau):
     rec.astype("<f8").tofile(path)
 
 
+#: The renderer and the panoramas' poses, shared with the forked workers of :func:`generate_scene`
+_PANORAMAS: dict = {}
+
+
+def _render_panorama(i: int):
+    """Render and write panorama ``i`` (:data:`_PANORAMAS`); returns its image metadata."""
+    r = _PANORAMAS
+    name, C = r["names"][i], r["C_pano"][i]
+    img, mask, stats = r["renderer"].render(C, r["R_wp"][i])
+    rgb, quality, camera = finish_image(img, _rng(r["seed"], "images", i), r["look"])
+    cv2.imwrite(os.path.join(r["images"], name), cv2.cvtColor(rgb, cv2.COLOR_RGB2BGR),
+                [cv2.IMWRITE_JPEG_QUALITY, quality])
+    if r["masks"]:
+        cv2.imwrite(os.path.join(r["masks"], name.replace(".jpg", ".png")), mask)
+    boxes = sign_boxes(mask, stats, r["width"])
+    for b in boxes:
+        b["range_m"] = round(float(np.linalg.norm(r["centres"][b["sign_id"]] - C)), 3)
+    return {"image": name, "time": round(GPS_TIME_START + float(r["tau_img"][i]), 6),
+            "pano_centre": [round(float(v), 4) for v in C + r["origin"]], "camera": camera, "signs": boxes}
+
+
 def generate_scene(preset="tiny", seed=1, out_dir="scene", crs="projected", panoramas=True, lidar=True,
-                   pano_width=None, masks=True, verbose=False, image_spacing_m=None, look="training"):
+                   pano_width=None, masks=True, verbose=False, image_spacing_m=None, look="training",
+                   jobs=1):
     """Write one synthetic scene into ``out_dir``; returns a dict of the written paths.
+
+    ``jobs`` > 1: the panoramas are rendered by that many forked processes; each panorama
+    draws from its own random stream, so the files are the same as with one.
 
     ``look``: the light and camera of the panoramas, a name of :data:`.render.LOOKS`
     (``training`` for every training and bench scene; the others are held out).
@@ -232,21 +258,18 @@ def generate_scene(preset="tiny", seed=1, out_dir="scene", crs="projected", pano
         if masks:
             paths["masks"] = os.path.join(out_dir, "masks")
             os.makedirs(paths["masks"], exist_ok=True)
-        renderer = PanoramaRenderer(scene, p.pano_width, _rng(seed, "render"), LOOKS[look])
-        centres = {s.sign_id: s.panel.centre for s in scene.signs}
-        for i, name in enumerate(names):
-            img, mask, stats = renderer.render(C_pano[i], R_wp[i])
-            rgb, quality, camera = finish_image(img, _rng(seed, "images", i), LOOKS[look])
-            cv2.imwrite(os.path.join(paths["images"], name), cv2.cvtColor(rgb, cv2.COLOR_RGB2BGR),
-                        [cv2.IMWRITE_JPEG_QUALITY, quality])
-            if masks:
-                cv2.imwrite(os.path.join(paths["masks"], name.replace(".jpg", ".png")), mask)
-            boxes = sign_boxes(mask, stats, p.pano_width)
-            for b in boxes:
-                b["range_m"] = round(float(np.linalg.norm(centres[b["sign_id"]] - C_pano[i])), 3)
-            images_meta.append({"image": name, "time": round(GPS_TIME_START + float(tau_img[i]), 6),
-                                "pano_centre": [round(float(v), 4) for v in C_pano[i] + frames.origin],
-                                "camera": camera, "signs": boxes})
+        _PANORAMAS.update(renderer=PanoramaRenderer(scene, p.pano_width, _rng(seed, "render"), LOOKS[look]),
+                          names=names, C_pano=C_pano, R_wp=R_wp, tau_img=tau_img, seed=seed, look=LOOKS[look],
+                          images=paths["images"], masks=paths.get("masks"), width=p.pano_width,
+                          origin=frames.origin, centres={s.sign_id: s.panel.centre for s in scene.signs})
+        try:
+            if jobs > 1:
+                with multiprocessing.get_context("fork").Pool(jobs) as pool:
+                    images_meta = pool.map(_render_panorama, range(len(names)))
+            else:
+                images_meta = [_render_panorama(i) for i in range(len(names))]
+        finally:
+            _PANORAMAS.clear()
         lap("panoramas")
 
     # --- scene.json --------------------------------------------------------------------------
