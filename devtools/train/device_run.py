@@ -19,8 +19,8 @@ carries at most 64 MiB, the repository included. So the run is two calls on one 
    installs the wheels there, and times a training step on random data with every CUDA path
    of the run (``--check-cuda``).
 3. Call 2 at once (carry ``.devdata/b``; the machine stays warm 30 s only):
-   ``MINUTES=6 bash .devdata/b/run.sh`` (a call runs 10 minutes at most: the streets take
-   about 2, the set-up and the export 1). It puts the data where the scripts read it
+   ``MINUTES=5 bash .devdata/b/run.sh`` (a call runs 10 minutes at most: the streets take
+   about 3, the set-up and the export 1). It puts the data where the scripts read it
    (``../shared/data``; it refuses where that exists: on the same machine again, remove
    ``../shared`` and ``/tmp/w`` first), adds part a when the machine still has it (else it
    trains on part b's frames alone and says so), renders the six ``default`` training streets
@@ -37,7 +37,8 @@ run"): a training step of batch 32 takes 18 ms on the GPU; the twelve workers fe
 700 crops a second (22 steps a second: the CPU, not the GPU, sets the pace). Rendered beside
 the training, the six streets took 8.5 minutes each and joined only as the run ended; so
 ``run.sh`` renders them first, each with every core (untried on the machine: 61 panoramas
-of 4.5 s on one core each, about 2 minutes for the six on sixteen cores).
+of 4.5 s on one core each: 140 s a street with two jobs here, about 3 minutes for the six on
+sixteen cores).
 """
 from __future__ import annotations
 
@@ -105,11 +106,11 @@ export PYTHONUNBUFFERED=1 OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREA
 W=/tmp/w; mkdir -p $W/scenes && cp -r "$HERE"/scenes/* $W/scenes/
 [ -d /root/rsi-a/site ] || echo "NO PYPROJ: the default streets cannot be generated, only the tiny ones train"
 # the streets first, one after another, each with every core (rendered beside the training they
-# took 8.5 minutes each and joined only as it ended)
+# took 8.5 minutes each and joined only as it ended; not nproc, which obeys OMP_NUM_THREADS)
 for s in @SEEDS@; do
   [ -d /root/rsi-a/site ] && PYTHONPATH=/root/rsi-a/site \
   python3 -m devtools.scenegen --preset default --seed $s --no-lidar --no-masks --out $W/scenes/default-$s \
-    --jobs $(nproc) > $OUT/scenegen-$s.log 2>&1
+    --jobs $(getconf _NPROCESSORS_ONLN) > $OUT/scenegen-$s.log 2>&1
 done
 grep -h "panoramas:" $OUT/scenegen-*.log
 timeout -s TERM $(( ${MINUTES:-7} * 60 + 90 )) python3 -m devtools.train --device cuda --init models/roadsigns.onnx \
