@@ -527,15 +527,17 @@ def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, cla
     (overlap of the smaller box >= 0.5) are merged across classes (the best-scored kept) and
     kept when ``rule`` (a ``RescueRule``) and the classifier confirm them, with the class read,
     counted at ``confidence``. A photograph has no upward views (``drop_lone_upward_other``
-    plays no part). ``fit_tall``: the boxes kept are then fitted (``core.sheeting.fit_tall_boxes``;
-    the candidates judged on the network's boxes, as on panoramas). Returns the plugin's boxes,
-    scores and class ids."""
+    plays no part). ``fit_tall``: the boxes are fitted (``core.sheeting.fit_tall_boxes``) once
+    the candidates are judged on the network's boxes, and read fitted, as on panoramas. Returns
+    the plugin's boxes, scores and class ids."""
     from devtools.train.codes import crop_square
 
     sure, cands = photo_candidates(boxes, scores, confidence)
     if len(cands):
         sheeting = np.array([sheeting_mod.sheeting_fraction(image_bgr, boxes[j]) for j in cands])
         cands = cands[rescue_mod.worth_reading(boxes[cands], sheeting, scores[cands], rule)]
+    if fit_tall:
+        boxes = sheeting_mod.fit_tall_boxes(image_bgr, boxes)
     kept_ids = ids.copy()
     rescued = np.zeros(len(boxes), bool)
     if len(cands):
@@ -550,8 +552,7 @@ def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, cla
                 if klass >= 0:
                     kept_ids[j] = klass
     keep = sure | rescued
-    kept = sheeting_mod.fit_tall_boxes(image_bgr, boxes[keep]) if fit_tall else boxes[keep]
-    return kept, np.maximum(scores[keep], np.where(rescued[keep], confidence, 0.0)), kept_ids[keep]
+    return boxes[keep], np.maximum(scores[keep], np.where(rescued[keep], confidence, 0.0)), kept_ids[keep]
 
 
 class Frame(NamedTuple):

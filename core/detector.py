@@ -690,7 +690,7 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
         low = low.subset(~on_sign)
         low.candidate[:] = True
         found = PanoramaDetections.concatenate([found, low])
-    # candidates keep the network's box: the second look judges them on it and fits the ones it keeps
+    # candidates keep the network's box: the second look judges them on it, then fits them
     return fit_tall_boxes(pano, found, rows=~found.candidate) if fit_tall else found
 
 
