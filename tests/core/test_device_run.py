@@ -74,7 +74,10 @@ def test_every_frame_lands_once_every_third_in_part_b_and_the_scripts_are_whole(
     for seed in device_run.DEFAULT_SEEDS:
         assert f"default:{seed}" in run_sh
     assert "--check-cuda" in (out / "a" / "stash.sh").read_text()
-    assert {"scenes/tiny-100/scene.json", "scenes/tiny-101/scene.json"} <= b
+    assert {f"scenes/{name}/scene.json" for name in device_run.TINY_SCENES} <= b
+    for name in device_run.HELD_OUT_SCENES:   # the second held-out set is never trained on
+        preset, seed = name.split("-")
+        assert f"{preset}:{seed}" not in run_sh and not any(f.startswith(f"scenes/{name}/") for f in b)
 
 
 def test_gtsrb_crops_are_six_of_each_tracks_ten_in_frame_order_as_jpeg_under_their_names(made_up, tmp_path):
