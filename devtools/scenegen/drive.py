@@ -47,7 +47,6 @@ DRIVES = {
 #: are left out of the truth stretch: their later views would come from reused images
 END_MARGIN_M = 10.0
 DRIVE_JSON = "drive.json"
-_RENDER = {}   # the renderer and the stations' poses, shared with forked workers
 
 
 class Chainage:
@@ -163,29 +162,6 @@ def _link(src: str, dst: str) -> str:
         return "copy"
 
 
-def _render_one(i: int):
-    """Render station ``i``'s panorama into ``images/`` (forked workers share ``_RENDER``)."""
-    import cv2
-
-    from .generate import GPS_TIME_START, _rng
-    from .render import finish_image, sign_boxes
-    r = _RENDER
-    img, mask, stats = r["renderer"].render(r["C_pano"][i], r["R_wp"][i])
-    rgb, quality, camera = finish_image(img, _rng(r["seed"], "images", i))
-    name = r["names"][i]
-    tmp = os.path.join(r["images"], "." + name + ".tmp.jpg")
-    cv2.imwrite(tmp, cv2.cvtColor(rgb, cv2.COLOR_RGB2BGR), [cv2.IMWRITE_JPEG_QUALITY, quality])
-    os.replace(tmp, os.path.join(r["images"], name))
-    if r["masks"]:
-        cv2.imwrite(os.path.join(r["masks_dir"], name.replace(".jpg", ".png")), mask)
-    boxes = sign_boxes(mask, stats, r["width"])
-    for b in boxes:
-        b["range_m"] = round(float(np.linalg.norm(r["centres"][b["sign_id"]] - r["C_pano"][i])), 3)
-    return {"image": name, "time": round(GPS_TIME_START + float(r["tau_img"][i]), 6),
-            "pano_centre": [round(float(v), 4) for v in r["C_pano"][i] + r["origin"]],
-            "camera": camera, "signs": boxes}
-
-
 def generate_drive(preset="drive1k", seed=4, out_dir="drive", render_m=None, render_count=None,
                    pano_width=None, jobs=1, masks=False, verbose=False):
     """Write a drive into ``out_dir`` (see the module's doc); returns its ``drive.json`` dict.
@@ -193,9 +169,18 @@ def generate_drive(preset="drive1k", seed=4, out_dir="drive", render_m=None, ren
     Steps already done by an interrupted call are kept: the scene without panoramas
     (``scene.json`` present), and each panorama already rendered (``render_log.jsonl``).
     """
-    from .generate import BORESIGHT_DEG, GPS_TIME_START, LEVER_ARM_BODY_M, _Frames, _rng, generate_scene
+    from .generate import (
+        BORESIGHT_DEG,
+        GPS_TIME_START,
+        LEVER_ARM_BODY_M,
+        PANORAMAS,
+        _Frames,
+        _rng,
+        generate_scene,
+        render_panorama,
+    )
     from .layout import build_scene
-    from .render import PanoramaRenderer
+    from .render import LOOKS, PanoramaRenderer
     from .road import Motion
 
     defaults = DRIVES.get(preset, {"render_m": 100.0})
@@ -270,16 +255,16 @@ def generate_drive(preset="drive1k", seed=4, out_dir="drive", render_m=None, ren
     if todo:
         say("rendering {} of {} panoramas at {} x {} ({} jobs)".format(len(todo), K, p.pano_width,
                                                                      p.pano_width // 2, jobs))
-        _RENDER.update(renderer=PanoramaRenderer(scene, p.pano_width, _rng(seed, "render")),
-                       C_pano=C_pano, R_wp=R_wp, tau_img=tau_img, names=names, seed=seed,
-                       images=images, masks=masks, masks_dir=masks_dir, width=p.pano_width,
-                       origin=frames.origin, centres={s.sign_id: s.panel.centre for s in scene.signs})
+        PANORAMAS.update(renderer=PanoramaRenderer(scene, p.pano_width, _rng(seed, "render")),
+                         C_pano=C_pano, R_wp=R_wp, tau_img=tau_img, names=names, seed=seed, look=LOOKS["training"],
+                         images=images, masks=masks_dir if masks else None, width=p.pano_width,
+                         origin=frames.origin, centres={s.sign_id: s.panel.centre for s in scene.signs})
         with open(log_path, "a") as log:
             if jobs > 1:
                 pool = multiprocessing.get_context("fork").Pool(jobs)
-                results = pool.imap_unordered(_render_one, todo)
+                results = pool.imap_unordered(render_panorama, todo)
             else:
-                pool, results = None, map(_render_one, todo)
+                pool, results = None, map(render_panorama, todo)
             for k, rec in enumerate(results, 1):
                 rendered[rec["image"]] = rec
                 log.write(json.dumps(rec) + "\n")
@@ -290,7 +275,7 @@ def generate_drive(preset="drive1k", seed=4, out_dir="drive", render_m=None, ren
             if pool is not None:
                 pool.close()
                 pool.join()
-        _RENDER.clear()
+        PANORAMAS.clear()
         timings["render_s"] = round(time.perf_counter() - start, 1)
         timings["render_s_per_panorama"] = round(timings["render_s"] / len(todo), 2)
         timings["render_timed_panoramas"] = len(todo)   # those rendered by this call

@@ -115,18 +115,24 @@ def _write_sbet(path, frames, motion, tau):
     rec.astype("<f8").tofile(path)
 
 
-#: The renderer and the panoramas' poses, shared with the forked workers of :func:`generate_scene`
-_PANORAMAS: dict = {}
+#: The renderer and the panoramas' poses (:func:`render_panorama`'s keys), shared with the
+#: forked workers of :func:`generate_scene` and of :func:`.drive.generate_drive`
+PANORAMAS: dict = {}
 
 
-def _render_panorama(i: int):
-    """Render and write panorama ``i`` (:data:`_PANORAMAS`); returns its image metadata."""
-    r = _PANORAMAS
+def render_panorama(i: int):
+    """Render and write panorama ``i`` of :data:`PANORAMAS` (``renderer``, ``names``,
+    ``C_pano``, ``R_wp``, ``tau_img``, ``seed``, ``look``, ``images``, ``masks`` (a folder or
+    None), ``width``, ``origin``, ``centres``); returns its image metadata. The image is
+    written under a temporary name, then renamed: a drive resumed after a stop never reads
+    half an image."""
+    r = PANORAMAS
     name, C = r["names"][i], r["C_pano"][i]
     img, mask, stats = r["renderer"].render(C, r["R_wp"][i])
     rgb, quality, camera = finish_image(img, _rng(r["seed"], "images", i), r["look"])
-    cv2.imwrite(os.path.join(r["images"], name), cv2.cvtColor(rgb, cv2.COLOR_RGB2BGR),
-                [cv2.IMWRITE_JPEG_QUALITY, quality])
+    tmp = os.path.join(r["images"], "." + name + ".tmp.jpg")
+    cv2.imwrite(tmp, cv2.cvtColor(rgb, cv2.COLOR_RGB2BGR), [cv2.IMWRITE_JPEG_QUALITY, quality])
+    os.replace(tmp, os.path.join(r["images"], name))
     if r["masks"]:
         cv2.imwrite(os.path.join(r["masks"], name.replace(".jpg", ".png")), mask)
     boxes = sign_boxes(mask, stats, r["width"])
@@ -258,18 +264,18 @@ def generate_scene(preset="tiny", seed=1, out_dir="scene", crs="projected", pano
         if masks:
             paths["masks"] = os.path.join(out_dir, "masks")
             os.makedirs(paths["masks"], exist_ok=True)
-        _PANORAMAS.update(renderer=PanoramaRenderer(scene, p.pano_width, _rng(seed, "render"), LOOKS[look]),
+        PANORAMAS.update(renderer=PanoramaRenderer(scene, p.pano_width, _rng(seed, "render"), LOOKS[look]),
                           names=names, C_pano=C_pano, R_wp=R_wp, tau_img=tau_img, seed=seed, look=LOOKS[look],
                           images=paths["images"], masks=paths.get("masks"), width=p.pano_width,
                           origin=frames.origin, centres={s.sign_id: s.panel.centre for s in scene.signs})
         try:
             if jobs > 1:
                 with multiprocessing.get_context("fork").Pool(jobs) as pool:
-                    images_meta = pool.map(_render_panorama, range(len(names)))
+                    images_meta = pool.map(render_panorama, range(len(names)))
             else:
-                images_meta = [_render_panorama(i) for i in range(len(names))]
+                images_meta = [render_panorama(i) for i in range(len(names))]
         finally:
-            _PANORAMAS.clear()
+            PANORAMAS.clear()
         lap("panoramas")
 
     # --- scene.json --------------------------------------------------------------------------
