@@ -49,6 +49,9 @@ def main(argv=None):
     ap.add_argument("--large-share", type=float, default=0.0,
                     help="share of the crops of generated views with a large sign that show it whole "
                          "(data.LARGE_SIGN_FILL of the crop), 0..1")
+    ap.add_argument("--tall-share", type=float, default=0.0,
+                    help="share of the crops of generated views taken round a sign seen nearly edge-on "
+                         "(data.tall_sign_crop), among the views that show one, 0..1")
     ap.add_argument("--view-scales", type=parse_scale_range, default=None, metavar="LO,HI",
                     help="the scales crops of generated views are taken at, log-uniform "
                          "(default train.VIEW_CROP_SCALES; lower, the views' facades and overhead panels "
@@ -84,7 +87,7 @@ def main(argv=None):
           seed=a.seed, resume=a.resume, val_images=a.val_images, init=a.init, device=a.device,
           checkpoint_every_min=a.checkpoint_every, until=a.until, warmup_steps=a.warmup, amp=not a.no_amp,
           export=not a.no_export, ema_decay=a.ema_decay, small_share=a.small_share, large_share=a.large_share,
-          faces=FACES if a.faces is None else a.faces,
+          tall_share=a.tall_share, faces=FACES if a.faces is None else a.faces,
           view_scales=a.view_scales, scenes=a.train_scenes,
           arch={k: v for k, v in (("widths", tuple(int(c) for c in a.widths.split(",")) if a.widths else None),
                                   ("fpn", a.fpn), ("head", a.head)) if v is not None} or None,

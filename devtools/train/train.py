@@ -7,6 +7,7 @@ import json
 import math
 import os
 import time
+from typing import List
 
 import cv2
 import numpy as np
@@ -81,11 +82,13 @@ class DataMix:
 
     def __init__(self, crop_px: int, work_dir: str, seed: int = 0, mandatory_boost: float = MANDATORY_BOOST,
                  source_weights=None, small_share: float = 0.0, faces: int = FACES,
-                 mined_path: str = mine.MINED_PATH, large_share: float = 0.0, view_scales=None):
+                 mined_path: str = mine.MINED_PATH, large_share: float = 0.0, view_scales=None,
+                 tall_share: float = 0.0):
         self.crop_px = crop_px
         self.view_scales = tuple(view_scales or VIEW_CROP_SCALES)
         self.small_share = small_share
         self.large_share = large_share
+        self.tall_share = tall_share
         w = dict(SOURCE_WEIGHTS, **(source_weights or {}))
         self.source_names = list(w)
         self.source_p = np.array([w[k] for k in self.source_names], float) / sum(w.values())
@@ -106,6 +109,7 @@ class DataMix:
         self.distractors = data.distractor_patches(self.rng)
         self.work_dir = work_dir
         self.views, self.val_views, self.scenes = [], [], set()
+        self.tall_views: List[int] = []   # indices into self.views of those with a sign seen edge-on
         print(f"[train] {len(self.gtsdb)} GTSDB scenes, {len(self.gtsrb)} GTSRB crops of {len(set(tracks))} "
               f"training tracks, {len(self.drawn)} drawn signs, {len(self.faces)} faces of many countries, "
               f"{len(self.distractors)} distractors, {len(self.hard)} mined false alarms", flush=True)
@@ -149,6 +153,7 @@ class DataMix:
             train = data.scene_view_samples(folder, cache + "-train", rng=self.rng, image_filter=lambda k: k < last)
             val = data.scene_view_samples(folder, cache + "-val", keep_empty=0.3, rng=self.rng,
                                           image_filter=lambda k: k >= last)
+            self.tall_views += [len(self.views) + k for k, row in enumerate(train) if len(data.tall_boxes(row[1]))]
             self.views += train
             self.val_views += val
             self.scenes.add(folder)
@@ -253,6 +258,12 @@ class DataMix:
         elif source == "faces_paste":   # degraded as distant signs, like the real crops
             s = self._background()
             self._paste_many(s, self.faces, self.faces_classes, int(rng.integers(1, 4)), 12, 120, degraded=True)
+        elif self.tall_share and self.tall_views and rng.random() < self.tall_share:   # a sign seen edge-on
+            s = self._load(self.views[self.tall_views[int(rng.integers(len(self.tall_views)))]])
+            if rng.random() < 0.3:
+                s.image = data.resample_blur(s.image, rng)
+            scale, centre = data.tall_sign_crop(s.boxes, self.crop_px, rng)
+            s = data.crop_sample(s, self.crop_px, scale, centre, flip=bool(rng.random() < 0.5))
         else:
             s = self._load(self.views[int(rng.integers(len(self.views)))])
             if rng.random() < 0.3:
@@ -551,7 +562,7 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
           init: str = None, device: str = "auto", checkpoint_every_min: float = 10.0, until: str = None,
           warmup_steps: int = 300, amp: bool = True, scenes=None, export: bool = True,
           ema_decay: float = 0.998, source_weights=None, small_share: float = 0.0, faces: int = FACES,
-          arch=None, large_share: float = 0.0, view_scales=None, workers: int = 0):
+          arch=None, large_share: float = 0.0, view_scales=None, workers: int = 0, tall_share: float = 0.0):
     """Train (or go on training) for ``minutes`` of training time in all (a resumed run
     counts the time already spent), or until the wall-clock time ``until``; validate every
     ``validate_every_min`` (best by AP50 on GTSDB 500-599), checkpoint every
@@ -575,7 +586,7 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
     t_start = time.perf_counter()
     scene_folders = ensure_scenes(scene_root, specs=scenes or TRAIN_SCENES, generate=generate_scenes)
     mix = DataMix(crop_px, work_dir, seed, source_weights=source_weights, small_share=small_share, faces=faces,
-                  large_share=large_share, view_scales=view_scales)
+                  large_share=large_share, view_scales=view_scales, tall_share=tall_share)
     mix.add_scenes(scene_folders)
     # GTSDB 500-599 picks the best checkpoint; views and pasted held-out tracks are watched
     val_sets = {"gtsdb_500_599": data.read_gtsdb(data.GTSDB_HELDOUT_IDS)[:val_images],
