@@ -121,7 +121,7 @@ grep -h "panoramas:" $OUT/scenegen-*.log
 timeout -s TERM $(( ${MINUTES:-7} * 60 + 90 )) python3 -m devtools.train --device cuda --init models/roadsigns.onnx \
   --no-generate --scenes $W/scenes --train-scenes @TRAIN_SCENES@ --work $W --out $OUT/roadsigns-gpu.onnx \
   --minutes ${MINUTES:-7} --validate-every 1.5 --checkpoint-every 1.5 --val-images @VAL@ --workers @WORKERS@ \
-  --batch 32 --lr 3e-4 --warmup 100 --ema-decay 0.998 --small-share 0.3 --large-share 0.3 2>&1 \
+  --batch 32 --lr 3e-4 --warmup 100 --ema-decay 0.998 --small-share 0.3 --large-share 0.3 --tall-share 0.25 2>&1 \
   | grep -v -i '^\[ WARN\|UserWarning\|tensor.detach' | tee $OUT/train.log
 cp $W/history.json $OUT/ 2>/dev/null
 python3 -m devtools.train --export-only $W/last.pt --out $OUT/roadsigns-last.onnx 2>&1 | tail -1
