@@ -404,25 +404,26 @@ def whole_sign_crop(boxes, crop_px: int, rng, min_share: float = LARGE_SIGN_MIN,
     return scale, (float(centre[0]), float(centre[1]))
 
 
-#: :func:`tall_sign_crop`: a sign seen nearly edge-on, its box at least this many times as
-#: high as wide (``core.sheeting.TALL_BOX_HEIGHT_TO_WIDTH``, the boxes detectsigns fits to
-#: their colours) and at least this high in the view, is shown at these scales (log-uniform):
-#: about as the plugin's views show it (their density is 0.59-0.98 of the panorama's, the
-#: views training cuts 0.59). Passed close by, such signs are half of what the plugin misses
-#: on held-out generated streets (models/README.md, "What the misses are").
-TALL_SIGN_RATIO = 1.8
+#: :func:`tall_sign_crop`: a sign seen nearly edge-on, its box at least
+#: ``core.sheeting.TALL_BOX_HEIGHT_TO_WIDTH`` times as high as wide (the boxes detectsigns fits
+#: to their colours) and at least this high in the view, is shown at these scales
+#: (log-uniform): about as the plugin's views show it (their density is 0.59-0.98 of the
+#: panorama's, the views training cuts 0.59). Passed close by, such signs are half of what the
+#: plugin misses on held-out generated streets (models/README.md, "What the misses are").
 TALL_SIGN_MIN_PX = 12.0
 TALL_CROP_SCALES = (0.8, 1.7)
 
 
 def tall_boxes(boxes) -> np.ndarray:
-    """Indices of the boxes of signs seen nearly edge-on: :data:`TALL_SIGN_RATIO` times as
-    high as wide or more, and at least :data:`TALL_SIGN_MIN_PX` high."""
+    """Indices of the boxes of signs seen nearly edge-on: as high as the boxes detectsigns
+    fits to their colours (``core.sheeting.TALL_BOX_HEIGHT_TO_WIDTH`` times their width) or
+    higher, and at least :data:`TALL_SIGN_MIN_PX` high."""
     boxes = _arr(boxes)
     if not len(boxes):
         return np.zeros(0, np.int64)
+    ratio = import_roadsigns("roadsigns.core.sheeting").TALL_BOX_HEIGHT_TO_WIDTH
     w, h = boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1]
-    return np.flatnonzero((h >= TALL_SIGN_MIN_PX) & (h >= TALL_SIGN_RATIO * np.maximum(w, 1e-6)))
+    return np.flatnonzero((h >= TALL_SIGN_MIN_PX) & (h >= ratio * np.maximum(w, 1e-6)))
 
 
 def tall_sign_crop(boxes, crop_px: int, rng, scales=TALL_CROP_SCALES):
