@@ -397,10 +397,8 @@ VIEW_SETS = {
                                          + panorama_mod.ViewSet.ring(2, 0.0, 40.0, size)),
     # the plugin's 12 views with the fore-and-aft pair at 40 deg across instead of 53.3
     # (1.33 x their pixels a degree, the same number of views)
-    "default-fore-aft-40": lambda size: (panorama_mod.ViewSet.default(size_px=size, upward=False, fore_aft=False)
-                                         + panorama_mod.ViewSet.ring(2, 0.0, 40.0, size)
-                                         + panorama_mod.ViewSet.ring(2, panorama_mod.UPWARD_PITCH_DEG,
-                                                                     panorama_mod.UPWARD_HFOV_DEG, size)),
+    "default-fore-aft-40": lambda size: (panorama_mod.ViewSet.default(size_px=size, fore_aft=False)
+                                         + panorama_mod.ViewSet.ring(2, 0.0, 40.0, size)),
     # the plugin's 12 views and a 40 deg pair ahead and behind as well: 14 views
     "default+fore-aft-40": lambda size: (panorama_mod.ViewSet.default(size_px=size)
                                          + panorama_mod.ViewSet.ring(2, 0.0, 40.0, size)),

@@ -258,17 +258,18 @@ class DataMix:
         elif source == "faces_paste":   # degraded as distant signs, like the real crops
             s = self._background()
             self._paste_many(s, self.faces, self.faces_classes, int(rng.integers(1, 4)), 12, 120, degraded=True)
-        elif self.tall_share and self.tall_views and rng.random() < self.tall_share:   # a sign seen edge-on
-            s = self._load(self.views[self.tall_views[int(rng.integers(len(self.tall_views)))]])
+        else:   # a generated view; with probability tall_share round a sign seen edge-on
+            edge_on = bool(self.tall_share and self.tall_views and rng.random() < self.tall_share)
+            pool = self.tall_views if edge_on else range(len(self.views))
+            k = pool[int(rng.integers(len(pool)))]
+            s = self._load(self.views[k])
             if rng.random() < 0.3:
                 s.image = data.resample_blur(s.image, rng)
-            scale, centre = data.tall_sign_crop(s.boxes, self.crop_px, rng)
-            s = data.crop_sample(s, self.crop_px, scale, centre, flip=bool(rng.random() < 0.5))
-        else:
-            s = self._load(self.views[int(rng.integers(len(self.views)))])
-            if rng.random() < 0.3:
-                s.image = data.resample_blur(s.image, rng)
-            s = self._view_crop(s)
+            if edge_on:
+                scale, centre = data.tall_sign_crop(s.boxes, self.crop_px, rng)
+                s = data.crop_sample(s, self.crop_px, scale, centre, flip=bool(rng.random() < 0.5))
+            else:
+                s = self._view_crop(s)
         if rng.random() < NEGATIVE_SHARE:
             self._paste_negatives(s, int(rng.integers(1, 4)))
         s.image = data.colour_jitter(s.image, rng)
