@@ -18,6 +18,7 @@ from ..core.panorama import DEFAULT_FORE_AFT_VIEWS, DEFAULT_UPWARD_VIEWS
 from ..core.rescue import DEFAULT_RESCUE_CONFIDENCE, DEFAULT_RULE
 from ..core.signcodes import is_code
 from ..core.trajectory import STATION_FIELDS, Stations
+from ..core.zoomlook import DEFAULT_ZOOM, DEFAULT_ZOOMED_LOOK
 from .base import RoadSignsAlgorithm
 from .codeparams import ReadsCodes
 from .layers import check_layer_extent, check_metric_crs, qgs_fields, read_columns, write_records
@@ -36,6 +37,7 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
     MAX_RANGE = "MAX_RANGE"
     UPWARD_VIEWS = "UPWARD_VIEWS"
     FORE_AFT_VIEWS = "FORE_AFT_VIEWS"
+    ZOOMED_LOOK = "ZOOMED_LOOK"
     THREADS = "THREADS"
     MIN_STATION_SPACING = "MIN_STATION_SPACING_M"
     OUTPUT = "OUTPUT"
@@ -135,6 +137,20 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
                     "generated panoramas: 0.906 of the signs per panorama instead of 0.879. They cost 1.24 "
                     "times the detection time. On by default; turn it off only for speed on drives with "
                     "panoramas close together (every sign is then seen from many stations)."), advanced=True)
+        self.add_boolean(
+            self.ZOOMED_LOOK, self.tr("Look again, closer, at small boxes scored under the minimum confidence"),
+            DEFAULT_ZOOMED_LOOK,
+            self.tr("A box of at most {px} px that the detector scores from {score} up to the minimum confidence "
+                    "is cut again from the panorama at a higher pixel density (the box {box_px} px across) and "
+                    "detected once more; it is kept when the detector then scores it at the minimum confidence or "
+                    "more, with that score, class and box. All of a panorama's such boxes go through the detector "
+                    "together, in one extra run. It finds far signs, 15-25 px across: on 376 held-out real signs "
+                    "pasted into street photographs the signs found rose from 0.79 to 0.87 (those 14-20 px high "
+                    "from 0.34 to 0.59) at a precision of 0.96; on real street photographs (GTSDB 500-599) the "
+                    "recall stayed at 0.958 and the precision went from 0.971 to 0.958. It costs 1.05-1.09 times "
+                    "the detection time. On by default.").format(
+                        px=int(DEFAULT_ZOOM.max_box_px), score=DEFAULT_ZOOM.min_score, box_px=int(DEFAULT_ZOOM.box_px)),
+            advanced=True)
         self.add_number(
             self.MIN_STATION_SPACING, self.tr("Skip stations closer than (m)"), DEFAULT_MIN_STATION_SPACING_M,
             self.tr("Detects only in panoramas whose station stands at least this far from the last station "
@@ -207,10 +223,11 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
                                           "classifier reads a code.").format(rescue_from, confidence))
             else:
                 on_panorama = partial(read_codes, classifier)
+            zoom = DEFAULT_ZOOM if self.parameterAsBoolean(parameters, self.ZOOMED_LOOK, context) else None
             found = detect_drive(detector, [stations.path[k] for k in chosen], views, confidence,
                                  min_box_px=self.parameterAsDouble(parameters, self.MIN_SIZE, context),
                                  progress=progress.sub(0.0, 0.95), on_panorama=on_panorama,
-                                 candidate_confidence=rescue_from if second_look_on else None)
+                                 candidate_confidence=rescue_from if second_look_on else None, zoom=zoom)
         if found.skipped:
             feedback.pushWarning(self.tr("Skipped {} panorama(s) that could not be read.").format(
                 len(found.skipped)))

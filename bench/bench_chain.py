@@ -43,7 +43,7 @@ def load_scene(args):
 
 
 def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=None, upward_views=None, classifier=None,
-               fore_aft_views=None, rescue_confidence=None, confidence=None):
+               fore_aft_views=None, rescue_confidence=None, confidence=None, zoomed_look=None):
     """(stage id, parameters, output key, what it needs) in chain order."""
     p = lambda name: os.path.join(scene_dir, name)  # noqa: E731
     w = lambda name: os.path.join(work, name)  # noqa: E731
@@ -62,6 +62,7 @@ def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=None, upward
                              **({"UPWARD_VIEWS": upward_views} if upward_views is not None else {}),
                              **({"FORE_AFT_VIEWS": fore_aft_views} if fore_aft_views is not None else {}),
                              **({"RESCUE_CONFIDENCE": rescue_confidence} if rescue_confidence is not None else {}),
+                             **({"ZOOMED_LOOK": zoomed_look} if zoomed_look is not None else {}),
                              **({"MODEL": model} if model else {}),
                              **({"CLASSIFIER": classifier} if classifier else {})),
          "OUTPUT", ["importtrajectory"]),
@@ -124,6 +125,9 @@ def main(argv=None):
     parser.add_argument("--fore-aft", action=argparse.BooleanOptionalAction, default=None,
                         help="detectsigns with or without its fore-and-aft views (FORE_AFT_VIEWS; default: the "
                              "algorithm's, on)")
+    parser.add_argument("--zoomed-look", action=argparse.BooleanOptionalAction, default=None,
+                        help="detectsigns with or without its zoomed look at small boxes (ZOOMED_LOOK; default: "
+                             "the algorithm's, on)")
     parser.add_argument("--rescue-confidence", type=float, metavar="S",
                         help="detectsigns' RESCUE_CONFIDENCE (its second look; the confidence or more: off)")
     parser.add_argument("--confidence", type=float, metavar="S",
@@ -139,6 +143,7 @@ def main(argv=None):
         f"-spacing{args.station_spacing:g}" if args.station_spacing is not None else "")
         + {None: "", False: "-noupward", True: "-upward"}[args.upward]
         + {None: "", False: "-noforeaft", True: "-foreaft"}[args.fore_aft]
+        + {None: "", False: "-nozoom", True: "-zoom"}[args.zoomed_look]
         + (f"-rescue{args.rescue_confidence:g}" if args.rescue_confidence is not None else "")
         + (f"-conf{args.confidence:g}" if args.confidence is not None else "")
         + ("-model-" + os.path.splitext(os.path.basename(args.model))[0] if args.model else "")
@@ -152,10 +157,10 @@ def main(argv=None):
                "detections": args.detections, "station_spacing_m": args.station_spacing,
                "upward_views": args.upward, "fore_aft_views": args.fore_aft, "classifier": args.classifier,
                "rescue_confidence": args.rescue_confidence, "confidence": args.confidence,
-               "stages": {}}
+               "zoomed_look": args.zoomed_look, "stages": {}}
     done = set()
     plan = stage_plan(scene_dir, meta, work, args.model, args.station_spacing, args.upward, args.classifier,
-                      args.fore_aft, args.rescue_confidence, args.confidence)
+                      args.fore_aft, args.rescue_confidence, args.confidence, args.zoomed_look)
     if args.from_stage and args.from_stage not in [p[0] for p in plan]:
         parser.error(f"--from: no stage {args.from_stage}")
     reuse = args.from_stage is not None

@@ -38,12 +38,15 @@ measures several models in one run, on the same images, timed alternately.
    ``on-keep-overhead-other``: the second look without dropping what an upward view boxed
    alone and the classifier reads ``other`` (``RescueRule.drop_lone_upward_other``; only
    panoramas have upward views, so the photographs are measured once for both ``on``s).
+   ``on+zoom``: the second look after detectsigns' zoomed look (``ZOOMED_LOOK``,
+   ``core/zoomlook.py``): small boxes under the confidence detected again at a higher pixel
+   density, on panoramas and photographs alike.
 6. ``--fit-tall`` (default ``on``): detectsigns' fit of boxes much taller than wide (signs
    seen nearly edge-on) to the columns that show sheeting colours (``core/sheeting.py``);
    ``--fit-tall on off`` measures with and without it in the same run.
 
     .venv/bin/python bench/bench_detector.py [--model M | --compare A.onnx B.onnx ...]
-        [--scene DIR ...] [--threads 2] [--second-look off|on|both|on-keep-overhead-other ...]
+        [--scene DIR ...] [--threads 2] [--second-look off|on|both|on-keep-overhead-other|on+zoom ...]
         [--fit-tall on off] [--json bench/out/detector.json]
 """
 from __future__ import annotations
@@ -72,6 +75,7 @@ detections_mod = import_roadsigns("roadsigns.core.detections")
 rescue_mod = import_roadsigns("roadsigns.core.rescue")
 signcodes_mod = import_roadsigns("roadsigns.core.signcodes")
 sheeting_mod = import_roadsigns("roadsigns.core.sheeting")
+zoomlook_mod = import_roadsigns("roadsigns.core.zoomlook")
 
 MIN_HEIGHT_PX = 20.0
 EDGE_ON_MAX_WIDTH_PX = 8.0  # a counted sign seen this narrow is a sliver (edge-on): reported apart
@@ -273,11 +277,13 @@ class PanoramaBench:
     with its defaults: the codes read, and with ``second_look`` (a :class:`RescueRule`, or
     None) the candidates from the plugin's ``RESCUE_CONFIDENCE`` kept when the classifier
     confirms them (they count as detections at the confidence: the curve then only spans
-    what the plugin keeps)."""
+    what the plugin keeps). ``zoom``: a ``ZoomRule`` for the zoomed look before the second
+    look, or None."""
 
-    def __init__(self, detector, views, confidence, min_box_px, classifier=None, second_look=None, fit_tall=True):
+    def __init__(self, detector, views, confidence, min_box_px, classifier=None, second_look=None, fit_tall=True,
+                 zoom=None):
         self.d, self.views, self.confidence, self.min_box_px = detector, views, confidence, min_box_px
-        self.fit_tall = fit_tall
+        self.fit_tall, self.zoom = fit_tall, zoom
         self.classifier, self.second_look = classifier, second_look
         self.matches, self.small, self.hidden, self.face_on, self.reportable = [], [], [], [], []
         self.back_hits, self.detect_s, self.cpu_s, self.n = 0, 0.0, 0.0, 0
@@ -344,7 +350,7 @@ class PanoramaBench:
         found = detector_mod.detect_panorama(self.d, pano, self.views, confidence=self.confidence,
                                              min_box_px=self.min_box_px,
                                              candidate_confidence=rescue_mod.DEFAULT_RESCUE_CONFIDENCE,
-                                             fit_tall=self.fit_tall)
+                                             fit_tall=self.fit_tall, zoom=self.zoom)
         return rescue_mod.second_look(self.classifier, pano, found, self.d.class_names, self.second_look,
                                       fit_tall=self.fit_tall)
 
@@ -373,8 +379,11 @@ class PanoramaBench:
 
 #: The second looks ``--second-look`` can measure: None is none (the detector alone).
 SECOND_LOOKS = {"off": None, "on": rescue_mod.DEFAULT_RULE,
-                "on-keep-overhead-other": replace(rescue_mod.DEFAULT_RULE, drop_lone_upward_other=False)}
-LOOK_LABELS = {"off": "", "on": " +2nd", "on-keep-overhead-other": " +2nd keep"}
+                "on-keep-overhead-other": replace(rescue_mod.DEFAULT_RULE, drop_lone_upward_other=False),
+                "on+zoom": rescue_mod.DEFAULT_RULE}
+LOOK_LABELS = {"off": "", "on": " +2nd", "on-keep-overhead-other": " +2nd keep", "on+zoom": " +zoom+2nd"}
+#: The looks that run detectsigns' zoomed look before the second look, and its rule.
+ZOOMED_LOOKS = {"on+zoom": zoomlook_mod.DEFAULT_ZOOM}
 
 
 #: View sets ``--views`` can measure (each a function of the detector's input size):
@@ -429,7 +438,7 @@ def bench_panoramas(entries, scene_dirs, confidence, max_images=None, min_box_px
     benches = []
     for d, views_name, look, fit_tall in entries:
         benches.append(PanoramaBench(d, VIEW_SETS[views_name](d.input_size), confidence, min_box_px,
-                                     classifier, SECOND_LOOKS[look], fit_tall))
+                                     classifier, SECOND_LOOKS[look], fit_tall, ZOOMED_LOOKS.get(look)))
     decode_s, n = 0.0, 0
     warm = False
     for scene_dir in scene_dirs:
@@ -528,18 +537,30 @@ def photo_candidates(boxes, scores, confidence, floor=None):
 
 
 def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, class_names,
-                      rule=rescue_mod.DEFAULT_RULE, fit_tall=False):
+                      rule=rescue_mod.DEFAULT_RULE, fit_tall=False, zoom=None, detector=None):
     """:func:`roadsigns.core.rescue.second_look` on a photograph's boxes (from 0.05): the
     boxes from ``DEFAULT_RESCUE_CONFIDENCE`` under ``confidence`` that lie on no detection
     (overlap of the smaller box >= 0.5) are merged across classes (the best-scored kept) and
     kept when ``rule`` (a ``RescueRule``) and the classifier confirm them, with the class read,
     counted at ``confidence``. A photograph has no upward views (``drop_lone_upward_other``
     plays no part). ``fit_tall``: the boxes are fitted (``core.sheeting.fit_tall_boxes``) once
-    the candidates are judged on the network's boxes, and read fitted, as on panoramas. Returns
+    the candidates are judged on the network's boxes, and read fitted, as on panoramas.
+    ``zoom`` (a ``ZoomRule``, with ``detector``): the zoomed look first, as on panoramas
+    (``core.zoomlook``, tiles cut from the photograph): a candidate ``detector`` scores at
+    ``confidence`` or more zoomed is a detection with the zoomed score, class and box. Returns
     the plugin's boxes, scores and class ids."""
     from devtools.train.codes import crop_square
 
     sure, cands = photo_candidates(boxes, scores, confidence)
+    if zoom is not None and len(cands):
+        boxes, scores, ids = np.array(boxes, float), np.array(scores, float), np.array(ids)
+        z = cands[zoomlook_mod.zoomable(boxes[cands], scores[cands], zoom)]
+        zoomed, zoomed_id, zoomed_box = zoomlook_mod.zoomed_scores(
+            detector, zoomlook_mod.image_tiles(image_bgr, boxes[z], zoom), boxes[z], zoom, confidence)
+        ok = zoomed >= confidence
+        boxes[z[ok]], scores[z[ok]], ids[z[ok]] = zoomed_box[ok], zoomed[ok], zoomed_id[ok]
+        sure[z[ok]] = True
+        cands = cands[~np.isin(cands, z[ok])]
     if len(cands):
         sheeting = np.array([sheeting_mod.sheeting_fraction(image_bgr, boxes[j]) for j in cands])
         cands = cands[rescue_mod.worth_reading(boxes[cands], sheeting, scores[cands], rule)]
@@ -694,8 +715,9 @@ def photo_second_look(rule):
 def bench_photographs(detectors, confidence, frames, whole_frame=False, classifier=None):
     """Each detector on street photographs ``frames`` (:class:`Frame`) cut
     into tiles of the model's input size (and whole letterboxed frames if asked);
-    ``detectors``: ``(detector, (second look, tall boxes fitted), scales)`` (the second look a
-    ``RescueRule``, or None for none, with ``classifier``; the fit as detectsigns' on
+    ``detectors``: ``(detector, ((second look, zoom), tall boxes fitted), scales)`` (the second
+    look a ``RescueRule``, or None for none, with ``classifier``; the zoomed look a ``ZoomRule``
+    or None; the fit as detectsigns' on
     panoramas, ``core.sheeting.fit_tall_boxes``;
     the tiles of the photograph resized by each scale and merged, :func:`detect_scaled`;
     ``(1.0,)``: as it is)."""
@@ -708,7 +730,7 @@ def bench_photographs(detectors, confidence, frames, whole_frame=False, classifi
         n_frames += 1
         n_unlabelled += len(frame.unlabelled)
         order = list(enumerate(detectors)) if k % 2 == 0 else list(enumerate(detectors))[::-1]
-        for i, (d, (look, fit_tall), scales) in order:
+        for i, (d, ((look, zoom), fit_tall), scales) in order:
             for mode in modes:
                 t0 = time.perf_counter()
                 if mode == "tiles_640":
@@ -718,7 +740,7 @@ def bench_photographs(detectors, confidence, frames, whole_frame=False, classifi
                     boxes, scores, found_ids = r.boxes_xyxy, r.scores, r.class_ids
                 if look is not None:
                     boxes, scores, found_ids = second_look_image(classifier, image, boxes, scores, found_ids,
-                                                                 confidence, d.class_names, look, fit_tall)
+                                                                 confidence, d.class_names, look, fit_tall, zoom, d)
                 elif fit_tall:
                     boxes = sheeting_mod.fit_tall_boxes(image, boxes)
                 a = acc[i][mode]
@@ -935,7 +957,7 @@ def main(argv=None):
         r["panoramas_per_second"] = p["panoramas_per_second"]
     # photographs: tiles of the model's input size, at each --photo-scales item (the view set plays no part)
     # the photographs have no upward views: one run serves the rules that differ only there
-    photo_rule = {look: photo_second_look(SECOND_LOOKS[look]) for look in looks}
+    photo_rule = {look: (photo_second_look(SECOND_LOOKS[look]), ZOOMED_LOOKS.get(look)) for look in looks}
     photo_looks = list(dict.fromkeys((photo_rule[look], fit) for look in looks for fit in fits))
     runs = [(k, look, spec) for k in range(len(models)) for look in photo_looks for spec in a.photo_scales]
     photo_detectors = [(detectors[k], look, parse_scales(spec, detectors[k].input_size)) for k, look, spec in runs]

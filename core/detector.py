@@ -40,6 +40,7 @@ import numpy as np
 from . import sheeting
 from .errors import SILENT, InputError, Progress
 from .panorama import ViewSet, boxes_from_seam
+from .zoomlook import ZoomRule
 
 #: Output layouts this module decodes, as named in messages.
 LAYOUTS = {
@@ -629,7 +630,8 @@ def _merged(detector, rows: Sequence[np.ndarray], W: int, overlap_threshold: flo
 def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: float = 0.25,
                     iou_threshold: float = 0.45, overlap_threshold: float = 0.5,
                     min_box_px: float = 0.0, candidate_confidence: Optional[float] = None,
-                    progress: Progress = SILENT, fit_tall: bool = True) -> PanoramaDetections:
+                    progress: Progress = SILENT, fit_tall: bool = True,
+                    zoom: Optional[ZoomRule] = None) -> PanoramaDetections:
     """Run ``detector`` on each view of ``pano`` (BGR array) and merge the results.
 
     ``detector``: a :class:`Detector`, or any object with ``class_names`` and
@@ -647,10 +649,19 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
     ``candidate_confidence`` (under ``confidence``): the boxes scoring from it up to
     ``confidence`` are merged apart (across classes) and added as rows marked ``candidate``,
     except where they overlap a detection; the detections are the same as without it.
+
+    ``zoom`` (a :class:`.zoomlook.ZoomRule`, or None): the zoomed look. The small boxes
+    scoring from ``zoom.min_score`` under ``confidence`` that overlap no detection are cut
+    again at a higher pixel density and detected once more, all of a panorama's in one
+    network run (:func:`.zoomlook.zoomed_scores`); those scored ``confidence`` or more
+    there become detections with the zoomed score, class and box. The rest stay candidates
+    when from ``candidate_confidence``.
     """
     H, W = pano.shape[:2]
     view_images = list(views.cut_all(pano))
     lowest = confidence if candidate_confidence is None else min(confidence, candidate_confidence)
+    if zoom is not None:
+        lowest = min(lowest, zoom.min_score)
     batch = max(1, int(getattr(detector, "max_batch", 1)))
     all_boxes, all_scores, all_ids, all_views, all_complete, all_central = [], [], [], [], [], []
     all_upward: List[np.ndarray] = []
@@ -689,9 +700,37 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
                             for box in low.boxes()], bool).reshape(-1)
         low = low.subset(~on_sign)
         low.candidate[:] = True
+        if zoom is not None:
+            low = zoomed_look(detector, pano, low, confidence, zoom)
+        if candidate_confidence is None:
+            low = low.subset(~low.candidate)
+        else:
+            low = low.subset(~low.candidate | (low.score >= candidate_confidence))
         found = PanoramaDetections.concatenate([found, low])
     # candidates keep the network's box: the second look judges them on it, then fits them
     return fit_tall_boxes(pano, found, rows=~found.candidate) if fit_tall else found
+
+
+def zoomed_look(detector, pano: np.ndarray, low: PanoramaDetections, confidence: float,
+                zoom: ZoomRule) -> PanoramaDetections:
+    """``low`` (candidates of the panorama ``pano``) with those the zoomed look confirms
+    made detections: :func:`detect_panorama`'s ``zoom``."""
+    from .zoomlook import panorama_tiles, zoomable, zoomed_scores
+
+    rows = np.flatnonzero(zoomable(low.boxes(), low.score, zoom))
+    if not len(rows):
+        return low
+    boxes = low.boxes()[rows]
+    score, class_id, box = zoomed_scores(detector, panorama_tiles(pano, boxes, zoom), boxes, zoom,
+                                         confidence=confidence, wrap_px=pano.shape[1])
+    names = list(detector.class_names)
+    box = boxes_from_seam(box, pano.shape[1])   # the detections layer's form
+    for k, s, c, b in zip(rows, score, class_id, box):
+        if s >= confidence:
+            low.candidate[k] = False
+            low.score[k], low.class_id[k], low.class_name[k] = s, c, names[c]
+            low.u0[k], low.v0[k], low.u1[k], low.v1[k] = b
+    return low
 
 
 def fit_tall_boxes(pano: np.ndarray, found: PanoramaDetections, rows: Optional[np.ndarray] = None
@@ -752,7 +791,8 @@ def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidenc
                  iou_threshold: float = 0.45, min_box_px: float = 0.0,
                  progress: Progress = SILENT,
                  on_panorama: Optional[Callable[[np.ndarray, PanoramaDetections], object]] = None,
-                 prefetch: bool = True, candidate_confidence: Optional[float] = None) -> DriveDetections:
+                 prefetch: bool = True, candidate_confidence: Optional[float] = None,
+                 zoom: Optional[ZoomRule] = None) -> DriveDetections:
     """:func:`detect_panorama` on each panorama file; missing or corrupt files are skipped.
 
     ``on_panorama(pano, found)`` is called after each panorama is detected, while it is in
@@ -760,7 +800,8 @@ def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidenc
     (:func:`.detections.read_codes`); when it returns a :class:`PanoramaDetections`, that
     replaces ``found``. ``candidate_confidence``: boxes from this score up are kept as
     candidates for ``on_panorama`` (:func:`detect_panorama`, :func:`.rescue.second_look`);
-    those still marked candidate after it are dropped. Progress advances per view; cancel stops between
+    those still marked candidate after it are dropped. ``zoom``: :func:`detect_panorama`'s
+    zoomed look (a :class:`.zoomlook.ZoomRule`, or None for none). Progress advances per view; cancel stops between
     views. A skipped file adds ``(path, reason)`` to ``skipped`` and a warning to
     ``progress``. ``prefetch``: decode the next panorama in a background thread while this
     one is detected (OpenCV's decoder releases the GIL; two panoramas are in memory at once);
@@ -794,7 +835,7 @@ def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidenc
                 continue
             found = detect_panorama(detector, pano, views, confidence, iou_threshold,
                                     min_box_px=min_box_px, candidate_confidence=candidate_confidence,
-                                    progress=progress.sub(k / n, (k + 1) / n))
+                                    progress=progress.sub(k / n, (k + 1) / n), zoom=zoom)
             if on_panorama is not None:
                 progress.check()
                 answer = on_panorama(pano, found)

@@ -1,0 +1,134 @@
+"""The zoomed look (core.zoomlook, detect_panorama's ``zoom``): small boxes scored under the
+confidence are cut again at a higher pixel density, all of a panorama's in one detector input,
+and kept when the detector is then sure of them. The detector here is a stand-in whose score
+depends on how many pixels a blob has, as a real one's does for far signs: a blue blob under
+20 px high scores 0.3, one of 20 px or more 0.9; a dark blob scores 0.2 at any size."""
+import cv2
+import numpy as np
+import pytest
+from helpers.synthpano import disc_pano_box, paint_discs
+
+from roadsigns.core import detector as DT  # noqa: N812 (the tests' short module names)
+from roadsigns.core import zoomlook as Z  # noqa: N812
+from roadsigns.core.panorama import ViewSet
+
+BLUE, DARK = (230, 40, 30), (40, 40, 40)  # BGR
+CLASSES = ("warning", "prohibitory", "mandatory", "information", "stop", "yield")
+WIDTH = 1024
+
+
+class PixelHungryDetector:
+    """Boxes blue and dark blobs; blue ones are 'mandatory' and scored by their height in
+    pixels, dark ones 0.2. Its input is 256 x 128: two zoom tiles of 128 px side by side."""
+    class_names = list(CLASSES)
+    input_size = (256, 128)
+    max_batch = 1
+
+    def __init__(self):
+        self.images = []
+
+    def detect_many(self, images, confidence=0.25, iou_threshold=0.45):
+        self.images.extend(images)
+        return [self.detect(image, confidence, iou_threshold) for image in images]
+
+    def detect(self, image, confidence=0.25, iou_threshold=0.45):
+        boxes, scores, ids = [], [], []
+        for colour in (BLUE, DARK):
+            mask = np.all(np.abs(image.astype(int) - colour) < 25, axis=2).astype(np.uint8)
+            n, _, stats, _ = cv2.connectedComponentsWithStats(mask)
+            for x, y, w, h, area in stats[1:]:
+                score = (0.9 if h >= 20 else 0.3) if colour == BLUE else 0.2
+                if area >= 4 and score >= confidence:
+                    boxes.append([x, y, x + w, y + h])
+                    scores.append(score)
+                    ids.append(CLASSES.index("mandatory") if colour == BLUE else CLASSES.index("stop"))
+        return DT.ImageDetections(np.array(boxes, float).reshape(-1, 4), np.array(scores, float),
+                                  np.array(ids, np.int64))
+
+
+def _views():
+    return ViewSet.default(size_px=(256, 128), upward=False, fore_aft=False)
+
+
+def test_the_tiles_are_laid_out_row_by_row():
+    tiles = [np.full((32, 32, 3), k, np.uint8) for k in range(1, 8)]
+    out = Z.mosaics(tiles, 96, 64, 32)
+    assert [slots for _, slots in out] == [[0, 1, 2, 3, 4, 5], [6]]
+    first, second = out[0][0], out[1][0]
+    assert first.shape == (64, 96, 3)
+    assert first[40, 70, 0] == 6 and first[10, 40, 0] == 2    # slot (1, 2) holds tile 5, slot (0, 1) tile 1
+    assert second[10, 10, 0] == 7 and second[10, 50, 0] == Z.MOSAIC_FILL
+
+
+def test_a_tile_centres_the_box_at_the_size_asked():
+    az, el, radius = 60.0, 10.0, 2.0
+    pano = paint_discs([(az, el, radius, BLUE)], WIDTH)
+    box = disc_pano_box(az, el, radius, WIDTH)
+    (tile, to_pano), = Z.panorama_tiles(pano, box[None])
+    assert tile.shape == (128, 128, 3)
+    ys, xs = np.nonzero(tile[..., 0] > 160)   # bluer than halfway from the grey (90) to the disc (230)
+    assert abs(0.5 * (xs.min() + xs.max() + 1) - 64) < 2 and abs(0.5 * (ys.min() + ys.max() + 1) - 64) < 2
+    # the longer side (across) at box_px, within one panorama pixel (the painted disc's own
+    # quantisation): that is box_px / (box width in panorama pixels) tile pixels
+    one_pano_px = Z.DEFAULT_ZOOM.box_px / (box[2] - box[0])
+    assert abs((xs.max() + 1 - xs.min()) - Z.DEFAULT_ZOOM.box_px) < one_pano_px
+    back = to_pano(np.array([[xs.min(), ys.min(), xs.max() + 1, ys.max() + 1]], float))[0]
+    np.testing.assert_allclose(back, box, atol=1.0)
+
+
+def test_a_photographs_tile_maps_back_to_its_pixels():
+    image = np.full((200, 300, 3), 90, np.uint8)
+    image[100:120, 200:216] = BLUE                       # 16 x 20 px
+    box = np.array([200.0, 100.0, 216.0, 120.0])
+    (tile, to_image), = Z.image_tiles(image, box[None])
+    ys, xs = np.nonzero(np.all(np.abs(tile.astype(int) - BLUE) < 25, axis=2))
+    assert abs((ys.max() + 1 - ys.min()) - Z.DEFAULT_ZOOM.box_px) <= 2
+    np.testing.assert_allclose(to_image(np.array([[xs.min(), ys.min(), xs.max() + 1, ys.max() + 1]], float))[0],
+                               box, atol=1.0)
+    # a box at the image's corner: grey beyond the edge, and the map still holds
+    (corner, _), = Z.image_tiles(image, np.array([[0.0, 0.0, 10.0, 10.0]]))
+    assert corner[0, 0, 0] == Z.MOSAIC_FILL
+
+
+@pytest.mark.parametrize("az", [90.0, 180.0])   # 180: across the panorama's seam
+def test_a_small_sign_the_detector_is_unsure_of_is_kept_once_seen_closer(az):
+    pano = paint_discs([(az, 0.0, 3.5, BLUE), (-60.0, 0.0, 3.5, DARK)], WIDTH)
+    plain = DT.detect_panorama(PixelHungryDetector(), pano, _views(), 0.5, candidate_confidence=0.1)
+    assert len(plain) == 2 and plain.candidate.all()       # both too small to be sure of
+    detector = PixelHungryDetector()
+    zoomed = DT.detect_panorama(detector, pano, _views(), 0.5, candidate_confidence=0.1, zoom=Z.DEFAULT_ZOOM)
+    sure = zoomed.subset(~zoomed.candidate)
+    assert len(sure) == 1 and sure.class_name == ["mandatory"] and sure.score[0] == pytest.approx(0.9)
+    truth = disc_pano_box(az, 0.0, 3.5, WIDTH)
+    u0 = truth[0] % WIDTH
+    assert sure.u0[0] == pytest.approx(u0, abs=1.5) and sure.u1[0] - sure.u0[0] == pytest.approx(
+        truth[2] - truth[0], abs=2.0)
+    assert 0.0 <= sure.u0[0] < WIDTH                       # the detections layer's form across the seam
+    # the dark blob stays a candidate (0.2 zoomed too); both went through one extra detector input
+    assert zoomed.candidate.sum() == 1
+    assert len(detector.images) == len(_views()) + 1
+    # without the second look's candidates, what the zoomed look leaves is dropped
+    alone = DT.detect_panorama(PixelHungryDetector(), pano, _views(), 0.5, zoom=Z.DEFAULT_ZOOM)
+    assert len(alone) == 1 and not alone.candidate.any()
+
+
+def test_large_and_low_scored_boxes_are_not_zoomed():
+    boxes = np.array([[0, 0, 20, 30], [0, 0, 70, 30], [0, 0, 20, 30]], float)
+    np.testing.assert_array_equal(Z.zoomable(boxes, np.array([0.3, 0.3, 0.1])), [True, False, False])
+
+
+def test_a_zoomed_box_elsewhere_in_the_tile_does_not_count():
+    image = np.full((200, 300, 3), 90, np.uint8)
+    image[100:110, 200:208] = BLUE                       # the candidate: 8 x 10 px
+    box = np.array([[200.0, 100.0, 208.0, 110.0]])
+    score, class_id, best = Z.zoomed_scores(PixelHungryDetector(), Z.image_tiles(image, box), box)
+    assert score[0] == pytest.approx(0.9) and class_id[0] == CLASSES.index("mandatory")
+    np.testing.assert_allclose(best[0], box[0], atol=1.0)   # within a pixel of the photograph
+    # a candidate on nothing, a small blue square beside it in the same tile (sure, zoomed)
+    image[102:106, 160:164] = BLUE
+    nothing = np.array([[150.0, 100.0, 158.0, 110.0]])
+    (tile, _), = Z.image_tiles(image, nothing)
+    assert np.all(np.abs(tile.astype(int) - BLUE) < 25, axis=2).sum() > 100
+    score, class_id, best = Z.zoomed_scores(PixelHungryDetector(), Z.image_tiles(image, nothing), nothing)
+    assert score[0] == 0.0 and class_id[0] == -1
+    np.testing.assert_array_equal(best, nothing)
