@@ -134,11 +134,12 @@ def image_tiles(image: np.ndarray, boxes: np.ndarray, rule: ZoomRule = DEFAULT_Z
 def mosaics(tiles: Sequence[np.ndarray], input_w: int, input_h: int, tile_px: int
             ) -> List[Tuple[np.ndarray, List[int]]]:
     """The tiles laid out row by row in detector inputs of ``input_w`` x ``input_h``: a list
-    of (image, the tile indices in its slots, left to right and top to bottom)."""
+    of (image, the tile indices in its slots, left to right and top to bottom). An input
+    smaller than a tile takes one tile, the image a tile's size (the detector letterboxes it)."""
     per_row, rows = max(1, input_w // tile_px), max(1, input_h // tile_px)
     out = []
     for first in range(0, len(tiles), per_row * rows):
-        image = np.full((input_h, input_w, 3), MOSAIC_FILL, np.uint8)
+        image = np.full((max(input_h, tile_px), max(input_w, tile_px), 3), MOSAIC_FILL, np.uint8)
         slots = list(range(first, min(first + per_row * rows, len(tiles))))
         for slot, k in enumerate(slots):
             i, j = divmod(slot, per_row)

@@ -58,6 +58,9 @@ def test_the_tiles_are_laid_out_row_by_row():
     assert first.shape == (64, 96, 3)
     assert first[40, 70, 0] == 6 and first[10, 40, 0] == 2    # slot (1, 2) holds tile 5, slot (0, 1) tile 1
     assert second[10, 10, 0] == 7 and second[10, 50, 0] == Z.MOSAIC_FILL
+    # an input smaller than a tile: one tile an image, the tile's size
+    small = Z.mosaics(tiles[:2], 24, 24, 32)
+    assert [slots for _, slots in small] == [[0], [1]] and small[1][0].shape == (32, 32, 3)
 
 
 def test_a_tile_centres_the_box_at_the_size_asked():
