@@ -144,3 +144,34 @@ def test_second_look_adds_only_boxes_the_classifier_reads(qgis_process, scene_ti
                        seam_iou([r["u0"], r["v0"], r["u1"], r["v1"]], s["box"], width)) >= 0.3
                    for s in fronts[r["image"]]) for r in added]
     assert np.mean(on_sign) >= MIN_ON_SIGN_SHARE, f"{on_sign.count(False)} of {len(added)} added boxes on no sign"
+
+
+def test_zoomed_look_adds_sure_boxes_on_signs(qgis_process, scene_tiny_stations, scene_tiny, tmp_path):
+    """ZOOMED_LOOK (core/zoomlook.py), the second look off (RESCUE_CONFIDENCE at the
+    confidence) to see it alone: the detections of a run without it are all there, and each box
+    it adds scores the confidence or more and lies on a sign."""
+    _, scene = scene_tiny
+    runs = {}
+    for name, zoom in (("off", False), ("on", True)):
+        out = str(tmp_path / f"{name}.gpkg")
+        run = qgis_process.run("roadsigns:detectsigns", STATIONS=scene_tiny_stations, ZOOMED_LOOK=zoom,
+                               RESCUE_CONFIDENCE=DEFAULT_CONFIDENCE, OUTPUT=out)
+        assert run.returncode == 0, run.text
+        runs[name] = read_detections(out)
+
+    def key(r):
+        return r["image"], r["class"], round(r["u0"], 2), round(r["v0"], 2), round(r["u1"], 2), round(r["v1"], 2)
+    on = {key(r): r for r in runs["on"]}
+    assert all(key(r) in on for r in runs["off"])
+    before = {key(r) for r in runs["off"]}
+    added = [r for k, r in on.items() if k not in before]
+    assert added, "the zoomed look added nothing: the test shows nothing"
+    assert all(r["score"] >= DEFAULT_CONFIDENCE for r in added)
+    width = scene["image_width"]
+    fronts = {m["image"]: [s for s in m["signs"] if s["facing"] == "front" and s.get("visible_box")]
+              for m in scene["images"]}
+    off_sign = [(r["image"], r["class"], [round(r[k]) for k in ("u0", "v0", "u1", "v1")]) for r in added
+                if not any(max(seam_iou([r["u0"], r["v0"], r["u1"], r["v1"]], s["visible_box"], width),
+                               seam_iou([r["u0"], r["v0"], r["u1"], r["v1"]], s["box"], width)) >= 0.3
+                           for s in fronts[r["image"]])]
+    assert len(off_sign) <= (1 - MIN_ON_SIGN_SHARE) * len(added), f"added boxes on no sign: {off_sign}"
