@@ -224,6 +224,10 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
             else:
                 on_panorama = partial(read_codes, classifier)
             zoom = DEFAULT_ZOOM if self.parameterAsBoolean(parameters, self.ZOOMED_LOOK, context) else None
+            if zoom is not None:
+                feedback.pushInfo(self.tr("Zoomed look: boxes of at most {} px scored from {} to {} are detected again "
+                                          "at a higher pixel density.").format(int(zoom.max_box_px), zoom.min_score,
+                                                                               confidence))
             found = detect_drive(detector, [stations.path[k] for k in chosen], views, confidence,
                                  min_box_px=self.parameterAsDouble(parameters, self.MIN_SIZE, context),
                                  progress=progress.sub(0.0, 0.95), on_panorama=on_panorama,

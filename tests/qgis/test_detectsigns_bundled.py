@@ -157,6 +157,7 @@ def test_zoomed_look_adds_sure_boxes_on_signs(qgis_process, scene_tiny_stations,
         run = qgis_process.run("roadsigns:detectsigns", STATIONS=scene_tiny_stations, ZOOMED_LOOK=zoom,
                                RESCUE_CONFIDENCE=DEFAULT_CONFIDENCE, OUTPUT=out)
         assert run.returncode == 0, run.text
+        assert ("Zoomed look" in run.text) == zoom
         runs[name] = read_detections(out)
 
     def key(r):
