@@ -197,11 +197,16 @@ class PerspectiveView:
         """``cv2.remap`` maps (fixed-point pair) cutting this view from a W x H panorama; cached."""
         return _remap_maps(self, int(pano_width_px), int(pano_height_px))
 
-    def cut(self, pano: np.ndarray) -> np.ndarray:
-        """The view's image from a panorama array (no reduction; see :meth:`ViewSet.cut_all`)."""
+    def cut(self, pano: np.ndarray, cached: bool = True) -> np.ndarray:
+        """The view's image from a panorama array (no reduction; see :meth:`ViewSet.cut_all`).
+        ``cached=False``: the maps are made for this cut alone and not kept (a view cut once,
+        such as a zoomed look's tile)."""
         import cv2
 
-        m1, m2 = self.remap_maps(pano.shape[1], pano.shape[0])
+        if cached:
+            m1, m2 = self.remap_maps(pano.shape[1], pano.shape[0])
+        else:
+            m1, m2 = _float_maps(self, pano.shape[1], pano.shape[0])
         # BORDER_WRAP joins the columns across the +-180 deg seam; rows never leave the image
         # (map_y is clamped), so wrapping never joins top and bottom.
         return cv2.remap(pano, m1, m2, cv2.INTER_LINEAR, borderMode=cv2.BORDER_WRAP)
@@ -269,14 +274,20 @@ class PerspectiveView:
         return self.focal_px / np.cos(np.radians(0.5 * self.hfov_deg)) ** 2
 
 
-@functools.lru_cache(maxsize=48)
-def _remap_maps(view: PerspectiveView, W: int, H: int):
-    import cv2
-
+def _float_maps(view: PerspectiveView, W: int, H: int):
+    """``cv2.remap`` maps (float x, float y) cutting ``view`` from a W x H panorama."""
     ys, xs = np.mgrid[0:view.height_px, 0:view.width_px].astype(float) + 0.5
     u, v = geometry.ray_to_pixel(view.pixel_to_ray(xs, ys), W, H)
     map_x = (u - 0.5).astype(np.float32)  # cv2 samples pixel centres at integer coordinates
     map_y = np.clip(v - 0.5, 0.0, H - 1.0).astype(np.float32)
+    return map_x, map_y
+
+
+@functools.lru_cache(maxsize=48)
+def _remap_maps(view: PerspectiveView, W: int, H: int):
+    import cv2
+
+    map_x, map_y = _float_maps(view, W, H)
     return cv2.convertMaps(map_x, map_y, cv2.CV_16SC2)
 
 
