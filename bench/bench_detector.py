@@ -554,13 +554,12 @@ def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, cla
     sure, cands = photo_candidates(boxes, scores, confidence)
     if zoom is not None and len(cands):
         boxes, scores, ids = np.array(boxes, float), np.array(scores, float), np.array(ids)
-        z = cands[zoomlook_mod.zoomable(boxes[cands], scores[cands], zoom)]
-        zoomed, zoomed_id, zoomed_box = zoomlook_mod.zoomed_scores(
-            detector, zoomlook_mod.image_tiles(image_bgr, boxes[z], zoom), boxes[z], zoom, confidence)
-        ok = zoomed >= confidence
-        boxes[z[ok]], scores[z[ok]], ids[z[ok]] = zoomed_box[ok], zoomed[ok], zoomed_id[ok]
-        sure[z[ok]] = True
-        cands = cands[~np.isin(cands, z[ok])]
+        rows, zoomed, zoomed_id, zoomed_box = zoomlook_mod.confirm(detector, image_bgr, boxes[cands], scores[cands],
+                                                                   confidence, zoom, panorama=False)
+        kept = cands[rows]
+        boxes[kept], scores[kept], ids[kept] = zoomed_box, zoomed, zoomed_id
+        sure[kept] = True
+        cands = cands[~np.isin(cands, kept)]
     if len(cands):
         sheeting = np.array([sheeting_mod.sheeting_fraction(image_bgr, boxes[j]) for j in cands])
         cands = cands[rescue_mod.worth_reading(boxes[cands], sheeting, scores[cands], rule)]

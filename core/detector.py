@@ -40,7 +40,7 @@ import numpy as np
 from . import sheeting
 from .errors import SILENT, InputError, Progress
 from .panorama import ViewSet, boxes_from_seam
-from .zoomlook import ZoomRule
+from .zoomlook import ZoomRule, confirm
 
 #: Output layouts this module decodes, as named in messages.
 LAYOUTS = {
@@ -714,22 +714,14 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
 def zoomed_look(detector, pano: np.ndarray, low: PanoramaDetections, confidence: float,
                 zoom: ZoomRule) -> PanoramaDetections:
     """``low`` (candidates of the panorama ``pano``) with those the zoomed look confirms
-    made detections: :func:`detect_panorama`'s ``zoom``."""
-    from .zoomlook import panorama_tiles, zoomable, zoomed_scores
-
-    rows = np.flatnonzero(zoomable(low.boxes(), low.score, zoom))
-    if not len(rows):
-        return low
-    boxes = low.boxes()[rows]
-    score, class_id, box = zoomed_scores(detector, panorama_tiles(pano, boxes, zoom), boxes, zoom,
-                                         confidence=confidence, wrap_px=pano.shape[1])
+    (:func:`.zoomlook.confirm`) made detections: :func:`detect_panorama`'s ``zoom``."""
+    rows, score, class_id, box = confirm(detector, pano, low.boxes(), low.score, confidence, zoom)
     names = list(detector.class_names)
     box = boxes_from_seam(box, pano.shape[1])   # the detections layer's form
     for k, s, c, b in zip(rows, score, class_id, box):
-        if s >= confidence:
-            low.candidate[k] = False
-            low.score[k], low.class_id[k], low.class_name[k] = s, c, names[c]
-            low.u0[k], low.v0[k], low.u1[k], low.v1[k] = b
+        low.candidate[k] = False
+        low.score[k], low.class_id[k], low.class_name[k] = s, c, names[c]
+        low.u0[k], low.v0[k], low.u1[k], low.v1[k] = b
     return low
 
 

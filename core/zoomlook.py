@@ -188,3 +188,24 @@ def zoomed_scores(detector, tiles: Sequence[Tile], boxes: np.ndarray, rule: Zoom
             if _iou(mapped, boxes[k]) >= rule.min_iou:
                 score[k], class_id[k], best_box[k] = float(s), int(c), mapped
     return score, class_id, best_box
+
+
+def confirm(detector, image: np.ndarray, boxes: np.ndarray, scores: np.ndarray, confidence: float,
+            rule: ZoomRule = DEFAULT_ZOOM, panorama: bool = True
+            ) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The zoomed look on candidates ``boxes`` scored ``scores`` in ``image`` (a panorama,
+    else a photograph): the rows the detector scores at ``confidence`` or more once the
+    :func:`zoomable` ones are cut again (:func:`panorama_tiles` or :func:`image_tiles`) and
+    detected in mosaics (:func:`zoomed_scores`), with their zoomed scores, class ids and boxes
+    (a panorama's on the candidate's side of its seam)."""
+    boxes = np.asarray(boxes, float).reshape(-1, 4)
+    rows = np.flatnonzero(zoomable(boxes, scores, rule))
+    if not len(rows):
+        z = np.zeros(0)
+        return rows, z, np.zeros(0, np.int64), np.zeros((0, 4))
+    tiles = panorama_tiles(image, boxes[rows], rule) if panorama else image_tiles(image, boxes[rows], rule)
+    score, class_id, box = zoomed_scores(detector, tiles, boxes[rows], rule, confidence=confidence,
+                                         wrap_px=image.shape[1] if panorama else 0.0)
+    kept = score >= confidence
+    return rows[kept], score[kept], class_id[kept], box[kept]
+

@@ -49,6 +49,19 @@ def read_as_its_class(detection):
     return klass == (unlisted_code_class(code) or class_of_code(code, CODES_TABLE, [klass]))
 
 
+def front_faces(scene):
+    """Per image, the signs it shows front on (with a visible box)."""
+    return {m["image"]: [s for s in m["signs"] if s["facing"] == "front" and s.get("visible_box")]
+            for m in scene["images"]}
+
+
+def on_a_sign(detection, faces, width, min_iou=0.3):
+    """Whether a detection's box overlaps one of ``faces`` (visible or whole box) by ``min_iou``."""
+    box = [detection["u0"], detection["v0"], detection["u1"], detection["v1"]]
+    return any(max(seam_iou(box, s["visible_box"], width), seam_iou(box, s["box"], width)) >= min_iou
+               for s in faces)
+
+
 def read_detections(path):
     dataset = ogr.Open(path)
     rows = [{k: f[k] for k in ("image", "class", "score", "code", "code_score", "u0", "v0", "u1", "v1")}
@@ -99,15 +112,10 @@ def test_bundled_model_finds_the_clearly_visible_signs(detections, scene_tiny):
 def test_bundled_model_detections_lie_on_signs(detections, scene_tiny):
     _, scene = scene_tiny
     width = scene["image_width"]
-    fronts = {m["image"]: [s for s in m["signs"] if s["facing"] == "front" and s.get("visible_box")]
-              for m in scene["images"]}
+    fronts = front_faces(scene)
     assert detections
-    off = []
-    for d in detections:
-        box = [d["u0"], d["v0"], d["u1"], d["v1"]]
-        if not any(max(seam_iou(box, s["visible_box"], width), seam_iou(box, s["box"], width)) >= 0.3
-                   for s in fronts[d["image"]]):
-            off.append((d["image"], d["class"], round(d["score"], 2), [round(v) for v in box]))
+    off = [(d["image"], d["class"], round(d["score"], 2), [round(d[k]) for k in ("u0", "v0", "u1", "v1")])
+           for d in detections if not on_a_sign(d, fronts[d["image"]], width)]
     assert len(off) <= (1 - MIN_ON_SIGN_SHARE) * len(detections), \
         f"{len(off)} of {len(detections)} detections on no sign: {off}"
     # the default CONFIDENCE, or kept by the second look (a code of its class read)
@@ -138,11 +146,8 @@ def test_second_look_adds_only_boxes_the_classifier_reads(qgis_process, scene_ti
     assert len(added) >= 3, "the second look kept nothing: the test shows nothing"
     assert all(read_as_its_class(r) for r in added), [(r["class"], r["code"], r["code_score"]) for r in added]
     width = scene["image_width"]
-    fronts = {m["image"]: [s for s in m["signs"] if s["facing"] == "front" and s.get("visible_box")]
-              for m in scene["images"]}
-    on_sign = [any(max(seam_iou([r["u0"], r["v0"], r["u1"], r["v1"]], s["visible_box"], width),
-                       seam_iou([r["u0"], r["v0"], r["u1"], r["v1"]], s["box"], width)) >= 0.3
-                   for s in fronts[r["image"]]) for r in added]
+    fronts = front_faces(scene)
+    on_sign = [on_a_sign(r, fronts[r["image"]], width) for r in added]
     assert np.mean(on_sign) >= MIN_ON_SIGN_SHARE, f"{on_sign.count(False)} of {len(added)} added boxes on no sign"
 
 
@@ -169,10 +174,7 @@ def test_zoomed_look_adds_sure_boxes_on_signs(qgis_process, scene_tiny_stations,
     assert added, "the zoomed look added nothing: the test shows nothing"
     assert all(r["score"] >= DEFAULT_CONFIDENCE for r in added)
     width = scene["image_width"]
-    fronts = {m["image"]: [s for s in m["signs"] if s["facing"] == "front" and s.get("visible_box")]
-              for m in scene["images"]}
+    fronts = front_faces(scene)
     off_sign = [(r["image"], r["class"], [round(r[k]) for k in ("u0", "v0", "u1", "v1")]) for r in added
-                if not any(max(seam_iou([r["u0"], r["v0"], r["u1"], r["v1"]], s["visible_box"], width),
-                               seam_iou([r["u0"], r["v0"], r["u1"], r["v1"]], s["box"], width)) >= 0.3
-                           for s in fronts[r["image"]])]
+                if not on_a_sign(r, fronts[r["image"]], width)]
     assert len(off_sign) <= (1 - MIN_ON_SIGN_SHARE) * len(added), f"added boxes on no sign: {off_sign}"
