@@ -30,10 +30,13 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import shutil
 import struct
 import sys
+
+import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
@@ -127,6 +130,30 @@ def drive_length_km(drive: str) -> float:
     return float((read_drive(drive) or {}).get("length_m", 0.0)) / 1000.0
 
 
+def aligned_spacing_m(stations_gpkg: str, spacing_m: float, align_m: float) -> float:
+    """The spacing (metres east, at least ``spacing_m``) that puts each copy's first station a
+    whole multiple of ``align_m`` metres of the stations' track after the last copy's first
+    station: the track of one copy (its stations in order) and the straight link from its last
+    station to the next copy's first. With ``align_m`` the windows' length of
+    ``findsignsincloud`` (``CloudSignParams.window_m``), which cuts the track into windows from
+    its start, every copy is cut into the same windows holding the same points (but for the
+    few metres past each copy's ends, which lie along the link to the next copy): the longer
+    drive is the same work window for window, and what its memory adds is the drive's own."""
+    from osgeo import ogr
+
+    source = ogr.Open(stations_gpkg)
+    xy = np.array([(f.GetGeometryRef().GetX(), f.GetGeometryRef().GetY()) for f in source.GetLayer(0)])
+    track_m = float(np.linalg.norm(np.diff(xy, axis=0), axis=1).sum())
+    dx, dy = xy[0, 0] - xy[-1, 0], xy[0, 1] - xy[-1, 1]   # first station less the last
+
+    def per_copy_m(spacing):
+        return track_m + math.hypot(dx + spacing, dy)
+
+    whole = math.ceil(per_copy_m(spacing_m) / align_m)
+    link_m = whole * align_m - track_m
+    return math.sqrt(link_m * link_m - dy * dy) - dx
+
+
 def stage_args(stage: str, folder: str) -> list:
     cloud, out = os.path.join(folder, "tiles"), os.path.join(folder, "out")
     os.makedirs(out, exist_ok=True)
@@ -149,6 +176,9 @@ def main(argv=None) -> int:
     ap.add_argument("--copies", type=int, nargs="+", default=[3],
                     help="the longer drives, in copies of the drive (several: does the growth level off?)")
     ap.add_argument("--spacing", type=float, default=2000.0, help="metres between the copies (more than the drive)")
+    ap.add_argument("--align-m", type=float,
+                    help="lay the copies so each starts a whole multiple of this many metres of track after "
+                         "the last (findsignsincloud's windows: 50): the same windows in every copy")
     ap.add_argument("--stages", nargs="+", choices=STAGES, default=list(STAGES[:3]))
     ap.add_argument("--work", help="where the copies go (default DRIVE/repeat)")
     ap.add_argument("--json")
@@ -160,6 +190,10 @@ def main(argv=None) -> int:
         sys.exit(f"{chain} has no chain outputs: run bench/bench_drive.py --preset drive1k first")
     work = a.work or os.path.join(a.drive, "repeat")
     counts = sorted({1, *a.copies})
+    if a.align_m:
+        a.spacing = aligned_spacing_m(os.path.join(chain, "stations.gpkg"), a.spacing, a.align_m)
+        print(f"copies {a.spacing:.3f} m apart: each starts a whole multiple of {a.align_m:g} m of track "
+              "after the last", flush=True)
     drives = {}
     for copies in counts:
         folder = os.path.join(work, f"x{copies}")
@@ -194,8 +228,8 @@ def main(argv=None) -> int:
                   f"{rec['time_ratio']:.2f} (linear: {copies:.2f})", flush=True)
     if a.json:
         with open(a.json, "w") as f:
-            json.dump({"drive": a.drive, "copies": counts[1:], "spacing_m": a.spacing, "stages": results,
-                       "features": {k: v["features"] for k, v in drives.items()}}, f, indent=1)
+            json.dump({"drive": a.drive, "copies": counts[1:], "spacing_m": a.spacing, "align_m": a.align_m,
+                       "stages": results, "features": {k: v["features"] for k, v in drives.items()}}, f, indent=1)
     return 0
 
 
