@@ -20,9 +20,13 @@ itself, so the long drive is N times the same work:
 Each stage then runs through ``qgis_process`` on the drive and on its copies, each in a
 process of its own: wall time, peak RSS and their ratios are printed (memory ratio 1.00:
 flat), and the growth per kilometre of drive (``drive.json``'s length, the gaps between the
-copies not counted). Nothing is timed against a threshold: read the ratios.
+copies not counted). Nothing is timed against a threshold: read the ratios. One run's
+peak moves by tens of MB on the same input (which windows or blocks the two threads hold
+at once), so ``--repeats N`` runs each stage N times on each drive, alternating, and
+compares the medians (the ranges printed beside them).
 
     .venv/bin/python bench/bench_drive_repeat.py --copies 3
+    .venv/bin/python bench/bench_drive_repeat.py --copies 9 --repeats 3 --align-m 50 --stages findsignsincloud
     .venv/bin/python bench/bench_drive_repeat.py --copies 3 9 27 --stages findsignsincloud \\
         projectdetections refinesigns --json bench/out/drive-repeat.json
 """
@@ -154,6 +158,16 @@ def aligned_spacing_m(stations_gpkg: str, spacing_m: float, align_m: float) -> f
     return math.sqrt(link_m * link_m - dy * dy) - dx
 
 
+def summary(runs: list) -> dict:
+    """The median wall time and peak of a stage's runs on one drive, the peaks' range and
+    every run: one run's peak moves with which windows or blocks the two threads happen to
+    hold at once (tens of MB on the same input), so a ratio of single runs can mislead."""
+    peaks = sorted(r["peak_rss_mb"] for r in runs)
+    return {"wall_s": round(float(np.median([r["wall_s"] for r in runs])), 1),
+            "peak_rss_mb": round(float(np.median(peaks)), 1), "peak_rss_mb_range": [peaks[0], peaks[-1]],
+            "runs": runs}
+
+
 def stage_args(stage: str, folder: str) -> list:
     cloud, out = os.path.join(folder, "tiles"), os.path.join(folder, "out")
     os.makedirs(out, exist_ok=True)
@@ -180,6 +194,8 @@ def main(argv=None) -> int:
                     help="lay the copies so each starts a whole multiple of this many metres of track after "
                          "the last (findsignsincloud's windows: 50): the same windows in every copy")
     ap.add_argument("--stages", nargs="+", choices=STAGES, default=list(STAGES[:3]))
+    ap.add_argument("--repeats", type=int, default=1,
+                    help="run each stage this many times on each drive, alternating; the medians are compared")
     ap.add_argument("--work", help="where the copies go (default DRIVE/repeat)")
     ap.add_argument("--json")
     a = ap.parse_args(argv)
@@ -206,17 +222,19 @@ def main(argv=None) -> int:
     q = QgisProcess()
     results = []
     for stage in a.stages:
-        runs = {}
-        for copies in counts:
-            r = q("run", "roadsigns:" + stage, "--", *stage_args(stage, drives[copies]["folder"]), timeout=7200)
-            if r.returncode != 0:
-                print(r.text[-3000:])
-                sys.exit(f"{stage} on x{copies} failed")
-            runs[copies] = {"wall_s": round(r.wall_s, 1), "peak_rss_mb": round(r.peak_rss_mb, 1)}
-            print(f"{stage:<18} x{copies:<3} {r.wall_s:8.1f} s  peak {r.peak_rss_mb:7.0f} MB", flush=True)
-        one = runs[1]
+        runs = {copies: [] for copies in counts}
+        for repeat in range(a.repeats):     # alternated: 1 x, N x, 1 x, N x, ...
+            for copies in counts:
+                r = q("run", "roadsigns:" + stage, "--", *stage_args(stage, drives[copies]["folder"]), timeout=7200)
+                if r.returncode != 0:
+                    print(r.text[-3000:])
+                    sys.exit(f"{stage} on x{copies} failed")
+                runs[copies].append({"wall_s": round(r.wall_s, 1), "peak_rss_mb": round(r.peak_rss_mb, 1)})
+                print(f"{stage:<18} x{copies:<3} {r.wall_s:8.1f} s  peak {r.peak_rss_mb:7.0f} MB"
+                      + (f"  (run {repeat + 1} of {a.repeats})" if a.repeats > 1 else ""), flush=True)
+        one = summary(runs[1])
         for copies in counts[1:]:
-            many = runs[copies]
+            many = summary(runs[copies])
             rec = {"stage": stage, "copies": copies, "x1": one, f"x{copies}": many,
                    "memory_ratio": round(many["peak_rss_mb"] / one["peak_rss_mb"], 3),
                    "time_ratio": round(many["wall_s"] / one["wall_s"], 3)}
@@ -224,12 +242,16 @@ def main(argv=None) -> int:
                 rec["mb_per_km"] = round((many["peak_rss_mb"] - one["peak_rss_mb"]) / ((copies - 1) * length_km), 2)
             results.append(rec)
             per_km = f", {rec['mb_per_km']:+.1f} MB a km of drive" if "mb_per_km" in rec else ""
+            spread = (f" (medians of {a.repeats} runs; peaks x1 {one['peak_rss_mb_range'][0]:.0f}-"
+                      f"{one['peak_rss_mb_range'][1]:.0f}, x{copies} {many['peak_rss_mb_range'][0]:.0f}-"
+                      f"{many['peak_rss_mb_range'][1]:.0f} MB)" if a.repeats > 1 else "")
             print(f"{stage:<18} x{copies} / x1: memory {rec['memory_ratio']:.2f}{per_km}, time "
-                  f"{rec['time_ratio']:.2f} (linear: {copies:.2f})", flush=True)
+                  f"{rec['time_ratio']:.2f} (linear: {copies:.2f}){spread}", flush=True)
     if a.json:
         with open(a.json, "w") as f:
             json.dump({"drive": a.drive, "copies": counts[1:], "spacing_m": a.spacing, "align_m": a.align_m,
-                       "stages": results, "features": {k: v["features"] for k, v in drives.items()}}, f, indent=1)
+                       "repeats": a.repeats, "stages": results,
+                       "features": {k: v["features"] for k, v in drives.items()}}, f, indent=1)
     return 0
 
 
