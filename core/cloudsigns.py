@@ -692,9 +692,15 @@ def find_signs_in_cloud(cloud_path: Union[str, CloudSource], track: Union[Track,
                 rows, ground_rows = spool.read("points", window.index), spool.read("ground", window.index)
                 parts = split_window(window, rows["s"], params.margin_m, params.window_max_points,
                                      params.margin_m)
-                for part, part_rows in parts:   # the ground is thinned: each part takes the window's
-                    yield part, (rows if len(parts) == 1 else rows[part_rows]), ground_rows
+                if len(parts) == 1:
+                    yield parts[0][0], rows, ground_rows
+                    del rows
+                    continue
+                # a dense window is not held while its parts are searched: each part's rows are read
+                # from the window's file as the part starts (the ground is thinned: each takes the window's)
                 del rows
+                for part, part_rows in parts:
+                    yield part, spool.read("points", window.index, part_rows), ground_rows
 
         def search(item: Tuple[Window, np.ndarray, np.ndarray]) -> _WindowResult:
             window, rows, ground_rows = item

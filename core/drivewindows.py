@@ -325,16 +325,28 @@ class Spool:
         if self._behind is not None:
             self._behind.wait()
 
-    def read(self, kind: str, index: int) -> np.ndarray:
-        """All rows of ``kind`` appended to ``index``."""
+    def read(self, kind: str, index: int, rows: Optional[np.ndarray] = None) -> np.ndarray:
+        """All rows of ``kind`` appended to ``index``, or only those at the positions
+        ``rows`` (an index array into them, read through a memory map of the file: the
+        other rows are not copied into memory)."""
         self._settle()
         if not self._read_back:      # the writing pass is over: give its heap back
             self._read_back = True
             release_freed_memory()
         path = self._path(kind, index)
         if not os.path.exists(path):
+            if rows is not None and len(rows):
+                raise IndexError("rows {} of an empty spool file".format(int(np.max(rows))))
             return np.zeros(0, dtype=self.dtypes[kind])
-        return np.fromfile(path, dtype=self.dtypes[kind])
+        if rows is None:
+            return np.fromfile(path, dtype=self.dtypes[kind])
+        if os.path.getsize(path) == 0 or len(rows) == 0:
+            return np.zeros(0, dtype=self.dtypes[kind])[np.asarray(rows, dtype=np.int64)]
+        mapped = np.memmap(path, dtype=self.dtypes[kind], mode="r")
+        try:
+            return np.array(mapped[np.asarray(rows, dtype=np.int64)])
+        finally:
+            del mapped                 # unmapped: its pages are the file's, not this process's
 
     def count(self, kind: str, index: int) -> int:
         """How many rows of ``kind`` have been appended to ``index``."""

@@ -234,6 +234,58 @@ def test_dense_windows_searched_in_parts_give_the_same_answer(built_path, built_
     assert len(pa) and pa.shape == pb.shape and np.abs(pa - pb).max() <= 0.011
 
 
+def test_a_dense_window_is_not_held_while_its_parts_are_searched(built_path, monkeypatch):
+    """A window searched in parts is read whole once, to cut it; each part's rows are then read
+    from the spool's file, so no whole window is held while a part of it is searched (fails
+    where the parts are cut from the whole window, kept meanwhile)."""
+    import gc
+    import weakref
+
+    from roadsigns.core import drivewindows
+
+    whole_reads = []
+    read = drivewindows.Spool.read
+
+    def tracked_read(self, kind, index, rows=None):
+        out = read(self, kind, index, rows)
+        if kind == "points" and rows is None:
+            whole_reads.append(weakref.ref(out))
+        return out
+
+    held = []
+    process_window = CS._process_window
+
+    def tracked_process_window(window, rows, *args, **kwargs):
+        gc.collect()
+        held.append(sum(1 for ref in whole_reads if ref() is not None and ref() is not rows))
+        return process_window(window, rows, *args, **kwargs)
+
+    monkeypatch.setattr(drivewindows.Spool, "read", tracked_read)
+    monkeypatch.setattr(CS, "_process_window", tracked_process_window)
+    result = CS.find_signs_in_cloud(built_path, built_track(),
+                                    params=CS.CloudSignParams(window_max_points=800, window_threads=1))
+    assert result.n_parts >= 2 * result.n_windows and len(held) == result.n_parts
+    assert len(whole_reads) == result.n_windows and max(held) == 0
+
+
+def test_a_spool_reads_a_files_rows_by_position(tmp_path):
+    dtype = np.dtype([("s", "f4"), ("k", "i8")])
+    with WindowSpool(make_windows(10.0, 10.0), 0.0, {"p": dtype}, folder=str(tmp_path)) as spool:
+        rows = np.zeros(50, dtype)
+        rows["s"], rows["k"] = np.linspace(0.0, 9.9, 50), np.arange(50)
+        spool.add("p", rows["s"], rows)
+        whole = spool.read("p", 0)
+        pick = np.array([3, 0, 49, 17, 17])
+        got = spool.read("p", 0, pick)
+        assert got.dtype == dtype and np.array_equal(got, whole[pick])
+        assert len(spool.read("p", 0, np.zeros(0, np.int64))) == 0
+        assert len(spool.read("p", 5, np.zeros(0, np.int64))) == 0     # no file: nothing appended
+        with pytest.raises(IndexError):
+            spool.read("p", 0, np.array([50]))
+        with pytest.raises(IndexError):
+            spool.read("p", 5, np.array([0]))
+
+
 @pytest.mark.parametrize("window", [Window(3, 100.0, 150.0), Window(0, -np.inf, 50.0), Window(9, 450.0, np.inf)])
 def test_split_window_parts_tile_the_core_and_keep_their_margins(window):
     rng = np.random.default_rng(1)
