@@ -334,19 +334,16 @@ class Spool:
             self._read_back = True
             release_freed_memory()
         path = self._path(kind, index)
-        if not os.path.exists(path):
-            if rows is not None and len(rows):
-                raise IndexError("rows {} of an empty spool file".format(int(np.max(rows))))
-            return np.zeros(0, dtype=self.dtypes[kind])
+        if not os.path.exists(path) or os.path.getsize(path) == 0:     # nothing appended
+            empty = np.zeros(0, dtype=self.dtypes[kind])
+            return empty if rows is None else empty[np.asarray(rows, dtype=np.int64)]
         if rows is None:
             return np.fromfile(path, dtype=self.dtypes[kind])
-        if os.path.getsize(path) == 0 or len(rows) == 0:
-            return np.zeros(0, dtype=self.dtypes[kind])[np.asarray(rows, dtype=np.int64)]
         mapped = np.memmap(path, dtype=self.dtypes[kind], mode="r")
-        try:
-            return np.array(mapped[np.asarray(rows, dtype=np.int64)])
+        try:   # fancy indexing copies the rows out of the map: a plain array, not the file's pages
+            return mapped[np.asarray(rows, dtype=np.int64)].view(np.ndarray)
         finally:
-            del mapped                 # unmapped: its pages are the file's, not this process's
+            del mapped
 
     def count(self, kind: str, index: int) -> int:
         """How many rows of ``kind`` have been appended to ``index``."""
