@@ -339,11 +339,8 @@ class Spool:
             return empty if rows is None else empty[np.asarray(rows, dtype=np.int64)]
         if rows is None:
             return np.fromfile(path, dtype=self.dtypes[kind])
-        mapped = np.memmap(path, dtype=self.dtypes[kind], mode="r")
-        try:   # fancy indexing copies the rows out of the map: a plain array, not the file's pages
-            return mapped[np.asarray(rows, dtype=np.int64)].view(np.ndarray)
-        finally:
-            del mapped
+        # fancy indexing copies the rows out of the map, which is let go with this expression
+        return np.memmap(path, dtype=self.dtypes[kind], mode="r")[np.asarray(rows, dtype=np.int64)].view(np.ndarray)
 
     def count(self, kind: str, index: int) -> int:
         """How many rows of ``kind`` have been appended to ``index``."""

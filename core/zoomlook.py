@@ -201,11 +201,9 @@ def confirm(detector, image: np.ndarray, boxes: np.ndarray, scores: np.ndarray, 
     boxes = np.asarray(boxes, float).reshape(-1, 4)
     rows = np.flatnonzero(zoomable(boxes, scores, rule))
     if not len(rows):
-        z = np.zeros(0)
-        return rows, z, np.zeros(0, np.int64), np.zeros((0, 4))
+        return rows, np.zeros(0), np.zeros(0, np.int64), np.zeros((0, 4))
     tiles = panorama_tiles(image, boxes[rows], rule) if panorama else image_tiles(image, boxes[rows], rule)
     score, class_id, box = zoomed_scores(detector, tiles, boxes[rows], rule, confidence=confidence,
                                          wrap_px=image.shape[1] if panorama else 0.0)
     kept = score >= confidence
     return rows[kept], score[kept], class_id[kept], box[kept]
-
