@@ -11,7 +11,9 @@
    gaps kept when large) -> intensity filter with an Otsu threshold on the cluster, applied
    only when it splits off a retroreflective mode that is bright for this cloud (``median +
    4 MAD`` of its non-ground points; faded faces keep all their points) -> RANSAC plane
-   constrained to near-vertical, fitted to the bright points -> points within 2.5 sigma of it
+   constrained to near-vertical, fitted to the bright points (to all of them when that plane
+   turns far from the views' normal: a few bright specks on a faded face) -> points within
+   2.5 sigma of it
    (darker ones only where they form a surface: the back face) -> PCA dimensionality of each
    point's neighbourhood, dropping clearly linear points (the pole) -> convexity test
    (traffic mirrors are curved) -> the outline in the plane: the points' extent, widened up
@@ -191,6 +193,9 @@ class RefineParams:
     major_cluster_share: float = 0.15    # clusters this big are kept besides the seeds' ones
     plane_threshold_m: float = 0.04
     max_tilt_deg: float = 20.0           # panels lean at most this from vertical
+    #: a plane through the bright points that turns more than this from the views' normal is
+    #: not the face (a faded face with a few bright specks): the plane goes through all points
+    max_bright_plane_turn_deg: float = 15.0
     pca_radius_m: float = 0.15           # at least; else 3 x the point spacing
     min_panel_points: int = 12
     box_extent_allowance_m: float = 0.10  # boxes may widen the points' outline (corners)
@@ -484,7 +489,7 @@ def extract_panel(cand: ProjectionResult, rows: np.ndarray, index: TiledIndex, b
     spacing = point_spacing_m(pts.xyz_world)
     pts = seeded_clusters(pts, X, params)
     bright_mask = retroreflective_mask(pts.attributes["intensity"].astype(float), bright, params)
-    on_plane = points_on_plane(pts, bright_mask, spacing, params)
+    on_plane = points_on_plane(pts, bright_mask, spacing, params, n0)
     if on_plane is None:
         return None, Message("no near-vertical plane")
     panel_pts, plane = on_plane
@@ -559,14 +564,24 @@ def retroreflective_mask(intensity: np.ndarray, bright: float, params: RefinePar
 
 
 def points_on_plane(pts: PointSet, bright_mask: np.ndarray, spacing_m: float,
-                    params: RefineParams) -> Optional[Tuple[PointSet, Plane]]:
+                    params: RefineParams, views_normal: Optional[np.ndarray] = None
+                    ) -> Optional[Tuple[PointSet, Plane]]:
     """RANSAC plane (leaning at most ``max_tilt_deg`` from vertical) through the points
     ``bright_mask``, and the points within 2.5 sigma of it (1.5 cm to ``plane_threshold_m``):
     the bright ones, and the darker ones whose neighbourhood (radius ``pca_radius_m``, at
     least 3 x ``spacing_m``) is planar (the back face seen where the front was not scanned),
-    not linear (the pole). None when the plane has fewer than ``min_panel_points`` inliers."""
+    not linear (the pole). None when the plane has fewer than ``min_panel_points`` inliers.
+
+    When that plane turns more than ``max_bright_plane_turn_deg`` from ``views_normal`` (unit,
+    world: the candidates' mean normal) and the plane through all the points turns less, the
+    bright points are specks on a faded face, not the face: all the points count as bright."""
     plane = fit_plane_ransac(pts.xyz_world[bright_mask], params.plane_threshold_m,
                              params.max_tilt_deg)
+    if views_normal is not None and not bright_mask.all() and (
+            plane is None or _turn_deg(plane.normal, views_normal) > params.max_bright_plane_turn_deg):
+        whole = fit_plane_ransac(pts.xyz_world, params.plane_threshold_m, params.max_tilt_deg)
+        if whole is not None and _turn_deg(whole.normal, views_normal) <= params.max_bright_plane_turn_deg:
+            plane, bright_mask = whole, np.ones(len(pts), bool)
     if plane is None or plane.inliers.sum() < params.min_panel_points:
         return None
     res = plane.distance(pts.xyz_world)
@@ -578,6 +593,11 @@ def points_on_plane(pts: PointSet, bright_mask: np.ndarray, spacing_m: float,
         feats = dimensionality(pts.xyz_world[dark], max(params.pca_radius_m, 3.0 * spacing_m))
         keep[dark[np.argmax(feats, axis=1) == 1]] = True
     return pts.subset(tight & keep), plane
+
+
+def _turn_deg(normal: np.ndarray, other: np.ndarray) -> float:
+    """Angle (degrees, 0..90) between two unit normals, either way round."""
+    return math.degrees(math.acos(min(1.0, abs(float(normal @ other)))))
 
 
 def drop_linear_points(panel: PointSet, spacing_m: float, params: RefineParams) -> PointSet:

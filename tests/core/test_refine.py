@@ -456,6 +456,28 @@ def test_points_on_plane_keep_the_back_face_not_the_pole_nor_points_off_the_plan
     assert R.points_on_plane(pts, np.arange(len(pts)) < 5, 0.02, R.RefineParams()) is None
 
 
+def test_a_faded_face_with_a_few_bright_specks_is_fitted_through_all_its_points():
+    # the 9.2 km drive's sign 18: 17 of its 670 points bright, and the plane through them
+    # 28 degrees off its face, so only a strip was kept and the rest read as a larger surface
+    rng = np.random.default_rng(2)
+    base = signscene.ORIGIN + [10.0, -6.0, 0.0]
+    face = grid(base + 2.3 * UP, EAST, UP, 0.8, 0.7, 0.02)             # faded: dark
+    specks = base + 2.3 * UP + np.outer(np.linspace(0.0, 0.7, 17), UP)  # a vertical line of them
+    specks = specks + np.outer(np.linspace(-0.03, 0.03, 17), NORTH + 0.5 * EAST)
+    xyz = np.concatenate([face, specks]) + rng.normal(0, 0.002, (len(face) + 17, 3))
+    bright = np.arange(len(xyz)) >= len(face)
+    pts = point_set(xyz)
+    params = R.RefineParams()
+    alone = R.fit_plane_ransac(xyz[bright], params.plane_threshold_m, params.max_tilt_deg)
+    assert R._turn_deg(alone.normal, NORTH) > params.max_bright_plane_turn_deg  # the failure
+    kept, plane = R.points_on_plane(pts, bright, 0.02, params, NORTH)
+    assert abs(plane.normal @ NORTH) > 0.99
+    assert len(kept) >= 0.95 * len(face)
+    # without the views' normal, the bright points' plane stands (the behaviour before)
+    kept_before, plane_before = R.points_on_plane(pts, bright, 0.02, params)
+    assert abs(plane_before.normal @ NORTH) < 0.99 and len(kept_before) < 0.5 * len(face)
+
+
 def test_drop_linear_points_drops_the_pole_but_not_most_of_the_panel():
     base = signscene.ORIGIN + [10.0, -6.0, 0.0]
     params = R.RefineParams()
