@@ -114,7 +114,9 @@ class Evaluate(RoadSignsAlgorithm):
             "method) on the 3D distance between panel centres, within the match radius and "
             "ignoring class, then reports precision (matches / signs), recall (matches / "
             "reference panels), F1, the class accuracy of the matches, and the median and 95th "
-            "percentile position error, the median height error and the median azimuth error."
+            "percentile position error, the median height error, the median azimuth error, and "
+            "the median and 95th percentile panel size error (the larger of the width and panel "
+            "height errors, where the layers have the fields width and panel_height)."
             "<br><br>When the reference has a <i>code</i> column and the sign layer a <i>code</i> "
             "field (OpenStreetMap traffic_sign codes such as DE:274[50]), it also reports the code "
             "accuracy of the matches whose reference code is not empty (a sign without a code "
@@ -137,6 +139,8 @@ class Evaluate(RoadSignsAlgorithm):
             "P95_ERROR": self.tr("95th percentile 3D error (m)"),
             "MEDIAN_HEIGHT_ERROR": self.tr("Median height error (m)"),
             "MEDIAN_AZIMUTH_ERROR": self.tr("Median azimuth error (°)"),
+            "MEDIAN_SIZE_ERROR": self.tr("Median panel size error (m)"),
+            "P95_SIZE_ERROR": self.tr("95th percentile panel size error (m)"),
             "CODE_ACCURACY": self.tr("Code accuracy of matches with a reference code"),
             "CODE_COMPARED": self.tr("Matches whose codes were compared"),
             "NO_CODE": self.tr("Compared matches whose sign has no code"),

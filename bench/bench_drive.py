@@ -60,7 +60,8 @@ DRIVER_NOTE = ("projectdetections reads the cloud and searches per detection, re
 SAMPLE_S = 0.05
 MATCH_RADIUS_M = 1.0
 EVAL_KEYS = ("TP", "FP", "FN", "PRECISION", "RECALL", "CLASS_ACCURACY", "MEDIAN_ERROR", "P95_ERROR",
-             "MEDIAN_HEIGHT_ERROR", "MEDIAN_AZIMUTH_ERROR", "CODE_ACCURACY")
+             "MEDIAN_HEIGHT_ERROR", "MEDIAN_AZIMUTH_ERROR", "MEDIAN_SIZE_ERROR", "P95_SIZE_ERROR",
+             "CODE_ACCURACY")
 
 
 # --- the model ------------------------------------------------------------------------------

@@ -55,6 +55,7 @@ REFERENCE_CODE = "code"
 #: Numeric output names of ``roadsigns:evaluate``, in order.
 OUTPUT_NAMES = ("TP", "FP", "FN", "PRECISION", "RECALL", "F1", "CLASS_ACCURACY",
                 "MEDIAN_ERROR", "P95_ERROR", "MEDIAN_HEIGHT_ERROR", "MEDIAN_AZIMUTH_ERROR",
+                "MEDIAN_SIZE_ERROR", "P95_SIZE_ERROR",
                 "CODE_ACCURACY", "CODE_COMPARED", "NO_CODE")
 #: Text output of ``roadsigns:evaluate``: the code confusions (:func:`confusions_text`).
 CODE_CONFUSIONS = "CODE_CONFUSIONS"
@@ -292,8 +293,9 @@ def azimuth_difference_deg(a_deg, b_deg):
 class ReportRow:
     """One line of the report: a match, a missed reference panel or a false sign.
 
-    Errors are sign minus reference (``dz_m``, ``height_error_m`` signed), NaN where
-    they do not apply or are unknown; ``horizontal_m`` and ``azimuth_error_deg`` are >= 0.
+    Errors are sign minus reference (``dz_m``, ``height_error_m``, ``width_error_m``,
+    ``panel_height_error_m`` signed), NaN where they do not apply or are unknown;
+    ``horizontal_m`` and ``azimuth_error_deg`` are >= 0.
     """
     status: str
     sign_id: str = ""
@@ -308,6 +310,8 @@ class ReportRow:
     dz_m: float = math.nan
     height_error_m: float = math.nan
     azimuth_error_deg: float = math.nan
+    width_error_m: float = math.nan
+    panel_height_error_m: float = math.nan
 
     #: this match is one of the code comparisons (codes scored, reference code not empty)
     code_compared: bool = False
@@ -331,6 +335,19 @@ def _median(values: np.ndarray) -> float:
     return float(np.median(values)) if values.size else math.nan
 
 
+def _p95(values: np.ndarray) -> float:
+    values = values[~np.isnan(values)]
+    return float(np.percentile(values, 95)) if values.size else math.nan
+
+
+def size_error_m(width_error_m: np.ndarray, panel_height_error_m: np.ndarray) -> np.ndarray:
+    """Per match, the larger of the absolute width and panel-height errors (m); the known one
+    where the other is NaN, NaN where both are."""
+    both = np.abs(np.column_stack([width_error_m, panel_height_error_m]))
+    known = ~np.isnan(both)
+    return np.where(known.any(axis=1), np.max(np.where(known, both, -np.inf), axis=1), np.nan)
+
+
 @dataclass
 class EvaluationResult:
     """Counts, rates, error statistics (absolute values; NaN where undefined) and rows."""
@@ -350,6 +367,10 @@ class EvaluationResult:
     median_vertical_error_m: float
     median_height_error_m: float
     median_azimuth_error_deg: float
+    #: a match's size error: the larger of |width| and |panel_height| sign minus reference
+    #: (the one known where the other is not; NaN where neither is), median and 95th percentile
+    median_size_error_m: float
+    p95_size_error_m: float
     matching: Matching
     rows: List[ReportRow] = field(default_factory=list)
     #: whether codes were scored (both sets have codes); else ``code_note`` says why not
@@ -371,6 +392,7 @@ class EvaluationResult:
         values = (self.tp, self.fp, self.fn, self.precision, self.recall, self.f1,
                   self.class_accuracy, self.median_error_m, self.p95_error_m,
                   self.median_height_error_m, self.median_azimuth_error_deg,
+                  self.median_size_error_m, self.p95_size_error_m,
                   self.code_accuracy,
                   self.code_compared if self.codes_scored else math.nan,
                   self.no_code if self.codes_scored else math.nan)
@@ -424,6 +446,9 @@ def evaluate(signs: SignSet, reference: SignSet, match_radius_m: float) -> Evalu
     horizontal = np.hypot(delta[:, 0], delta[:, 1])
     height_error = np.asarray(signs.height)[s] - np.asarray(reference.height)[r]
     azimuth_error = azimuth_difference_deg(np.asarray(signs.azimuth_deg)[s], np.asarray(reference.azimuth_deg)[r])
+    width_error = np.asarray(signs.width_m)[s] - np.asarray(reference.width_m)[r]
+    panel_height_error = np.asarray(signs.panel_height_m)[s] - np.asarray(reference.panel_height_m)[r]
+    size_error = size_error_m(width_error, panel_height_error)
     class_agrees = np.array([signs.classes[i] == reference.classes[j] for i, j in zip(s, r)],
                             dtype=bool)
 
@@ -442,6 +467,7 @@ def evaluate(signs: SignSet, reference: SignSet, match_radius_m: float) -> Evalu
         median_vertical_error_m=_median(np.abs(delta[:, 2])),
         median_height_error_m=_median(np.abs(height_error)),
         median_azimuth_error_deg=_median(azimuth_error),
+        median_size_error_m=_median(size_error), p95_size_error_m=_p95(size_error),
         matching=matching)
 
     result.code_note = _code_note(signs, reference)
@@ -470,7 +496,8 @@ def evaluate(signs: SignSet, reference: SignSet, match_radius_m: float) -> Evalu
             distance_m=float(distance[k]),
             horizontal_m=float(horizontal[k]), dz_m=float(delta[k, 2]),
             height_error_m=float(height_error[k]),
-            azimuth_error_deg=float(azimuth_error[k])))
+            azimuth_error_deg=float(azimuth_error[k]),
+            width_error_m=float(width_error[k]), panel_height_error_m=float(panel_height_error[k])))
     for i in matching.unmatched_signs:
         result.rows.append(ReportRow(FALSE, sign_id=signs.ids[i], sign_class=signs.classes[i],
                                      image=sign_images[i], sign_code=sign_codes[i]))
@@ -525,6 +552,8 @@ def _summary_html(result: EvaluationResult) -> str:
         ("Median vertical error (|dz|)", _number(result.median_vertical_error_m, "m")),
         ("Median height error (|dh above ground|)", _number(result.median_height_error_m, "m")),
         ("Median azimuth error", _number(result.median_azimuth_error_deg, "\u00b0", 1)),
+        ("Median size error (larger of |dw|, |dh| of the panel)", _number(result.median_size_error_m, "m")),
+        ("95th percentile size error", _number(result.p95_size_error_m, "m")),
     ]
     if result.codes_scored:
         rows += [
@@ -539,7 +568,8 @@ def _summary_html(result: EvaluationResult) -> str:
 
 _ROW_HEADERS = ("Status", "Sign id", "Sign class", "Reference id", "Reference class",
                 "3D distance", "Horizontal", "dz (sign \u2212 ref.)",
-                "Height error (sign \u2212 ref.)", "Azimuth error", "Image")
+                "Height error (sign \u2212 ref.)", "Azimuth error",
+                "Width error (sign \u2212 ref.)", "Panel height error (sign \u2212 ref.)", "Image")
 #: the columns added after the classes when codes are scored
 _CODE_HEADERS = ("Sign code", "Reference code")
 
@@ -560,6 +590,8 @@ def _row_html(row: ReportRow, codes: bool = False) -> str:
              _cell(_number(row.dz_m, "m", signed=True), "num"),
              _cell(_number(row.height_error_m, "m", signed=True), "num"),
              _cell(_number(row.azimuth_error_deg, "\u00b0", 1), "num"),
+             _cell(_number(row.width_error_m, "m", signed=True), "num"),
+             _cell(_number(row.panel_height_error_m, "m", signed=True), "num"),
              _cell(row.image)]
     return f'<tr class="{row.status}">{"".join(cells)}</tr>'
 

@@ -335,194 +335,204 @@
         <translation>Puntúa una capa de señales frente a paneles de referencia y escribe un informe HTML.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="132" />
+        <location filename="../algorithms/evaluate.py" line="134" />
         <source>True positives (matched signs)</source>
         <translation>Verdaderos positivos (señales emparejadas)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="132" />
+        <location filename="../algorithms/evaluate.py" line="134" />
         <source>False positives (unmatched signs)</source>
         <translation>Falsos positivos (señales sin pareja)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="133" />
+        <location filename="../algorithms/evaluate.py" line="135" />
         <source>False negatives (missed reference panels)</source>
         <translation>Falsos negativos (paneles de referencia no detectados)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="133" />
+        <location filename="../algorithms/evaluate.py" line="135" />
         <source>Precision</source>
         <translation>Precisión</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="134" />
+        <location filename="../algorithms/evaluate.py" line="136" />
         <source>Recall</source>
         <translation>Exhaustividad (recall)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="134" />
+        <location filename="../algorithms/evaluate.py" line="136" />
         <source>F1 score</source>
         <translation>Puntuación F1</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="135" />
+        <location filename="../algorithms/evaluate.py" line="137" />
         <source>Class accuracy of matches</source>
         <translation>Exactitud de clase de los emparejamientos</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="136" />
+        <location filename="../algorithms/evaluate.py" line="138" />
         <source>Median 3D position error (m)</source>
         <translation>Mediana del error de posición 3D (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="137" />
+        <location filename="../algorithms/evaluate.py" line="139" />
         <source>95th percentile 3D error (m)</source>
         <translation>Percentil 95 del error 3D (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="138" />
+        <location filename="../algorithms/evaluate.py" line="140" />
         <source>Median height error (m)</source>
         <translation>Mediana del error de altura (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="139" />
+        <location filename="../algorithms/evaluate.py" line="141" />
         <source>Median azimuth error (°)</source>
         <translation>Mediana del error de acimut (°)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="143" />
+        <location filename="../algorithms/evaluate.py" line="147" />
         <source>Median horizontal position error (m)</source>
         <translation>Mediana del error de posición horizontal (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="144" />
+        <location filename="../algorithms/evaluate.py" line="148" />
         <source>Median vertical position error (m)</source>
         <translation>Mediana del error de posición vertical (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="205" />
+        <location filename="../algorithms/evaluate.py" line="209" />
         <source>Sign layer</source>
         <translation>Capa de señales</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="153" />
+        <location filename="../algorithms/evaluate.py" line="157" />
         <source>Reference signs (CSV or point layer)</source>
         <translation>Señales de referencia (CSV o capa de puntos)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="153" />
+        <location filename="../algorithms/evaluate.py" line="157" />
         <source>Reference signs (*.csv *.txt *.gpkg *.shp *.geojson);;All files (*.*)</source>
         <translation>Señales de referencia (*.csv *.txt *.gpkg *.shp *.geojson);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="159" />
+        <location filename="../algorithms/evaluate.py" line="163" />
         <source>Match radius (m)</source>
         <translation>Radio de emparejamiento (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="159" />
+        <location filename="../algorithms/evaluate.py" line="163" />
         <source>A sign and a reference panel farther apart than this (3D distance between panel centres, metres) are never matched.</source>
         <translation>Una señal y un panel de referencia separados más que esto (distancia 3D entre los centros de los paneles, en metros) nunca se emparejan.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="163" />
+        <location filename="../algorithms/evaluate.py" line="167" />
         <source>Evaluation report</source>
         <translation>Informe de evaluación</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="163" />
+        <location filename="../algorithms/evaluate.py" line="167" />
         <source>HTML files (*.html)</source>
         <translation>Archivos HTML (*.html)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="163" />
+        <location filename="../algorithms/evaluate.py" line="167" />
         <source>HTML report: the summary and one row per sign and reference panel.</source>
         <translation>Informe HTML: el resumen y una fila por señal y por panel de referencia.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="174" />
+        <location filename="../algorithms/evaluate.py" line="178" />
         <source>Reference file not found: {}</source>
         <translation>No se encontró el archivo de referencia: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="176" />
+        <location filename="../algorithms/evaluate.py" line="180" />
         <source>Reference CSV {}: coordinates taken in the sign layer's CRS ({})</source>
         <translation>CSV de referencia {}: coordenadas tomadas en el SRC de la capa de señales ({})</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="187" />
+        <location filename="../algorithms/evaluate.py" line="191" />
         <source>Cannot read the reference {}: expected a CSV or a point layer</source>
         <translation>No se puede leer la referencia {}: se esperaba un CSV o una capa de puntos</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="191" />
+        <location filename="../algorithms/evaluate.py" line="195" />
         <source>Reprojecting the reference from {} to {}</source>
         <translation>Reproyectando la referencia de {} a {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="208" />
+        <location filename="../algorithms/evaluate.py" line="212" />
         <source>The sign layer is empty: nothing to evaluate.</source>
         <translation>La capa de señales está vacía: no hay nada que evaluar.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="212" />
+        <location filename="../algorithms/evaluate.py" line="216" />
         <source>The reference {} has no sign: nothing to evaluate against.</source>
         <translation>La referencia {} no tiene ninguna señal: no hay nada con qué comparar.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="218" />
+        <location filename="../algorithms/evaluate.py" line="222" />
         <source>Road sign evaluation</source>
         <translation>Evaluación de señales viales</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="225" />
+        <location filename="../algorithms/evaluate.py" line="229" />
         <source>{} signs, {} reference panels: TP {}, FP {}, FN {}; precision {}, recall {}, median error {} m</source>
         <translation>{} señales, {} paneles de referencia: TP {}, FP {}, FN {}; precisión {}, exhaustividad {}, mediana del error {} m</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="112" />
-        <source>Matches each sign to at most one reference panel by optimal assignment (Hungarian method) on the 3D distance between panel centres, within the match radius and ignoring class, then reports precision (matches / signs), recall (matches / reference panels), F1, the class accuracy of the matches, and the median and 95th percentile position error, the median height error and the median azimuth error.&lt;br&gt;&lt;br&gt;When the reference has a &lt;i&gt;code&lt;/i&gt; column and the sign layer a &lt;i&gt;code&lt;/i&gt; field (OpenStreetMap traffic_sign codes such as DE:274[50]), it also reports the code accuracy of the matches whose reference code is not empty (a sign without a code counts as wrong, and is counted as no code) and the code confusions, most frequent first.&lt;br&gt;&lt;br&gt;The &lt;b&gt;reference&lt;/b&gt; is a CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt; (and optionally &lt;i&gt;code&lt;/i&gt;) in the sign layer's CRS, or a point layer with those fields (reprojected to the sign layer's CRS).&lt;br&gt;&lt;br&gt;The HTML report has the summary and one row per sign: matched (with its errors), missed or false.</source>
-        <translation>Empareja cada señal con como máximo un panel de referencia mediante asignación óptima (método húngaro) según la distancia 3D entre los centros de los paneles, dentro del radio de emparejamiento y sin tener en cuenta la clase; después informa de la precisión (emparejamientos / señales), la exhaustividad (emparejamientos / paneles de referencia), F1, la exactitud de clase de los emparejamientos, la mediana y el percentil 95 del error de posición, la mediana del error de altura y la mediana del error de acimut.&lt;br&gt;&lt;br&gt;Cuando la referencia tiene una columna &lt;i&gt;code&lt;/i&gt; y la capa de señales un campo &lt;i&gt;code&lt;/i&gt; (códigos traffic_sign de OpenStreetMap como DE:274[50]), también informa de la exactitud de código de los emparejamientos cuyo código de referencia no está vacío (una señal sin código cuenta como errónea y se contabiliza como sin código) y de las confusiones de código, de la más frecuente a la menos frecuente.&lt;br&gt;&lt;br&gt;La &lt;b&gt;referencia&lt;/b&gt; es un CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt; (y opcionalmente &lt;i&gt;code&lt;/i&gt;) en el SRC de la capa de señales, o una capa de puntos con esos campos (reproyectada al SRC de la capa de señales).&lt;br&gt;&lt;br&gt;El informe HTML contiene el resumen y una fila por señal: emparejada (con sus errores), no detectada o falsa.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/evaluate.py" line="140" />
+        <location filename="../algorithms/evaluate.py" line="144" />
         <source>Code accuracy of matches with a reference code</source>
         <translation>Exactitud de código de los emparejamientos con código de referencia</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="141" />
+        <location filename="../algorithms/evaluate.py" line="145" />
         <source>Matches whose codes were compared</source>
         <translation>Emparejamientos cuyos códigos se compararon</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="142" />
+        <location filename="../algorithms/evaluate.py" line="146" />
         <source>Compared matches whose sign has no code</source>
         <translation>Emparejamientos comparados cuya señal no tiene código</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="148" />
+        <location filename="../algorithms/evaluate.py" line="152" />
         <source>The sign layer to score (PointZ at the panel centres, e.g. the output of Refine signs), with the fields sign_id, class and optionally height, azimuth, best_image, code.</source>
         <translation>La capa de señales que se puntúa (PointZ en los centros de los paneles, p. ej. la salida de «Refinar y fusionar señales»), con los campos sign_id, class y opcionalmente height, azimuth, best_image, code.</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="153" />
+        <location filename="../algorithms/evaluate.py" line="157" />
         <source>Ground truth: a CSV sign_id,class,x,y,z,height,width,panel_height,azimuth (and optionally code) in the sign layer's CRS, or a point layer with those fields (reprojected if its CRS differs).</source>
         <translation>Verdad de terreno: un CSV sign_id,class,x,y,z,height,width,panel_height,azimuth (y opcionalmente code) en el SRC de la capa de señales, o una capa de puntos con esos campos (reproyectada si su SRC es distinto).</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="169" />
+        <location filename="../algorithms/evaluate.py" line="173" />
         <source>Code confusions (reference code -&gt; sign code: count)</source>
         <translation>Confusiones de código (código de referencia -&gt; código de la señal: número)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="231" />
+        <location filename="../algorithms/evaluate.py" line="235" />
         <source>Code accuracy {} of {} matches with a reference code ({} without a code); confusions: {}</source>
         <translation>Exactitud de código {} en {} emparejamientos con código de referencia ({} sin código); confusiones: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="231" />
+        <location filename="../algorithms/evaluate.py" line="235" />
         <source>none</source>
         <translation>ninguna</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="112" />
+        <source>Matches each sign to at most one reference panel by optimal assignment (Hungarian method) on the 3D distance between panel centres, within the match radius and ignoring class, then reports precision (matches / signs), recall (matches / reference panels), F1, the class accuracy of the matches, and the median and 95th percentile position error, the median height error, the median azimuth error, and the median and 95th percentile panel size error (the larger of the width and panel height errors, where the layers have the fields width and panel_height).&lt;br&gt;&lt;br&gt;When the reference has a &lt;i&gt;code&lt;/i&gt; column and the sign layer a &lt;i&gt;code&lt;/i&gt; field (OpenStreetMap traffic_sign codes such as DE:274[50]), it also reports the code accuracy of the matches whose reference code is not empty (a sign without a code counts as wrong, and is counted as no code) and the code confusions, most frequent first.&lt;br&gt;&lt;br&gt;The &lt;b&gt;reference&lt;/b&gt; is a CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt; (and optionally &lt;i&gt;code&lt;/i&gt;) in the sign layer's CRS, or a point layer with those fields (reprojected to the sign layer's CRS).&lt;br&gt;&lt;br&gt;The HTML report has the summary and one row per sign: matched (with its errors), missed or false.</source>
+        <translation>Empareja cada señal con como máximo un panel de referencia mediante asignación óptima (método húngaro) según la distancia 3D entre los centros de los paneles, dentro del radio de emparejamiento y sin tener en cuenta la clase; después informa de la precisión (emparejamientos / señales), la exhaustividad (emparejamientos / paneles de referencia), F1, la exactitud de clase de los emparejamientos, la mediana y el percentil 95 del error de posición, la mediana del error de altura, la mediana del error de acimut, y la mediana y el percentil 95 del error de tamaño del panel (el mayor de los errores de anchura y de altura del panel, cuando las capas tienen los campos width y panel_height).&lt;br&gt;&lt;br&gt;Cuando la referencia tiene una columna &lt;i&gt;code&lt;/i&gt; y la capa de señales un campo &lt;i&gt;code&lt;/i&gt; (códigos traffic_sign de OpenStreetMap como DE:274[50]), también informa de la exactitud de código de los emparejamientos cuyo código de referencia no está vacío (una señal sin código cuenta como errónea y se contabiliza como sin código) y de las confusiones de código, de la más frecuente a la menos frecuente.&lt;br&gt;&lt;br&gt;La &lt;b&gt;referencia&lt;/b&gt; es un CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt; (y opcionalmente &lt;i&gt;code&lt;/i&gt;) en el SRC de la capa de señales, o una capa de puntos con esos campos (reproyectada al SRC de la capa de señales).&lt;br&gt;&lt;br&gt;El informe HTML contiene el resumen y una fila por señal: emparejada (con sus errores), no detectada o falsa.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="142" />
+        <source>Median panel size error (m)</source>
+        <translation>Mediana del error de tamaño del panel (m)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="143" />
+        <source>95th percentile panel size error (m)</source>
+        <translation>Percentil 95 del error de tamaño del panel (m)</translation>
     </message>
 </context>
 <context>
@@ -2153,7 +2163,7 @@
         <translation>{path} no tiene dimensión de clasificación: ejecute primero roadsigns:groundfilter sobre ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="722" />
+        <location filename="../core/cloudsigns.py" line="728" />
         <source>Found {signs} sign panels ({bright} retroreflective) and {poles} poles in {n} points ({cand} kept near the road, {windows} windows of {w} m); condition reference {ref:.3f} ({src})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se encontraron {signs} paneles de señal ({bright} retrorreflectantes) y {poles} postes en {n} puntos ({cand} conservados cerca de la vía, {windows} ventanas de {w} m); referencia de estado {ref:.3f} ({src})</translation>
@@ -2183,7 +2193,7 @@
         <translation>Intensidad: exponente de distancia {alpha:.2f} ({source}), umbral de brillo {thr:.3f} del fondo de escala a 10 m ({method}; nivel de fondo {bg:.3f}, moda brillante {mode:.3f}; {n} puntos que no son de suelo cerca de la vía)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="791" />
+        <location filename="../core/cloudsigns.py" line="797" />
         <source>{n} gantry posts</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} postes de pórtico</translation>
@@ -2554,55 +2564,55 @@
         <translation>El trayecto tiene {n} posiciones pero {m} tiempos</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="142" />
+        <location filename="../core/evaluate.py" line="143" />
         <source>reference signs</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>señales de referencia</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="175" />
+        <location filename="../core/evaluate.py" line="176" />
         <source>The signs ({signs}: x {sx0} to {sx1}, y {sy0} to {sy1}) and the reference {reference} (x {rx0} to {rx1}, y {ry0} to {ry1}) do not overlap: are both in the same CRS and the same area?</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Las señales ({signs}: x {sx0} a {sx1}, y {sy0} a {sy1}) y la referencia {reference} (x {rx0} a {rx1}, y {ry0} a {ry1}) no se superponen: ¿están ambas en el mismo SRC y en la misma zona?</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="200" />
+        <location filename="../core/evaluate.py" line="201" />
         <source>match radius {radius} m: expected a positive number of metres</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Radio de emparejamiento {radius} m: se esperaba un número positivo de metros</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="208" />
+        <location filename="../core/evaluate.py" line="209" />
         <source>{label}: sign '{sign_id}' has no valid x, y, z position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{label}: la señal '{sign_id}' no tiene una posición x, y, z válida</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="390" />
+        <location filename="../core/evaluate.py" line="412" />
         <source>Code accuracy not computed: neither the signs nor the reference have a 'code' field or column.</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Exactitud de código no calculada: ni las señales ni la referencia tienen un campo o columna 'code'.</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="393" />
+        <location filename="../core/evaluate.py" line="415" />
         <source>Code accuracy not computed: the reference has no 'code' column or field.</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Exactitud de código no calculada: la referencia no tiene columna ni campo 'code'.</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="395" />
+        <location filename="../core/evaluate.py" line="417" />
         <source>Code accuracy not computed: the signs have no 'code' field.</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Exactitud de código no calculada: las señales no tienen campo 'code'.</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="152" />
+        <location filename="../core/evaluate.py" line="153" />
         <source>reference signs file {path}, line {line}: sign_id '{sign_id}' already used on line {first}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo de señales de referencia {path}, línea {line}: el sign_id '{sign_id}' ya se usó en la línea {first}</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="148" />
+        <location filename="../core/evaluate.py" line="149" />
         <source>reference signs file {path}, line {line}, field '{field}': empty value</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Archivo de señales de referencia {path}, línea {line}, campo '{field}': valor vacío</translation>
@@ -3063,115 +3073,115 @@
         <translation>{path} no tiene puntos dentro de los troncos de visión de las detecciones; no se encontró ningún candidato</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="135" />
+        <location filename="../core/refine.py" line="137" />
         <source>curved surface (a convex mirror?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>superficie curva (¿un espejo convexo?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="136" />
+        <location filename="../core/refine.py" line="138" />
         <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>parte de una superficie plana mayor (¿una imagen en una valla publicitaria o una pared?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="970" />
+        <location filename="../core/refine.py" line="990" />
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} señales a partir de {candidates} candidatos ({from_images} situadas solo a partir de las imágenes)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1621" />
+        <location filename="../core/refine.py" line="1641" />
         <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{coded} de {signs} señales tienen código de señal; {from_code} tomaron su clase del código, {dropped} códigos se descartaron por la votación de clase (code_check)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1630" />
+        <location filename="../core/refine.py" line="1650" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>la altura de las estaciones menos {height} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="384" />
+        <location filename="../core/refine.py" line="389" />
         <source>Detection {det_id} has the sign code {code}, which is not in the sign codes table {table}: give the codes table the classifier was run with</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La detección {det_id} tiene el código de señal {code}, que no está en la tabla de códigos de señal {table}: indique la tabla de códigos con la que se ejecutó el clasificador</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="949" />
+        <location filename="../core/refine.py" line="969" />
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El radio de fusión debe ser positivo; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="952" />
+        <location filename="../core/refine.py" line="972" />
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay candidatos que refinar; la capa de señales está vacía</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1430" />
+        <location filename="../core/refine.py" line="1450" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids}: {reason}; situados en la mediana de los candidatos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1570" />
+        <location filename="../core/refine.py" line="1590" />
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: un panel de {width:.2f} x {height:.2f} m es demasiado grande para una señal {sign_class} (¿una valla publicitaria?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1575" />
+        <location filename="../core/refine.py" line="1595" />
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: vistos en una sola panorámica, con una puntuación de {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="480" />
+        <location filename="../core/refine.py" line="485" />
         <source>too few points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="483" />
+        <location filename="../core/refine.py" line="488" />
         <source>too few points in the boxes</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos en los recuadros</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="489" />
+        <location filename="../core/refine.py" line="494" />
         <source>no near-vertical plane</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>ningún plano casi vertical</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="493" />
+        <location filename="../core/refine.py" line="498" />
         <source>too few planar points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos planos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1424" />
+        <location filename="../core/refine.py" line="1444" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>sin nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1427" />
+        <location filename="../core/refine.py" line="1447" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: {reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1631" />
+        <location filename="../core/refine.py" line="1651" />
         <source>the lowest points below the sign</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>los puntos más bajos bajo la señal</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1635" />
+        <location filename="../core/refine.py" line="1655" />
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} señal(es) no tienen puntos de suelo (clase 2) a menos de {radius} m: su altura se mide desde {source}</translation>

@@ -335,194 +335,204 @@
         <translation>将标志图层与参考标志牌进行对比评分，并生成 HTML 报告。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="132" />
+        <location filename="../algorithms/evaluate.py" line="134" />
         <source>True positives (matched signs)</source>
         <translation>真正例（匹配的标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="132" />
+        <location filename="../algorithms/evaluate.py" line="134" />
         <source>False positives (unmatched signs)</source>
         <translation>假正例（未匹配的标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="133" />
+        <location filename="../algorithms/evaluate.py" line="135" />
         <source>False negatives (missed reference panels)</source>
         <translation>假反例（漏检的参考标志牌）</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="133" />
+        <location filename="../algorithms/evaluate.py" line="135" />
         <source>Precision</source>
         <translation>精确率</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="134" />
+        <location filename="../algorithms/evaluate.py" line="136" />
         <source>Recall</source>
         <translation>召回率</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="134" />
+        <location filename="../algorithms/evaluate.py" line="136" />
         <source>F1 score</source>
         <translation>F1 分数</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="135" />
+        <location filename="../algorithms/evaluate.py" line="137" />
         <source>Class accuracy of matches</source>
         <translation>匹配的类别准确率</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="136" />
+        <location filename="../algorithms/evaluate.py" line="138" />
         <source>Median 3D position error (m)</source>
         <translation>三维位置误差中位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="137" />
+        <location filename="../algorithms/evaluate.py" line="139" />
         <source>95th percentile 3D error (m)</source>
         <translation>三维误差第 95 百分位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="138" />
+        <location filename="../algorithms/evaluate.py" line="140" />
         <source>Median height error (m)</source>
         <translation>高度误差中位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="139" />
+        <location filename="../algorithms/evaluate.py" line="141" />
         <source>Median azimuth error (°)</source>
         <translation>方位角误差中位数 (°)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="143" />
+        <location filename="../algorithms/evaluate.py" line="147" />
         <source>Median horizontal position error (m)</source>
         <translation>水平位置误差中位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="144" />
+        <location filename="../algorithms/evaluate.py" line="148" />
         <source>Median vertical position error (m)</source>
         <translation>垂直位置误差中位数 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="205" />
+        <location filename="../algorithms/evaluate.py" line="209" />
         <source>Sign layer</source>
         <translation>标志图层</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="153" />
+        <location filename="../algorithms/evaluate.py" line="157" />
         <source>Reference signs (CSV or point layer)</source>
         <translation>参考标志（CSV 或点图层）</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="153" />
+        <location filename="../algorithms/evaluate.py" line="157" />
         <source>Reference signs (*.csv *.txt *.gpkg *.shp *.geojson);;All files (*.*)</source>
         <translation>参考标志 (*.csv *.txt *.gpkg *.shp *.geojson);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="159" />
+        <location filename="../algorithms/evaluate.py" line="163" />
         <source>Match radius (m)</source>
         <translation>匹配半径 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="159" />
+        <location filename="../algorithms/evaluate.py" line="163" />
         <source>A sign and a reference panel farther apart than this (3D distance between panel centres, metres) are never matched.</source>
         <translation>距离超过此值（标志牌中心之间的三维距离，单位为米）的标志与参考标志牌永远不会被匹配。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="163" />
+        <location filename="../algorithms/evaluate.py" line="167" />
         <source>Evaluation report</source>
         <translation>评估报告</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="163" />
+        <location filename="../algorithms/evaluate.py" line="167" />
         <source>HTML files (*.html)</source>
         <translation>HTML 文件 (*.html)</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="163" />
+        <location filename="../algorithms/evaluate.py" line="167" />
         <source>HTML report: the summary and one row per sign and reference panel.</source>
         <translation>HTML 报告：汇总信息，以及每个标志和参考标志牌各一行。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="174" />
+        <location filename="../algorithms/evaluate.py" line="178" />
         <source>Reference file not found: {}</source>
         <translation>未找到参考文件：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="176" />
+        <location filename="../algorithms/evaluate.py" line="180" />
         <source>Reference CSV {}: coordinates taken in the sign layer's CRS ({})</source>
         <translation>参考 CSV {}：坐标按标志图层的坐标参考系（{}）解释</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="187" />
+        <location filename="../algorithms/evaluate.py" line="191" />
         <source>Cannot read the reference {}: expected a CSV or a point layer</source>
         <translation>无法读取参考数据 {}：应为 CSV 或点图层</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="191" />
+        <location filename="../algorithms/evaluate.py" line="195" />
         <source>Reprojecting the reference from {} to {}</source>
         <translation>正在将参考数据从 {} 重投影到 {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="208" />
+        <location filename="../algorithms/evaluate.py" line="212" />
         <source>The sign layer is empty: nothing to evaluate.</source>
         <translation>标志图层为空：没有可评估的内容。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="212" />
+        <location filename="../algorithms/evaluate.py" line="216" />
         <source>The reference {} has no sign: nothing to evaluate against.</source>
         <translation>参考数据 {} 中没有标志：无法进行评估。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="218" />
+        <location filename="../algorithms/evaluate.py" line="222" />
         <source>Road sign evaluation</source>
         <translation>道路标志评估</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="225" />
+        <location filename="../algorithms/evaluate.py" line="229" />
         <source>{} signs, {} reference panels: TP {}, FP {}, FN {}; precision {}, recall {}, median error {} m</source>
         <translation>{} 个标志，{} 个参考标志牌：TP {}，FP {}，FN {}；精确率 {}，召回率 {}，误差中位数 {} m</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="112" />
-        <source>Matches each sign to at most one reference panel by optimal assignment (Hungarian method) on the 3D distance between panel centres, within the match radius and ignoring class, then reports precision (matches / signs), recall (matches / reference panels), F1, the class accuracy of the matches, and the median and 95th percentile position error, the median height error and the median azimuth error.&lt;br&gt;&lt;br&gt;When the reference has a &lt;i&gt;code&lt;/i&gt; column and the sign layer a &lt;i&gt;code&lt;/i&gt; field (OpenStreetMap traffic_sign codes such as DE:274[50]), it also reports the code accuracy of the matches whose reference code is not empty (a sign without a code counts as wrong, and is counted as no code) and the code confusions, most frequent first.&lt;br&gt;&lt;br&gt;The &lt;b&gt;reference&lt;/b&gt; is a CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt; (and optionally &lt;i&gt;code&lt;/i&gt;) in the sign layer's CRS, or a point layer with those fields (reprojected to the sign layer's CRS).&lt;br&gt;&lt;br&gt;The HTML report has the summary and one row per sign: matched (with its errors), missed or false.</source>
-        <translation>通过最优分配（匈牙利算法），依据标志牌中心之间的三维距离，在匹配半径内且不考虑类别，将每个标志与至多一个参考标志牌匹配；然后报告精确率（匹配数 / 标志数）、召回率（匹配数 / 参考标志牌数）、F1、匹配的类别准确率，以及位置误差的中位数和第 95 百分位数、高度误差中位数和方位角误差中位数。&lt;br&gt;&lt;br&gt;当参考数据有 &lt;i&gt;code&lt;/i&gt; 列且标志图层有 &lt;i&gt;code&lt;/i&gt; 字段（OpenStreetMap traffic_sign 代码，例如 DE:274[50]）时，还会报告参考代码非空的匹配的代码准确率（没有代码的标志计为错误，并计入无代码数）以及代码混淆，按出现次数从多到少排列。&lt;br&gt;&lt;br&gt;&lt;b&gt;参考数据&lt;/b&gt;为位于标志图层坐标参考系中的 CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt;（以及可选的 &lt;i&gt;code&lt;/i&gt;），或具有这些字段的点图层（重投影到标志图层的坐标参考系）。&lt;br&gt;&lt;br&gt;HTML 报告包含汇总信息，并为每个标志列出一行：已匹配（附其误差）、漏检或误检。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/evaluate.py" line="140" />
+        <location filename="../algorithms/evaluate.py" line="144" />
         <source>Code accuracy of matches with a reference code</source>
         <translation>有参考代码的匹配的代码准确率</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="141" />
+        <location filename="../algorithms/evaluate.py" line="145" />
         <source>Matches whose codes were compared</source>
         <translation>比较了代码的匹配数</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="142" />
+        <location filename="../algorithms/evaluate.py" line="146" />
         <source>Compared matches whose sign has no code</source>
         <translation>已比较的匹配中标志没有代码的数量</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="148" />
+        <location filename="../algorithms/evaluate.py" line="152" />
         <source>The sign layer to score (PointZ at the panel centres, e.g. the output of Refine signs), with the fields sign_id, class and optionally height, azimuth, best_image, code.</source>
         <translation>要评分的标志图层（位于标志牌中心的 PointZ，例如“精化与合并标志”的输出），包含字段 sign_id、class，以及可选的 height、azimuth、best_image、code。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="153" />
+        <location filename="../algorithms/evaluate.py" line="157" />
         <source>Ground truth: a CSV sign_id,class,x,y,z,height,width,panel_height,azimuth (and optionally code) in the sign layer's CRS, or a point layer with those fields (reprojected if its CRS differs).</source>
         <translation>真值数据：位于标志图层坐标参考系中的 CSV sign_id,class,x,y,z,height,width,panel_height,azimuth（以及可选的 code），或具有这些字段的点图层（若其坐标参考系不同则进行重投影）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="169" />
+        <location filename="../algorithms/evaluate.py" line="173" />
         <source>Code confusions (reference code -&gt; sign code: count)</source>
         <translation>代码混淆（参考代码 -&gt; 标志代码：次数）</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="231" />
+        <location filename="../algorithms/evaluate.py" line="235" />
         <source>Code accuracy {} of {} matches with a reference code ({} without a code); confusions: {}</source>
         <translation>代码准确率 {}，基于 {} 个有参考代码的匹配（{} 个没有代码）；混淆：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/evaluate.py" line="231" />
+        <location filename="../algorithms/evaluate.py" line="235" />
         <source>none</source>
         <translation>无</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="112" />
+        <source>Matches each sign to at most one reference panel by optimal assignment (Hungarian method) on the 3D distance between panel centres, within the match radius and ignoring class, then reports precision (matches / signs), recall (matches / reference panels), F1, the class accuracy of the matches, and the median and 95th percentile position error, the median height error, the median azimuth error, and the median and 95th percentile panel size error (the larger of the width and panel height errors, where the layers have the fields width and panel_height).&lt;br&gt;&lt;br&gt;When the reference has a &lt;i&gt;code&lt;/i&gt; column and the sign layer a &lt;i&gt;code&lt;/i&gt; field (OpenStreetMap traffic_sign codes such as DE:274[50]), it also reports the code accuracy of the matches whose reference code is not empty (a sign without a code counts as wrong, and is counted as no code) and the code confusions, most frequent first.&lt;br&gt;&lt;br&gt;The &lt;b&gt;reference&lt;/b&gt; is a CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt; (and optionally &lt;i&gt;code&lt;/i&gt;) in the sign layer's CRS, or a point layer with those fields (reprojected to the sign layer's CRS).&lt;br&gt;&lt;br&gt;The HTML report has the summary and one row per sign: matched (with its errors), missed or false.</source>
+        <translation>通过最优分配（匈牙利算法），依据标志牌中心之间的三维距离，在匹配半径内且不考虑类别，将每个标志与至多一个参考标志牌匹配；然后报告精确率（匹配数 / 标志数）、召回率（匹配数 / 参考标志牌数）、F1、匹配的类别准确率，以及位置误差的中位数和第 95 百分位数、高度误差中位数、方位角误差中位数，以及标志牌尺寸误差的中位数和第 95 百分位数（宽度误差与标志牌高度误差中的较大者，当图层具有 width 和 panel_height 字段时）。&lt;br&gt;&lt;br&gt;当参考数据有 &lt;i&gt;code&lt;/i&gt; 列且标志图层有 &lt;i&gt;code&lt;/i&gt; 字段（OpenStreetMap traffic_sign 代码，例如 DE:274[50]）时，还会报告参考代码非空的匹配的代码准确率（没有代码的标志计为错误，并计入无代码数）以及代码混淆，按出现次数从多到少排列。&lt;br&gt;&lt;br&gt;&lt;b&gt;参考数据&lt;/b&gt;为位于标志图层坐标参考系中的 CSV &lt;i&gt;sign_id,class,x,y,z,height,width,panel_height,azimuth&lt;/i&gt;（以及可选的 &lt;i&gt;code&lt;/i&gt;），或具有这些字段的点图层（重投影到标志图层的坐标参考系）。&lt;br&gt;&lt;br&gt;HTML 报告包含汇总信息，并为每个标志列出一行：已匹配（附其误差）、漏检或误检。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="142" />
+        <source>Median panel size error (m)</source>
+        <translation>标志牌尺寸误差中位数 (m)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/evaluate.py" line="143" />
+        <source>95th percentile panel size error (m)</source>
+        <translation>标志牌尺寸误差第 95 百分位数 (m)</translation>
     </message>
 </context>
 <context>
@@ -2153,7 +2163,7 @@
         <translation>{path} 没有分类维度：请先对其运行 roadsigns:groundfilter</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="722" />
+        <location filename="../core/cloudsigns.py" line="728" />
         <source>Found {signs} sign panels ({bright} retroreflective) and {poles} poles in {n} points ({cand} kept near the road, {windows} windows of {w} m); condition reference {ref:.3f} ({src})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>在 {n} 个点中找到 {signs} 个标志牌（其中 {bright} 个具有逆反射性）和 {poles} 根杆（道路附近保留 {cand} 个点，{windows} 个 {w} m 的窗口）；状态参考值 {ref:.3f}（{src}）</translation>
@@ -2183,7 +2193,7 @@
         <translation>强度：距离指数 {alpha:.2f}（{source}），亮度阈值为 10 m 处满量程的 {thr:.3f}（{method}；背景水平 {bg:.3f}，亮峰 {mode:.3f}；道路附近 {n} 个非地面点）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="791" />
+        <location filename="../core/cloudsigns.py" line="797" />
         <source>{n} gantry posts</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} 根门架立柱</translation>
@@ -2554,55 +2564,55 @@
         <translation>轨迹线有 {n} 个位置，但有 {m} 个时间</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="142" />
+        <location filename="../core/evaluate.py" line="143" />
         <source>reference signs</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>参考标志</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="175" />
+        <location filename="../core/evaluate.py" line="176" />
         <source>The signs ({signs}: x {sx0} to {sx1}, y {sy0} to {sy1}) and the reference {reference} (x {rx0} to {rx1}, y {ry0} to {ry1}) do not overlap: are both in the same CRS and the same area?</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志（{signs}：x {sx0} 至 {sx1}，y {sy0} 至 {sy1}）与参考 {reference}（x {rx0} 至 {rx1}，y {ry0} 至 {ry1}）不重叠：两者是否位于同一坐标参考系和同一区域？</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="200" />
+        <location filename="../core/evaluate.py" line="201" />
         <source>match radius {radius} m: expected a positive number of metres</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>匹配半径 {radius} m：应为以米为单位的正数</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="208" />
+        <location filename="../core/evaluate.py" line="209" />
         <source>{label}: sign '{sign_id}' has no valid x, y, z position</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{label}：标志 '{sign_id}' 没有有效的 x、y、z 位置</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="390" />
+        <location filename="../core/evaluate.py" line="412" />
         <source>Code accuracy not computed: neither the signs nor the reference have a 'code' field or column.</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未计算代码准确率：标志和参考数据都没有 'code' 字段或列。</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="393" />
+        <location filename="../core/evaluate.py" line="415" />
         <source>Code accuracy not computed: the reference has no 'code' column or field.</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未计算代码准确率：参考数据没有 'code' 列或字段。</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="395" />
+        <location filename="../core/evaluate.py" line="417" />
         <source>Code accuracy not computed: the signs have no 'code' field.</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未计算代码准确率：标志没有 'code' 字段。</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="152" />
+        <location filename="../core/evaluate.py" line="153" />
         <source>reference signs file {path}, line {line}: sign_id '{sign_id}' already used on line {first}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>参考标志文件 {path}，第 {line} 行：sign_id '{sign_id}' 已在第 {first} 行使用</translation>
     </message>
     <message>
-        <location filename="../core/evaluate.py" line="148" />
+        <location filename="../core/evaluate.py" line="149" />
         <source>reference signs file {path}, line {line}, field '{field}': empty value</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>参考标志文件 {path}，第 {line} 行，字段 '{field}'：值为空</translation>
@@ -3063,115 +3073,115 @@
         <translation>{path} 在检测结果的视锥内没有点；未找到候选</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="135" />
+        <location filename="../core/refine.py" line="137" />
         <source>curved surface (a convex mirror?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>曲面（凸面镜？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="136" />
+        <location filename="../core/refine.py" line="138" />
         <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>较大平面的一部分（广告牌或墙上的图案？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="970" />
+        <location filename="../core/refine.py" line="990" />
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>从 {candidates} 个候选得到 {signs} 个标志（{from_images} 个仅由图像定位）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1621" />
+        <location filename="../core/refine.py" line="1641" />
         <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} 个标志中有 {coded} 个带有标志代码；{from_code} 个的类别取自代码，{dropped} 个代码因类别投票被舍弃（code_check）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1630" />
+        <location filename="../core/refine.py" line="1650" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>站点高度减去 {height} 米</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="384" />
+        <location filename="../core/refine.py" line="389" />
         <source>Detection {det_id} has the sign code {code}, which is not in the sign codes table {table}: give the codes table the classifier was run with</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id} 的标志代码 {code} 不在标志代码表 {table} 中：请提供运行分类器时所用的代码表</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="949" />
+        <location filename="../core/refine.py" line="969" />
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>合并半径必须为正数，实际为 {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="952" />
+        <location filename="../core/refine.py" line="972" />
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有要精化的候选；标志图层为空</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1430" />
+        <location filename="../core/refine.py" line="1450" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>候选 {ids}：{reason}；位置取候选的中位数</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1570" />
+        <location filename="../core/refine.py" line="1590" />
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{width:.2f} x {height:.2f} 米的面板对 {sign_class} 标志来说太大（广告牌？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1575" />
+        <location filename="../core/refine.py" line="1595" />
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：只在一张全景图中出现，得分为 {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="480" />
+        <location filename="../core/refine.py" line="485" />
         <source>too few points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="483" />
+        <location filename="../core/refine.py" line="488" />
         <source>too few points in the boxes</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>框内的点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="489" />
+        <location filename="../core/refine.py" line="494" />
         <source>no near-vertical plane</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有近似竖直的平面</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="493" />
+        <location filename="../core/refine.py" line="498" />
         <source>too few planar points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>平面点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1424" />
+        <location filename="../core/refine.py" line="1444" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有点云</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1427" />
+        <location filename="../core/refine.py" line="1447" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1631" />
+        <location filename="../core/refine.py" line="1651" />
         <source>the lowest points below the sign</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志下方的最低点</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1635" />
+        <location filename="../core/refine.py" line="1655" />
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 个标志在 {radius} 米内没有地面点（类别 2）：其高度从{source}起算</translation>

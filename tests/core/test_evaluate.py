@@ -130,6 +130,35 @@ def test_error_statistics_by_hand():
     assert outputs["P95_ERROR"] == pytest.approx(0.925)
 
 
+def test_size_error_is_the_larger_of_the_width_and_panel_height_errors():
+    reference = make_set("R", [[0, 0, 0], [10, 0, 0], [20, 0, 0], [30, 0, 0], [40, 0, 0]])
+    reference.width_m = np.array([0.9, 0.6, 0.6, 0.6, 0.6])
+    reference.panel_height_m = np.array([0.78, 0.6, 0.6, 0.6, 0.6])
+    signs = make_set("S", [[0, 0, 0], [10, 0, 0], [20, 0, 0], [30, 0, 0], [40, 0, 0]])
+    # width / panel height errors -> size error:
+    #   a strip of a yield sign: -0.82 / +0.03 -> 0.82
+    #   +0.01 / -0.02 -> 0.02;  +0.05 / NaN -> 0.05 (the known one);  NaN / NaN -> left out
+    #   -0.1 / +0.2 -> 0.2
+    signs.width_m = np.array([0.08, 0.61, 0.65, np.nan, 0.5])
+    signs.panel_height_m = np.array([0.81, 0.58, np.nan, np.nan, 0.8])
+    result = evaluate(signs, reference, 1.0)
+    # sizes sorted 0.02 0.05 0.2 0.82: median 0.125; p95 at rank 0.95 * 3 = 2.85 -> 0.2 + 0.85 * 0.62
+    assert result.median_size_error_m == pytest.approx(0.125)
+    assert result.p95_size_error_m == pytest.approx(0.2 + 0.85 * 0.62)
+    assert result.rows[0].width_error_m == pytest.approx(-0.82)
+    assert result.rows[0].panel_height_error_m == pytest.approx(0.03)
+    assert math.isnan(result.rows[3].width_error_m)
+    outputs = result.as_outputs()
+    assert outputs["MEDIAN_SIZE_ERROR"] == pytest.approx(0.125)
+    assert outputs["P95_SIZE_ERROR"] == pytest.approx(0.727)
+    assert "Width error" in render_html_report(result) and "\u2212" in render_html_report(result)
+    # no sizes known at all: undefined, not zero
+    signs.width_m[:] = np.nan
+    signs.panel_height_m[:] = np.nan
+    unknown = evaluate(signs, reference, 1.0)
+    assert math.isnan(unknown.median_size_error_m) and math.isnan(unknown.p95_size_error_m)
+
+
 def test_unknown_azimuth_and_height_are_left_out_of_their_statistics():
     reference = make_set("R", [[0, 0, 0], [10, 0, 0], [20, 0, 0]],
                          azimuth=[0.0, 0.0, 0.0], height=[2.0, 2.0, 2.0])

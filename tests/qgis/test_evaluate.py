@@ -69,6 +69,8 @@ def test_counts_errors_and_report(qgis_process, tmp_path, reference_csv):
     assert out["MEDIAN_ERROR"] == pytest.approx((0.05 + 0.1) / 2)
     assert out["MEDIAN_HEIGHT_ERROR"] == pytest.approx((0.02 + 0.1) / 2)
     assert out["MEDIAN_AZIMUTH_ERROR"] == pytest.approx(3.0)  # 92 vs 90 -> 2, 2 vs 358 -> 4 (wrap)
+    # the sign layer has no width nor panel_height: its size error is undefined (NULL), not 0
+    assert out["MEDIAN_SIZE_ERROR"] is None and out["P95_SIZE_ERROR"] is None
     text = open(report).read()
     for token in ("s1", "s2", "s9", "r1", "r2", "r3", "missed", "false"):
         assert token in text
