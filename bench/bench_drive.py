@@ -491,15 +491,17 @@ def main(argv=None):
               "the cloud-found signs over the WHOLE drive (LiDAR is simulated everywhere):".format(
                   MATCH_RADIUS_M, lo, hi, drive["truth_stretch"]["end_margin_m"],
                   drive["truth_stretch"]["reference_signs"], drive["reference_signs"]))
-        print("{:<34} {:>5} {:>5} {:>4} {:>4} {:>4} {:>9} {:>7} {:>7} {:>8} {:>8}".format(
-            "set", "signs", "ref", "TP", "FP", "FN", "precision", "recall", "class", "median m", "p95 m"))
+        row = "{:<34} {:>5} {:>5} {:>4} {:>4} {:>4} {:>9} {:>7} {:>7} {:>8} {:>8} {:>11} {:>9}"
+        print(row.format("set", "signs", "ref", "TP", "FP", "FN", "precision", "recall", "class", "median m",
+                         "p95 m", "size med m", "size p95"))
         for label, r in acc.items():
             if not isinstance(r, dict):
                 continue
-            print("{:<34} {:>5} {:>5} {:>4} {:>4} {:>4} {:>9} {:>7} {:>7} {:>8} {:>8}".format(
+            print(row.format(
                 label, r.get("signs"), r.get("reference"), _fmt(r.get("TP")), _fmt(r.get("FP")), _fmt(r.get("FN")),
                 _fmt(r.get("PRECISION")), _fmt(r.get("RECALL")), _fmt(r.get("CLASS_ACCURACY")),
-                _fmt(r.get("MEDIAN_ERROR")), _fmt(r.get("P95_ERROR"))))
+                _fmt(r.get("MEDIAN_ERROR")), _fmt(r.get("P95_ERROR")),
+                _fmt(r.get("MEDIAN_SIZE_ERROR")), _fmt(r.get("P95_SIZE_ERROR"))))
         print("(class accuracy of the cloud-found signs outside the truth stretch comes from reused panoramas: "
               "not meaningful)")
     if "separate" in figures:
