@@ -7,7 +7,8 @@ local PCA features (:class:`WindowPoints`). Panels are found on two paths:
 * **bright** (retroreflective sheeting): points above the adaptive threshold at sign
   heights, Euclidean clusters, planes;
 * **dark** (faded faces, backs of signs): points whose neighbourhood is flat with a
-  normal that is near horizontal and along the drive (walls along the road are not),
+  normal that is near horizontal and along the drive (walls along the road are not; beside
+  a pole, the neighbourhood without the pole's points: :func:`features_off_poles`),
   away from bright points, Euclidean clusters, planes; these must be carried by a pole or
   a gantry (decided later, :mod:`.cloudsigns`).
 
@@ -16,7 +17,8 @@ left of a cluster, without the points of a pole just behind the plane; the inlie
 split where they are not connected in the plane and at empty horizontal bands (stacked
 panels on one pole, 5-10 cm apart); coplanar parts side by side at the same height are
 joined again (a panel seen partly from the front and partly from behind; the back of a
-panel cut by the shadow of its pole). Each part is measured in its plane (right/up axes;
+panel cut by the shadow of its pole; with a pole in the gap, one edge alike is enough: a
+triangle cut at its pole). Each part is measured in its plane (right/up axes;
 extents padded by half a row or column spacing since sampled points stop short of the
 edges; centre = centre of the extents) and kept when it passes the size and shape tests
 (:class:`PanelParams`): size, area, aspect, fill of its box by its convex hull (a triangle
@@ -87,6 +89,11 @@ class PanelParams:
     pole_surface_m: float = 0.02          # dark points this close to a pole's surface are the pole's
     pole_clearance_m: float = 0.03        # plane inliers this close to a pole's surface ...
     pole_depth_m: float = 0.015           # ... and this far behind the plane are the pole's
+    #: points up to this far past a pole's surface (horizontally; but not within
+    #: ``pole_clearance_m`` of it) take their local features from neighbours off the pole: the
+    #: tip of a triangle seen from behind, beside its pole, is otherwise a mixture of panel and
+    #: pole, neither flat nor facing the road (0: off)
+    pole_feature_reach_m: float = 0.3
     merge_max_angle_deg: float = 10.0
     surround_band_m: float = 0.3          # a dark panel's plane continuing this far ...
     surround_gap_m: float = 0.05          # ... past this gap
@@ -448,12 +455,15 @@ def on_larger_surface(pts: WindowPoints, centre: np.ndarray, normal: np.ndarray,
     return max(sides) >= params.surround_min_share and max(ends) >= params.surround_min_share
 
 
-def _side_by_side(pts: WindowPoints, a: np.ndarray, b: np.ndarray, params: PanelParams) -> bool:
+def _side_by_side(pts: WindowPoints, a: np.ndarray, b: np.ndarray, params: PanelParams,
+                  poles: Sequence[Tuple[np.ndarray, float]] = ()) -> bool:
     """Whether planar parts ``a`` and ``b`` (rows) are one panel cut in two: coplanar, with
     the same top and bottom edges (within ``merge_edge_m``) and at most ``merge_gap_m``
     apart sideways. (A panel seen
     partly from the front, bright, and partly from behind, dark; the back of a panel split
-    by the shadow of the pole in front of it.)"""
+    by the shadow of the pole in front of it.) Where one of ``poles`` (axis xy, radius)
+    passes between them, one edge alike is enough: a triangle seen from behind, split at its
+    pole, has one half with the tip and one without."""
     ca, _, Va = pca(pts.xyz[a])
     cb, _, Vb = pca(pts.xyz[b])
     na, nb = Va[:, 2], Vb[:, 2]
@@ -464,14 +474,29 @@ def _side_by_side(pts: WindowPoints, a: np.ndarray, b: np.ndarray, params: Panel
     right, up = panel_frame(na)
     ua, va = (pts.xyz[a] - ca) @ right, (pts.xyz[a] - ca) @ up
     ub, vb = (pts.xyz[b] - ca) @ right, (pts.xyz[b] - ca) @ up
-    if max(abs(va.max() - vb.max()), abs(va.min() - vb.min())) > params.merge_edge_m:
-        return False                          # not the same top and bottom edges: stacked, other
     gap = max(ub.min() - ua.max(), ua.min() - ub.max())
-    return bool(gap <= params.merge_gap_m)
+    if gap > params.merge_gap_m:
+        return False
+    top, bottom = abs(va.max() - vb.max()), abs(va.min() - vb.min())
+    if max(top, bottom) <= params.merge_edge_m:
+        return True
+    if min(top, bottom) > params.merge_edge_m:
+        return False                          # neither edge alike: stacked, other
+    # the gap between the halves along ``right`` and a pole standing in it, close to the plane
+    gap_lo, gap_hi = (ua.max(), ub.min()) if ub.min() >= ua.max() else (ub.max(), ua.min())
+    for axis_xy, radius in poles:
+        rel = np.r_[axis_xy, ca[2]] - ca
+        s_pole = float(rel @ right)
+        if abs(float(rel @ na)) <= params.merge_gap_m and \
+                gap_lo - radius - params.pole_clearance_m <= s_pole <= gap_hi + radius + params.pole_clearance_m:
+            return True
+    return False
 
 
-def _merge_parts(pts: WindowPoints, parts: List[np.ndarray], params: PanelParams) -> List[List[int]]:
-    """Groups of part indices to measure as one (union of side-by-side pairs)."""
+def _merge_parts(pts: WindowPoints, parts: List[np.ndarray], params: PanelParams,
+                 poles: Sequence[Tuple[np.ndarray, float]] = ()) -> List[List[int]]:
+    """Groups of part indices to measure as one (union of side-by-side pairs; ``poles``: see
+    :func:`_side_by_side`)."""
     parent = list(range(len(parts)))
 
     def root(i: int) -> int:
@@ -486,12 +511,41 @@ def _merge_parts(pts: WindowPoints, parts: List[np.ndarray], params: PanelParams
         for j in range(i + 1, len(parts)):
             if float(np.linalg.norm(centres[i] - centres[j])) > reach[i] + reach[j] + params.merge_gap_m:
                 continue
-            if root(i) != root(j) and _side_by_side(pts, parts[i], parts[j], params):
+            if root(i) != root(j) and _side_by_side(pts, parts[i], parts[j], params, poles):
                 parent[root(j)] = root(i)
     groups: dict = {}
     for i in range(len(parts)):
         groups.setdefault(root(i), []).append(i)
     return list(groups.values())
+
+
+def features_off_poles(pts: WindowPoints, poles: Sequence[Tuple[np.ndarray, float]],
+                       params: PanelParams) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The points' (normal, linearity, flatness), those of the points beside a pole
+    (``poles``: axis xy, radius) taken again from their neighbours off the pole.
+
+    Distances are horizontal from the pole's surface (radius + ``pole_surface_m``): points
+    within it are the pole's; points from ``pole_clearance_m`` to ``pole_feature_reach_m``
+    past it are taken again; points closer than ``pole_clearance_m`` keep theirs (the pole's
+    own points just past its estimated surface would pass as a flat face and stretch the
+    panel in front of it along the pole). The window's own arrays are not changed."""
+    normal, linearity, flatness = pts.normal, pts.linearity, pts.flatness
+    if params.pole_feature_reach_m <= 0 or not len(poles) or not len(pts):
+        return normal, linearity, flatness
+    normal, linearity, flatness = normal.copy(), linearity.copy(), flatness.copy()
+    for axis_xy, radius in poles:
+        d = np.linalg.norm(pts.xyz[:, :2] - axis_xy, axis=1)
+        surface = radius + params.pole_surface_m
+        # the neighbours come from twice the reach, so the points within the reach have them all
+        around = np.flatnonzero((d > surface) & (d <= surface + 2.0 * params.pole_feature_reach_m))
+        if len(around) < FEATURE_NEIGHBOURS:
+            continue
+        n_a, lin_a, flat_a, _ = local_features(pts.xyz[around])
+        near = (d[around] > surface + params.pole_clearance_m) & \
+            (d[around] <= surface + params.pole_feature_reach_m)
+        rows = around[near]
+        normal[rows], linearity[rows], flatness[rows] = n_a[near], lin_a[near], flat_a[near]
+    return normal, linearity, flatness
 
 
 def find_panels(pts: WindowPoints, ground_z, params: PanelParams, seed: int = 0,
@@ -504,11 +558,12 @@ def find_panels(pts: WindowPoints, ground_z, params: PanelParams, seed: int = 0,
     cands: List[PanelCandidate] = []
     bright_rows = np.flatnonzero(pts.bright & (pts.h >= params.min_bright_height_m))
     tilt_sin = math.sin(math.radians(params.dark_max_normal_tilt_deg))
-    n_h = pts.normal[:, :2] / np.maximum(np.linalg.norm(pts.normal[:, :2], axis=1, keepdims=True), 1e-9)
+    normal, linearity, flatness = features_off_poles(pts, poles, params)
+    n_h = normal[:, :2] / np.maximum(np.linalg.norm(normal[:, :2], axis=1, keepdims=True), 1e-9)
     along = np.abs(np.einsum("ij,ij->i", n_h, pts.tangent_xy))
     dark = (~pts.bright & (pts.h >= params.min_bottom_height_m) & (pts.h <= params.max_top_height_m)
-            & (pts.flatness <= params.dark_max_flatness) & (pts.linearity <= params.dark_max_linearity)
-            & (np.abs(pts.normal[:, 2]) <= tilt_sin)
+            & (flatness <= params.dark_max_flatness) & (linearity <= params.dark_max_linearity)
+            & (np.abs(normal[:, 2]) <= tilt_sin)
             & (along >= math.cos(math.radians(params.max_normal_to_track_deg + params.dark_normal_slack_deg))))
     if len(bright_rows):
         near_bright = cKDTree(pts.xyz[bright_rows]).query(pts.xyz[dark], k=1,
@@ -545,7 +600,7 @@ def find_panels(pts: WindowPoints, ground_z, params: PanelParams, seed: int = 0,
             reasons[reason] = reasons.get(reason, 0) + 1
         return panel
 
-    for group in _merge_parts(pts, parts, params):
+    for group in _merge_parts(pts, parts, params, poles):
         merged = measure(np.concatenate([parts[i] for i in group])) if len(group) > 1 else None
         if merged is not None:
             cands.append(merged)

@@ -712,3 +712,80 @@ def test_stations_or_a_line_serve_as_the_track(built_path, built_result):
         res = CS.find_signs_in_cloud(built_path, track)
         got = np.array(sorted(tuple(s.centre_world) for s in res.signs))
         assert got.shape == want.shape and np.abs(got - want).max() < 0.02
+
+
+def _window_points(xyz):
+    """WindowPoints of ``xyz`` with their local features; the other fields are not used."""
+    n = len(xyz)
+    normal, lin, flat, sca = CP.local_features(xyz)
+    zeros = np.zeros(n)
+    return CP.WindowPoints(xyz=xyz, h=xyz[:, 2], sensor=np.zeros((n, 3)), intensity=zeros,
+                           intensity_rn=zeros, bright=np.zeros(n, bool), s_m=zeros, offset_m=zeros,
+                           tangent_xy=np.tile([0.0, 1.0], (n, 1)), normal=normal, linearity=lin,
+                           flatness=flat, scattering=sca)
+
+
+def _triangle_behind_its_pole(rng):
+    """The back of a yield sign (0.9 m, tip down at z 2.0) in the plane y = 0, its points 5 cm
+    apart in rows 2.5 cm apart (the tip: one or two points a row), and its pole 9 cm in front
+    of it (towards the scanner at y < 0), scanned all round and more densely, as a drive
+    scans a pole it passes."""
+    u, v = np.meshgrid(np.arange(-0.45, 0.451, 0.05), np.arange(0.0, 0.78, 0.025))
+    inside = np.abs(u) <= 0.45 * v / 0.78
+    face = np.column_stack([u[inside], np.zeros(inside.sum()), 2.0 + v[inside]])
+    axis_xy, radius = np.array([0.0, -0.09]), 0.035
+    z = np.arange(0.5, 3.2, 0.01)
+    angles = np.linspace(0.0, 2.0 * math.pi, 16, endpoint=False)
+    pole = np.array([[axis_xy[0] + radius * math.cos(a), axis_xy[1] + radius * math.sin(a), zz]
+                     for zz in z for a in angles])
+    xyz = np.concatenate([face, pole]) + rng.normal(0, 0.002, (len(face) + len(pole), 3))
+    return xyz, len(face), (axis_xy, radius)
+
+
+def test_a_triangles_tip_beside_its_pole_is_flat_once_the_pole_is_out_of_its_neighbourhood():
+    # the cloud's yield and warning signs seen from behind lost their tips: the tip's
+    # neighbours were mostly the pole's, so they were neither flat nor facing the road
+    xyz, n_face, pole = _triangle_behind_its_pole(np.random.default_rng(5))
+    pts = _window_points(xyz)
+    params = CP.PanelParams()
+    tip = np.flatnonzero((np.arange(len(xyz)) < n_face) & (xyz[:, 2] < 2.15))
+    assert len(tip) >= 10
+
+    def dark_panel_like(normal, linearity, flatness):   # find_panels' tests of a dark point
+        facing = np.abs(normal[:, 1]) >= math.cos(math.radians(params.max_normal_to_track_deg
+                                                                + params.dark_normal_slack_deg))
+        return (flatness <= params.dark_max_flatness) & (linearity <= params.dark_max_linearity) & facing
+
+    before = dark_panel_like(pts.normal[tip], pts.linearity[tip], pts.flatness[tip])
+    normal, linearity, flatness = CP.features_off_poles(pts, [pole], params)
+    after = dark_panel_like(normal[tip], linearity[tip], flatness[tip])
+    assert before.mean() < 0.2 and after.mean() > 0.8, (before.mean(), after.mean())
+    # the pole's own points, and those just past its estimated surface, keep their features
+    d = np.linalg.norm(xyz[:, :2] - pole[0], axis=1)
+    kept = d <= pole[1] + params.pole_surface_m + params.pole_clearance_m
+    assert kept[n_face:].all()
+    assert np.array_equal(normal[kept], pts.normal[kept]) and np.array_equal(flatness[kept], pts.flatness[kept])
+    assert pts.flatness is not flatness                  # the window's own arrays are not changed
+    off = CP.PanelParams(pole_feature_reach_m=0.0)
+    assert CP.features_off_poles(pts, [pole], off)[2] is pts.flatness
+
+
+def test_the_halves_of_a_triangle_split_at_its_pole_are_one_panel():
+    # a warning sign seen from behind, cut by its pole's shadow: one half holds the apex
+    u, v = np.meshgrid(np.arange(-0.45, 0.451, 0.02), np.arange(0.0, 0.78, 0.02))
+    inside = np.abs(u) <= 0.45 * (0.78 - v) / 0.78
+    xyz = np.column_stack([u[inside], np.zeros(inside.sum()), 2.0 + v[inside]])
+    pts = _window_points(xyz)
+    a = np.flatnonzero(xyz[:, 0] < -0.10)                 # no apex: its top is 0.6 m lower
+    b = np.flatnonzero(xyz[:, 0] > -0.02)                 # the apex
+    params = CP.PanelParams()
+    in_the_gap = (np.array([-0.06, -0.07]), 0.035)
+    far_away = (np.array([1.5, -0.07]), 0.035)
+    assert not CP._side_by_side(pts, a, b, params)                 # the tops differ
+    assert not CP._side_by_side(pts, a, b, params, [far_away])
+    assert CP._side_by_side(pts, a, b, params, [in_the_gap])
+    assert CP._merge_parts(pts, [a, b], params, [in_the_gap]) == [[0, 1]]
+    # two panels stacked on one pole share no edge: apart, pole or not
+    lower = np.flatnonzero(xyz[:, 2] < 2.25)
+    upper = np.flatnonzero(xyz[:, 2] > 2.35)
+    assert not CP._side_by_side(pts, lower, upper, params, [in_the_gap])
