@@ -11,10 +11,10 @@
    gaps kept when large) -> intensity filter with an Otsu threshold on the cluster, applied
    only when it splits off a retroreflective mode that is bright for this cloud (``median +
    4 MAD`` of its non-ground points; faded faces keep all their points) -> RANSAC plane
-   constrained to near-vertical, fitted to the bright points (to all of them when that plane
-   turns far from the views' normal: a few bright specks on a faded face) -> points within
-   2.5 sigma of it
-   (darker ones only where they form a surface: the back face) -> PCA dimensionality of each
+   constrained to near-vertical, fitted to the bright points (to all the points when that
+   plane turns far from the views' normal: a few bright specks on a faded face) -> points
+   within 2.5 sigma of it (darker ones only where they form a surface: the back face) -> PCA
+   dimensionality of each
    point's neighbourhood, dropping clearly linear points (the pole) -> convexity test
    (traffic mirrors are curved) -> the outline in the plane: the points' extent, widened up
    to the views' boxes cast on the plane (sampled points miss sharp corners; at most

@@ -10,7 +10,7 @@ from helpers.scenes import ground_and_oracle
 from osgeo import ogr
 
 # the goals of the issue (Zhang 2023: P 0.978 / R 0.947; Balado 2020: 97.5 % within 0.5 m)
-# the panel's size: round signs come in sizes 150-180 mm apart (420, 600, 750, 900 mm in
+# the panel's size: round signs come in sizes 150-180 mm apart (420, 600 and 750 mm across in
 # Germany), so a size within half a step tells the size apart, and few miss it by a step
 GOALS = dict(PRECISION=0.97, RECALL=0.95, MEDIAN_ERROR=0.05, P95_ERROR=0.20,
              MEDIAN_HEIGHT_ERROR=0.05, MEDIAN_AZIMUTH_ERROR=5.0, CLASS_ACCURACY=0.97,
