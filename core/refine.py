@@ -14,8 +14,8 @@
    constrained to near-vertical, fitted to the bright points (to all the points when that
    plane turns far from the views' normal: a few bright specks on a faded face) -> points
    within 2.5 sigma of it (darker ones only where they form a surface: the back face) -> PCA
-   dimensionality of each
-   point's neighbourhood, dropping clearly linear points (the pole) -> convexity test
+   dimensionality of each point's neighbourhood, dropping clearly linear points (the pole)
+   -> convexity test
    (traffic mirrors are curved) -> the outline in the plane: the points' extent, widened up
    to the views' boxes cast on the plane (sampled points miss sharp corners; at most
    ``box_extent_allowance_m``); centre = centre of the outline, not the centroid -> a
