@@ -15,8 +15,8 @@
    plane turns far from the views' normal: a few bright specks on a faded face) -> points
    within 2.5 sigma of it (darker ones only where they form a surface: the back face) -> PCA
    dimensionality of each point's neighbourhood, dropping clearly linear points (the pole)
-   -> convexity test
-   (traffic mirrors are curved) -> the outline in the plane: the points' extent, widened up
+   -> convexity test (traffic mirrors are curved) -> the outline in the plane: the points'
+   extent, widened up
    to the views' boxes cast on the plane (sampled points miss sharp corners; at most
    ``box_extent_allowance_m``); centre = centre of the outline, not the centroid -> a
    surface test: a panel whose plane continues beyond a vertical and a horizontal side and
