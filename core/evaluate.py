@@ -462,7 +462,7 @@ def evaluate(signs: SignSet, reference: SignSet, match_radius_m: float) -> Evalu
         f1=_ratio(2 * tp, 2 * tp + fp + fn),
         class_accuracy=float(class_agrees.mean()) if tp else math.nan,
         median_error_m=_median(distance),
-        p95_error_m=float(np.percentile(distance, 95)) if tp else math.nan,
+        p95_error_m=_p95(distance),
         median_horizontal_error_m=_median(horizontal),
         median_vertical_error_m=_median(np.abs(delta[:, 2])),
         median_height_error_m=_median(np.abs(height_error)),

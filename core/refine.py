@@ -16,11 +16,11 @@
    within 2.5 sigma of it (darker ones only where they form a surface: the back face) -> PCA
    dimensionality of each point's neighbourhood, dropping clearly linear points (the pole)
    -> convexity test (traffic mirrors are curved) -> the outline in the plane: the points'
-   extent, widened up
-   to the views' boxes cast on the plane (sampled points miss sharp corners; at most
-   ``box_extent_allowance_m``); centre = centre of the outline, not the centroid -> a
-   surface test: a panel whose plane continues beyond a vertical and a horizontal side and
-   that is no brighter than that surface is a picture on a billboard or a wall, not a sign.
+   extent, widened up to the views' boxes cast on the plane (sampled points miss sharp
+   corners; at most ``box_extent_allowance_m``); centre = centre of the outline, not the
+   centroid -> a surface test: a panel whose plane continues beyond a vertical and a
+   horizontal side and that is no brighter than that surface is a picture on a billboard or
+   a wall, not a sign.
 3. **Attributes.** Facing azimuth: plane normal oriented towards the stations that saw the
    panel, degrees clockwise from grid north in [0, 360). Ground: a robust plane through
    the class-2 points within 0.4 / 0.75 / 1.5 / 3 m horizontally, taken at the panel centre;
@@ -577,10 +577,11 @@ def points_on_plane(pts: PointSet, bright_mask: np.ndarray, spacing_m: float,
     bright points are specks on a faded face, not the face: all the points count as bright."""
     plane = fit_plane_ransac(pts.xyz_world[bright_mask], params.plane_threshold_m,
                              params.max_tilt_deg)
+    min_cos = math.cos(math.radians(params.max_bright_plane_turn_deg))
     if views_normal is not None and not bright_mask.all() and (
-            plane is None or _turn_deg(plane.normal, views_normal) > params.max_bright_plane_turn_deg):
+            plane is None or abs(plane.normal @ views_normal) < min_cos):
         whole = fit_plane_ransac(pts.xyz_world, params.plane_threshold_m, params.max_tilt_deg)
-        if whole is not None and _turn_deg(whole.normal, views_normal) <= params.max_bright_plane_turn_deg:
+        if whole is not None and abs(whole.normal @ views_normal) >= min_cos:
             plane, bright_mask = whole, np.ones(len(pts), bool)
     if plane is None or plane.inliers.sum() < params.min_panel_points:
         return None
@@ -593,11 +594,6 @@ def points_on_plane(pts: PointSet, bright_mask: np.ndarray, spacing_m: float,
         feats = dimensionality(pts.xyz_world[dark], max(params.pca_radius_m, 3.0 * spacing_m))
         keep[dark[np.argmax(feats, axis=1) == 1]] = True
     return pts.subset(tight & keep), plane
-
-
-def _turn_deg(normal: np.ndarray, other: np.ndarray) -> float:
-    """Angle (degrees, 0..90) between two unit normals, either way round."""
-    return math.degrees(math.acos(min(1.0, abs(float(normal @ other)))))
 
 
 def drop_linear_points(panel: PointSet, spacing_m: float, params: RefineParams) -> PointSet:
