@@ -342,6 +342,20 @@ class Spool:
         # fancy indexing copies the rows out of the map, which is let go with this expression
         return np.memmap(path, dtype=self.dtypes[kind], mode="r")[np.asarray(rows, dtype=np.int64)].view(np.ndarray)
 
+    def read_parts(self, kind: str, index: int, part_rows: int = 65536) -> Iterator[np.ndarray]:
+        """The rows of ``kind`` appended to ``index``, read ``part_rows`` at a time (a pass
+        that keeps a few of them holds one part, not the file)."""
+        self._settle()
+        path = self._path(kind, index)
+        if not os.path.exists(path):
+            return
+        with open(path, "rb") as f:
+            while True:
+                part = np.fromfile(f, dtype=self.dtypes[kind], count=part_rows)
+                if not len(part):
+                    return
+                yield part
+
     def count(self, kind: str, index: int) -> int:
         """How many rows of ``kind`` have been appended to ``index``."""
         self._settle()

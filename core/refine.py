@@ -1084,13 +1084,13 @@ class CloudBlocks:
     blocks, a histogram of the non-ground intensities, each point counted in the block of
     its nearest ``ok`` candidate (exact; the one-index read samples 200 000 points, so
     above that size the level may differ slightly). Image-only signs take their ground from
-    spatial queries around them, one per block (:meth:`ground_of`).
+    the points around them, one block of them at a time (:meth:`ground_of`).
 
     The cloud is read once: a single block is read and kept; several blocks are spooled
     first, in one pass over the tiles they meet, each block's points (coordinates, cloud
     index, intensity, class: :data:`BLOCK_SPOOL_DTYPE`) appended to a file of its own in a
-    temporary folder, which each pass over the blocks then reads back (:meth:`close`, or
-    leaving a ``with`` block, removes it).
+    temporary folder, which each pass over the blocks, and the ground of image-only signs,
+    then read back (:meth:`close`, or leaving a ``with`` block, removes it).
 
     Nothing held grows with the drive but the candidates and the drafts: the corridor of the
     ``ok`` candidates is built only around the points tested (:meth:`_corridor_mask`), and a
@@ -1126,6 +1126,7 @@ class CloudBlocks:
         if self._axis is not None:   # blocks along a drive (not one block: block_m inf)
             self.blocks = cut_blocks(self.blocks, self._axis.locate(self.centres)[0], params.block_max_groups)
         self._cached: Optional[Tuple[int, TiledIndex]] = None
+        self._boxes: Optional[np.ndarray] = None     # each block's read box (x0, y0, x1, y1), when asked for
         self._spool_ids = list(range(len(self.blocks)))   # block k's points: spool file _spool_ids[k]
         try:
             if self.source is not None and len(self.blocks) > 1:
@@ -1305,6 +1306,46 @@ class CloudBlocks:
         del idx
         return out
 
+    def _around(self, centres_xy: np.ndarray, radius_m: float) -> TiledIndex:
+        """The points within ``radius_m`` of ``centres_xy`` that the one-index read holds:
+        from the spooled blocks when there are some (:meth:`_spooled_around`: the cloud is not
+        read again), else read (:meth:`_read`)."""
+        if self._spool is not None:
+            return self._spooled_around(centres_xy, radius_m)
+        return self._read(centres_xy, radius_m)
+
+    def _spooled_around(self, centres_xy: np.ndarray, radius_m: float) -> TiledIndex:
+        """:meth:`_read` without reading the cloud: from the spool files of the blocks whose
+        read box meets the area, each point once (a point near a seam is in two blocks).
+
+        The same points: every point of the corridor (``corridor_m`` around an ``ok``
+        candidate) is in the spool file of the block holding that candidate's group, whose
+        region reaches at least ``corridor_m + 0.5`` around each of its candidates (a halved
+        block's halves too), and only corridor points are spooled."""
+        assert self._spool is not None and self.source is not None
+        if self._boxes is None:
+            reads = [self._groups_read(gs) for gs in self.blocks]
+            self._boxes = np.array([(*(xy.min(axis=0) - r), *(xy.max(axis=0) + r)) for xy, r in reads]
+                                   ).reshape(-1, 4)
+        lo, hi = centres_xy.min(axis=0) - radius_m, centres_xy.max(axis=0) + radius_m
+        region = CropRegion.corridor(radius_m, points_xy=centres_xy)
+        bx = self._boxes
+        meets = np.zeros(len(bx), bool)      # the blocks whose box meets one of the squares around the centres
+        for cx, cy in centres_xy:
+            meets |= ((bx[:, 0] <= cx + radius_m) & (bx[:, 2] >= cx - radius_m)
+                      & (bx[:, 1] <= cy + radius_m) & (bx[:, 3] >= cy - radius_m))
+        parts = []
+        for b in np.flatnonzero(meets):
+            for part in self._spool.read_parts("block", self._spool_ids[b]):   # not the whole block at once
+                x, y = part["xyz"][:, 0], part["xyz"][:, 1]
+                rows = part[(x >= lo[0]) & (x <= hi[0]) & (y >= lo[1]) & (y <= hi[1])]
+                parts.append(rows[region.mask(rows["xyz"][:, 0], rows["xyz"][:, 1])])
+        rows = np.concatenate(parts) if parts else np.zeros(0, BLOCK_SPOOL_DTYPE)
+        rows = rows[np.unique(rows["point_index"], return_index=True)[1]]   # in cloud order, as read
+        return TiledIndex(rows["xyz"], rows["point_index"],
+                          {"intensity": rows["intensity"], "classification": rows["classification"]},
+                          5.0, self.source.crs_wkt)
+
     def _block(self, b: int, progress: Progress = SILENT) -> TiledIndex:
         """The points of block ``b``: within the reach of its groups and, for the bright
         level, within the corridor of its ``ok`` candidates."""
@@ -1383,9 +1424,10 @@ class CloudBlocks:
 
     def ground_of(self, drafts: Sequence[SignDraft], params: RefineParams) -> None:
         """Set the ground (:func:`ground_from_cloud`) of ``drafts`` (image-only signs) from
-        the points around them: one spatial query per block holding some of them, so the
-        points held grow with a block's signs, not with the drive's (each sign's query sees
-        the same points as in one read of them all)."""
+        the points around them (:meth:`_around`: the spooled blocks, else a spatial query),
+        gathered for one block of them at a time, so the points held grow with a block's
+        signs, not with the drive's (each sign's query sees the same points as in one read
+        of them all)."""
         if not drafts:
             return
         places = [placement(self.cand, d) for d in drafts]
@@ -1405,7 +1447,7 @@ class CloudBlocks:
         block_of_row = self._block_of(centres[rows])
 
         def ground_of_block(mine: np.ndarray) -> None:
-            index = self._read(centres[mine, :2], radius)
+            index = self._around(centres[mine, :2], radius)
             for k in mine:
                 drafts[k].ground = ground_from_cloud(index, places[k].centre, places[k].bottom_z, params)
 

@@ -943,7 +943,7 @@ def test_blocks_hold_no_shape_of_the_whole_drive(scene, candidates, tmp_path, mo
 @pytest.mark.parametrize("cloud", ["index", "las"])
 def test_image_only_ground_is_read_block_by_block_with_the_one_read_result(scene, candidates, index,
                                                                           tmp_path, monkeypatch, cloud):
-    """CloudBlocks.ground_of reads the points around image-only signs one block at a time
+    """CloudBlocks.ground_of gathers the points around image-only signs one block at a time
     (on a long drive one read of them all held 0.4 GB), each sign's ground as from one read."""
     if cloud == "las":
         index = str(tmp_path / "cloud.las")
@@ -958,12 +958,12 @@ def test_image_only_ground_is_read_block_by_block_with_the_one_read_result(scene
     with R.CloudBlocks(candidates, groups, index, 1.0, float("inf"), params) as blocks:
         blocks.ground_of(one, params)
     reads = []
-    real = R.CloudBlocks._read
+    real = R.CloudBlocks._around
 
-    def counted(self, centres_xy, radius_m, progress=Progress()):
+    def counted(self, centres_xy, radius_m):
         reads.append(len(centres_xy))
-        return real(self, centres_xy, radius_m, progress)
-    monkeypatch.setattr(R.CloudBlocks, "_read", counted)
+        return real(self, centres_xy, radius_m)
+    monkeypatch.setattr(R.CloudBlocks, "_around", counted)
     with R.CloudBlocks(candidates, groups, index, 1.0, 20.0, params) as blocks:
         blocks.ground_of(by_block, params)
     assert len(ids) >= 8 and len(reads) >= 4 and max(reads) < len(ids) and sum(reads) == len(ids)
@@ -975,7 +975,8 @@ def test_image_only_ground_is_read_block_by_block_with_the_one_read_result(scene
 def test_a_las_file_is_read_once_for_all_blocks_and_the_spool_removed(scene, candidates, tmp_path,
                                                                       monkeypatch):
     """Several blocks are spooled in one pass over the file (CloudBlocks._spool), not read
-    once per block and pass; the spool folder goes when refinement ends."""
+    once per block and pass, nor again for the ground of image-only signs (from the spool,
+    each sign's as from one read of the cloud); the spool folder goes when refinement ends."""
     import tempfile
 
     from roadsigns.core.cloudsource import CloudSource
@@ -996,6 +997,17 @@ def test_a_las_file_is_read_once_for_all_blocks_and_the_spool_removed(scene, can
         assert blocks._spool is not None and os.listdir(blocks._spool.folder)
         drafts = blocks.extract_signs(R.RefineParams())
         assert drafts and reads == [True]  # the bright level and the signs: one read
+        ids = sorted({p.sign_id for p in scene.panels if len(views_of(scene, candidates, p.sign_id))})
+        image_only = [R.SignDraft(views_of(scene, candidates, i), x_image=truth(scene, i).centre_world)
+                      for i in ids]
+        blocks.ground_of(image_only, R.RefineParams())
+        assert reads == [True]             # their ground: no read of the file
+    read_once = R.cloud_around_candidates(candidates, las, R.DEFAULT_MERGE_RADIUS_M)
+    assert len(ids) >= 8
+    for draft in image_only:
+        z, source = R.ground_from_cloud(read_once, R.placement(candidates, draft).centre,
+                                        R.placement(candidates, draft).bottom_z, R.RefineParams())
+        assert draft.ground[1] == source == R.GROUND_POINTS and draft.ground[0] == pytest.approx(z)
     assert os.listdir(tmp_path / "tmp") == []
 
 

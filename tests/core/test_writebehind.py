@@ -79,7 +79,11 @@ def test_spool_reads_back_every_row_in_order(tmp_path, background):
         for k in range(3):
             got = spool.read("p", k)
             np.testing.assert_array_equal(got, np.concatenate(parts[k]))
+            in_parts = list(spool.read_parts("p", k, part_rows=7))
+            assert all(len(p) == 7 for p in in_parts[:-1]) and 1 <= len(in_parts[-1]) <= 7
+            np.testing.assert_array_equal(np.concatenate(in_parts), got)
             spool.discard("p", k)
+            assert list(spool.read_parts("p", k)) == []
             assert spool.read("p", k).size == 0
         folder = spool.folder
     assert not os.path.exists(folder)
