@@ -53,7 +53,7 @@ supported of the two wins (``code_check``).
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -455,12 +455,17 @@ def point_spacing_m(xyz: np.ndarray, neighbour: int = 1) -> float:
 
 @dataclass
 class Panel:
+    """A sign's panel in the cloud: centre and unit normal (world, towards the viewers),
+    width and height (m), corners (TL, TR, BR, BL seen from the front, world), its points
+    and its planarity. ``points`` is None once the sign is placed (:attr:`SignDraft.placed`
+    holds what it needs of them): a drive's drafts then hold 8 bytes a panel point, not 35."""
+
     centre_world: np.ndarray
     normal_world: np.ndarray
     width_m: float
     height_m: float
     corners_world: np.ndarray
-    points: PointSet
+    points: Optional[PointSet]
     planarity: float
 
 
@@ -701,6 +706,7 @@ def on_larger_surface(panel: Panel, index: TiledIndex, bright: float, spacing_m:
     full = shares >= params.surround_min_share
     if not ((full[0] or full[1]) and (full[2] or full[3])):
         return False
+    assert panel.points is not None
     own = float(np.median(panel.points.attributes["intensity"]))
     return not (own >= bright and around.size and float(np.median(around)) < bright)
 
@@ -919,6 +925,8 @@ class SignDraft:
     absorbed: bool = False
     #: :func:`ground_from_cloud` at its placement, when found block by block (None: ask the index)
     ground: Optional[Tuple[float, str]] = None
+    #: its :func:`placement`, once found (its panel's points are then let go)
+    placed: Optional["Placement"] = None
 
     @property
     def views(self) -> List[int]:
@@ -1410,6 +1418,9 @@ class CloudBlocks:
                 if draft is not None:
                     place = placement(self.cand, draft)
                     draft.ground = ground_from_cloud(index, place.centre, place.bottom_z, params)
+                    draft.placed = place    # the panel's points' coordinates are not needed after
+                    if draft.panel is not None:
+                        draft.panel = replace(draft.panel, points=None)
                 out.append((int(g), draft))
             return out, kept
 
@@ -1582,9 +1593,13 @@ def placement(cand: ProjectionResult, draft: SignDraft) -> Placement:
     """Where the sign is: its panel; else the median of its own views' surface points (their
     mean normal) or its triangulated point (facing the views' mean station horizontally),
     sized by the boxes at that range (:func:`box_size_estimate_m`, frontal for a
-    triangulated point), ``bottom_z`` half the panel height below the centre."""
+    triangulated point), ``bottom_z`` half the panel height below the centre; the draft's
+    own (:attr:`SignDraft.placed`) once found."""
+    if draft.placed is not None:
+        return draft.placed
     if draft.panel is not None:
         p = draft.panel
+        assert p.points is not None, "a panel's points are let go only once it is placed"
         return Placement(p.centre_world, p.normal_world, p.width_m, p.height_m,
                          float(p.corners_world[:, 2].min()), p.points.point_index,
                          float(np.mean(p.points.attributes["intensity"])), p.planarity, "lidar",
