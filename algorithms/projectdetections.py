@@ -70,6 +70,7 @@ class ProjectDetections(RoadSignsAlgorithm):
                             allow_empty=True)  # no detections: a warning and an empty layer
         with self.core_errors():
             detections = Detections.from_records(rows)
+        del rows   # the layer's columns, copied: not held through the drive's work
         with self.core_errors():
             result = project_detections(
                 detections, cloud_path,

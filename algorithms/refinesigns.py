@@ -152,6 +152,7 @@ class RefineSigns(RoadSignsAlgorithm):
         progress = self.progress(feedback)
         with self.core_errors():
             candidates = ProjectionResult.from_records(rows)
+        del rows   # the layer's columns, copied: not held through the drive's work
         with self.core_errors():
             codes_table = read_codes_table(
                 self.parameterAsFile(parameters, self.CODES_TABLE, context) or BUNDLED_CODES_TABLE)
