@@ -1174,13 +1174,19 @@ class CloudBlocks:
         xy = np.vstack([self.centres[gs, :2], self.cand.xyz_world[rows, :2]])
         return xy, max(float(self.reach[gs].max()), self.corridor_m + 0.5)
 
+    @staticmethod
+    def _box(xy: np.ndarray, radius_m: float) -> Tuple[float, float, float, float]:
+        """The 2D box ``(x0, y0, x1, y1)`` of the points within ``radius_m`` of ``xy``."""
+        (x0, y0), (x1, y1) = xy.min(axis=0) - radius_m, xy.max(axis=0) + radius_m
+        return float(x0), float(y0), float(x1), float(y1)
+
     def _spool_blocks(self, progress: Progress) -> None:
         """One pass over the cloud: each block's points to its file (see the class doc)."""
         assert self.source is not None
         area, boxes = [], []
         for b in range(len(self.blocks)):
             xy, radius = self._block_read(b)
-            boxes.append((*(xy.min(axis=0) - radius), *(xy.max(axis=0) + radius)))
+            boxes.append(self._box(xy, radius))
             # the tiles and chunks to read: a hull around the block's read region (a few
             # vertices a block; the region itself is built when a chunk meets it)
             area.append(shapely.convex_hull(shapely.multipoints(xy)).buffer(radius * HULL_MARGIN + 0.01, 4))
@@ -1277,7 +1283,11 @@ class CloudBlocks:
     def _spooled(self, b: int) -> TiledIndex:
         """Block ``b`` read back from its spool file."""
         assert self.source is not None and self._spool is not None
-        rows = self._spool.read("block", self._spool_ids[b])
+        return self._index_of(self._spool.read("block", self._spool_ids[b]))
+
+    def _index_of(self, rows: np.ndarray) -> TiledIndex:
+        """The index of spooled points (:data:`BLOCK_SPOOL_DTYPE`)."""
+        assert self.source is not None
         # the fields as views: the index sorts them into arrays of its own (no copy between)
         return TiledIndex(rows["xyz"], rows["point_index"],
                           {"intensity": rows["intensity"], "classification": rows["classification"]},
@@ -1330,29 +1340,19 @@ class CloudBlocks:
         candidate) is in the spool file of the block holding that candidate's group, whose
         region reaches at least ``corridor_m + 0.5`` around each of its candidates (a halved
         block's halves too), and only corridor points are spooled."""
-        assert self._spool is not None and self.source is not None
+        assert self._spool is not None
         if self._boxes is None:
-            reads = [self._groups_read(gs) for gs in self.blocks]
-            self._boxes = np.array([(*(xy.min(axis=0) - r), *(xy.max(axis=0) + r)) for xy, r in reads]
-                                   ).reshape(-1, 4)
-        lo, hi = centres_xy.min(axis=0) - radius_m, centres_xy.max(axis=0) + radius_m
+            self._boxes = np.array([self._box(*self._groups_read(gs)) for gs in self.blocks]).reshape(-1, 4)
+        x0, y0, x1, y1 = self._box(centres_xy, radius_m)
         region = CropRegion.corridor(radius_m, points_xy=centres_xy)
-        bx = self._boxes
-        meets = np.zeros(len(bx), bool)      # the blocks whose box meets one of the squares around the centres
-        for cx, cy in centres_xy:
-            meets |= ((bx[:, 0] <= cx + radius_m) & (bx[:, 2] >= cx - radius_m)
-                      & (bx[:, 1] <= cy + radius_m) & (bx[:, 3] >= cy - radius_m))
-        parts = []
-        for b in np.flatnonzero(meets):
+        bx, parts = self._boxes, []
+        for b in np.flatnonzero((bx[:, 0] <= x1) & (bx[:, 2] >= x0) & (bx[:, 1] <= y1) & (bx[:, 3] >= y0)):
             for part in self._spool.read_parts("block", self._spool_ids[b]):   # not the whole block at once
                 x, y = part["xyz"][:, 0], part["xyz"][:, 1]
-                rows = part[(x >= lo[0]) & (x <= hi[0]) & (y >= lo[1]) & (y <= hi[1])]
+                rows = part[(x >= x0) & (x <= x1) & (y >= y0) & (y <= y1)]
                 parts.append(rows[region.mask(rows["xyz"][:, 0], rows["xyz"][:, 1])])
         rows = np.concatenate(parts) if parts else np.zeros(0, BLOCK_SPOOL_DTYPE)
-        rows = rows[np.unique(rows["point_index"], return_index=True)[1]]   # in cloud order, as read
-        return TiledIndex(rows["xyz"], rows["point_index"],
-                          {"intensity": rows["intensity"], "classification": rows["classification"]},
-                          5.0, self.source.crs_wkt)
+        return self._index_of(rows[np.unique(rows["point_index"], return_index=True)[1]])   # each once, in cloud order
 
     def _block(self, b: int, progress: Progress = SILENT) -> TiledIndex:
         """The points of block ``b``: within the reach of its groups and, for the bright
