@@ -129,7 +129,8 @@ class CloudSignParams:
     histogram_band_m: Tuple[float, float] = (-1.5, 8.0)  # z rel. track of the threshold's points
     edge_clearance_m: float = 1.0       # objects this close to the corridor's edge are cut by it
     window_m: float = 50.0
-    margin_m: float = 10.0
+    # each side of a window: the head (arms, crown) of every pole the window owns lies within
+    margin_m: float = PoleParams.head_radius_m
     window_max_points: int = 500_000    # a window holding more is searched in parts (split_window)
     window_threads: int = BLOCK_THREADS  # windows searched at once (numpy and scipy release the GIL)
     ground_cell_m: float = 0.25

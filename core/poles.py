@@ -61,6 +61,9 @@ POLE_KINDS = (SIGN_POLE, LIGHT_POLE, GANTRY, OTHER)
 POLE_FIELDS = fields(("pole_id", int), ("kind", str), ("x", float), ("y", float),
                      ("z_foot", float), ("height", float), ("diameter", float),
                      ("lean_deg", float), ("n_points", int), ("sign_ids", str))
+#: A slice's points tested by :func:`_flanked` are taken from its tree this much beyond the
+#: flank radius (then tested exactly), not from the whole slice.
+FLANK_QUERY_PAD_M = 1e-3
 
 
 @dataclass
@@ -199,30 +202,35 @@ def _sections(xyz: np.ndarray, h: np.ndarray, sensor: np.ndarray, params: PolePa
         xy = xyz[rows, :2]
         labels = grid_clusters(xy, params.cluster_tolerance_m)
         slice_tree = cKDTree(xy)
-        for lab in np.unique(labels):
-            m = labels == lab
-            if m.sum() < params.min_section_points:
+        by_label = np.argsort(labels, kind="stable")     # each cluster's rows in ascending order
+        bounds = np.flatnonzero(np.r_[True, labels[by_label][1:] != labels[by_label][:-1], True])
+        for a, b in zip(bounds[:-1], bounds[1:]):
+            if b - a < params.min_section_points:
                 continue
-            p = xy[m]
+            members = by_label[a:b]
+            p = xy[members]
             extent = float(np.max(np.linalg.norm(p - p.mean(axis=0), axis=1))) * 2.0
             if extent > params.max_diameter_m + params.cluster_tolerance_m:
                 continue
             around = slice_tree.query_ball_point(p.mean(axis=0), 0.5 * extent + params.isolation_m,
                                                  return_length=True)
-            if int(around) > int(m.sum()):
+            if int(around) > b - a:
                 continue                  # a piece of something wider
-            if _flanked(xy[~m], p.mean(axis=0), 0.5 * extent + params.flank_m, params.flank_angle_deg):
+            flank_m = 0.5 * extent + params.flank_m
+            near = np.sort(slice_tree.query_ball_point(p.mean(axis=0), flank_m + FLANK_QUERY_PAD_M))
+            near = near[labels[near] != labels[members[0]]]
+            if _flanked(xy[near], p.mean(axis=0), flank_m, params.flank_angle_deg):
                 continue                  # one of a row of pieces (a wall sampled in stripes)
             if extent >= params.round_min_width_m and _roundness(p) < params.min_roundness:
                 continue                  # a straight piece (of a wall), not the arc of a pole
-            view = p.mean(axis=0) - sensor[rows[m], :2].mean(axis=0)
+            view = p.mean(axis=0) - sensor[rows[members], :2].mean(axis=0)
             view /= max(float(np.linalg.norm(view)), 1e-9)
             across = np.array([-view[1], view[0]])
             c = (p - p.mean(axis=0)) @ across
             width = float(np.percentile(c, 98) - np.percentile(c, 2)) if len(c) > 2 else 0.0
             radius = 0.5 * width
             centre = p.mean(axis=0) + (math.pi / 4.0) * radius * view
-            out.append(_Section(int(ks[s0]), centre, width, int(m.sum())))
+            out.append(_Section(int(ks[s0]), centre, width, int(b - a)))
     return out
 
 

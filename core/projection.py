@@ -251,8 +251,10 @@ def fit_plane_ransac(xyz: np.ndarray, threshold_m: float, max_tilt_deg: Optional
         return None
     normals, a = normals[ok], a[ok]
     ev = p if n <= max_eval_points else p[rng.choice(n, max_eval_points, replace=False)]
-    counts = (np.abs((ev[None, :, :] - a[:, None, :]) @ normals[..., None])[..., 0]
-              < threshold_m).sum(axis=1)
+    # each candidate's distances to the evaluated points: (ev - a) . n as ev . n - a . n, one
+    # matrix product (m, k) rather than a (k, m, 3) array of differences
+    offsets = np.einsum("ij,ij->i", a, normals)
+    counts = np.count_nonzero(np.abs(ev @ normals.T - offsets) < threshold_m, axis=0)
     best = int(np.argmax(counts))
     normal, point = normals[best], a[best]
     inliers = np.abs((p - point) @ normal) < threshold_m
