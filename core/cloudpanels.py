@@ -533,16 +533,22 @@ def features_off_poles(pts: WindowPoints, poles: Sequence[Tuple[np.ndarray, floa
     if params.pole_feature_reach_m <= 0 or not len(poles) or not len(pts):
         return normal, linearity, flatness
     normal, linearity, flatness = normal.copy(), linearity.copy(), flatness.copy()
+    by_x = np.argsort(pts.xyz[:, 0], kind="stable")      # a pole's points: a slab of x, then exact
+    x_sorted = pts.xyz[by_x, 0]
     for axis_xy, radius in poles:
-        d = np.linalg.norm(pts.xyz[:, :2] - axis_xy, axis=1)
         surface = radius + params.pole_surface_m
         # the neighbours come from twice the reach, so the points within the reach have them all
-        around = np.flatnonzero((d > surface) & (d <= surface + 2.0 * params.pole_feature_reach_m))
+        outer = surface + 2.0 * params.pole_feature_reach_m
+        lo = int(np.searchsorted(x_sorted, axis_xy[0] - outer, side="left"))
+        hi = int(np.searchsorted(x_sorted, axis_xy[0] + outer, side="right"))
+        slab = np.sort(by_x[lo:hi])
+        d = np.linalg.norm(pts.xyz[slab, :2] - axis_xy, axis=1)
+        inside = (d > surface) & (d <= outer)
+        around, d = slab[inside], d[inside]
         if len(around) < FEATURE_NEIGHBOURS:
             continue
         n_a, lin_a, flat_a, _ = local_features(pts.xyz[around])
-        near = (d[around] > surface + params.pole_clearance_m) & \
-            (d[around] <= surface + params.pole_feature_reach_m)
+        near = (d > surface + params.pole_clearance_m) & (d <= surface + params.pole_feature_reach_m)
         rows = around[near]
         normal[rows], linearity[rows], flatness[rows] = n_a[near], lin_a[near], flat_a[near]
     return normal, linearity, flatness
