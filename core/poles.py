@@ -203,7 +203,8 @@ def _sections(xyz: np.ndarray, h: np.ndarray, sensor: np.ndarray, params: PolePa
         labels = grid_clusters(xy, params.cluster_tolerance_m)
         slice_tree = cKDTree(xy)
         by_label = np.argsort(labels, kind="stable")     # each cluster's rows in ascending order
-        bounds = np.flatnonzero(np.r_[True, labels[by_label][1:] != labels[by_label][:-1], True])
+        sorted_labels = labels[by_label]
+        bounds = np.flatnonzero(np.r_[True, sorted_labels[1:] != sorted_labels[:-1], True])
         for a, b in zip(bounds[:-1], bounds[1:]):
             if b - a < params.min_section_points:
                 continue

@@ -793,3 +793,40 @@ def test_the_halves_of_a_triangle_split_at_its_pole_are_one_panel():
     lower = np.flatnonzero(xyz[:, 2] < 2.25)
     upper = np.flatnonzero(xyz[:, 2] > 2.35)
     assert not CP._side_by_side(pts, lower, upper, params, [in_the_gap])
+
+
+def _slice_of_pole(rng, centre_xy, radius=0.05, n=12):
+    """The near half of a pole's section (an arc facing a sensor at -y), at h 1.0 m."""
+    a = rng.uniform(math.pi * 1.1, math.pi * 1.9, n)
+    return np.column_stack([centre_xy[0] + radius * np.cos(a), centre_xy[1] + radius * np.sin(a)])
+
+
+def _stripe(x0, x1, y, n=12):
+    return np.column_stack([np.linspace(x0, x1, n), np.full(n, y)])
+
+
+def test_a_section_flanked_on_two_sides_is_a_piece_of_a_row_not_a_pole():
+    """A pole's section with pieces of a row (a wall in stripes) within ``flank_m`` on both
+    sides is not a section; with them on one side only, or farther than ``flank_m``, it is
+    (the flank test takes the slice's points near the section from the slice's tree: fails
+    where it misses points within the radius, or counts points beyond it)."""
+    from roadsigns.core import poles as P
+
+    params = P.PoleParams()
+    rng = np.random.default_rng(3)
+    pole = _slice_of_pole(rng, (0.0, 0.0))
+
+    def sections(*others):
+        xy = np.vstack([pole, *others])
+        xyz = np.column_stack([xy, np.full(len(xy), 1.0)])
+        sensor = np.tile([0.0, -8.0, 2.0], (len(xy), 1))
+        found = P._sections(xyz, xyz[:, 2].copy(), sensor, params)
+        return [s for s in found if np.hypot(*s.centre) < 0.2]
+
+    reach = 0.05 + params.flank_m                # about half the section's extent plus flank_m
+    left, right = _stripe(-reach + 0.25, -reach + 0.05, 0.0), _stripe(reach - 0.05, reach - 0.25, 0.0)
+    far_left, far_right = _stripe(-reach - 0.45, -reach - 0.25, 0.0), _stripe(reach + 0.25, reach + 0.45, 0.0)
+    assert len(sections()) == 1
+    assert len(sections(left)) == 1 and len(sections(right)) == 1
+    assert sections(left, right) == []
+    assert len(sections(far_left, far_right)) == 1
