@@ -210,27 +210,28 @@ def _sections(xyz: np.ndarray, h: np.ndarray, sensor: np.ndarray, params: PolePa
                 continue
             members = by_label[a:b]
             p = xy[members]
-            extent = float(np.max(np.linalg.norm(p - p.mean(axis=0), axis=1))) * 2.0
+            mid = p.mean(axis=0)
+            extent = float(np.max(np.linalg.norm(p - mid, axis=1))) * 2.0
             if extent > params.max_diameter_m + params.cluster_tolerance_m:
                 continue
-            around = slice_tree.query_ball_point(p.mean(axis=0), 0.5 * extent + params.isolation_m,
+            around = slice_tree.query_ball_point(mid, 0.5 * extent + params.isolation_m,
                                                  return_length=True)
             if int(around) > b - a:
                 continue                  # a piece of something wider
             flank_m = 0.5 * extent + params.flank_m
-            near = np.sort(slice_tree.query_ball_point(p.mean(axis=0), flank_m + FLANK_QUERY_PAD_M))
+            near = np.sort(slice_tree.query_ball_point(mid, flank_m + FLANK_QUERY_PAD_M))
             near = near[labels[near] != labels[members[0]]]
-            if _flanked(xy[near], p.mean(axis=0), flank_m, params.flank_angle_deg):
+            if _flanked(xy[near], mid, flank_m, params.flank_angle_deg):
                 continue                  # one of a row of pieces (a wall sampled in stripes)
             if extent >= params.round_min_width_m and _roundness(p) < params.min_roundness:
                 continue                  # a straight piece (of a wall), not the arc of a pole
-            view = p.mean(axis=0) - sensor[rows[members], :2].mean(axis=0)
+            view = mid - sensor[rows[members], :2].mean(axis=0)
             view /= max(float(np.linalg.norm(view)), 1e-9)
             across = np.array([-view[1], view[0]])
-            c = (p - p.mean(axis=0)) @ across
+            c = (p - mid) @ across
             width = float(np.percentile(c, 98) - np.percentile(c, 2)) if len(c) > 2 else 0.0
             radius = 0.5 * width
-            centre = p.mean(axis=0) + (math.pi / 4.0) * radius * view
+            centre = mid + (math.pi / 4.0) * radius * view
             out.append(_Section(int(ks[s0]), centre, width, int(b - a)))
     return out
 
