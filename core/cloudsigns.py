@@ -352,58 +352,87 @@ def _thin_ground(xyz: np.ndarray, cell_m: float,
     return rows[order], s_m[order]
 
 
+@dataclass
+class _ChunkRecords:
+    """What one chunk of the cloud gives the reading pass (:func:`_chunk_records`)."""
+    n_read: int
+    ground_s: np.ndarray              # arc length of each thinned ground point
+    ground: np.ndarray                # GROUND_DTYPE
+    points_s: np.ndarray
+    points: np.ndarray                # POINT_DTYPE: the non-ground points kept
+    hist_intensity: np.ndarray        # the threshold's points: raw intensity and range (m)
+    hist_range_m: np.ndarray
+    time_range: Tuple[float, float]   # of the points kept (inf, -inf: none or no times)
+
+
+def _chunk_records(chunk, axis: DriveAxis, has_time: bool, params: CloudSignParams) -> _ChunkRecords:
+    """The rows one chunk adds to the spool: its ground thinned and its other points in the
+    corridor and the sensor's band, located on the drive. Depends on the chunk alone, so
+    chunks are worked on in parallel and added in reading order."""
+    lo_s, hi_s = -params.end_margin_m - params.margin_m, axis.length_m + params.end_margin_m + params.margin_m
+    reach_m = cell_reach_m(params.ground_cell_m)
+    xyz = xyz_of(chunk)
+    is_ground = np.asarray(chunk.classification) == GROUND_CLASS
+    g_all = np.flatnonzero(is_ground)
+
+    def inside(rows: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+        s_r, offset_r, _ = axis.locate(xyz[g_all[rows]])
+        out_by = np.maximum(np.abs(offset_r) - params.corridor_m, np.maximum(lo_s - s_r, s_r - hi_s))
+        return out_by <= 0.0, out_by <= reach_m, s_r
+
+    thinned, g_s = _thin_ground(xyz[g_all], params.ground_cell_m, inside)
+    g_rows = g_all[thinned]
+    g = np.zeros(len(g_rows), GROUND_DTYPE)
+    g["x"], g["y"], g["z"] = xyz[g_rows, 0], xyz[g_rows, 1], xyz[g_rows, 2]
+    # the other points: located on the drive, kept in the corridor and the sensor's band
+    above = np.flatnonzero(~is_ground)
+    s, offset, idx = axis.locate(xyz[above])
+    z_rel = xyz[above, 2] - axis.xyz_world[idx, 2]
+    cand = ((np.abs(offset) <= params.corridor_m) & (s >= lo_s) & (s <= hi_s)
+            & (z_rel >= params.sensor_band_m[0]) & (z_rel <= params.sensor_band_m[1]))
+    rows, s, offset, idx, z_rel = above[cand], s[cand], offset[cand], idx[cand], z_rel[cand]
+    intensity = np.asarray(chunk.intensity)[rows].astype(np.float32)
+    times = np.asarray(chunk.gps_time)[rows].astype(np.float64) if has_time else np.full(len(rows), np.nan)
+    time_range = (float(times.min()), float(times.max())) if has_time and len(rows) else (math.inf, -math.inf)
+    rec = np.zeros(len(rows), POINT_DTYPE)
+    rec["x"], rec["y"], rec["z"] = xyz[rows, 0], xyz[rows, 1], xyz[rows, 2]
+    rec["intensity"], rec["time"] = intensity, times
+    rec["s"], rec["offset"] = s, offset
+    rec["tx"], rec["ty"] = axis.tangent_xy[idx, 0], axis.tangent_xy[idx, 1]
+    band = (z_rel >= params.histogram_band_m[0]) & (z_rel <= params.histogram_band_m[1])
+    hist_i, hist_r = intensity[:0], np.zeros(0)
+    if band.any():
+        sensor = axis.sensor_positions(xyz[rows][band], times[band] if has_time else None)
+        hist_i, hist_r = intensity[band], np.linalg.norm(xyz[rows][band] - sensor, axis=1)
+    return _ChunkRecords(len(chunk), g_s, g, s, rec, hist_i, hist_r, time_range)
+
+
 def _spool_cloud(source: CloudSource, axis: DriveAxis, spool: WindowSpool, hist: IntensityHistogram,
                  has_time: bool, params: CloudSignParams, chunk_points: int, progress: Progress
                  ) -> Tuple[int, int, int, Tuple[float, float]]:
+    """Pass 1: the cloud's chunks in the corridor read (in this thread), worked on
+    ``params.window_threads`` at a time (:func:`_chunk_records`) and spooled in reading
+    order: ``(points read, points kept, ground points kept, (first, last) GPS time)``."""
     n_read = n_cand = n_ground = 0
     t_min, t_max = math.inf, -math.inf
-    lo_s, hi_s = -params.end_margin_m - params.margin_m, axis.length_m + params.end_margin_m + params.margin_m
     # the tiles the corridor meets (the track lengthened at its ends is within it)
     reach = params.corridor_m + params.end_margin_m + params.margin_m
     corridor = shapely.linestrings(axis.xyz_world[:, :2]).buffer(reach, quad_segs=4)
-    reach_m = cell_reach_m(params.ground_cell_m)
-    for chunk in source.iter_chunks(chunk_points, progress, area=corridor):
-        n_read += len(chunk)
-        xyz = xyz_of(chunk)
-        is_ground = np.asarray(chunk.classification) == GROUND_CLASS
-        g_all = np.flatnonzero(is_ground)
-
-        def inside(rows: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
-            s_r, offset_r, _ = axis.locate(xyz[g_all[rows]])
-            out_by = np.maximum(np.abs(offset_r) - params.corridor_m, np.maximum(lo_s - s_r, s_r - hi_s))
-            return out_by <= 0.0, out_by <= reach_m, s_r
-
-        thinned, g_s = _thin_ground(xyz[g_all], params.ground_cell_m, inside)
-        g_rows = g_all[thinned]
-        if len(g_rows):
-            g = np.zeros(len(g_rows), GROUND_DTYPE)
-            g["x"], g["y"], g["z"] = xyz[g_rows, 0], xyz[g_rows, 1], xyz[g_rows, 2]
-            spool.add("ground", g_s, g)
-            n_ground += len(g_rows)
-        # the other points: located on the drive, kept in the corridor and the sensor's band
-        above = np.flatnonzero(~is_ground)
-        s, offset, idx = axis.locate(xyz[above])
-        z_rel = xyz[above, 2] - axis.xyz_world[idx, 2]
-        cand = ((np.abs(offset) <= params.corridor_m) & (s >= lo_s) & (s <= hi_s)
-                & (z_rel >= params.sensor_band_m[0]) & (z_rel <= params.sensor_band_m[1]))
-        rows, s, offset, idx, z_rel = above[cand], s[cand], offset[cand], idx[cand], z_rel[cand]
-        if len(rows) == 0:
-            continue
-        intensity = np.asarray(chunk.intensity)[rows].astype(np.float32)
-        times = np.asarray(chunk.gps_time)[rows].astype(np.float64) if has_time else np.full(len(rows), np.nan)
-        if has_time:
-            t_min, t_max = min(t_min, float(times.min())), max(t_max, float(times.max()))
-        rec = np.zeros(len(rows), POINT_DTYPE)
-        rec["x"], rec["y"], rec["z"] = xyz[rows, 0], xyz[rows, 1], xyz[rows, 2]
-        rec["intensity"], rec["time"] = intensity, times
-        rec["s"], rec["offset"] = s, offset
-        rec["tx"], rec["ty"] = axis.tangent_xy[idx, 0], axis.tangent_xy[idx, 1]
-        spool.add("points", s, rec)
-        n_cand += len(rows)
-        band = (z_rel >= params.histogram_band_m[0]) & (z_rel <= params.histogram_band_m[1])
-        if band.any():
-            sensor = axis.sensor_positions(xyz[rows][band], times[band] if has_time else None)
-            hist.add(intensity[band], np.linalg.norm(xyz[rows][band] - sensor, axis=1))
+    chunks = source.iter_chunks(chunk_points, progress, area=corridor)
+    del corridor
+    for part in map_in_order(lambda chunk: _chunk_records(chunk, axis, has_time, params), chunks,
+                             params.window_threads, progress.check):
+        n_read += part.n_read
+        if len(part.ground):
+            spool.add("ground", part.ground_s, part.ground)
+            n_ground += len(part.ground)
+        if len(part.points):
+            spool.add("points", part.points_s, part.points)
+            n_cand += len(part.points)
+            t_min, t_max = min(t_min, part.time_range[0]), max(t_max, part.time_range[1])
+        if len(part.hist_intensity):
+            hist.add(part.hist_intensity, part.hist_range_m)
+        del part
     spool.flush()
     return n_read, n_cand, n_ground, (t_min, t_max)
 

@@ -20,6 +20,7 @@ import math
 import os
 import struct
 import tempfile
+import threading
 from dataclasses import dataclass, field
 from typing import Callable, Dict, Iterable, Iterator, List, Optional, Sequence, Tuple
 
@@ -396,6 +397,21 @@ class CropRegion:
         self.geometry = shapely.make_valid(geometry) if not geometry.is_valid else geometry
         shapely.prepare(self.geometry)
         self.bounds = tuple(self.geometry.bounds) if not self.geometry.is_empty else None
+        self._owner = threading.get_ident()
+        self._copies = threading.local()
+
+    def _geometry_here(self) -> BaseGeometry:
+        """The region's geometry for the calling thread. A GEOS prepared geometry builds its
+        indexes lazily and is not thread-safe (libgeos/geos#825: two threads testing points
+        against it at once can crash), so a thread other than the one that built the region
+        tests against its own prepared copy, made once (and let go with the thread)."""
+        if threading.get_ident() == self._owner:
+            return self.geometry
+        mine = getattr(self._copies, "geometry", None)
+        if mine is None:
+            mine = self._copies.geometry = shapely.from_wkb(shapely.to_wkb(self.geometry))
+            shapely.prepare(mine)
+        return mine
 
     @classmethod
     def from_polygons(cls, polygons: Iterable, buffer_m: float = 0.0) -> "CropRegion":
@@ -434,7 +450,9 @@ class CropRegion:
         Exact, and fast on large regions (the frusta of a whole drive): the points' cells of
         :data:`CROP_CELL_M` are classified first (cell inside the region: its points are in;
         cell apart from it: out), and only points in cells that the boundary crosses are
-        tested one by one. Nothing is cached, so memory does not grow with the region."""
+        tested one by one. Nothing is cached, so memory does not grow with the region. Safe
+        to call from several threads at once (each other thread keeps its own prepared copy
+        of the region: :meth:`_geometry_here`)."""
         x = np.asarray(x, dtype=np.float64)
         y = np.asarray(y, dtype=np.float64)
         inside = np.zeros(x.shape, dtype=bool)
@@ -450,13 +468,14 @@ class CropRegion:
         i, j = cells // (1 << 31), cells % (1 << 31)
         boxes = shapely.box(xmin + i * CROP_CELL_M, ymin + j * CROP_CELL_M,
                             xmin + (i + 1) * CROP_CELL_M, ymin + (j + 1) * CROP_CELL_M)
-        cell_inside = shapely.contains(self.geometry, boxes)
-        cell_crossed = shapely.intersects(self.geometry, boxes) & ~cell_inside
+        geometry = self._geometry_here()
+        cell_inside = shapely.contains(geometry, boxes)
+        cell_crossed = shapely.intersects(geometry, boxes) & ~cell_inside
         whole, crossed = cell_inside[cell_of_point], cell_crossed[cell_of_point]
         inside[candidates[whole]] = True
         test = candidates[crossed]
         if test.size:
-            inside[test] = shapely.intersects_xy(self.geometry, x[test], y[test])
+            inside[test] = shapely.intersects_xy(geometry, x[test], y[test])
         return inside
 
     @property

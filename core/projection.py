@@ -41,7 +41,7 @@ from .cloudsource import CloudSource, open_cloud
 from .detections import DETECTION_POSE_FIELDS, Detections
 from .drivewindows import BLOCK_THREADS, DriveAxis, Spool, Track, Window, make_windows, map_in_order
 from .errors import SILENT, InputError, Progress
-from .pointcloud import GROUND_CLASS, CropRegion, TiledIndex, xyz_of
+from .pointcloud import DEFAULT_CHUNK_POINTS, GROUND_CLASS, CropRegion, TiledIndex, xyz_of
 from .schema import Schema, fields
 
 #: Default search depth along the rays, metres (Balado et al. use 15 m).
@@ -639,8 +639,8 @@ def station_track(det: Detections) -> Optional[Track]:
 
 
 def drive_blocks(det: Detections, frusta: Frusta, cloud: Union[str, CloudSource], max_range_m: float,
-                 params: ProjectionParams, progress: Progress = SILENT
-                 ) -> Iterator[Tuple[np.ndarray, TiledIndex]]:
+                 params: ProjectionParams, progress: Progress = SILENT,
+                 chunk_points: int = DEFAULT_CHUNK_POINTS) -> Iterator[Tuple[np.ndarray, TiledIndex]]:
     """``(detection rows, index of the points their frusta may hold)`` block by block.
 
     One streaming read of the cloud (of the tiles, or COPC nodes, that the footprints'
@@ -648,7 +648,9 @@ def drive_blocks(det: Detections, frusta: Frusta, cloud: Union[str, CloudSource]
     non-ground points in the cells of :data:`FRUSTUM_CELL_M` that a frustum's footprint
     touches (:func:`frustum_cells`; the exact frustum test comes later, per detection) and
     spools each to the slice of :data:`SLICE_M` metres of drive holding its arc length along
-    the drive (the track through the stations, :mod:`.drivewindows`). A detection belongs to
+    the drive (the track through the stations, :mod:`.drivewindows`). The chunks (of
+    ``chunk_points``) are read in this thread, worked on ``params.block_threads`` at a time
+    and spooled in reading order. A detection belongs to
     the slice of its station; a block is a run of slices (:func:`slice_blocks`: at most
     ``params.block_m`` long, and reading at most ``params.block_max_points`` points), and
     reads the slices within twice ``max_range_m`` of it. Blocks are indexed one at a time,
@@ -666,22 +668,31 @@ def drive_blocks(det: Detections, frusta: Frusta, cloud: Union[str, CloudSource]
     owner_slice = np.searchsorted(inner_edges_m, owner_s, side="right")
     n_ground = n_inside = 0
     source = open_cloud(cloud)
+
+    def chunk_rows(item: Tuple[np.ndarray, Any]) -> Tuple[int, int, np.ndarray, np.ndarray]:
+        """A chunk's points in the cells: ``(points inside, ground points inside, the
+        others' spool rows, their slices)``; of the chunk alone, so chunks are worked on in
+        parallel and spooled in reading order."""
+        point_index, chunk = item
+        inside = in_sorted(cell_keys(np.asarray(chunk.x), np.asarray(chunk.y), FRUSTUM_CELL_M), cells)
+        ground = np.asarray(chunk.classification)[inside] == GROUND_CLASS
+        rows = np.empty(int((~ground).sum()), SPOOL_DTYPE)
+        xyz = xyz_of(chunk[inside])[~ground]
+        rows["x"], rows["y"], rows["z"] = xyz[:, 0], xyz[:, 1], xyz[:, 2]
+        rows["index"] = point_index[inside][~ground]
+        s_m = axis.locate(xyz)[0] if axis is not None else np.zeros(len(rows))
+        return int(inside.sum()), int(ground.sum()), rows, np.searchsorted(inner_edges_m, s_m, side="right")
+
     with Spool({"points": SPOOL_DTYPE}, prefix="roadsigns-projection-") as spool:
         drive_order = np.argsort(owner_s, kind="stable")
-        for point_index, chunk in source.iter_indexed_chunks(progress=progress, area=frusta.cover(drive_order)):
-            inside = in_sorted(cell_keys(np.asarray(chunk.x), np.asarray(chunk.y), FRUSTUM_CELL_M), cells)
-            classes = np.asarray(chunk.classification)[inside]
-            ground = classes == GROUND_CLASS
-            n_inside += int(inside.sum())
-            n_ground += int(ground.sum())
-            rows = np.empty(int((~ground).sum()), SPOOL_DTYPE)
-            xyz = xyz_of(chunk[inside])[~ground]
-            rows["x"], rows["y"], rows["z"] = xyz[:, 0], xyz[:, 1], xyz[:, 2]
-            rows["index"] = point_index[inside][~ground]
-            s_m = axis.locate(xyz)[0] if axis is not None else np.zeros(len(rows))
-            where = np.searchsorted(inner_edges_m, s_m, side="right")
+        chunks = source.iter_indexed_chunks(chunk_points, progress, area=frusta.cover(drive_order))
+        for inside_n, ground_n, rows, where in map_in_order(chunk_rows, chunks, params.block_threads,
+                                                            progress.check):
+            n_inside += inside_n
+            n_ground += ground_n
             for k in np.unique(where):
                 spool.append("points", int(k), rows[where == k])
+            del rows, where
         spool.flush()
         if n_inside and not n_ground:
             raise InputError("{source} has no ground points (class 2) where the signs are: run "

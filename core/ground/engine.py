@@ -25,13 +25,14 @@ import contextlib
 import os
 import tempfile
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Any, Callable, Dict, Iterable, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from ..cloudsource import CloudSource, conform, open_cloud
-from ..drivewindows import Spool
+from ..drivewindows import BLOCK_THREADS, Spool, map_in_order
 from ..errors import SILENT, InputError, Message, Progress
 from ..pointcloud import (
     DEFAULT_CHUNK_POINTS,
@@ -225,34 +226,70 @@ class PointSpool:
         self.spool.close()
 
 
-def two_passes(read: Callable[[Progress, bool], Iterable[Any]], grid: GroundGrid, params: Params,
+#: Chunks worked on at once by :func:`two_passes` (cropped and their returns taken in pass 1,
+#: classified in pass 2); the grid is filled and the output written in reading order.
+CHUNK_THREADS = BLOCK_THREADS
+
+#: What a ground filter's ``read`` yields: a chunk of laspy records, or a function without
+#: arguments that returns one (its crop, run in :func:`two_passes`' pool).
+ChunkSource = Union[Any, Callable[[], Any]]
+
+
+def cropped(chunk: Any, region: Optional[CropRegion]) -> Any:
+    """The points of ``chunk`` inside ``region`` (all of them without one)."""
+    return chunk if region is None else chunk[region.mask(chunk.x, chunk.y)]
+
+
+def two_passes(read: Callable[[Progress, bool], Iterable[ChunkSource]], grid: GroundGrid, params: Params,
                reset_classes: bool, writer: CloudWriter, spool_folder: Optional[str], progress: Progress,
-               add_to_grid: Optional[Callable[[GroundGrid], None]] = None) -> Tuple[int, int]:
+               add_to_grid: Optional[Callable[[GroundGrid], None]] = None,
+               threads: Optional[int] = None) -> Tuple[int, int]:
     """The built-in engine's two passes over one cloud (or tile) into ``writer``:
     ``(eligible points, ground points)``.
 
-    Pass 1 reads ``read(progress, again)`` (chunks of laspy records, cropped) into ``grid``,
-    then ``add_to_grid(grid)`` (a tile's halo), and keeps the points in a :class:`PointSpool`
+    Pass 1 reads ``read(progress, again)`` (:data:`ChunkSource` items: chunks of laspy
+    records, cropped, or the functions that crop them) into ``grid``, then
+    ``add_to_grid(grid)`` (a tile's halo), and keeps the points in a :class:`PointSpool`
     in ``spool_folder`` (None: no room on the disk, and ``again`` tells ``read`` that the
     cloud is read a second time); pass 2 classifies them (from the spool, or ``read`` again)
-    and writes them. :class:`~.lattice.OutsideGridError` comes from pass 1 only."""
+    and writes them. The chunks are read in this thread and worked on ``threads`` at a time
+    (default :data:`CHUNK_THREADS`; :func:`~..drivewindows.map_in_order`); the grid takes them
+    and the writer writes them in reading order, so the output does not depend on ``threads``.
+    :class:`~.lattice.OutsideGridError` comes from pass 1 only."""
+    threads = CHUNK_THREADS if threads is None else threads
+
+    def taken(item: ChunkSource) -> Tuple[Any, np.ndarray, np.ndarray, np.ndarray]:
+        pts = item() if callable(item) else item
+        _, x, y, z = eligible_xyz(pts, params)
+        return pts, x, y, z
+
     with PointSpool(writer.header, spool_folder) if spool_folder else contextlib.nullcontext() as spool:
         n_eligible = n_ground = 0
-        for pts in read(progress.sub(0.0, 0.45), spool is None):
-            _, x, y, z = eligible_xyz(pts, params)
+        reading = progress.sub(0.0, 0.45)
+        for pts, x, y, z in map_in_order(taken, read(reading, spool is None), threads, reading.check):
             n_eligible += len(x)
             grid.accumulate(x, y, z)
             if spool is not None:
                 spool.add(pts)
+            del pts, x, y, z
         if add_to_grid is not None:
             add_to_grid(grid)
         grid.finish(progress.sub(0.45, 0.55))
-        second = spool.chunks(progress.sub(0.55, 1.0)) if spool is not None else read(progress.sub(0.55, 1.0), True)
-        for pts in second:
+        writing = progress.sub(0.55, 1.0)
+        second = spool.chunks(writing) if spool is not None else read(writing, True)
+
+        def classify(item: ChunkSource) -> Tuple[Any, int]:
+            pts = item() if callable(item) else item
+            if not len(pts):
+                return pts, 0
+            pts, n = classified(pts, grid, params, reset_classes, classify=n_eligible > 0)
+            return conform(pts, writer.header), n
+
+        for pts, n in map_in_order(classify, second, threads, writing.check):
             if len(pts):
-                pts, n = classified(pts, grid, params, reset_classes, classify=n_eligible > 0)
-                writer.write(conform(pts, writer.header))
+                writer.write(pts)
                 n_ground += n
+            del pts
     return n_eligible, n_ground
 
 
@@ -271,19 +308,23 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
     # time (which may skip chunks wholly outside the area: CloudSource remembers chunk bounds)
     masks: Dict[int, np.ndarray] = {}
 
-    def read(reading: Progress, again: bool) -> Iterator[Any]:
-        """The chunks inside the region; with ``again``, each chunk's mask is kept for (or
-        taken from) the second read."""
+    def read(reading: Progress, again: bool) -> Iterator[ChunkSource]:
+        """The chunks inside the region (the functions that crop them); with ``again``, each
+        chunk's mask is kept for (or taken from) the second read."""
         for index, chunk in source.iter_indexed_chunks(chunk_points, reading, area=area):
             if region is None:
                 yield chunk
             elif not again:
-                yield chunk[region.mask(chunk.x, chunk.y)]
+                yield partial(cropped, chunk, region)
             else:
-                key = int(index[0]) if len(index) else -1
-                if key not in masks:
-                    masks[key] = np.packbits(region.mask(chunk.x, chunk.y))
-                yield chunk[np.unpackbits(masks[key], count=len(chunk)).astype(bool)]
+                yield partial(crop_again, int(index[0]) if len(index) else -1, chunk)
+
+    def crop_again(key: int, chunk: Any) -> Any:
+        """``chunk`` cropped, its mask kept under ``key`` for the second read (or taken)."""
+        assert region is not None
+        if key not in masks:
+            masks[key] = np.packbits(region.mask(chunk.x, chunk.y))
+        return chunk[np.unpackbits(masks[key], count=len(chunk)).astype(bool)]
 
     out_header = output_header(header, out_crs_wkt)
     spool_folder = os.path.dirname(output_path)

@@ -202,6 +202,8 @@ def group_first(keys: np.ndarray, order_by: np.ndarray) -> np.ndarray:
     """Indices of the element with the smallest ``order_by`` for each distinct key (one
     index per key, in the order of the sorted keys); of equal smallest ones, the first (as
     the reference CSF, which keeps a node's first nearest point)."""
+    if not len(keys):
+        return np.zeros(0, np.int64)
     order = np.argsort(keys, kind="stable")
     k = keys[order]
     v = order_by[order]

@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import os
 import tempfile
+from functools import partial
 from typing import Any, Dict, Iterable, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
@@ -41,9 +42,11 @@ from ..outputs import StagedOutputs, remove
 from ..pointcloud import DEFAULT_CHUNK_POINTS, CloudWriter, CropRegion, output_header, read_header
 from .csf import CsfGrid, CsfParams
 from .engine import (
+    ChunkSource,
     GroundResult,
     builtin_available,
     crop_region,
+    cropped,
     eligible_xyz,
     grid_bounds,
     make_grid,
@@ -99,10 +102,6 @@ def tile_grid(params: Params, cloud_bounds: BBoxXY, tile_box: BBoxXY,
     # bounds that Lattice.covering (2 nodes of padding) turns into exactly these nodes
     return (whole.x0 + (c0 + 2.5) * step, whole.y0 + (r0 + 2.5) * step,
             whole.x0 + (c1 - 2.5) * step, whole.y0 + (r1 - 2.5) * step)
-
-
-def _kept(chunk: Any, region: Optional[CropRegion]) -> Any:
-    return chunk if region is None else chunk[region.mask(chunk.x, chunk.y)]
 
 
 def output_tile_names(source: CloudSource, folder: str) -> List[str]:
@@ -244,7 +243,7 @@ def _spool_halos(source: CloudSource, work: List[int], grown: Dict[int, BBoxXY],
     boxes = {k: grown_box(grown[k], 3.0 * step) for k in work}
     spools: Dict[int, str] = {}
     for _, t, pts in source.points_near_tiles(boxes, chunk_points, progress):
-        _, x, y, z = eligible_xyz(_kept(pts, region), params)
+        _, x, y, z = eligible_xyz(cropped(pts, region), params)
         if len(x):
             rows = np.zeros(len(x), _HALO_DTYPE)
             rows["x"], rows["y"], rows["z"] = x, y, z
@@ -266,8 +265,8 @@ def _classify_tile(source: CloudSource, k: int, bounds: BBoxXY, spool_path: Opti
     folder = os.path.dirname(path)
     room = room_to_spool(tile.point_count, header.point_format.size, folder)
 
-    def read(reading: Progress, again: bool) -> Iterator[Any]:
-        return (_kept(chunk, region) for chunk in _tile_chunks(source, tile, chunk_points, reading))
+    def read(reading: Progress, again: bool) -> Iterator[ChunkSource]:
+        return (partial(cropped, chunk, region) for chunk in _tile_chunks(source, tile, chunk_points, reading))
 
     def add_halo(grid: Any) -> None:
         if spool_path is not None:

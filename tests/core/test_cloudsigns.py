@@ -328,6 +328,33 @@ def test_windows_searched_in_threads_give_the_same_answer(tiny):
     assert one.rejected == two.rejected and one.max_window_points == two.max_window_points
 
 
+def test_the_reading_pass_in_threads_spools_the_same_rows_in_the_same_order(tiny, tmp_path):
+    """Pass 1 works on the cloud's chunks in a pool of threads and spools what they give
+    in reading order: each window's points and ground, and the intensity histogram, are
+    the same row for row with one thread and with two (many small chunks)."""
+    from roadsigns.core.cloudsource import open_cloud
+
+    folder, _, axis, _ = tiny
+    spooled = {}
+    for threads in (1, 2):
+        params = CS.CloudSignParams(window_threads=threads)
+        windows = make_windows(axis.length_m, params.window_m)
+        hist = RR.IntensityHistogram()
+        with WindowSpool(windows, params.margin_m, {"points": CS.POINT_DTYPE, "ground": CS.GROUND_DTYPE},
+                         folder=str(tmp_path)) as spool:
+            counts = CS._spool_cloud(open_cloud(os.path.join(folder, "cloud.laz")), axis, spool, hist, True,
+                                     params, 7_000, Progress())
+            rows = [(spool.read("points", w.index), spool.read("ground", w.index)) for w in windows]
+        spooled[threads] = counts, rows, hist
+    (counts1, rows1, hist1), (counts2, rows2, hist2) = spooled[1], spooled[2]
+    assert counts1[0] > 20 * 7_000 and counts1[1] > 0 and counts1[2] > 0
+    assert counts1 == counts2
+    for (p1, g1), (p2, g2) in zip(rows1, rows2):
+        assert p1.tobytes() == p2.tobytes() and g1.tobytes() == g2.tobytes()
+    assert sum(len(p) for p, _ in rows1) >= counts1[1]
+    assert np.array_equal(hist1.counts, hist2.counts) and hist1.n_total == hist2.n_total > 0
+
+
 def test_cancel_while_windows_are_searched_in_threads(built_path):
     seen = {"windows": 0}
 

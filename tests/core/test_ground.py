@@ -228,6 +228,38 @@ def test_one_read_with_the_spool_same_points_as_two(tmp_path, monkeypatch, metho
         assert np.array_equal(outputs[True].points.array, outputs[False].points.array)
 
 
+@pytest.mark.parametrize("method", ["csf", "smrf"])
+def test_chunks_worked_on_in_threads_give_the_same_file(tmp_path, monkeypatch, method):
+    """The two passes crop, take and classify chunks in a pool of threads; the grid takes
+    them and the writer writes them in reading order, so the output is the same point for
+    point with one thread, with two, with the spool and with a second read. The cloud is
+    stored along the road and cropped, so the chunks differ in size and some are emptied."""
+    from roadsigns.core.ground import engine
+
+    scene = cloudgen.road_scene(length_m=40.0, density_per_m2=40.0, seed=9)
+    cloudgen.write_scene(str(tmp_path / "in.laz"), scene)
+    las = laspy.read(str(tmp_path / "in.laz"))
+    las.points = las.points[np.argsort(np.asarray(las.x), kind="stable")]
+    src = str(tmp_path / "along.laz")
+    las.write(src)
+    o = cloudgen.ORIGIN
+    crop = [shapely.to_wkb(box(o[0] + 12, o[1] - 6, o[0] + 30, o[1] + 6))]
+    chunk_points = 500
+    outputs = {}
+    for threads in (1, 2):
+        for room in (True, False):
+            monkeypatch.setattr(engine, "CHUNK_THREADS", threads)
+            monkeypatch.setattr(engine, "room_to_spool", lambda n, size, folder, room=room: room)
+            out = str(tmp_path / f"out-{threads}-{room}.laz")
+            ground.run_ground_filter(src, out, method, "builtin", crop_polygons=crop, chunk_points=chunk_points)
+            outputs[threads, room] = laspy.read(out).points.array
+    first = outputs[1, True]
+    classes = first["classification"]
+    assert len(first) > 10 * chunk_points and (classes == 2).any() and (classes != 2).any()
+    for key, points in outputs.items():
+        assert np.array_equal(points, first), key
+
+
 def test_room_to_spool_counts_the_uncompressed_points(tmp_path, monkeypatch):
     import shutil
     from collections import namedtuple
@@ -678,6 +710,25 @@ def test_csf_grid_holds_a_long_drive_by_its_corridor():
     assert nodes > 350_000_000
     dense_bytes = nodes * (4 + 8)  # the node offsets and the cloth as dense arrays
     assert grid.rep_du.nbytes + grid.cloth.nbytes < 0.05 * dense_bytes
+
+
+def test_csf_grid_takes_a_few_points_none_of_them_near_a_node():
+    """A chunk cropped to a few points, none within NEAR_NODE_STEPS of a node (the edge of a
+    crop): the grid takes each as its node's nearest point. It raised an IndexError."""
+    from roadsigns.core.ground import csf
+
+    params = ground.CsfParams(resolution=0.5)
+    grid = ground.CsfGrid((0.0, 0.0, 10.0, 10.0), 100.0, params)
+    step = grid.lattice.step
+    x0, y0 = grid.lattice.x0, grid.lattice.y0
+    off = 0.3 * step                                     # farther than NEAR_NODE_STEPS from the node
+    assert off > csf.NEAR_NODE_STEPS * step
+    x = x0 + np.array([4, 8, 12]) * step + off
+    y = y0 + np.array([4, 8, 12]) * step - off
+    grid.accumulate(x, y, np.array([101.0, 102.0, 103.0]))
+    rows, cols = np.array([4, 8, 12]), np.array([4, 8, 12])
+    np.testing.assert_allclose(grid.rep_z.get(rows, cols), [1.0, 2.0, 3.0])
+    assert len(lattice.group_first(np.zeros(0, np.int64), np.zeros(0))) == 0
 
 
 def test_group_first_keeps_the_first_of_equal_smallest():

@@ -285,6 +285,30 @@ def test_crop_mask_by_cells_equals_the_exact_test():
     assert np.array_equal(region.mask(x, y), exact)
 
 
+def test_a_crop_region_is_tested_from_several_threads_at_once():
+    """The ground filter crops its chunks in a pool of threads with one region. A GEOS
+    prepared geometry builds its indexes lazily and is not thread-safe (libgeos/geos#825;
+    this crashed the interpreter): each other thread tests against its own prepared copy,
+    and the masks are the region's own, whichever thread computed them."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    rng = np.random.default_rng(5)
+    wedges = [Polygon([(x0, 0), (x0 + 30, 4 + k % 3), (x0 + 30, -3 - k % 5)]) for k, x0 in
+              enumerate(np.arange(0.0, 400.0, 7.3))]
+    x, y = rng.uniform(-5, 440, 100_000), rng.uniform(-10, 10, 100_000)
+    exact = shapely.intersects_xy(shapely.union_all(wedges), x, y)
+    parts = np.array_split(np.arange(len(x)), 16)
+    for _ in range(4):
+        region = pc.CropRegion(shapely.union_all(wedges))     # fresh: nothing built yet
+        with ThreadPoolExecutor(max_workers=4) as pool:
+            masks = list(pool.map(lambda rows: region.mask(x[rows], y[rows]), parts))
+        assert np.array_equal(np.concatenate(masks), exact)
+    with ThreadPoolExecutor(max_workers=1) as pool:
+        theirs = pool.submit(region._geometry_here).result()
+    assert theirs is not region.geometry and shapely.equals_exact(theirs, region.geometry, 0.0)
+    assert region._geometry_here() is region.geometry
+
+
 @pytest.mark.parametrize("offset", [(0.0, 0.0), (-130.0, -47.0), (350_000.0, 5_600_000.0)])
 def test_tiled_index_orders_its_points_by_tile_column_then_row(offset):
     """The index's order: tile column i, then row j, the input order within a tile (as

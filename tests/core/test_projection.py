@@ -259,6 +259,23 @@ def test_block_by_block_projection_equals_one_index(scene, detections, las_path,
     np.testing.assert_array_equal(one.tiles_visited, small.tiles_visited)
 
 
+def test_the_reading_pass_in_threads_gives_the_same_blocks(detections, las_path):
+    """The read's chunks are worked on in a pool of threads and spooled in reading order:
+    with one thread and with two (many small chunks), the blocks hold the same points in
+    the same order."""
+    frusta = P.Frusta.build(detections, 30.0, 0.25, 0.1)
+    blocks = {}
+    for threads in (1, 2):
+        params = dataclasses.replace(P.ProjectionParams(), block_m=20.0, block_threads=threads)
+        blocks[threads] = [(rows, block.xyz_world.copy(), block.point_index.copy())
+                           for rows, block in P.drive_blocks(detections, frusta, las_path, 30.0, params,
+                                                             chunk_points=3_000)]
+    assert len(blocks[1]) == len(blocks[2]) >= 4
+    assert sum(len(xyz) for _, xyz, _ in blocks[1]) > 10 * 3_000
+    for (rows1, xyz1, index1), (rows2, xyz2, index2) in zip(blocks[1], blocks[2]):
+        assert np.array_equal(rows1, rows2) and np.array_equal(xyz1, xyz2) and np.array_equal(index1, index2)
+
+
 def test_slice_blocks_bound_length_points_and_reach():
     """Blocks are runs of the slices owning detections, each detection in one; at most
     block_m long; reading at most max_points but one slice; reading every slice within
