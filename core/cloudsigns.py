@@ -18,7 +18,8 @@ parts (:func:`.drivewindows.split_window`), each with its own margins:
    are kept thinned to one per ``ground_cell_m`` cell and chunk (the first in the corridor;
    only as many ground points are located as that needs), non-ground points within
    ``corridor_m`` of the track and in a height band around the sensor are kept; all are appended to files per
-   window of ``window_m`` of drive (plus ``margin_m`` on each side). An intensity histogram
+   window of ``window_m`` of drive (plus ``margin_m`` on each side). The chunks are worked
+   on ``window_threads`` at a time and appended in reading order. An intensity histogram
    by range (:class:`.retroreflectivity.IntensityHistogram`) gives, after the pass, the
    range exponent and the adaptive bright threshold (both stated in the log).
 2. **Windows**, one at a time: height above a ground model (median of the nearest ground

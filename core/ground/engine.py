@@ -13,8 +13,10 @@ Conventions:
   the cloud into the method's grid and keeps its (cropped) points uncompressed in a
   :class:`PointSpool` beside the output, pass 2 classifies and writes them, so a LAZ is
   decompressed once (where the disk has no room for the spool, pass 2 reads the cloud
-  again). The output goes through :class:`~..pointcloud.CloudWriter` (a temporary file moved
-  into place on success).
+  again). Chunks are read in one thread and cropped, taken and classified in a pool of
+  :data:`CHUNK_THREADS`; the grid takes them and the writer writes them in reading order,
+  so the output is the same with any number of threads. The output goes through
+  :class:`~..pointcloud.CloudWriter` (a temporary file moved into place on success).
 * Ground is class 2 (:data:`~..pointcloud.GROUND_CLASS`); only the ``returns`` of the
   parameters are classified, the other points keep their class.
 * Log messages are :class:`~..errors.Message` templates, reported through ``progress``.
