@@ -450,9 +450,9 @@ class CropRegion:
         Exact, and fast on large regions (the frusta of a whole drive): the points' cells of
         :data:`CROP_CELL_M` are classified first (cell inside the region: its points are in;
         cell apart from it: out), and only points in cells that the boundary crosses are
-        tested one by one. Nothing is cached, so memory does not grow with the region. Safe
-        to call from several threads at once (each other thread keeps its own prepared copy
-        of the region: :meth:`_geometry_here`)."""
+        tested one by one. No cells or points are cached, so memory does not grow with the
+        region. Safe to call from several threads at once: each thread other than the
+        region's own keeps a prepared copy of the region (:meth:`_geometry_here`)."""
         x = np.asarray(x, dtype=np.float64)
         y = np.asarray(y, dtype=np.float64)
         inside = np.zeros(x.shape, dtype=bool)
