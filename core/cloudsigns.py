@@ -395,16 +395,18 @@ def _chunk_records(chunk, axis: DriveAxis, has_time: bool, params: CloudSignPara
     intensity = np.asarray(chunk.intensity)[rows].astype(np.float32)
     times = np.asarray(chunk.gps_time)[rows].astype(np.float64) if has_time else np.full(len(rows), np.nan)
     time_range = (float(times.min()), float(times.max())) if has_time and len(rows) else (math.inf, -math.inf)
+    kept = xyz[rows]
     rec = np.zeros(len(rows), POINT_DTYPE)
-    rec["x"], rec["y"], rec["z"] = xyz[rows, 0], xyz[rows, 1], xyz[rows, 2]
+    rec["x"], rec["y"], rec["z"] = kept[:, 0], kept[:, 1], kept[:, 2]
     rec["intensity"], rec["time"] = intensity, times
     rec["s"], rec["offset"] = s, offset
     rec["tx"], rec["ty"] = axis.tangent_xy[idx, 0], axis.tangent_xy[idx, 1]
     band = (z_rel >= params.histogram_band_m[0]) & (z_rel <= params.histogram_band_m[1])
     hist_i, hist_r = intensity[:0], np.zeros(0)
     if band.any():
-        sensor = axis.sensor_positions(xyz[rows][band], times[band] if has_time else None)
-        hist_i, hist_r = intensity[band], np.linalg.norm(xyz[rows][band] - sensor, axis=1)
+        in_band = kept[band]
+        sensor = axis.sensor_positions(in_band, times[band] if has_time else None)
+        hist_i, hist_r = intensity[band], np.linalg.norm(in_band - sensor, axis=1)
     return _ChunkRecords(len(chunk), g_s, g, s, rec, hist_i, hist_r, time_range)
 
 

@@ -196,7 +196,7 @@ class CsfGrid:
         within ``NEAR_NODE_STEPS`` when it has any (a few per cent of a dense cloud), so
         those are sorted first, and only the points of the nodes without one after them."""
         near = np.flatnonzero(d2 < NEAR_NODE_STEPS * NEAR_NODE_STEPS)
-        if len(near) * 4 > len(d2) or not len(near):     # (a few points, none near a node: all sorted)
+        if len(near) * 4 > len(d2):
             return group_first(flat, d2)
         pick = near[group_first(flat[near], d2[near])]
         covered = flat[pick]  # sorted: group_first answers in the order of the sorted keys
