@@ -2,8 +2,11 @@
 
 Models: YOLO-family detectors as Ultralytics, YOLOv5/v7 and NMS-exporting tools write
 them. Input: one ``[batch, 3, h, w]`` float tensor, RGB in 0..1, letterboxed (aspect
-kept, grey 114 padding, centred). Output: the first output, one of the layouts in
-:data:`LAYOUTS` (``nc`` = number of class names, ``N`` = number of candidates)::
+kept, grey 114 padding, centred); or, as the bundled int8 detector takes it
+(``devtools.train.rawinput``), the letterboxed pixels themselves: ``uint8 [batch, h, w, 3]``,
+channels in the order the metadata ``channel_order`` gives (``BGR``, OpenCV's, else RGB).
+Output: the first output, one of the layouts in :data:`LAYOUTS` (``nc`` = number of class
+names, ``N`` = number of candidates)::
 
     yolov8  [1, 4+nc, N]  cx, cy, w, h, nc class scores (YOLOv8/11, no objectness)
     yolov5  [1, N, 5+nc]  cx, cy, w, h, objectness, nc class probabilities (YOLOv5/7);
@@ -54,6 +57,8 @@ PREFERRED_PROVIDERS = ("CUDAExecutionProvider", "DmlExecutionProvider",
                        "CoreMLExecutionProvider", "CPUExecutionProvider")
 
 DEFAULT_INPUT_PX = 640
+#: Metadata entry with the channel order of a uint8 channels-last input: "BGR" or "RGB" (default).
+CHANNEL_ORDER_KEY = "channel_order"
 LETTERBOX_FILL = 114
 MAX_DETECTIONS_PER_IMAGE = 300
 MAX_BATCH = 8
@@ -326,12 +331,18 @@ class Detector:
         self.class_names, self.names_source = self._find_names(class_names, meta)
 
         inp = self.session.get_inputs()[0]
-        if len(inp.shape) != 4:
-            raise InputError("The model {path} takes an input of shape {shape}; an image model "
-                             "takes [batch, 3, height, width]", path=model_path, shape=list(inp.shape))
+        #: uint8 [batch, h, w, 3] pixels (True) or float [batch, 3, h, w] in 0..1 (False)
+        self.channels_last = inp.type == "tensor(uint8)"
+        if len(inp.shape) != 4 or (self.channels_last and inp.shape[3] != 3):
+            raise InputError("The model {path} takes an input of shape {shape}; an image model takes "
+                             "float [batch, 3, height, width] or uint8 [batch, height, width, 3]",
+                             path=model_path, shape=list(inp.shape))
         self.input_name = inp.name
-        self.input_dtype = np.float16 if inp.type == "tensor(float16)" else np.float32
-        self.input_w, self.input_h = self._input_size(inp.shape, meta, input_size_px)
+        self.input_dtype = np.uint8 if self.channels_last else (
+            np.float16 if inp.type == "tensor(float16)" else np.float32)
+        self.input_bgr = self.channels_last and str(meta.get(CHANNEL_ORDER_KEY, "RGB")).upper() == "BGR"
+        sides = inp.shape[1:3] if self.channels_last else inp.shape[2:4]
+        self.input_w, self.input_h = self._input_size(sides, meta, input_size_px)
         if isinstance(inp.shape[0], int) and inp.shape[0] > 1:
             raise InputError("The model {path} has a fixed batch of {batch}; use a batch of 1 or "
                              "a dynamic batch", path=model_path, batch=inp.shape[0])
@@ -345,7 +356,8 @@ class Detector:
 
         # The declared output shape may be symbolic: run one blank image to see the real one,
         # so a layout we do not decode fails here and not on the first panorama.
-        blank = np.zeros((1, 3, self.input_h, self.input_w), dtype=self.input_dtype)
+        blank = np.zeros((1, self.input_h, self.input_w, 3) if self.channels_last
+                         else (1, 3, self.input_h, self.input_w), dtype=self.input_dtype)
         try:
             out = self.session.run(None, {self.input_name: blank})[0]
         except Exception as e:
@@ -374,8 +386,8 @@ class Detector:
                          labels=" or ".join(map(os.path.basename, labels_file_candidates(self.model_path))))
 
     @staticmethod
-    def _input_size(shape, meta, input_size_px):
-        h, w = shape[2], shape[3]
+    def _input_size(sides, meta, input_size_px):
+        h, w = sides
         if isinstance(h, int) and isinstance(w, int) and h > 0 and w > 0:
             return w, h
         if input_size_px:
@@ -400,6 +412,11 @@ class Detector:
         import cv2
 
         boxed = [letterbox(image, self.input_w, self.input_h) for image in images]
+        if self.channels_last:           # the pixels as they are, BGR (OpenCV's order) or RGB
+            blob = np.stack([b for b, _ in boxed])
+            if not self.input_bgr:
+                blob = np.ascontiguousarray(blob[..., ::-1])
+            return self.session.run(None, {self.input_name: blob})[0], [t for _, t in boxed]
         # BGR HWC uint8 -> RGB NCHW float in 0..1
         blob = cv2.dnn.blobFromImages([b for b, _ in boxed], 1.0 / 255.0, swapRB=True)
         if blob.dtype != self.input_dtype:

@@ -33,15 +33,19 @@ def set_input_height(model_path: str, out_path: str, height_px: int) -> None:
     if height_px <= 0 or height_px % 32:
         raise SystemExit(f"the height must be a positive multiple of 32, got {height_px}")
     model = onnx.load(model_path)
-    dims = model.graph.input[0].type.tensor_type.shape.dim
-    if len(dims) != 4 or not dims[3].dim_value:
-        raise SystemExit(f"{model_path}: expected a [batch, 3, height, width] input with a fixed width")
-    old_height = dims[2].dim_value or dims[2].dim_param
-    dims[2].ClearField("dim_param")
-    dims[2].dim_value = int(height_px)
+    tensor = model.graph.input[0].type.tensor_type
+    dims = tensor.shape.dim
+    pixels = tensor.elem_type == onnx.TensorProto.UINT8       # uint8 [batch, h, w, 3] (devtools.train.rawinput)
+    h_axis, w_axis = (1, 2) if pixels else (2, 3)
+    if len(dims) != 4 or not dims[w_axis].dim_value:
+        raise SystemExit(f"{model_path}: expected a float [batch, 3, height, width] or uint8 [batch, height, "
+                         f"width, 3] input with a fixed width")
+    old_height = dims[h_axis].dim_value or dims[h_axis].dim_param
+    dims[h_axis].ClearField("dim_param")
+    dims[h_axis].dim_value = int(height_px)
     del model.graph.value_info[:]            # shapes inferred for the old height
     meta = {p.key: p for p in model.metadata_props}
-    width = dims[3].dim_value
+    width = dims[w_axis].dim_value
     for key, value in (("imgsz", f"[{height_px}, {width}]"),
                        ("input_height", json.dumps({"from": old_height, "to": int(height_px)}))):
         if key in meta:
@@ -54,7 +58,9 @@ def set_input_height(model_path: str, out_path: str, height_px: int) -> None:
     try:
         onnx.save(model, tmp)
         session = ort.InferenceSession(tmp, providers=["CPUExecutionProvider"])
-        out = session.run(None, {session.get_inputs()[0].name: np.zeros((1, 3, height_px, width), np.float32)})
+        blank = (np.zeros((1, height_px, width, 3), np.uint8) if pixels
+                 else np.zeros((1, 3, height_px, width), np.float32))
+        out = session.run(None, {session.get_inputs()[0].name: blank})
         if out[0].ndim != 3 or out[0].shape[-1] != 6:
             raise SystemExit(f"{model_path} at height {height_px} gives outputs of shape {out[0].shape}")
         umask = os.umask(0)

@@ -163,8 +163,11 @@ def calibration_power(best_threshold: float, target: float = PLUGIN_DEFAULT_CONF
 def export_onnx(net: SignNet, path: str, class_names, size_px: int = 640, extra_metadata=None,
                 score_power: float = 1.0):
     """Write the decoded model to ``path`` (opset 17, dynamic batch) with Ultralytics-style
-    metadata ``names``, ``task`` and ``imgsz`` the plugin reads."""
+    metadata ``names``, ``task`` and ``imgsz`` the plugin reads, its upsampling by constant
+    scales (:func:`devtools.train.upsample.upsample_by_scale`)."""
     import onnx
+
+    from .upsample import upsample_by_scale
 
     net = net.eval().to(memory_format=torch.contiguous_format)
     model = Exported(net, score_power=score_power)
@@ -183,6 +186,7 @@ def export_onnx(net: SignNet, path: str, class_names, size_px: int = 640, extra_
         entry.key, entry.value = key, str(value)
     onnx.save(proto, path)
     os.remove(tmp)
+    upsample_by_scale(path, path)     # the pyramid's Resize by constant scales (devtools.train.upsample)
     return path
 
 

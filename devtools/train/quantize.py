@@ -16,7 +16,9 @@ CPUs without VNNI (AVX2 only, as the development machine) onnxruntime's u8 x s8 
 add pairs of products in int16 and saturate with full 8-bit weights (scores off by up to
 0.07 on a test model; 0.003 with 7 bits).
 The metadata is copied and ``quantization`` added; the plugin runs the file as it runs
-the float one.
+the float one. A QDQ file then takes the views' uint8 BGR pixels, channels last, instead of
+the float input it quantises at once (``devtools.train.rawinput``; ``--float-input`` keeps
+the float input).
 """
 from __future__ import annotations
 
@@ -30,6 +32,7 @@ import numpy as np
 
 from .. import REPO_ROOT, import_roadsigns
 from . import data
+from .rawinput import take_uint8_bgr
 
 DEFAULT_SCENES = os.path.join(REPO_ROOT, "bench", "out", "train", "scenes")
 
@@ -101,7 +104,7 @@ def head_and_decoder_nodes(model) -> list:
 
 def quantize(model_path: str, out_path: str, images, fmt: str = "qdq", per_channel: bool = True,
              reduce_range: bool = True, method: str = "minmax", keep_head_float: bool = True,
-             op_types=None) -> str:
+             op_types=None, uint8_input: bool = True) -> str:
     import onnx
     from onnxruntime.quantization import CalibrationMethod, QuantFormat, QuantType, quantize_static
     from onnxruntime.quantization.shape_inference import quant_pre_process
@@ -127,7 +130,10 @@ def quantize(model_path: str, out_path: str, images, fmt: str = "qdq", per_chann
             activation_type=QuantType.QUInt8, weight_type=QuantType.QInt8, nodes_to_exclude=exclude,
             calibrate_method={"minmax": CalibrationMethod.MinMax, "percentile": CalibrationMethod.Percentile,
                               "entropy": CalibrationMethod.Entropy}[method],
-            extra_options={"ActivationSymmetric": False, "WeightSymmetric": True})
+            # the input is pixels / 255: quantised over 0..1 whatever the calibration images
+            # hold, its uint8 values are the pixels (what devtools.train.rawinput relies on)
+            extra_options={"ActivationSymmetric": False, "WeightSymmetric": True,
+                           "TensorQuantOverrides": {input_name: [{"rmin": np.float32(0.0), "rmax": np.float32(1.0)}]}})
     q = onnx.load(out_path)
     del q.metadata_props[:]
     meta["quantization"] = (f"int8 static ({fmt}, {'per-channel' if per_channel else 'per-tensor'} "
@@ -140,6 +146,8 @@ def quantize(model_path: str, out_path: str, images, fmt: str = "qdq", per_chann
         entry = q.metadata_props.add()
         entry.key, entry.value = key, value
     onnx.save(q, out_path)
+    if uint8_input and fmt == "qdq":
+        take_uint8_bgr(out_path, out_path)
     return out_path
 
 
@@ -159,10 +167,12 @@ def main(argv=None):
     ap.add_argument("--ops", default="all", help="operator types to quantise, comma-separated, or 'all' "
                     "(onnxruntime's default set: Conv, Add, Resize, MaxPool, ...)")
     ap.add_argument("--scenes", default=DEFAULT_SCENES, help="training scenes for panorama views")
+    ap.add_argument("--float-input", action="store_true",
+                    help="keep the float [batch, 3, h, w] input (default for qdq: the views' uint8 BGR pixels)")
     a = ap.parse_args(argv)
     images = calibration_images(a.calibration, a.scenes)
     quantize(a.model, a.out, images, a.format, not a.per_tensor, not a.full_range, a.method, not a.quantize_head,
-             None if a.ops == "all" else tuple(a.ops.split(",")))
+             None if a.ops == "all" else tuple(a.ops.split(",")), not a.float_input)
     print(f"wrote {a.out} ({os.path.getsize(a.out) / 1e6:.2f} MB) from {len(images)} calibration images")
     return 0
 

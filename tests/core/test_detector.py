@@ -567,3 +567,66 @@ def test_default_spacing_detects_at_least_every_5_m_and_skips_nothing_on_sparse_
         assert len(kept) == len(xyz)                   # panoramas already that far apart: all kept
     if gap_m < 1.3:
         assert len(kept) <= len(xyz) / 1.9            # a dense drive: half the panoramas or fewer
+
+
+def test_an_int8_model_takes_the_views_uint8_bgr_pixels(tmp_path):
+    """devtools.train.rawinput: the QDQ file's input quantised at once (scale 1/255) becomes
+    the views' uint8 BGR pixels, channels last. Detector feeds them as they are and finds
+    exactly what it finds with the float input; read as RGB the channels would be swapped."""
+    pytest.importorskip("onnxruntime.quantization")
+    import onnx
+
+    from devtools.train import quantize
+    from devtools.train.rawinput import CHANNEL_ORDER_KEY, take_uint8_bgr
+
+    src = _brightness_model(tmp_path / "float.onnx")
+    calib = [np.full((64, 64, 3), v, np.uint8) for v in range(0, 256, 20)]
+    floating = quantize.quantize(src, str(tmp_path / "float-input.onnx"), calib, uint8_input=False)
+    pixels = str(tmp_path / "pixels.onnx")
+    take_uint8_bgr(floating, pixels)
+    model = onnx.load(pixels)
+    tensor = model.graph.input[0].type.tensor_type
+    assert tensor.elem_type == onnx.TensorProto.UINT8
+    assert [d.dim_value or d.dim_param for d in tensor.shape.dim] == ["batch", 64, 64, 3]
+    assert "QuantizeLinear" not in {n.op_type for n in model.graph.node if "images" in n.input}
+    assert {p.key: p.value for p in model.metadata_props}[CHANNEL_ORDER_KEY] == "BGR"
+    a, b = Detector(floating, threads=1), Detector(pixels, threads=1)
+    assert (a.channels_last, b.channels_last, b.input_bgr, b.input_size) == (False, True, True, (64, 64))
+    rng = np.random.default_rng(2)
+    for k in range(4):
+        image = rng.integers(0, 256, (48 + 8 * k, 64, 3), dtype=np.uint8)   # letterboxed, channels unequal
+        image[10:20, 5:15] = (255, 40 * k, 0)                                  # a blue patch
+        da, db = a.detect(image, 0.0), b.detect(image, 0.0)
+        assert db.scores.tolist() == da.scores.tolist() and np.array_equal(db.boxes_xyxy, da.boxes_xyxy)
+    # the same file read as RGB: the first layer's weights meet the channels swapped
+    meta = {p.key: p for p in model.metadata_props}
+    meta[CHANNEL_ORDER_KEY].value = "RGB"
+    onnx.save(model, str(tmp_path / "rgb.onnx"))
+    rgb = Detector(str(tmp_path / "rgb.onnx"), threads=1)
+    assert not rgb.input_bgr and rgb.detect(image, 0.0).scores[0] != pytest.approx(da.scores[0], abs=1e-4)
+    # a file that does not begin by quantising its input is refused, nothing written
+    for other in (src, quantize.quantize(src, str(tmp_path / "qop.onnx"), calib, fmt="qoperator")):
+        with pytest.raises(SystemExit):
+            take_uint8_bgr(other, str(tmp_path / "refused.onnx"))
+    assert not os.path.exists(tmp_path / "refused.onnx")
+    # the shipped int8 detector takes them so (models/README.md, "The views' pixels as they are")
+    from roadsigns.algorithms.paths import BUNDLED_MODEL
+    shipped = Detector(BUNDLED_MODEL, threads=1)
+    assert shipped.channels_last and shipped.input_bgr
+
+
+def test_a_channels_last_model_with_other_than_three_channels_is_refused(tmp_path):
+    import onnx
+    from onnx import TensorProto, helper
+
+    graph = helper.make_graph(
+        [helper.make_node("Cast", ["images"], ["f"], to=TensorProto.FLOAT),
+         helper.make_node("ReduceMean", ["f"], ["output0"], axes=[3], keepdims=0)],
+        "four", [helper.make_tensor_value_info("images", TensorProto.UINT8, ["batch", 64, 64, 4])],
+        [helper.make_tensor_value_info("output0", TensorProto.FLOAT, ["batch", 64, 64])])
+    model = helper.make_model(graph, opset_imports=[helper.make_opsetid("", 17)])
+    model.ir_version = 8
+    helper.set_model_props(model, {"names": NAMES2, "task": "detect"})
+    onnx.save(model, str(tmp_path / "four.onnx"))
+    with pytest.raises(InputError, match=r"uint8 \[batch, height, width, 3\]"):
+        Detector(str(tmp_path / "four.onnx"), threads=1)
