@@ -422,7 +422,19 @@ VIEW_SETS = {
                                          + panorama_mod.ViewSet.ring(2, panorama_mod.UPWARD_PITCH_DEG,
                                                                      half_density_hfov_deg(panorama_mod.UPWARD_HFOV_DEG),
                                                                      size)),
+    # the plugin's views with a horizon ring of 6 views of 80 deg (20 deg overlap) instead of 8
+    # (35 deg): 10 views; centred ahead, or turned 30 deg so that the fore-and-aft pair takes
+    # the directions ahead and behind
+    "ring6": lambda size: _with_ring(size, 6, 0.0),
+    "ring6-turned": lambda size: _with_ring(size, 6, 30.0),
 }
+
+
+def _with_ring(size, n_views: int, first_yaw_deg: float):
+    """The plugin's default views with the horizon ring replaced by ``n_views`` views of 80 deg."""
+    ring = panorama_mod.ViewSet.ring(n_views, 0.0, 80.0, size, first_yaw_deg=first_yaw_deg)
+    rest = panorama_mod.ViewSet.default(size_px=size).views[8:]
+    return ring + panorama_mod.ViewSet(rest)
 
 
 def half_density_hfov_deg(hfov_deg: float) -> float:
