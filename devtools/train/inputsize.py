@@ -17,9 +17,9 @@ import argparse
 import json
 import os
 import sys
-import tempfile
 
 from .. import REPO_ROOT
+from .onnxfile import save_model
 
 
 def set_input_height(model_path: str, out_path: str, height_px: int) -> None:
@@ -53,24 +53,13 @@ def set_input_height(model_path: str, out_path: str, height_px: int) -> None:
         else:
             model.metadata_props.add(key=key, value=value)
     onnx.checker.check_model(model)
-    fd, tmp = tempfile.mkstemp(suffix=".onnx", dir=os.path.dirname(os.path.abspath(out_path)))
-    os.close(fd)
-    try:
-        onnx.save(model, tmp)
-        session = ort.InferenceSession(tmp, providers=["CPUExecutionProvider"])
-        blank = (np.zeros((1, height_px, width, 3), np.uint8) if pixels
-                 else np.zeros((1, 3, height_px, width), np.float32))
-        out = session.run(None, {session.get_inputs()[0].name: blank})
-        if out[0].ndim != 3 or out[0].shape[-1] != 6:
-            raise SystemExit(f"{model_path} at height {height_px} gives outputs of shape {out[0].shape}")
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)          # mkstemp makes it private
-        os.replace(tmp, out_path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-
+    session = ort.InferenceSession(model.SerializeToString(), providers=["CPUExecutionProvider"])
+    blank = (np.zeros((1, height_px, width, 3), np.uint8) if pixels
+             else np.zeros((1, 3, height_px, width), np.float32))
+    out = session.run(None, {session.get_inputs()[0].name: blank})
+    if out[0].ndim != 3 or out[0].shape[-1] != 6:
+        raise SystemExit(f"{model_path} at height {height_px} gives outputs of shape {out[0].shape}")
+    save_model(model, out_path)
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="python -m devtools.train.inputsize", description=__doc__.splitlines()[0])

@@ -23,14 +23,14 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-import tempfile
 
 import numpy as np
 
-from .. import REPO_ROOT
+from .. import REPO_ROOT, import_roadsigns
+from .onnxfile import save_model
 
-#: The metadata entry with the input's channel order (``core.detector.CHANNEL_ORDER_KEY``).
-CHANNEL_ORDER_KEY = "channel_order"
+#: The metadata entry with the input's channel order, as ``core.detector`` reads it.
+CHANNEL_ORDER_KEY = import_roadsigns("roadsigns.core.detector").CHANNEL_ORDER_KEY
 
 
 def _only(items, what: str, model_path: str):
@@ -114,17 +114,7 @@ def take_uint8_bgr(model_path: str, out_path: str) -> None:
         after = new.run(None, {input_name: image[None]})
         if not all(np.array_equal(a, b) for a, b in zip(before, after)):
             raise SystemExit(f"{model_path}: the uint8 BGR input gives other outputs; nothing written")
-    fd, tmp = tempfile.mkstemp(suffix=".onnx", dir=os.path.dirname(os.path.abspath(out_path)))
-    os.close(fd)
-    try:
-        onnx.save(model, tmp)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)          # mkstemp makes it private
-        os.replace(tmp, out_path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+    save_model(model, out_path)
 
 
 def main(argv=None) -> int:

@@ -20,11 +20,11 @@ import argparse
 import json
 import os
 import sys
-import tempfile
 
 import numpy as np
 
 from .. import REPO_ROOT
+from .onnxfile import save_model
 
 #: The metadata entry that records the rewrite.
 UPSAMPLE_METADATA_KEY = "upsample"
@@ -128,17 +128,7 @@ def upsample_by_scale(model_path: str, out_path: str) -> dict:
     after = _run(model, feed)
     if not all(np.array_equal(a, b) for a, b in zip(before, after)):
         raise SystemExit(f"{model_path}: the graph upsampled by scale gives other outputs; nothing written")
-    fd, tmp = tempfile.mkstemp(suffix=".onnx", dir=os.path.dirname(os.path.abspath(out_path)))
-    os.close(fd)
-    try:
-        onnx.save(model, tmp)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)          # mkstemp makes it private
-        os.replace(tmp, out_path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+    save_model(model, out_path)
     return {"resizes": len(resizes), "dropped_nodes": dropped}
 
 
