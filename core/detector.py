@@ -648,8 +648,10 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
                     iou_threshold: float = 0.45, overlap_threshold: float = 0.5,
                     min_box_px: float = 0.0, candidate_confidence: Optional[float] = None,
                     progress: Progress = SILENT, fit_tall: bool = True,
-                    zoom: Optional[ZoomRule] = None) -> PanoramaDetections:
+                    zoom: Optional[ZoomRule] = None,
+                    view_images: Optional[Sequence[np.ndarray]] = None) -> PanoramaDetections:
     """Run ``detector`` on each view of ``pano`` (BGR array) and merge the results.
+    ``view_images``: the views already cut (``list(views.cut_all(pano))``), else cut here.
 
     ``detector``: a :class:`Detector`, or any object with ``class_names`` and
     ``detect(image, confidence, iou_threshold) -> ImageDetections`` (``detect_many`` is
@@ -675,7 +677,8 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
     when from ``candidate_confidence``.
     """
     H, W = pano.shape[:2]
-    view_images = list(views.cut_all(pano))
+    if view_images is None:
+        view_images = list(views.cut_all(pano))
     lowest = confidence if candidate_confidence is None else min(confidence, candidate_confidence)
     if zoom is not None:
         lowest = min(lowest, zoom.min_score)
@@ -814,15 +817,17 @@ def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidenc
     views. A skipped file adds ``(path, reason)`` to ``skipped`` and a warning to
     ``progress``. ``prefetch``: decode the next panorama in a background thread while this
     one is detected (OpenCV's decoder releases the GIL; two panoramas are in memory at once);
-    results, order and warnings are the same either way.
+    results, order and warnings are the same either way. The views are cut in the same
+    thread as the panorama is decoded (``cv2.remap`` releases the GIL too).
     """
     from .panorama import read_panorama
 
     def load(path: str):
         try:
-            return read_panorama(path), None
+            pano = read_panorama(path)
         except InputError as error:
-            return None, error
+            return None, None, error
+        return pano, list(views.cut_all(pano)), None
 
     per_image: List[Optional[PanoramaDetections]] = []
     skipped: List[Tuple[str, str]] = []
@@ -833,10 +838,10 @@ def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidenc
         for k, path in enumerate(image_paths):
             progress.report(k / n)
             if reader is not None and pending is not None:
-                pano, error = pending.result()
+                pano, view_images, error = pending.result()
                 pending = reader.submit(load, image_paths[k + 1]) if k + 1 < len(image_paths) else None
             else:
-                pano, error = load(path)
+                pano, view_images, error = load(path)
             if error is not None:
                 skipped.append((path, str(error)))
                 progress.warning(error.template, **error.fields)
@@ -844,7 +849,8 @@ def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidenc
                 continue
             found = detect_panorama(detector, pano, views, confidence, iou_threshold,
                                     min_box_px=min_box_px, candidate_confidence=candidate_confidence,
-                                    progress=progress.sub(k / n, (k + 1) / n), zoom=zoom)
+                                    progress=progress.sub(k / n, (k + 1) / n), zoom=zoom,
+                                    view_images=view_images)
             if on_panorama is not None:
                 progress.check()
                 answer = on_panorama(pano, found)
@@ -853,7 +859,7 @@ def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidenc
             if found.candidate.any():
                 found = found.subset(~found.candidate)
             per_image.append(found)
-            del pano
+            del pano, view_images
     finally:
         if reader is not None:  # on cancel or an error: do not wait for a read in flight
             reader.shutdown(wait=False, cancel_futures=True)

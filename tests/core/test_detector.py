@@ -547,6 +547,31 @@ def test_detect_drive_prefetch_cancels_without_waiting_for_the_read_in_flight(tm
     assert started == paths[:2]  # nothing read after the cancel
 
 
+@pytest.mark.parametrize("prefetch", [False, True])
+def test_detect_drive_cuts_the_next_panoramas_views_with_its_decoding(tmp_path, monkeypatch, prefetch):
+    """With ``prefetch`` the views of every panorama are cut in the reader thread, beside the
+    detection of the one before (``cv2.remap`` releases the GIL); without it in the calling
+    thread; each panorama's views are cut once, and the results are the same."""
+    import threading
+
+    from roadsigns.core import panorama
+
+    original = panorama.ViewSet.cut_all
+    cut_in = []
+
+    def spy(self, pano):
+        cut_in.append(threading.get_ident())
+        return original(self, pano)
+
+    monkeypatch.setattr(panorama.ViewSet, "cut_all", spy)
+    paths = _grey_panoramas(tmp_path, 4)
+    drive = det.detect_drive(MeanGreyDetector(), paths, ViewSet.ring(2, 0.0, 90.0, 32), 0.0, prefetch=prefetch)
+    assert [round(float(d.score.max()) * 255) for d in drive.per_image] == [20, 60, 100, 140]
+    assert len(cut_in) == 4
+    main = threading.get_ident()
+    assert all((ident != main) == prefetch for ident in cut_in)
+
+
 def test_spaced_stations_keeps_each_station_far_enough_from_the_last_kept():
     xyz = np.array([[0, 0, 0], [1, 0, 0], [2.5, 0, 0], [3, 0, 0], [5, 0, 0], [5, 0, 3]], float)
     assert det.spaced_stations(xyz, 0.0).tolist() == [0, 1, 2, 3, 4, 5]
