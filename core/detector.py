@@ -416,11 +416,10 @@ class Detector:
             blob = np.stack([b for b, _ in boxed])
             if not self.input_bgr:
                 blob = np.ascontiguousarray(blob[..., ::-1])
-            return self.session.run(None, {self.input_name: blob})[0], [t for _, t in boxed]
-        # BGR HWC uint8 -> RGB NCHW float in 0..1
-        blob = cv2.dnn.blobFromImages([b for b, _ in boxed], 1.0 / 255.0, swapRB=True)
-        if blob.dtype != self.input_dtype:
-            blob = blob.astype(self.input_dtype)
+        else:                            # BGR HWC uint8 -> RGB NCHW float in 0..1
+            blob = cv2.dnn.blobFromImages([b for b, _ in boxed], 1.0 / 255.0, swapRB=True)
+            if blob.dtype != self.input_dtype:
+                blob = blob.astype(self.input_dtype)
         return self.session.run(None, {self.input_name: blob})[0], [t for _, t in boxed]
 
     def detect_many(self, images: Sequence[np.ndarray], confidence: float = 0.25,

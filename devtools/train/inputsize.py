@@ -19,7 +19,7 @@ import os
 import sys
 
 from .. import REPO_ROOT
-from .onnxfile import save_model
+from .onnxfile import cpu_session, save_model, set_metadata
 
 
 def set_input_height(model_path: str, out_path: str, height_px: int) -> None:
@@ -28,7 +28,6 @@ def set_input_height(model_path: str, out_path: str, height_px: int) -> None:
     first), checked by running it once."""
     import numpy as np
     import onnx
-    import onnxruntime as ort
 
     if height_px <= 0 or height_px % 32:
         raise SystemExit(f"the height must be a positive multiple of 32, got {height_px}")
@@ -44,22 +43,18 @@ def set_input_height(model_path: str, out_path: str, height_px: int) -> None:
     dims[h_axis].ClearField("dim_param")
     dims[h_axis].dim_value = int(height_px)
     del model.graph.value_info[:]            # shapes inferred for the old height
-    meta = {p.key: p for p in model.metadata_props}
     width = dims[w_axis].dim_value
-    for key, value in (("imgsz", f"[{height_px}, {width}]"),
-                       ("input_height", json.dumps({"from": old_height, "to": int(height_px)}))):
-        if key in meta:
-            meta[key].value = value
-        else:
-            model.metadata_props.add(key=key, value=value)
+    set_metadata(model, "imgsz", f"[{height_px}, {width}]")
+    set_metadata(model, "input_height", json.dumps({"from": old_height, "to": int(height_px)}))
     onnx.checker.check_model(model)
-    session = ort.InferenceSession(model.SerializeToString(), providers=["CPUExecutionProvider"])
+    session = cpu_session(model)
     blank = (np.zeros((1, height_px, width, 3), np.uint8) if pixels
              else np.zeros((1, 3, height_px, width), np.float32))
     out = session.run(None, {session.get_inputs()[0].name: blank})
     if out[0].ndim != 3 or out[0].shape[-1] != 6:
         raise SystemExit(f"{model_path} at height {height_px} gives outputs of shape {out[0].shape}")
     save_model(model, out_path)
+
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="python -m devtools.train.inputsize", description=__doc__.splitlines()[0])

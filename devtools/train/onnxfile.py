@@ -1,4 +1,5 @@
-"""Writing a rewritten ONNX file: under a temporary name in the target's folder, then renamed."""
+"""Rewritten ONNX files: a session of one in memory, its metadata entries, and writing it
+under a temporary name in the target's folder, then renamed."""
 from __future__ import annotations
 
 import os
@@ -21,3 +22,21 @@ def save_model(model, out_path: str) -> None:
     finally:
         if os.path.exists(tmp):
             os.remove(tmp)
+
+
+def cpu_session(model):
+    """A quiet onnxruntime CPU session of ``model`` (an ``onnx.ModelProto``), from memory."""
+    import onnxruntime as ort
+
+    options = ort.SessionOptions()
+    options.log_severity_level = 3
+    return ort.InferenceSession(model.SerializeToString(), sess_options=options, providers=["CPUExecutionProvider"])
+
+
+def set_metadata(model, key: str, value: str) -> None:
+    """Set the metadata entry ``key`` of ``model`` to ``value``, adding it when missing."""
+    for entry in model.metadata_props:
+        if entry.key == key:
+            entry.value = value
+            return
+    model.metadata_props.add(key=key, value=value)

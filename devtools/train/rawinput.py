@@ -27,7 +27,7 @@ import sys
 import numpy as np
 
 from .. import REPO_ROOT, import_roadsigns
-from .onnxfile import save_model
+from .onnxfile import cpu_session, save_model, set_metadata
 
 #: The metadata entry with the input's channel order, as ``core.detector`` reads it.
 CHANNEL_ORDER_KEY = import_roadsigns("roadsigns.core.detector").CHANNEL_ORDER_KEY
@@ -46,7 +46,6 @@ def take_uint8_bgr(model_path: str, out_path: str) -> None:
     begin so or the outputs differ."""
     import cv2
     import onnx
-    import onnxruntime as ort
     from onnx import TensorProto, numpy_helper
 
     model = onnx.load(model_path)
@@ -96,19 +95,12 @@ def take_uint8_bgr(model_path: str, out_path: str) -> None:
     graph.input.remove(inp)
     graph.input.insert(0, new_input)
     del graph.value_info[:]
-    meta = {p.key: p for p in model.metadata_props}
-    if CHANNEL_ORDER_KEY in meta:
-        meta[CHANNEL_ORDER_KEY].value = "BGR"
-    else:
-        model.metadata_props.add(key=CHANNEL_ORDER_KEY, value="BGR")
+    set_metadata(model, CHANNEL_ORDER_KEY, "BGR")
     onnx.checker.check_model(model)
 
     images = [np.random.default_rng(k).integers(0, 256, (height, width, 3), dtype=np.uint8) for k in range(2)]
     images[1][:] = np.array([0, 128, 255], np.uint8)          # the ends of the range, per channel
-    options = ort.SessionOptions()
-    options.log_severity_level = 3
-    old = ort.InferenceSession(reference.SerializeToString(), sess_options=options, providers=["CPUExecutionProvider"])
-    new = ort.InferenceSession(model.SerializeToString(), sess_options=options, providers=["CPUExecutionProvider"])
+    old, new = cpu_session(reference), cpu_session(model)
     for image in images:
         before = old.run(None, {input_name: cv2.dnn.blobFromImages([image], 1.0 / 255.0, swapRB=True)})
         after = new.run(None, {input_name: image[None]})

@@ -24,7 +24,7 @@ import sys
 import numpy as np
 
 from .. import REPO_ROOT
-from .onnxfile import save_model
+from .onnxfile import cpu_session, save_model, set_metadata
 
 #: The metadata entry that records the rewrite.
 UPSAMPLE_METADATA_KEY = "upsample"
@@ -55,17 +55,12 @@ def computed_size_resizes(model) -> list:
 
 def _run(model, feed: dict, extra_outputs=()) -> list:
     import onnx
-    import onnxruntime as ort
 
     probe = onnx.ModelProto()
     probe.CopyFrom(model)
     for name in extra_outputs:
         probe.graph.output.add(name=name)
-    options = ort.SessionOptions()
-    options.log_severity_level = 3
-    session = ort.InferenceSession(probe.SerializeToString(), sess_options=options,
-                                   providers=["CPUExecutionProvider"])
-    return session.run(None, feed)
+    return cpu_session(probe).run(None, feed)
 
 
 def _drop_unused(graph) -> int:
@@ -92,14 +87,17 @@ def upsample_by_scale(model_path: str, out_path: str) -> dict:
     """Write ``model_path`` with every computed-size ``Resize`` given its constant integer
     scales to ``out_path`` (may be the same file; written under a temporary name first).
     Returns ``{"resizes": n, "dropped_nodes": m}``; the metadata entry
-    :data:`UPSAMPLE_METADATA_KEY` records it. SystemExit, writing nothing, when a
-    ``Resize`` does not scale by whole numbers at the model's input size or the outputs
-    differ."""
+    :data:`UPSAMPLE_METADATA_KEY` records it. A file without such a ``Resize`` is left as it
+    is, and nothing is written (``{"resizes": 0, "dropped_nodes": 0}``). SystemExit, writing
+    nothing, when a ``Resize`` does not scale by whole numbers at the model's input size or
+    the outputs differ."""
     import onnx
     from onnx import numpy_helper
 
     model = onnx.load(model_path)
     resizes = computed_size_resizes(model)
+    if not resizes:
+        return {"resizes": 0, "dropped_nodes": 0}
     feed = {model.graph.input[0].name: _example_input(model)}
     probes = [name for node in resizes for name in (node.input[0], node.output[0])]
     values = _run(model, feed, probes)
@@ -117,13 +115,8 @@ def upsample_by_scale(model_path: str, out_path: str) -> dict:
         del node.input[3]
     dropped = _drop_unused(model.graph)
     del model.graph.value_info[:]
-    if resizes:
-        meta = {p.key: p for p in model.metadata_props}
-        note = json.dumps({"resizes_by_scale": len(resizes), "by": "devtools.train.upsample"})
-        if UPSAMPLE_METADATA_KEY in meta:
-            meta[UPSAMPLE_METADATA_KEY].value = note
-        else:
-            model.metadata_props.add(key=UPSAMPLE_METADATA_KEY, value=note)
+    set_metadata(model, UPSAMPLE_METADATA_KEY,
+                 json.dumps({"resizes_by_scale": len(resizes), "by": "devtools.train.upsample"}))
     onnx.checker.check_model(model)
     after = _run(model, feed)
     if not all(np.array_equal(a, b) for a, b in zip(before, after)):
@@ -138,7 +131,10 @@ def main(argv=None) -> int:
     ap.add_argument("--out", required=True)
     a = ap.parse_args(argv)
     done = upsample_by_scale(a.model, a.out)
-    print(f"wrote {a.out}: {done['resizes']} Resize by scale, {done['dropped_nodes']} nodes dropped")
+    if not done["resizes"]:
+        print(f"{a.model} has no Resize with sizes computed in the graph: nothing written")
+    else:
+        print(f"wrote {a.out}: {done['resizes']} Resize by scale, {done['dropped_nodes']} nodes dropped")
     return 0
 
 

@@ -58,6 +58,9 @@ def test_a_computed_size_resize_gets_constant_scales_and_the_same_outputs(tmp_pa
     assert {i.name for i in model.graph.initializer} == {resize.input[2]}     # the sizes' constants gone
     x = np.random.default_rng(3).random((3, 4, 16, 16), dtype=np.float32)   # another batch than the check's
     assert np.array_equal(run(source, x), run(out, x))
+    # a file with nothing left to rewrite is left alone
+    assert upsample_by_scale(str(out), str(tmp_path / "again.onnx")) == {"resizes": 0, "dropped_nodes": 0}
+    assert not (tmp_path / "again.onnx").exists()
 
 
 def test_a_resize_by_a_fraction_is_refused_and_nothing_is_written(tmp_path):
