@@ -42,9 +42,20 @@ def load_scene(args):
         return scene_dir, json.load(f)
 
 
+def _horizon_views_option(n_views: int) -> int:
+    """The index of detectsigns' HORIZON_VIEWS option for a ring of ``n_views`` views."""
+    from devtools import import_roadsigns
+    rings = list(import_roadsigns("roadsigns.core.panorama").HORIZON_RINGS)
+    if n_views not in rings:
+        raise SystemExit(f"--horizon-views: {n_views} views; expected one of {sorted(rings)}")
+    return rings.index(n_views)
+
+
 def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=None, upward_views=None, classifier=None,
-               fore_aft_views=None, rescue_confidence=None, confidence=None, zoomed_look=None):
-    """(stage id, parameters, output key, what it needs) in chain order."""
+               fore_aft_views=None, rescue_confidence=None, confidence=None, zoomed_look=None,
+               horizon_views=None):
+    """(stage id, parameters, output key, what it needs) in chain order; ``horizon_views``: the
+    number of views of detectsigns' horizon ring (None: its default)."""
     p = lambda name: os.path.join(scene_dir, name)  # noqa: E731
     w = lambda name: os.path.join(work, name)  # noqa: E731
     lever = meta["lever_arm_m"]
@@ -61,6 +72,8 @@ def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=None, upward
                              **({"MIN_STATION_SPACING_M": station_spacing_m} if station_spacing_m is not None else {}),
                              **({"UPWARD_VIEWS": upward_views} if upward_views is not None else {}),
                              **({"FORE_AFT_VIEWS": fore_aft_views} if fore_aft_views is not None else {}),
+                             **({"HORIZON_VIEWS": _horizon_views_option(horizon_views)}
+                                if horizon_views is not None else {}),
                              **({"RESCUE_CONFIDENCE": rescue_confidence} if rescue_confidence is not None else {}),
                              **({"ZOOMED_LOOK": zoomed_look} if zoomed_look is not None else {}),
                              **({"MODEL": model} if model else {}),
@@ -125,6 +138,9 @@ def main(argv=None):
     parser.add_argument("--fore-aft", action=argparse.BooleanOptionalAction, default=None,
                         help="detectsigns with or without its fore-and-aft views (FORE_AFT_VIEWS; default: the "
                              "algorithm's, on)")
+    parser.add_argument("--horizon-views", type=int, metavar="N",
+                        help="detectsigns' HORIZON_VIEWS: the number of views of its horizon ring (8 or 6; "
+                             "default: the algorithm's, 8)")
     parser.add_argument("--zoomed-look", action=argparse.BooleanOptionalAction, default=None,
                         help="detectsigns with or without its zoomed look at small boxes (ZOOMED_LOOK; default: "
                              "the algorithm's, on)")
@@ -144,6 +160,7 @@ def main(argv=None):
         + {None: "", False: "-noupward", True: "-upward"}[args.upward]
         + {None: "", False: "-noforeaft", True: "-foreaft"}[args.fore_aft]
         + {None: "", False: "-nozoom", True: "-zoom"}[args.zoomed_look]
+        + (f"-horizon{args.horizon_views}" if args.horizon_views is not None else "")
         + (f"-rescue{args.rescue_confidence:g}" if args.rescue_confidence is not None else "")
         + (f"-conf{args.confidence:g}" if args.confidence is not None else "")
         + ("-model-" + os.path.splitext(os.path.basename(args.model))[0] if args.model else "")
@@ -157,10 +174,10 @@ def main(argv=None):
                "detections": args.detections, "station_spacing_m": args.station_spacing,
                "upward_views": args.upward, "fore_aft_views": args.fore_aft, "classifier": args.classifier,
                "rescue_confidence": args.rescue_confidence, "confidence": args.confidence,
-               "zoomed_look": args.zoomed_look, "stages": {}}
+               "zoomed_look": args.zoomed_look, "horizon_views": args.horizon_views, "stages": {}}
     done = set()
     plan = stage_plan(scene_dir, meta, work, args.model, args.station_spacing, args.upward, args.classifier,
-                      args.fore_aft, args.rescue_confidence, args.confidence, args.zoomed_look)
+                      args.fore_aft, args.rescue_confidence, args.confidence, args.zoomed_look, args.horizon_views)
     if args.from_stage and args.from_stage not in [p[0] for p in plan]:
         parser.error(f"--from: no stage {args.from_stage}")
     reuse = args.from_stage is not None

@@ -424,15 +424,15 @@ VIEW_SETS = {
                                                                      size)),
     # the plugin's views with a horizon ring of 6 views of 80 deg (20 deg overlap) instead of 8
     # (35 deg): 10 views; centred ahead, or turned 30 deg so that the fore-and-aft pair takes
-    # the directions ahead and behind
+    # the directions ahead and behind (detectsigns' HORIZON_VIEWS 6)
     "ring6": lambda size: _with_ring(size, 6, 0.0),
-    "ring6-turned": lambda size: _with_ring(size, 6, 30.0),
+    "ring6-turned": lambda size: panorama_mod.ViewSet.default(size_px=size, horizon_views=6),
 }
 
 
 def _with_ring(size, n_views: int, first_yaw_deg: float):
     """The plugin's default views with the horizon ring replaced by ``n_views`` views of 80 deg."""
-    ring = panorama_mod.ViewSet.ring(n_views, 0.0, 80.0, size, first_yaw_deg=first_yaw_deg)
+    ring = panorama_mod.ViewSet.ring(n_views, 0.0, panorama_mod.HORIZON_HFOV_DEG, size, first_yaw_deg=first_yaw_deg)
     plugin_ring = panorama_mod.ViewSet.default(size_px=size, upward=False, fore_aft=False)
     rest = panorama_mod.ViewSet.default(size_px=size).views[len(plugin_ring):]
     return ring + panorama_mod.ViewSet(rest)

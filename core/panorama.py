@@ -41,17 +41,27 @@ UPWARD_RING_VIEWS = 6
 #: found every gantry panel without them, from stations farther off; a drive with panoramas
 #: far apart does not.
 DEFAULT_UPWARD_VIEWS = True
+#: Width (deg) of each view of the horizon ring.
+HORIZON_HFOV_DEG = 80.0
 #: Two more horizon views, straight ahead and behind, of this width: 1.5 x the pixels per
 #: degree of the 80 deg ring on average, 1.67 x at the views' centres (a 4096 px panorama's
 #: own density: 0.98 x, against the ring's 0.59 x), for small far signs (``detectsigns``'
 #: ``FORE_AFT_VIEWS``).
-FORE_AFT_HFOV_DEG = 80.0 / 1.5
+FORE_AFT_HFOV_DEG = HORIZON_HFOV_DEG / 1.5
 #: Whether detection adds them by default: yes since 25 November. Real signs need the pixels:
 #: GTSDB 500-599 at the ring's density found 0.817 of the signs (second look on), with the
 #: fore-and-aft density merged in 0.930; 376 held-out real signs pasted 0.537 and 0.691; five
 #: held-out generated streets 0.879 and 0.906 per panorama, precision within 0.01 on all
 #: three; 1.24 x the detection time (models/README.md, "Pixels for real signs").
 DEFAULT_FORE_AFT_VIEWS = True
+#: The horizon rings detection can cut: number of views -> yaw of the first (deg, 0 ahead).
+#: 8 views overlap by 35 deg. 6 views overlap by 20 deg and are turned by 30 deg, so that
+#: the seams ahead and behind fall inside the fore-and-aft views: 0.85 x the detection's CPU
+#: time, and on five held-out streets P / R 0.982 / 0.948 -> 0.988 / 0.946 in single
+#: panoramas, 14-20 px 0.894 -> 0.882 (models/README.md, "A ring of six horizon views").
+HORIZON_RINGS = {8: 0.0, 6: 30.0}
+#: The ring ``ViewSet.default`` cuts unless told otherwise (``detectsigns``' ``HORIZON_VIEWS``).
+DEFAULT_HORIZON_VIEWS = 8
 
 
 def boxes_from_seam(boxes_px: np.ndarray, width_px: float) -> np.ndarray:
@@ -310,15 +320,19 @@ class ViewSet:
 
     @classmethod
     def default(cls, size_px=640, upward: Optional[bool] = None,
-                fore_aft: Optional[bool] = None) -> "ViewSet":
-        """Horizon ring: 8 views of 80 deg across (35 deg overlap; square views span
-        elevations -40..+40 deg at their centres, about +-33 deg at their edges, 640 x 384
-        views +-26.7 deg); for overhead and gantry signs, ``upward``: two views ahead and
-        behind of :data:`UPWARD_HFOV_DEG` at pitch :data:`UPWARD_PITCH_DEG`. ``size_px``: the
-        detector's input size, an int or ``(width, height)``; ``upward`` None:
-        :data:`DEFAULT_UPWARD_VIEWS`. ``fore_aft`` (None: :data:`DEFAULT_FORE_AFT_VIEWS`) adds
-        two views of :data:`FORE_AFT_HFOV_DEG` ahead and behind, after the horizon ring."""
-        views = cls.ring(8, 0.0, 80.0, size_px)
+                fore_aft: Optional[bool] = None, horizon_views: int = DEFAULT_HORIZON_VIEWS) -> "ViewSet":
+        """Horizon ring: ``horizon_views`` views of 80 deg across (a key of
+        :data:`HORIZON_RINGS`; 8: 35 deg overlap; square views span elevations -40..+40 deg at
+        their centres, about +-33 deg at their edges, 640 x 384 views +-26.7 deg); for overhead
+        and gantry signs, ``upward``: two views ahead and behind of :data:`UPWARD_HFOV_DEG` at
+        pitch :data:`UPWARD_PITCH_DEG`. ``size_px``: the detector's input size, an int or
+        ``(width, height)``; ``upward`` None: :data:`DEFAULT_UPWARD_VIEWS`. ``fore_aft`` (None:
+        :data:`DEFAULT_FORE_AFT_VIEWS`) adds two views of :data:`FORE_AFT_HFOV_DEG` ahead and
+        behind, after the horizon ring. ``ValueError`` for a ring not in :data:`HORIZON_RINGS`."""
+        if horizon_views not in HORIZON_RINGS:
+            raise ValueError("a horizon ring of {} views: expected one of {}".format(
+                horizon_views, sorted(HORIZON_RINGS)))
+        views = cls.ring(horizon_views, 0.0, HORIZON_HFOV_DEG, size_px, first_yaw_deg=HORIZON_RINGS[horizon_views])
         if fore_aft if fore_aft is not None else DEFAULT_FORE_AFT_VIEWS:
             views = views + cls.ring(2, 0.0, FORE_AFT_HFOV_DEG, size_px)
         if upward if upward is not None else DEFAULT_UPWARD_VIEWS:

@@ -14,8 +14,10 @@ from helpers.synthpano import ray
 from roadsigns.core.errors import InputError
 from roadsigns.core.panorama import (
     DEFAULT_FORE_AFT_VIEWS,
+    DEFAULT_HORIZON_VIEWS,
     DEFAULT_UPWARD_VIEWS,
     FORE_AFT_HFOV_DEG,
+    HORIZON_HFOV_DEG,
     UPWARD_HFOV_DEG,
     UPWARD_PITCH_DEG,
     UPWARD_RING_VIEWS,
@@ -154,6 +156,25 @@ def test_view_sets():
     assert training[:len(ViewSet.default(640, upward=False))] == ViewSet.default(640, upward=False).views
     assert len(training) == len(ViewSet.default(640, upward=False)) + UPWARD_RING_VIEWS
     assert sorted(v.yaw_deg for v in training if v.looks_up) == [k * 60.0 for k in range(UPWARD_RING_VIEWS)]
+
+
+def test_a_ring_of_six_horizon_views_is_turned_so_its_seams_fall_in_the_fore_and_aft_views():
+    assert DEFAULT_HORIZON_VIEWS == 8
+    assert ViewSet.default(640, horizon_views=8) == ViewSet.default(640)
+    six = ViewSet.default(640, upward=True, fore_aft=True, horizon_views=6)
+    eight = ViewSet.default(640, upward=True, fore_aft=True)
+    assert len(six) == len(eight) - 2
+    assert [v.yaw_deg for v in six[:6]] == [30.0 + 60.0 * k for k in range(6)]
+    assert all(v.hfov_deg == HORIZON_HFOV_DEG and v.pitch_deg == 0.0 for v in six[:6])
+    assert six[6:] == eight[8:]                        # the fore-and-aft and upward views as before
+    # the seams ahead and behind (0 and 180 deg) lie inside the fore-and-aft views
+    fore, aft = six[6], six[7]
+    for seam_deg, view in ((0.0, fore), (180.0, aft)):
+        assert abs((seam_deg - view.yaw_deg + 180.0) % 360.0 - 180.0) < 0.5 * FORE_AFT_HFOV_DEG
+    # neighbouring views still overlap
+    assert HORIZON_HFOV_DEG - 60.0 >= 20.0
+    with pytest.raises(ValueError, match="7 views"):
+        ViewSet.default(640, horizon_views=7)
 
 
 def test_denser_views_do_not_change_how_the_others_are_cut_from_a_large_panorama():

@@ -91,6 +91,23 @@ def test_one_ray_per_view_along_the_box_centre(qgis_process, stations, tmp_path)
     assert horizon == pytest.approx(sorted((32 + k * 8) % 64 for k in range(8)), abs=0.2)
 
 
+def test_a_ring_of_six_horizon_views_turned_by_thirty_degrees(qgis_process, stations, tmp_path):
+    """HORIZON_VIEWS' second option: 6 horizon views at yaws 30 + 60 k, one ray each."""
+    model = make_model(tmp_path / "m.onnx", yolov8_centre_box(), meta={"names": NAMES})
+    out = str(tmp_path / "detections.gpkg")
+    run = qgis_process.run(ALG, STATIONS=stations, MODEL=model, CONFIDENCE=0.5, MIN_SIZE=0, UPWARD_VIEWS=False,
+                           FORE_AFT_VIEWS=False, HORIZON_VIEWS=1, RESCUE_CONFIDENCE=1.0, OUTPUT=out)
+    assert run.returncode == 0, run.text
+    assert "6 views each" in run.text
+    rows = [r for r in read_rays(out) if r["image"] == "pano_0000.jpg"]
+    centres_u = sorted(((r["u0"] + r["u1"]) / 2) % r["width"] for r in rows)
+    # yaw 0 is the panorama's centre column (32 of 64); 60 deg is 64 / 6 columns
+    assert centres_u == pytest.approx(sorted((32 + 64 * (30 + 60 * k) / 360) % 64 for k in range(6)), abs=0.2)
+    for r in rows:
+        start, end = r["points"]
+        assert (end - start) / np.linalg.norm(end - start) == pytest.approx(contract_ray_world(r), abs=1e-6)
+
+
 def test_names_from_a_labels_file(qgis_process, stations, tmp_path):
     model = make_model(tmp_path / "m.onnx", yolov8_centre_box())
     labels = tmp_path / "names.txt"
