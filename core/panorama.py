@@ -58,7 +58,8 @@ DEFAULT_FORE_AFT_VIEWS = True
 #: 8 views overlap by 35 deg. 6 views overlap by 20 deg and are turned by 30 deg, so that
 #: the seams ahead and behind fall inside the fore-and-aft views: 0.85 x the detection's CPU
 #: time, and on five held-out streets P / R 0.982 / 0.948 -> 0.988 / 0.946 in single
-#: panoramas, 14-20 px 0.894 -> 0.882 (models/README.md, "A ring of six horizon views").
+#: panoramas, 14-20 px 0.894 -> 0.882; through the chain, on three held-out streets with a
+#: panorama every 5 m, the same 137 signs (models/README.md, "A ring of six horizon views").
 HORIZON_RINGS = {8: 0.0, 6: 30.0}
 #: The ring ``ViewSet.default`` cuts unless told otherwise (``detectsigns``' ``HORIZON_VIEWS``).
 DEFAULT_HORIZON_VIEWS = 8
