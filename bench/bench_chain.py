@@ -42,7 +42,7 @@ def load_scene(args):
         return scene_dir, json.load(f)
 
 
-def _horizon_views_option(n_views: int) -> int:
+def horizon_views_option(n_views: int) -> int:
     """The index of detectsigns' HORIZON_VIEWS option for a ring of ``n_views`` views."""
     from devtools import import_roadsigns
     rings = list(import_roadsigns("roadsigns.core.panorama").HORIZON_RINGS)
@@ -72,7 +72,7 @@ def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=None, upward
                              **({"MIN_STATION_SPACING_M": station_spacing_m} if station_spacing_m is not None else {}),
                              **({"UPWARD_VIEWS": upward_views} if upward_views is not None else {}),
                              **({"FORE_AFT_VIEWS": fore_aft_views} if fore_aft_views is not None else {}),
-                             **({"HORIZON_VIEWS": _horizon_views_option(horizon_views)}
+                             **({"HORIZON_VIEWS": horizon_views_option(horizon_views)}
                                 if horizon_views is not None else {}),
                              **({"RESCUE_CONFIDENCE": rescue_confidence} if rescue_confidence is not None else {}),
                              **({"ZOOMED_LOOK": zoomed_look} if zoomed_look is not None else {}),

@@ -47,6 +47,9 @@ sys.path.insert(0, REPO_ROOT)
 from devtools.qgisrun import QgisProcess  # noqa: E402
 from devtools.scenegen.presets import get_preset  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))   # the bench folder is not a package
+from bench_chain import horizon_views_option  # noqa: E402
+
 MODEL_PATH = os.path.join(REPO_ROOT, "models", "sign_inventory.model3")
 MODEL_ID = "roadsigns:signinventory"
 #: the seed-004 drive of Balado et al. 2020
@@ -363,6 +366,9 @@ def main(argv=None):
     parser.add_argument("--tile-m", type=float, default=500.0)
     parser.add_argument("--station-spacing", type=float,
                         help="the model's MIN_STATION_SPACING_M (default: the model's own)")
+    parser.add_argument("--horizon-views", type=int,
+                        help="the model's HORIZON_VIEWS: the views of detectsigns' horizon ring, 8 or 6 (default: "
+                             "the model's own, 8)")
     parser.add_argument("--ground-format", choices=["laz", "las"], default="laz",
                         help="the model's ground-classified cloud as LAZ (the default) or uncompressed LAS "
                              "(read by three later stages: no decompression, ~30 bytes a point on disk)")
@@ -388,6 +394,8 @@ def main(argv=None):
     inputs, outputs = model_parameters(drive_dir, meta, work, cloud, args.ground_format)
     if args.station_spacing is not None:
         inputs["MIN_STATION_SPACING_M"] = args.station_spacing
+    if args.horizon_views is not None:
+        inputs["HORIZON_VIEWS"] = horizon_views_option(args.horizon_views)
     args_run = ["--verbose", "run", MODEL_ID, "--"] + [f"{k}={v}" for k, v in {**inputs, **outputs}.items()]
     print(f"running {MODEL_ID} (models/sign_inventory.model3) on {drive_dir}: "
           f"{n_pano:,} panoramas, {n_points:,} points", flush=True)
@@ -399,6 +407,7 @@ def main(argv=None):
                "panoramas": n_pano, "rendered": drive["rendered"], "reused": drive["reused"],
                "reuse": drive["reuse"], "points": n_points, "cloud": inputs["POINT_CLOUD"],
                "min_station_spacing_m": inputs.get("MIN_STATION_SPACING_M"),
+               "horizon_views": args.horizon_views,
                "ground_output": outputs["ground:Ground-classified cloud"],
                "pano_width": drive["pano_width"],
                "image_spacing_m": drive["image_spacing_m"], "reference_signs": drive["reference_signs"],
@@ -457,6 +466,8 @@ def main(argv=None):
     if args.station_spacing is not None:
         print(f"MIN_STATION_SPACING_M = {args.station_spacing:g} m: detection only in panoramas that far apart "
               f"(panoramas every {drive['image_spacing_m']} m here); s/panorama still divides by all of them.")
+    if args.horizon_views is not None:
+        print(f"HORIZON_VIEWS: detectsigns' horizon ring of {args.horizon_views} views.")
     print("\n{:<18} {:>9} {:>9} {:>11} {:>11} {:>8} {:>10} {:>9} {:>11}".format(
         "stage", "wall s", "CPU s", "s/panorama", "s/M points", "RSS in", "peak RSS", "driver", "9.2 km s"))
     for alg, r in figures["stages"].items():

@@ -2947,44 +2947,44 @@
         <translation>La salida {path} no se escribió</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="104" />
+        <location filename="../core/panorama.py" line="105" />
         <source>The panorama {path} is {width} x {height} pixels, more than the {limit} the plugin reads</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El panorama {path} tiene {width} x {height} píxeles, más que los {limit} que lee el complemento</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="113" />
+        <location filename="../core/panorama.py" line="114" />
         <source>The panorama {path} is {width} x {height} pixels: an equirectangular panorama must be twice as wide as it is high</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El panorama {path} tiene {width} x {height} píxeles: un panorama equirrectangular debe ser el doble de ancho que de alto</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="145" />
-        <location filename="../core/panorama.py" line="96" />
+        <location filename="../core/panorama.py" line="146" />
+        <location filename="../core/panorama.py" line="97" />
         <source>Panorama not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró el panorama: {path}</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="152" />
+        <location filename="../core/panorama.py" line="153" />
         <source>Cannot read the panorama {path}: the file is not a JPEG or PNG image or is corrupt</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer el panorama {path}: el archivo no es una imagen JPEG o PNG o está dañado</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="98" />
+        <location filename="../core/panorama.py" line="99" />
         <source>The panorama {path} has more pixels than the {limit} the plugin reads</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El panorama {path} tiene más píxeles que los {limit} que lee el complemento</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="101" />
+        <location filename="../core/panorama.py" line="102" />
         <source>Cannot read the panorama {path}: expected a JPEG or PNG image ({error})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer el panorama {path}: se esperaba una imagen JPEG o PNG ({error})</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="150" />
+        <location filename="../core/panorama.py" line="151" />
         <source>Cannot read the panorama {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer el panorama {path}: {error}</translation>
@@ -3636,121 +3636,127 @@
         <translation>Inventario de señales viales necesita los paquetes de Python {packages}, que no se encuentran en el Python de QGIS. Instálelos con: {command}</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="720" />
+        <location filename="../models/sign_inventory.model3" line="726" />
         <source>The whole road-sign inventory: panorama stations from the trajectory, sign detection in the panoramas, ground filter and crop of the point cloud around the drive, projection of each detection into the cloud, and refinement and merging into the sign layer, with a review chip of every sign and the review report; then the sign panels and poles found in the cloud alone, fused with the image signs into the final inventory (Signs (fused): which sources found each sign, its condition, the signs the cameras missed).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>El inventario completo de señales viales: estaciones de panorama a partir de la trayectoria, detección de señales en los panoramas, filtro de suelo y recorte de la nube de puntos alrededor del recorrido, proyección de cada detección en la nube, y refinado y fusión en la capa de señales, con una miniatura de revisión de cada señal y el informe de revisión; después, los paneles de señal y los postes encontrados solo en la nube, fusionados con las señales de imagen en el inventario final (Señales (fusionadas): qué fuentes encontraron cada señal, su estado y las señales que las cámaras no vieron).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="721" />
+        <location filename="../models/sign_inventory.model3" line="727" />
         <source>Boresight pitch (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Boresight: cabeceo (°).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="722" />
+        <location filename="../models/sign_inventory.model3" line="728" />
         <source>Boresight roll (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Boresight: alabeo (°).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="723" />
+        <location filename="../models/sign_inventory.model3" line="729" />
         <source>Boresight yaw (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Boresight: guiñada (°).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="724" />
+        <location filename="../models/sign_inventory.model3" line="730" />
         <source>Your own ONNX sign-code classifier (format in models/README.md), or empty for the bundled one.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Su propio clasificador ONNX de códigos de señal (formato en models/README.md), o vacío para el incluido.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="725" />
+        <location filename="../models/sign_inventory.model3" line="731" />
         <source>The codes table of your classifier (code;name;class, format in models/README.md), or empty for the bundled German table.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>La tabla de códigos de su clasificador (code;name;class, formato en models/README.md), o vacío para la tabla alemana incluida.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="726" />
+        <location filename="../models/sign_inventory.model3" line="732" />
         <source>A sign's voted code whose support (code_score) is below this is left empty.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>El código votado de una señal cuyo apoyo (code_score) sea inferior a este valor se deja vacío.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="727" />
+        <location filename="../models/sign_inventory.model3" line="733" />
         <source>Detections scoring below this are dropped.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Se descartan las detecciones con una puntuación inferior a este valor.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="728" />
+        <location filename="../models/sign_inventory.model3" line="734" />
+        <source>The views of the horizon ring each panorama is cut into. 6 views, turned so that their seams ahead and behind fall inside the closer views ahead and behind, take about 0.87 times the detection time; on held-out test streets with a panorama every 5 m the chain found the same signs with either. 8, the default, where panoramas are far apart.</source>
+        <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
+        <translation>Las vistas del anillo del horizonte en que se corta cada panorama. 6 vistas, giradas para que sus uniones delante y detrás caigan dentro de las vistas más cercanas hacia delante y hacia atrás, tardan unas 0,87 veces el tiempo de detección; en calles de prueba reservadas con un panorama cada 5 m, la cadena encontró las mismas señales con ambas. 8, el valor por defecto, cuando los panoramas están alejados.</translation>
+    </message>
+    <message>
+        <location filename="../models/sign_inventory.model3" line="735" />
         <source>Folder of the equirectangular panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Carpeta de los panoramas equirrectangulares.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="729" />
+        <location filename="../models/sign_inventory.model3" line="736" />
         <source>image,time CSV of the panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>CSV image,time de los panoramas.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="730" />
+        <location filename="../models/sign_inventory.model3" line="737" />
         <source>Lever arm x, forward (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Brazo de palanca x, adelante (m).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="731" />
+        <location filename="../models/sign_inventory.model3" line="738" />
         <source>Lever arm y, right (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Brazo de palanca y, derecha (m).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="732" />
+        <location filename="../models/sign_inventory.model3" line="739" />
         <source>Lever arm z, down (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Brazo de palanca z, abajo (m).</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="733" />
+        <location filename="../models/sign_inventory.model3" line="740" />
         <source>Detects only in panoramas at least this far from the last one detected in (the ones between are skipped); 0 detects in every panorama. The default, 2.5 m, detects at least every 5 m on any drive: on held-out test streets a panorama every 5 m found every sign, every 10 m lost 2 in 45.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Detecta solo en las panorámicas al menos a esta distancia de la última en la que se detectó (las intermedias se omiten); 0 detecta en todas las panorámicas. El valor por defecto, 2,5 m, detecta al menos cada 5 m en cualquier recorrido: en calles de prueba reservadas, una panorámica cada 5 m encontró todas las señales y una cada 10 m perdió 2 de 45.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="734" />
+        <location filename="../models/sign_inventory.model3" line="741" />
         <source>Your own ONNX detector, or empty for the bundled one.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Su propio detector ONNX, o vacío para usar el incluido.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="735" />
+        <location filename="../models/sign_inventory.model3" line="742" />
         <source>The drive's LiDAR cloud.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>La nube LiDAR del recorrido.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="736" />
+        <location filename="../models/sign_inventory.model3" line="743" />
         <source>Reads what each sign says (its code, such as DE:274[50] for speed limit 50) with the sign-code classifier; unchecked, the code fields stay empty.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Lee lo que dice cada señal (su código, como DE:274[50] para el límite de velocidad 50) con el clasificador de códigos de señal; si se desmarca, los campos de código quedan vacíos.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="737" />
+        <location filename="../models/sign_inventory.model3" line="744" />
         <source>Projected CRS of the outputs: the point cloud's CRS.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>SRC proyectado de las salidas: el SRC de la nube de puntos.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="738" />
+        <location filename="../models/sign_inventory.model3" line="745" />
         <source>time,x,y,z,roll,pitch,heading CSV, or an Applanix SBET.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>CSV time,x,y,z,roll,pitch,heading, o un SBET de Applanix.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="739" />
+        <location filename="../models/sign_inventory.model3" line="746" />
         <source>CRS of the trajectory positions (ignored for an SBET).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>SRC de las posiciones de la trayectoria (se ignora para un SBET).</translation>

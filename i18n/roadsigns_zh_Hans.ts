@@ -2947,44 +2947,44 @@
         <translation>输出 {path} 未被写入</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="104" />
+        <location filename="../core/panorama.py" line="105" />
         <source>The panorama {path} is {width} x {height} pixels, more than the {limit} the plugin reads</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>全景图 {path} 为 {width} x {height} 像素，超过插件可读取的 {limit}</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="113" />
+        <location filename="../core/panorama.py" line="114" />
         <source>The panorama {path} is {width} x {height} pixels: an equirectangular panorama must be twice as wide as it is high</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>全景图 {path} 为 {width} x {height} 像素：等距柱状全景图的宽度必须是高度的两倍</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="145" />
-        <location filename="../core/panorama.py" line="96" />
+        <location filename="../core/panorama.py" line="146" />
+        <location filename="../core/panorama.py" line="97" />
         <source>Panorama not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到全景图：{path}</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="152" />
+        <location filename="../core/panorama.py" line="153" />
         <source>Cannot read the panorama {path}: the file is not a JPEG or PNG image or is corrupt</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取全景图 {path}：该文件不是 JPEG 或 PNG 图像，或已损坏</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="98" />
+        <location filename="../core/panorama.py" line="99" />
         <source>The panorama {path} has more pixels than the {limit} the plugin reads</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>全景图 {path} 的像素数超过插件可读取的 {limit}</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="101" />
+        <location filename="../core/panorama.py" line="102" />
         <source>Cannot read the panorama {path}: expected a JPEG or PNG image ({error})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取全景图 {path}：应为 JPEG 或 PNG 图像（{error}）</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="150" />
+        <location filename="../core/panorama.py" line="151" />
         <source>Cannot read the panorama {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取全景图 {path}：{error}</translation>
@@ -3636,121 +3636,127 @@
         <translation>道路标志清查需要 Python 包 {packages}，但在 QGIS 的 Python 中未找到。安装命令：{command}</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="720" />
+        <location filename="../models/sign_inventory.model3" line="726" />
         <source>The whole road-sign inventory: panorama stations from the trajectory, sign detection in the panoramas, ground filter and crop of the point cloud around the drive, projection of each detection into the cloud, and refinement and merging into the sign layer, with a review chip of every sign and the review report; then the sign panels and poles found in the cloud alone, fused with the image signs into the final inventory (Signs (fused): which sources found each sign, its condition, the signs the cameras missed).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>完整的道路标志清查：由轨迹生成全景站点，在全景图中检测标志，对行驶采集沿线的点云进行地面滤波与裁剪，将每个检测投影到点云，并精化与合并为标志图层，同时生成每个标志的审核切片和审核报告；随后仅在点云中查找标志牌和杆，并与图像标志融合为最终的清查结果（标志（融合）：每个标志由哪些来源找到、其状态，以及相机漏掉的标志）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="721" />
+        <location filename="../models/sign_inventory.model3" line="727" />
         <source>Boresight pitch (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>安置角：俯仰（°）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="722" />
+        <location filename="../models/sign_inventory.model3" line="728" />
         <source>Boresight roll (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>安置角：横滚（°）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="723" />
+        <location filename="../models/sign_inventory.model3" line="729" />
         <source>Boresight yaw (°).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>安置角：偏航（°）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="724" />
+        <location filename="../models/sign_inventory.model3" line="730" />
         <source>Your own ONNX sign-code classifier (format in models/README.md), or empty for the bundled one.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>您自己的 ONNX 标志代码分类器（格式见 models/README.md），留空则使用内置分类器。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="725" />
+        <location filename="../models/sign_inventory.model3" line="731" />
         <source>The codes table of your classifier (code;name;class, format in models/README.md), or empty for the bundled German table.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>您的分类器的代码表（code;name;class，格式见 models/README.md），留空则使用内置的德国代码表。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="726" />
+        <location filename="../models/sign_inventory.model3" line="732" />
         <source>A sign's voted code whose support (code_score) is below this is left empty.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>标志投票得出的代码的支持度（code_score）低于此值时，代码留空。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="727" />
+        <location filename="../models/sign_inventory.model3" line="733" />
         <source>Detections scoring below this are dropped.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>得分低于此值的检测将被丢弃。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="728" />
+        <location filename="../models/sign_inventory.model3" line="734" />
+        <source>The views of the horizon ring each panorama is cut into. 6 views, turned so that their seams ahead and behind fall inside the closer views ahead and behind, take about 0.87 times the detection time; on held-out test streets with a panorama every 5 m the chain found the same signs with either. 8, the default, where panoramas are far apart.</source>
+        <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
+        <translation>每张全景切分成的地平线环视图。6 个视图经过旋转，使前后方向的接缝落在前后的近景视图之内，检测时间约为 0.87 倍；在每 5 米一张全景的留出测试街道上，两种设置下处理链找到的标志相同。全景相距较远时用默认值 8。</translation>
+    </message>
+    <message>
+        <location filename="../models/sign_inventory.model3" line="735" />
         <source>Folder of the equirectangular panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>等距柱状全景图所在的文件夹。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="729" />
+        <location filename="../models/sign_inventory.model3" line="736" />
         <source>image,time CSV of the panoramas.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>全景图的 image,time CSV。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="730" />
+        <location filename="../models/sign_inventory.model3" line="737" />
         <source>Lever arm x, forward (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>杆臂 x，向前（m）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="731" />
+        <location filename="../models/sign_inventory.model3" line="738" />
         <source>Lever arm y, right (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>杆臂 y，向右（m）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="732" />
+        <location filename="../models/sign_inventory.model3" line="739" />
         <source>Lever arm z, down (m).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>杆臂 z，向下（m）。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="733" />
+        <location filename="../models/sign_inventory.model3" line="740" />
         <source>Detects only in panoramas at least this far from the last one detected in (the ones between are skipped); 0 detects in every panorama. The default, 2.5 m, detects at least every 5 m on any drive: on held-out test streets a panorama every 5 m found every sign, every 10 m lost 2 in 45.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>仅在与上一个检测全景图相距至少此距离的全景图中检测（其间的将被跳过）；0 表示在每张全景图中检测。默认值 2.5 米可在任何行驶路线上至少每 5 米检测一次：在保留的测试街道上，每 5 米一张全景图找到了全部标志，每 10 米一张则漏检 45 个中的 2 个。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="734" />
+        <location filename="../models/sign_inventory.model3" line="741" />
         <source>Your own ONNX detector, or empty for the bundled one.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>您自己的 ONNX 检测器；留空则使用内置检测器。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="735" />
+        <location filename="../models/sign_inventory.model3" line="742" />
         <source>The drive's LiDAR cloud.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>本次行驶采集的激光雷达点云。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="736" />
+        <location filename="../models/sign_inventory.model3" line="743" />
         <source>Reads what each sign says (its code, such as DE:274[50] for speed limit 50) with the sign-code classifier; unchecked, the code fields stay empty.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>使用标志代码分类器读取每个标志的内容（其代码，例如 DE:274[50] 表示限速 50）；不勾选时代码字段保持为空。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="737" />
+        <location filename="../models/sign_inventory.model3" line="744" />
         <source>Projected CRS of the outputs: the point cloud's CRS.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>输出的投影坐标参考系：即点云的坐标参考系。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="738" />
+        <location filename="../models/sign_inventory.model3" line="745" />
         <source>time,x,y,z,roll,pitch,heading CSV, or an Applanix SBET.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>time,x,y,z,roll,pitch,heading CSV，或 Applanix SBET。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="739" />
+        <location filename="../models/sign_inventory.model3" line="746" />
         <source>CRS of the trajectory positions (ignored for an SBET).</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>轨迹位置的坐标参考系（对 SBET 忽略）。</translation>

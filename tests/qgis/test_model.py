@@ -78,14 +78,16 @@ def test_signs_match_the_reference(qgis_process, model_run, layer):
         assert r["CODE_COMPARED"] >= 7 and r["CODE_ACCURACY"] >= 0.85, r  # the codes read through the chain
 
 
-def test_the_model_passes_its_code_parameters_on(qgis_process, scene_tiny, tmp_path):
-    """READ_CODES off: no stage reads a code (detections, signs and fused signs without one)."""
+def test_the_model_passes_its_code_and_view_parameters_on(qgis_process, scene_tiny, tmp_path):
+    """READ_CODES off: no stage reads a code (detections, signs and fused signs without one);
+    HORIZON_VIEWS 1: detectsigns cuts the ring of 6 (with its 2 fore-and-aft and 2 upward views)."""
     scene_dir, scene = scene_tiny
     run = qgis_process.run("roadsigns:signinventory", POINT_CLOUD=os.path.join(scene_dir, "cloud.laz"),
-                           READ_CODES=False, CODE_CONFIDENCE=0.9, **scene_inputs(scene_dir, scene),
+                           READ_CODES=False, CODE_CONFIDENCE=0.9, HORIZON_VIEWS=1, **scene_inputs(scene_dir, scene),
                            **model_outputs(tmp_path))
     assert run.returncode == 0, run.text
     assert "Sign codes are not read" in run.text
+    assert "10 views each" in run.text and "12 views each" not in run.text
     for name in ("detections.gpkg", "signs.gpkg", "fused.gpkg"):
         path = str(tmp_path / name)
         dataset = ogr.Open(path)  # kept while its layer is read (OGR frees the layer with it)
