@@ -171,8 +171,9 @@ def test_a_ring_of_six_horizon_views_is_turned_so_its_seams_fall_in_the_fore_and
     fore, aft = six[6], six[7]
     for seam_deg, view in ((0.0, fore), (180.0, aft)):
         assert abs((seam_deg - view.yaw_deg + 180.0) % 360.0 - 180.0) < 0.5 * FORE_AFT_HFOV_DEG
-    # neighbouring views still overlap
-    assert HORIZON_HFOV_DEG - 60.0 >= 20.0
+    # neighbouring views still overlap by 20 deg
+    yaws = [v.yaw_deg for v in six[:6]] + [six[0].yaw_deg + 360.0]
+    assert all(HORIZON_HFOV_DEG - step >= 20.0 for step in np.diff(yaws))
     with pytest.raises(ValueError, match="7 views"):
         ViewSet.default(640, horizon_views=7)
 
