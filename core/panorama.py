@@ -56,10 +56,11 @@ FORE_AFT_HFOV_DEG = HORIZON_HFOV_DEG / 1.5
 DEFAULT_FORE_AFT_VIEWS = True
 #: The horizon rings detection can cut: number of views -> yaw of the first (deg, 0 ahead).
 #: 8 views overlap by 35 deg. 6 views overlap by 20 deg and are turned by 30 deg, so that
-#: the seams ahead and behind fall inside the fore-and-aft views: 0.85-0.87 x the detection's
+#: the seams ahead and behind fall inside the fore-and-aft views: 0.8-0.87 x the detection's
 #: time, and on five held-out streets P / R 0.982 / 0.948 -> 0.988 / 0.946 in single
 #: panoramas, 14-20 px 0.894 -> 0.882; through the chain, on three held-out streets with a
-#: panorama every 5 m, the same 137 signs (models/README.md, "A ring of six horizon views").
+#: panorama every 5 m, the same 137 signs, and on drive1k's truth stretch one false sign more
+#: (models/README.md, "A ring of six horizon views").
 HORIZON_RINGS = {8: 0.0, 6: 30.0}
 #: The ring ``ViewSet.default`` cuts unless told otherwise (``detectsigns``' ``HORIZON_VIEWS``).
 DEFAULT_HORIZON_VIEWS = 8

@@ -125,9 +125,10 @@ def build():
                      for n, yaw in HORIZON_RINGS.items()],
             defaultValue=list(HORIZON_RINGS).index(DEFAULT_HORIZON_VIEWS)),
          "The views of the horizon ring each panorama is cut into. 6 views, turned so that their seams ahead and "
-         "behind fall inside the closer views ahead and behind, take about 0.87 times the detection time; on "
-         "held-out test streets with a panorama every 5 m the chain found the same signs with either. 8, the "
-         "default, where panoramas are far apart."),
+         "behind fall inside the closer views ahead and behind, take about 0.8 times the detection time; on "
+         "held-out test streets with a panorama every 5 m the chain found the same signs with either, and on a "
+         "test drive one false sign more with 6 (flagged for review). 8 by default; 6 trades a little accuracy "
+         "for speed."),
         (QgsProcessingParameterBoolean("READ_CODES", "Read the sign codes", True),
          "Reads what each sign says (its code, such as DE:274[50] for speed limit 50) with the sign-code "
          "classifier; unchecked, the code fields stay empty."),
