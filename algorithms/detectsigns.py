@@ -157,8 +157,8 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
                     "into one view. Through the whole chain, on three held-out streets with a panorama every 5 m, "
                     "both rings found all 137 signs, with no false sign and positions within 3 mm of each other in "
                     "median; on the first 100 m of a test drive with a panorama every 1.2 m, the ring of 6 added one "
-                    "false sign (seen in one panorama, near a seam of the ring, flagged for review) to the 6 true "
-                    "ones. 8 by default; 6 trades a little accuracy for speed."), advanced=True)
+                    "false sign (seen in one panorama and scored just over the minimum confidence, flagged for "
+                    "review) to the 6 true ones. 8 by default; 6 trades a little accuracy for speed."), advanced=True)
         self.add_boolean(
             self.ZOOMED_LOOK, self.tr("Look again, closer, at small boxes scored under the minimum confidence"),
             DEFAULT_ZOOMED_LOOK,
