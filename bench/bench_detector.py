@@ -433,8 +433,7 @@ VIEW_SETS = {
 def _with_ring(size, n_views: int, first_yaw_deg: float):
     """The plugin's default views with the horizon ring replaced by ``n_views`` views of 80 deg."""
     ring = panorama_mod.ViewSet.ring(n_views, 0.0, panorama_mod.HORIZON_HFOV_DEG, size, first_yaw_deg=first_yaw_deg)
-    plugin_ring = panorama_mod.ViewSet.default(size_px=size, upward=False, fore_aft=False)
-    rest = panorama_mod.ViewSet.default(size_px=size).views[len(plugin_ring):]
+    rest = panorama_mod.ViewSet.default(size_px=size).views[panorama_mod.DEFAULT_HORIZON_VIEWS:]
     return ring + panorama_mod.ViewSet(rest)
 
 

@@ -80,8 +80,9 @@ def static(value):
 
 def build():
     from roadsigns.core.detector import DEFAULT_CONFIDENCE, DEFAULT_MIN_STATION_SPACING_M  # after import_roadsigns()
-    from roadsigns.core.panorama import DEFAULT_HORIZON_VIEWS, HORIZON_HFOV_DEG, HORIZON_RINGS
     from roadsigns.core.signcodes import DEFAULT_CODE_CONFIDENCE
+    horizon_views = QgsApplication.processingRegistry().algorithmById(
+        "roadsigns:detectsigns").parameterDefinition("HORIZON_VIEWS")
     model = QgsProcessingModelAlgorithm("Sign inventory (whole chain)", "Road sign inventory", "roadsigns")
     model.setName("signinventory")
     model.setHelpContent({"ALG_DESC": (
@@ -119,11 +120,9 @@ def build():
          "Detects only in panoramas at least this far from the last one detected in (the ones between are "
          "skipped); 0 detects in every panorama. The default, 2.5 m, detects at least every 5 m on any drive: "
          "on held-out test streets a panorama every 5 m found every sign, every 10 m lost 2 in 45."),
-        (QgsProcessingParameterEnum(
-            "HORIZON_VIEWS", "Horizon views",
-            options=["{} views of {:g}°".format(n, HORIZON_HFOV_DEG) + (", turned {:g}°".format(yaw) if yaw else "")
-                     for n, yaw in HORIZON_RINGS.items()],
-            defaultValue=list(HORIZON_RINGS).index(DEFAULT_HORIZON_VIEWS)),
+        (QgsProcessingParameterEnum(  # detectsigns' own choices, labels and default
+            "HORIZON_VIEWS", horizon_views.description(), options=horizon_views.options(),
+            defaultValue=horizon_views.defaultValue()),
          "The views of the horizon ring each panorama is cut into. 6 views, turned so that their seams ahead and "
          "behind fall inside the closer views ahead and behind, take about 0.8 times the detection time; on "
          "held-out test streets with a panorama every 5 m the chain found the same signs with either, and on a "
