@@ -18,6 +18,8 @@ from ..core.panorama import (
     DEFAULT_FORE_AFT_VIEWS,
     DEFAULT_HORIZON_VIEWS,
     DEFAULT_UPWARD_VIEWS,
+    HORIZON_BAND,
+    HORIZON_BAND_SIZE_PX,
     HORIZON_HFOV_DEG,
     HORIZON_RINGS,
 )
@@ -148,7 +150,9 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
             self.HORIZON_VIEWS, self.tr("Horizon views"),
             [(n, (self.tr("{n} views of {width:g}°") if not yaw else
                   self.tr("{n} views of {width:g}°, turned {yaw:g}°")).format(n=n, width=HORIZON_HFOV_DEG, yaw=yaw))
-             for n, yaw in HORIZON_RINGS.items()], DEFAULT_HORIZON_VIEWS,
+             for n, yaw in HORIZON_RINGS.items()]
+            + [(HORIZON_BAND, self.tr("One band of {width} × {height} px").format(
+                width=HORIZON_BAND_SIZE_PX[0], height=HORIZON_BAND_SIZE_PX[1]))], DEFAULT_HORIZON_VIEWS,
             self.tr("How many views of 80° across the horizon ring has. 8 views overlap by 35°. 6 views overlap by "
                     "20° and are turned by 30°, so that their seams ahead and behind fall inside the fore-and-aft "
                     "views: the detection takes 0.8-0.87 times the time. In single panoramas of five held-out "
@@ -227,6 +231,9 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
                                     upward=self.parameterAsBoolean(parameters, self.UPWARD_VIEWS, context),
                                     fore_aft=self.parameterAsBoolean(parameters, self.FORE_AFT_VIEWS, context),
                                     horizon_views=self.enum_name(parameters, self.HORIZON_VIEWS, context))
+            for view in views:
+                if view.own_size:               # the horizon band: checked before any work
+                    detector.check_runs(view.width_px, view.height_px)
             feedback.pushInfo(self.tr("{} panoramas, {} views each").format(len(stations), len(views)))
             classifier = self.code_classifier(parameters, context, feedback,
                                               self.parameterAsInt(parameters, self.THREADS, context))

@@ -42,13 +42,15 @@ def load_scene(args):
         return scene_dir, json.load(f)
 
 
-def horizon_views_option(n_views: int) -> int:
-    """The index of detectsigns' HORIZON_VIEWS option for a ring of ``n_views`` views."""
+def horizon_views_option(choice) -> int:
+    """The index of detectsigns' HORIZON_VIEWS option for a ring of ``choice`` views (an int
+    or its digits) or the band (``band``)."""
     from devtools import import_roadsigns
-    rings = list(import_roadsigns("roadsigns.core.panorama").HORIZON_RINGS)
-    if n_views not in rings:
-        raise SystemExit(f"--horizon-views: {n_views} views; expected one of {sorted(rings)}")
-    return rings.index(n_views)
+    choices = list(import_roadsigns("roadsigns.core.panorama").HORIZON_CHOICES)
+    value = int(choice) if str(choice).isdigit() else choice
+    if value not in choices:
+        raise SystemExit(f"--horizon-views: {choice}; expected one of {', '.join(map(str, choices))}")
+    return choices.index(value)
 
 
 def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=None, upward_views=None, classifier=None,
@@ -138,9 +140,9 @@ def main(argv=None):
     parser.add_argument("--fore-aft", action=argparse.BooleanOptionalAction, default=None,
                         help="detectsigns with or without its fore-and-aft views (FORE_AFT_VIEWS; default: the "
                              "algorithm's, on)")
-    parser.add_argument("--horizon-views", type=int, metavar="N",
-                        help="detectsigns' HORIZON_VIEWS: the number of views of its horizon ring (8 or 6; "
-                             "default: the algorithm's, 8)")
+    parser.add_argument("--horizon-views", metavar="N",
+                        help="detectsigns' HORIZON_VIEWS: the number of views of its horizon ring (8 or 6), or "
+                             "band for the horizon as one band (default: the algorithm's, 8)")
     parser.add_argument("--zoomed-look", action=argparse.BooleanOptionalAction, default=None,
                         help="detectsigns with or without its zoomed look at small boxes (ZOOMED_LOOK; default: "
                              "the algorithm's, on)")

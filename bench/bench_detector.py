@@ -427,6 +427,12 @@ VIEW_SETS = {
     # the directions ahead and behind (detectsigns' HORIZON_VIEWS 6)
     "ring6": lambda size: _with_ring(size, 6, 0.0),
     "ring6-turned": lambda size: panorama_mod.ViewSet.default(size_px=size, horizon_views=6),
+    # the plugin's views with the horizon seen as one equirectangular band instead of the ring
+    # (detectsigns' HORIZON_VIEWS "band"; the detector must take images of any size)
+    "band": lambda size: panorama_mod.ViewSet.default(size_px=size, horizon_views=panorama_mod.HORIZON_BAND),
+    # the band alone, and the ring of 8 alone: the horizon without the other views
+    "band-alone": lambda size: panorama_mod.ViewSet.default(size_px=size, upward=False, fore_aft=False,
+                                                            horizon_views=panorama_mod.HORIZON_BAND),
 }
 
 

@@ -366,9 +366,9 @@ def main(argv=None):
     parser.add_argument("--tile-m", type=float, default=500.0)
     parser.add_argument("--station-spacing", type=float,
                         help="the model's MIN_STATION_SPACING_M (default: the model's own)")
-    parser.add_argument("--horizon-views", type=int,
-                        help="the model's HORIZON_VIEWS: the views of detectsigns' horizon ring, 8 or 6 (default: "
-                             "the model's own, 8)")
+    parser.add_argument("--horizon-views",
+                        help="the model's HORIZON_VIEWS: the views of detectsigns' horizon ring, 8 or 6, or band for "
+                             "the horizon as one band (default: the model's own, 8)")
     parser.add_argument("--ground-format", choices=["laz", "las"], default="laz",
                         help="the model's ground-classified cloud as LAZ (the default) or uncompressed LAS "
                              "(read by three later stages: no decompression, ~30 bytes a point on disk)")
@@ -467,7 +467,8 @@ def main(argv=None):
         print(f"MIN_STATION_SPACING_M = {args.station_spacing:g} m: detection only in panoramas that far apart "
               f"(panoramas every {drive['image_spacing_m']} m here); s/panorama still divides by all of them.")
     if args.horizon_views is not None:
-        print(f"HORIZON_VIEWS: detectsigns' horizon ring of {args.horizon_views} views.")
+        seen = "as one band" if args.horizon_views == "band" else f"ring of {args.horizon_views} views"
+        print(f"HORIZON_VIEWS: detectsigns' horizon {seen}.")
     print("\n{:<18} {:>9} {:>9} {:>11} {:>11} {:>8} {:>10} {:>9} {:>11}".format(
         "stage", "wall s", "CPU s", "s/panorama", "s/M points", "RSS in", "peak RSS", "driver", "9.2 km s"))
     for alg, r in figures["stages"].items():

@@ -240,8 +240,14 @@ def nms_per_class(boxes_xyxy: np.ndarray, scores: np.ndarray, class_ids: np.ndar
 
 # --- letterbox --------------------------------------------------------------------------
 
-def letterbox(image: np.ndarray, input_w: int, input_h: int):
-    """Resize keeping the aspect and pad centred with grey 114 (Ultralytics' letterbox).
+#: An image a model of any input size runs on at its own size (``own_size``) is padded to
+#: multiples of this: the bundled detector's coarsest stride.
+OWN_SIZE_MULTIPLE_PX = 32
+
+
+def letterbox(image: np.ndarray, input_w: int, input_h: int, fit: bool = True):
+    """Resize keeping the aspect and pad centred with grey 114 (Ultralytics' letterbox);
+    ``fit=False``: pad only (the image no larger than the input).
 
     Returns the padded image and ``(scale, pad_x, pad_y)``: input pixel = image pixel x
     scale + pad.
@@ -249,7 +255,7 @@ def letterbox(image: np.ndarray, input_w: int, input_h: int):
     import cv2
 
     h, w = image.shape[:2]
-    scale = min(input_w / w, input_h / h)
+    scale = min(input_w / w, input_h / h) if fit else 1.0
     new_w, new_h = int(round(w * scale)), int(round(h * scale))
     if (new_w, new_h) != (w, h):
         image = cv2.resize(image, (new_w, new_h), interpolation=cv2.INTER_LINEAR)
@@ -343,6 +349,9 @@ class Detector:
         self.input_bgr = self.channels_last and str(meta.get(CHANNEL_ORDER_KEY, "RGB")).upper() == "BGR"
         sides = inp.shape[1:3] if self.channels_last else inp.shape[2:4]
         self.input_w, self.input_h = self._input_size(sides, meta, input_size_px)
+        #: Whether the model's input height and width are symbolic: it then also runs on
+        #: images of their own size (``detect_many(..., own_size=True)``: a horizon band).
+        self.takes_any_size = not all(isinstance(side, int) and side > 0 for side in sides)
         if isinstance(inp.shape[0], int) and inp.shape[0] > 1:
             raise InputError("The model {path} has a fixed batch of {batch}; use a batch of 1 or "
                              "a dynamic batch", path=model_path, batch=inp.shape[0])
@@ -407,11 +416,29 @@ class Detector:
                          self.names_source, self.layout, self.output_shape,
                          list(self.session.get_providers()))
 
-    def run_raw(self, images: Sequence[np.ndarray]):
-        """Letterbox and infer a batch; returns the raw output rows and the transforms."""
+    def check_runs(self, width_px: int, height_px: int) -> None:
+        """:class:`InputError` unless the model runs on a ``width_px`` x ``height_px`` image at
+        its own size (:attr:`takes_any_size`, or that is its input size)."""
+        if not self.takes_any_size and (width_px, height_px) != (self.input_w, self.input_h):
+            raise InputError("The model {path} takes {w} x {h} px images only; the horizon seen as one band "
+                             "({bw} x {bh} px) needs a model whose input height and width are not fixed, as the "
+                             "bundled detector's are not", path=self.model_path, w=self.input_w, h=self.input_h,
+                             bw=width_px, bh=height_px)
+
+    def run_raw(self, images: Sequence[np.ndarray], own_size: bool = False):
+        """Letterbox and infer a batch; returns the raw output rows and the transforms.
+        ``own_size``: the images (all of one size) are padded to the next multiples of
+        :data:`OWN_SIZE_MULTIPLE_PX` rather than fitted into the model's input size;
+        :class:`InputError` unless the model takes any size (:attr:`takes_any_size`)."""
         import cv2
 
-        boxed = [letterbox(image, self.input_w, self.input_h) for image in images]
+        if own_size:
+            self.check_runs(images[0].shape[1], images[0].shape[0])
+            h, w = images[0].shape[:2]
+            m = OWN_SIZE_MULTIPLE_PX
+            boxed = [letterbox(image, -(-w // m) * m, -(-h // m) * m, fit=False) for image in images]
+        else:
+            boxed = [letterbox(image, self.input_w, self.input_h) for image in images]
         if self.channels_last:           # the pixels as they are, BGR (OpenCV's order) or RGB
             blob = np.stack([b for b, _ in boxed])
             if not self.input_bgr:
@@ -423,12 +450,14 @@ class Detector:
         return self.session.run(None, {self.input_name: blob})[0], [t for _, t in boxed]
 
     def detect_many(self, images: Sequence[np.ndarray], confidence: float = 0.25,
-                    iou_threshold: float = 0.45) -> List[ImageDetections]:
-        """Detections in each image (batched when the model's batch is dynamic)."""
+                    iou_threshold: float = 0.45, own_size: bool = False) -> List[ImageDetections]:
+        """Detections in each image (batched when the model's batch is dynamic); ``own_size``:
+        as :meth:`run_raw`, one image a run."""
         results = []
-        for start in range(0, len(images), self.max_batch):
-            chunk = images[start:start + self.max_batch]
-            output, transforms = self.run_raw(chunk)
+        step = 1 if own_size else self.max_batch
+        for start in range(0, len(images), step):
+            chunk = images[start:start + step]
+            output, transforms = self.run_raw(chunk, own_size)
             for image, row, transform in zip(chunk, output, transforms):
                 results.append(self._postprocess(row, transform, image.shape[1], image.shape[0],
                                                  confidence, iou_threshold))
@@ -685,14 +714,18 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
     all_boxes, all_scores, all_ids, all_views, all_complete, all_central = [], [], [], [], [], []
     all_upward: List[np.ndarray] = []
     all_side_cut: List[np.ndarray] = []
-    for start in range(0, len(views), batch):
-        chunk = list(range(start, min(start + batch, len(views))))
+    fitted = [k for k, view in enumerate(views) if not view.own_size]
+    chunks = [[k] for k, view in enumerate(views) if view.own_size]
+    chunks += [fitted[start:start + batch] for start in range(0, len(fitted), batch)]
+    for chunk in sorted(chunks):
         images = [view_images[k] for k in chunk]
-        if hasattr(detector, "detect_many"):
-            found = detector.detect_many(images, lowest, iou_threshold)
+        if views[chunk[0]].own_size and isinstance(detector, Detector):   # a horizon band, alone
+            per_view = detector.detect_many(images, lowest, iou_threshold, own_size=True)
+        elif hasattr(detector, "detect_many"):
+            per_view = detector.detect_many(images, lowest, iou_threshold)
         else:
-            found = [detector.detect(image, lowest, iou_threshold) for image in images]
-        for k, det in zip(chunk, found):
+            per_view = [detector.detect(image, lowest, iou_threshold) for image in images]
+        for k, det in zip(chunk, per_view):
             if len(det) == 0:
                 continue
             view = views[k]

@@ -10,7 +10,7 @@ from __future__ import annotations
 import functools
 import os
 from dataclasses import dataclass, field
-from typing import Dict, Optional, Tuple
+from typing import Dict, Optional, Tuple, Union
 
 import numpy as np
 
@@ -62,6 +62,17 @@ DEFAULT_FORE_AFT_VIEWS = True
 #: panorama every 5 m, the same 137 signs, and on drive1k's truth stretch one false sign more
 #: (models/README.md, "A ring of six horizon views").
 HORIZON_RINGS = {8: 0.0, 6: 30.0}
+#: The horizon seen as one equirectangular band instead of a ring (:class:`BandView`;
+#: ``ViewSet.default(horizon_views=HORIZON_BAND)``): 3264 x 448 px, 8.5 px a degree (the
+#: 80 deg views: 6.7 at their centres, 11.3 at their sides), +-26.4 deg of elevation (the
+#: views: +-21 to +-27), 12 deg of margin at each end. 4.4 views' pixels for the ring's 8;
+#: measured in models/README.md, "The horizon as one band".
+HORIZON_BAND = "band"
+HORIZON_BAND_SIZE_PX = (3264, 448)
+HORIZON_BAND_MARGIN_DEG = 12.0
+#: What ``ViewSet.default``'s ``horizon_views`` takes, in the order of ``detectsigns``'
+#: ``HORIZON_VIEWS`` options: the rings, then the band.
+HORIZON_CHOICES = tuple(HORIZON_RINGS) + (HORIZON_BAND,)
 #: The ring ``ViewSet.default`` cuts unless told otherwise (``detectsigns``' ``HORIZON_VIEWS``).
 DEFAULT_HORIZON_VIEWS = 8
 
@@ -167,6 +178,8 @@ class PerspectiveView:
     hfov_deg: float = 80.0
     width_px: int = 640
     height_px: int = 640
+    #: A view is fitted into the detector's input size (see :class:`BandView`).
+    own_size = False
 
     @property
     def focal_px(self) -> float:
@@ -286,7 +299,114 @@ class PerspectiveView:
         return self.focal_px / np.cos(np.radians(0.5 * self.hfov_deg)) ** 2
 
 
-def _float_maps(view: PerspectiveView, W: int, H: int):
+@dataclass(frozen=True)
+class BandView:
+    """The horizon as one equirectangular band, which the detector runs on whole: the
+    panorama's rows within ``vfov_deg / 2`` of the horizon, all 360 deg of azimuth and
+    ``margin_deg`` more at each end (the columns wrap, so a sign across the +-180 deg seam
+    is whole at one end), at one density in both directions. Column ``x`` (continuous, 0 at
+    the left edge) is azimuth ``x / density - 180 - margin`` deg, row ``y`` elevation
+    ``(height / 2 - y) / density`` deg: a box maps to the panorama by scaling alone. Within
+    +-27 deg of the horizon the band stretches a sign across by at most 1 / cos 27 deg = 1.12,
+    less than a perspective view of 80 deg does at its sides (1.70). The sides are multiples
+    of 32, the detector's stride. A sign in a margin is seen twice, once at each end: the
+    copies merge like the boxes of overlapping views, the one farther from an end ranked
+    first (:meth:`centrality`)."""
+
+    width_px: int = 3264
+    height_px: int = 448
+    margin_deg: float = 12.0
+    yaw_deg = 0.0
+    pitch_deg = 0.0
+    looks_up = False
+    #: The detector runs the band at its own size (``Detector.detect_many(own_size=True)``).
+    own_size = True
+
+    @property
+    def hfov_deg(self) -> float:
+        return 360.0 + 2.0 * self.margin_deg
+
+    @property
+    def density_px_per_deg(self) -> float:
+        return self.width_px / self.hfov_deg
+
+    @property
+    def vfov_deg(self) -> float:
+        return self.height_px / self.density_px_per_deg
+
+    def pixel_to_angles_deg(self, x_px, y_px):
+        """Continuous band pixel(s) -> (azimuth, elevation) in degrees (azimuth unwrapped)."""
+        d = self.density_px_per_deg
+        return (np.asarray(x_px, float) / d - 180.0 - self.margin_deg,
+                (0.5 * self.height_px - np.asarray(y_px, float)) / d)
+
+    def pixel_to_ray(self, x_px, y_px) -> np.ndarray:
+        """Continuous band pixel(s) -> unit rays ``(..., 3)`` in the panorama frame."""
+        alpha, eps = self.pixel_to_angles_deg(x_px, y_px)
+        return geometry.angles_to_ray(np.radians(alpha), np.radians(eps))
+
+    def ray_to_pixel(self, d):
+        """Panorama-frame ray(s) -> continuous band pixel ``(x, y)`` (the copy in the core
+        360 deg, not the margins') and a mask that is true everywhere (no ray is behind)."""
+        alpha, eps = (np.degrees(a) for a in geometry.ray_to_angles_rad(d))
+        k = self.density_px_per_deg
+        return (alpha + 180.0 + self.margin_deg) * k, 0.5 * self.height_px - eps * k, np.ones(np.shape(alpha), bool)
+
+    def centre_u_px(self, pano_width_px: int) -> float:
+        """Panorama column of azimuth 0 (straight ahead), as for a view."""
+        return 0.5 * float(pano_width_px)
+
+    def remap_maps(self, pano_width_px: int, pano_height_px: int):
+        """``cv2.remap`` maps (fixed-point pair) cutting the band from a W x H panorama; cached."""
+        return _remap_maps(self, int(pano_width_px), int(pano_height_px))
+
+    def cut(self, pano: np.ndarray, cached: bool = True) -> np.ndarray:
+        """The band's image from a panorama array (as :meth:`PerspectiveView.cut`)."""
+        import cv2
+
+        m1, m2 = self.remap_maps(pano.shape[1], pano.shape[0]) if cached else _float_maps(self, pano.shape[1],
+                                                                                          pano.shape[0])
+        return cv2.remap(pano, m1, m2, cv2.INTER_LINEAR, borderMode=cv2.BORDER_WRAP)
+
+    def boxes_to_pano(self, boxes_xyxy, pano_width_px: int, pano_height_px: int) -> np.ndarray:
+        """Band boxes ``(n, 4)`` -> panorama boxes ``(n, 4)`` in the detections layer's form
+        (as :meth:`PerspectiveView.boxes_to_pano`): a linear map of both sides."""
+        b = np.asarray(boxes_xyxy, float).reshape(-1, 4)
+        s = pano_width_px / 360.0 / self.density_px_per_deg       # panorama px per band px
+        u0 = b[:, 0] * s - self.margin_deg * pano_width_px / 360.0
+        u1 = b[:, 2] * s - self.margin_deg * pano_width_px / 360.0
+        v_top = 0.5 * pano_height_px - 0.5 * self.height_px * s
+        out = np.stack([u0, v_top + b[:, 1] * s, u1, v_top + b[:, 3] * s], axis=1)
+        return boxes_from_seam(out, pano_width_px)
+
+    def centrality(self, boxes_xyxy) -> np.ndarray:
+        """0 at either end of the band, rising to 1 at ``2 * margin_deg`` from it: of a sign's
+        two copies, the one that is not in a margin ranks first."""
+        b = np.asarray(boxes_xyxy, float).reshape(-1, 4)
+        x = 0.5 * (b[:, 0] + b[:, 2])
+        from_end_deg = np.minimum(x, self.width_px - x) / self.density_px_per_deg
+        return np.clip(from_end_deg / (2.0 * self.margin_deg), 0.0, 1.0)
+
+    def _edge_margin_px(self, margin_px: Optional[float]) -> float:
+        return max(2.0, 0.01 * self.height_px) if margin_px is None else margin_px
+
+    def touches_edge(self, boxes_xyxy, margin_px: Optional[float] = None) -> np.ndarray:
+        """As :meth:`PerspectiveView.touches_edge` (the margin is 1 % of the band's height)."""
+        b = np.asarray(boxes_xyxy, float).reshape(-1, 4)
+        m = self._edge_margin_px(margin_px)
+        return self.touches_side(b, m) | (b[:, 1] <= m) | (b[:, 3] >= self.height_px - m)
+
+    def touches_side(self, boxes_xyxy, margin_px: Optional[float] = None) -> np.ndarray:
+        """Boxes within ``margin_px`` of the band's left or right end."""
+        b = np.asarray(boxes_xyxy, float).reshape(-1, 4)
+        m = self._edge_margin_px(margin_px)
+        return (b[:, 0] <= m) | (b[:, 2] >= self.width_px - m)
+
+    def max_density_px_per_rad(self) -> float:
+        return float(np.degrees(1.0) * self.density_px_per_deg)
+
+
+def _float_maps(view, W: int, H: int):
     """``cv2.remap`` maps (float x, float y) cutting ``view`` from a W x H panorama."""
     ys, xs = np.mgrid[0:view.height_px, 0:view.width_px].astype(float) + 0.5
     u, v = geometry.ray_to_pixel(view.pixel_to_ray(xs, ys), W, H)
@@ -296,7 +416,7 @@ def _float_maps(view: PerspectiveView, W: int, H: int):
 
 
 @functools.lru_cache(maxsize=48)
-def _remap_maps(view: PerspectiveView, W: int, H: int):
+def _remap_maps(view, W: int, H: int):
     import cv2
 
     map_x, map_y = _float_maps(view, W, H)
@@ -322,7 +442,8 @@ class ViewSet:
 
     @classmethod
     def default(cls, size_px=640, upward: Optional[bool] = None,
-                fore_aft: Optional[bool] = None, horizon_views: int = DEFAULT_HORIZON_VIEWS) -> "ViewSet":
+                fore_aft: Optional[bool] = None, horizon_views: Union[int, str] = DEFAULT_HORIZON_VIEWS
+                ) -> "ViewSet":
         """Horizon ring: ``horizon_views`` views of 80 deg across (a key of
         :data:`HORIZON_RINGS`; 8: 35 deg overlap; square views span elevations -40..+40 deg at
         their centres, about +-33 deg at their edges, 640 x 384 views +-26.7 deg); for overhead
@@ -330,11 +451,17 @@ class ViewSet:
         pitch :data:`UPWARD_PITCH_DEG`. ``size_px``: the detector's input size, an int or
         ``(width, height)``; ``upward`` None: :data:`DEFAULT_UPWARD_VIEWS`. ``fore_aft`` (None:
         :data:`DEFAULT_FORE_AFT_VIEWS`) adds two views of :data:`FORE_AFT_HFOV_DEG` ahead and
-        behind, after the horizon ring. ``ValueError`` for a ring not in :data:`HORIZON_RINGS`."""
-        if horizon_views not in HORIZON_RINGS:
-            raise ValueError("a horizon ring of {} views: expected one of {}".format(
-                horizon_views, sorted(HORIZON_RINGS)))
-        views = cls.ring(horizon_views, 0.0, HORIZON_HFOV_DEG, size_px, first_yaw_deg=HORIZON_RINGS[horizon_views])
+        behind, after the horizon ring. ``horizon_views`` :data:`HORIZON_BAND`: the horizon as
+        one :class:`BandView` instead of a ring (the detector must take images of any size).
+        ``ValueError`` for a ring not in :data:`HORIZON_RINGS`, nor the band."""
+        if horizon_views == HORIZON_BAND:
+            views = cls((BandView(*HORIZON_BAND_SIZE_PX, HORIZON_BAND_MARGIN_DEG),))
+        elif horizon_views in HORIZON_RINGS:
+            views = cls.ring(horizon_views, 0.0, HORIZON_HFOV_DEG, size_px,
+                             first_yaw_deg=HORIZON_RINGS[horizon_views])
+        else:
+            raise ValueError("a horizon ring of {} views: expected one of {} or {!r}".format(
+                horizon_views, sorted(HORIZON_RINGS), HORIZON_BAND))
         if fore_aft if fore_aft is not None else DEFAULT_FORE_AFT_VIEWS:
             views = views + cls.ring(2, 0.0, FORE_AFT_HFOV_DEG, size_px)
         if upward if upward is not None else DEFAULT_UPWARD_VIEWS:

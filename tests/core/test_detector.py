@@ -283,6 +283,42 @@ def test_sign_across_the_seam_is_found_once_in_the_right_place():
     assert 0.5 * (found.u0[other] + found.u1[other]) == pytest.approx((60 / 360 + 0.5) * W, abs=2.0)
 
 
+def test_the_horizon_as_one_band_finds_a_sign_across_the_seam_once_in_the_right_place():
+    """The band (``HORIZON_BAND``) holds a sign across the +-180 deg seam whole at one end and
+    cut at the other: one detection, where the ring puts it."""
+    from roadsigns.core.panorama import HORIZON_BAND, BandView
+    W = 2048
+    pano = paint_discs([(180.0, 5.0, 6.0, (0, 0, 255)), (60.0, -3.0, 3.0, (0, 0, 255))], W)
+    band = ViewSet((BandView(1568, 224, 12.0),))
+    found = detect_panorama(ColourBlobDetector(), pano, band)
+    ring = detect_panorama(ColourBlobDetector(), pano, ViewSet.ring(8, 0.0, 80.0, 320))
+    assert len(found) == 2 and len(ring) == 2
+    order = np.argsort(found.u0)[::-1], np.argsort(ring.u0)[::-1]
+    assert np.allclose(found.boxes()[order[0]], ring.boxes()[order[1]], atol=W / 360.0)   # within a degree
+    seam = int(np.argmax(found.u1 - found.u0))
+    assert 0 <= found.u0[seam] < W < found.u1[seam]
+    assert found.n_views[seam] == 2          # the whole copy and the cut one at the other end
+    # the plugin's set: the band first, then the fore-and-aft and upward views
+    views = ViewSet.default((640, 384), horizon_views=HORIZON_BAND)
+    assert views[0].own_size and len(views) == 5
+
+
+def test_a_model_of_any_input_size_runs_an_image_at_its_own_size_and_a_fixed_one_says_it_cannot(tmp_path):
+    dyn = Detector(make_model(tmp_path / "dyn.onnx", v8_output(V8_ROWS), input_shape=["batch", 3, "h", "w"],
+                              meta={"names": NAMES2, "imgsz": "[48, 96]"}))
+    fixed_path = make_model(tmp_path / "fixed.onnx", v8_output(V8_ROWS), meta={"names": NAMES2})
+    fixed = Detector(fixed_path)
+    assert dyn.takes_any_size and not fixed.takes_any_size
+    dyn.check_runs(3264, 448)
+    fixed.check_runs(64, 64)                      # its own input size
+    (result,) = dyn.detect_many([image(200, 70)], 0.25, own_size=True)
+    assert len(result) == 3                       # padded to 224 x 96, not fitted into 96 x 48
+    assert np.allclose(result.boxes_xyxy[0], xyxy(20, 20, 10, 10) - np.array([12, 13, 12, 13]))
+    for call in (lambda: fixed.check_runs(3264, 448), lambda: fixed.detect_many([image(200, 70)], own_size=True)):
+        with pytest.raises(InputError, match=r"fixed\.onnx takes 64 x 64 px images only; the horizon seen as one band"):
+            call()
+
+
 def test_an_upward_view_drops_what_it_cuts_at_its_sides_and_keeps_the_rest():
     """An upward view looks over the road for panels overhead: a sign it cuts at its left or
     right side stands beside the road (the horizon views see it whole from the stations
@@ -456,6 +492,29 @@ def test_a_detector_set_to_a_lower_input_finds_the_same_boxes_in_the_band(tmp_pa
                 assert np.min(d) <= 4.0 and b.class_ids[int(np.argmin(d))] == klass, (name, box)
                 compared += 1
     assert compared >= 5
+
+
+def test_the_bundled_detectors_take_any_size_and_a_fixed_file_made_so_gives_the_same_outputs(tmp_path):
+    """devtools.train.inputsize --any-size: the input's height and width declared symbolic,
+    the graph otherwise the same. The bundled files are so (the horizon band runs on them at
+    3264 x 448); their views are still cut at their imgsz, 640 x 384."""
+    from devtools.train.inputsize import take_any_size
+    from roadsigns.algorithms.paths import BUNDLED_FLOAT_MODEL, BUNDLED_MODEL
+    for path in (BUNDLED_MODEL, BUNDLED_FLOAT_MODEL):
+        d = Detector(path, threads=1)
+        assert d.takes_any_size and d.input_size == (640, 384)
+        d.check_runs(3264, 448)
+    fixed_path, any_path = str(tmp_path / "fixed.onnx"), str(tmp_path / "any.onnx")
+    from devtools.train.inputsize import set_input_height
+    set_input_height(BUNDLED_MODEL, fixed_path, 384)
+    take_any_size(fixed_path, any_path)
+    fixed, free = Detector(fixed_path, threads=1), Detector(any_path, threads=1)
+    assert not fixed.takes_any_size and free.takes_any_size
+    view = np.random.default_rng(3).integers(0, 256, (384, 640, 3), dtype=np.uint8)
+    a, b = fixed.run_raw([view])[0], free.run_raw([view])[0]
+    assert np.array_equal(a, b)
+    wide = free.run_raw([np.zeros((448, 3264, 3), np.uint8)], own_size=True)[0]
+    assert wide.shape[0] == 1 and wide.shape[-1] == 6
 
 
 # --- a drive: decoding the next panorama while this one is detected ----------------------

@@ -17,10 +17,15 @@ from roadsigns.core.panorama import (
     DEFAULT_HORIZON_VIEWS,
     DEFAULT_UPWARD_VIEWS,
     FORE_AFT_HFOV_DEG,
+    HORIZON_BAND,
+    HORIZON_BAND_MARGIN_DEG,
+    HORIZON_BAND_SIZE_PX,
+    HORIZON_CHOICES,
     HORIZON_HFOV_DEG,
     UPWARD_HFOV_DEG,
     UPWARD_PITCH_DEG,
     UPWARD_RING_VIEWS,
+    BandView,
     PerspectiveView,
     ViewSet,
     read_panorama,
@@ -176,6 +181,69 @@ def test_a_ring_of_six_horizon_views_is_turned_so_its_seams_fall_in_the_fore_and
     assert all(HORIZON_HFOV_DEG - step >= 20.0 for step in np.diff(yaws))
     with pytest.raises(ValueError, match="7 views"):
         ViewSet.default(640, horizon_views=7)
+
+
+def test_the_horizon_as_one_band_replaces_the_ring_and_keeps_the_other_views():
+    assert HORIZON_CHOICES == (8, 6, HORIZON_BAND)
+    band = ViewSet.default((640, 384), horizon_views=HORIZON_BAND)
+    eight = ViewSet.default((640, 384))
+    assert band[0] == BandView(*HORIZON_BAND_SIZE_PX, HORIZON_BAND_MARGIN_DEG)
+    assert band[1:] == eight[8:]                       # the fore-and-aft and upward views as before
+    assert band[0].own_size and not any(v.own_size for v in eight)
+    b = band[0]
+    assert b.width_px % 32 == 0 and b.height_px % 32 == 0
+    # one density both ways, at least the ring's at its views' centres, and the ring's elevations
+    assert b.density_px_per_deg == pytest.approx(b.width_px / (360.0 + 2 * HORIZON_BAND_MARGIN_DEG))
+    assert b.density_px_per_deg >= eight[0].focal_px * np.pi / 180.0
+    assert b.vfov_deg / 2.0 >= np.degrees(np.arctan(0.5 * eight[0].height_px / eight[0].focal_px)) - 0.5
+
+
+@pytest.mark.parametrize("az, el", [(0.0, 0.0), (37.0, 12.0), (-120.0, -15.0), (179.0, 5.0), (-178.0, -3.0)])
+def test_the_band_shows_a_disc_where_its_azimuth_and_elevation_say_and_maps_its_box_back(az, el):
+    """A disc painted on the sphere: its centroid in the band at the linear azimuth and
+    elevation position, its band box mapped back onto the disc's panorama box; near the
+    +-180 deg seam the disc is in the band twice, whole at one end and at the other."""
+    band = BandView(1568, 224, 12.0)                   # 4 px a degree, +-28 deg
+    radius = 3.0
+    image = band.cut(paint_discs([(az, el, radius, RED)]))
+    assert image.shape == (224, 1568, 3)
+    mask = (image[:, :, 2] > 170) & (image[:, :, 1] < 90)
+    n_labels, labels = cv2.connectedComponents(mask.astype(np.uint8))
+    k = band.density_px_per_deg
+    copies = 2 if abs(az) > 180.0 - HORIZON_BAND_MARGIN_DEG + radius else 1
+    assert n_labels - 1 == copies
+    expected = disc_pano_box(az, el, radius)
+    for label in range(1, n_labels):
+        ys, xs = np.nonzero(labels == label)
+        x_centre = xs.mean() + 0.5
+        # at the azimuth (or its copy 360 deg on) and the elevation
+        az_seen = x_centre / k - 180.0 - 12.0
+        assert min(abs(az_seen - az), abs(az_seen - az - 360.0), abs(az_seen - az + 360.0)) < 0.3
+        assert (0.5 * band.height_px - (ys.mean() + 0.5)) / k == pytest.approx(el, abs=0.3)
+        box = np.array([[xs.min(), ys.min(), xs.max() + 1, ys.max() + 1]], float)
+        pano_box = band.boxes_to_pano(box, W, H)[0]
+        assert 0.0 <= pano_box[0] < W and pano_box[2] > pano_box[0]
+        shift = W * np.round((pano_box[0] - expected[0]) / W)
+        assert np.allclose(pano_box - [shift, 0, shift, 0], expected, atol=W / 360.0)   # within a degree
+    # the copy in a margin ranks under the one that is not
+    if copies == 2:
+        boxes = [[xs.min(), 0, xs.max() + 1, 1] for xs in (np.nonzero(labels == lab)[1] for lab in (1, 2))]
+        central = band.centrality(np.array(boxes, float))
+        from_end = [min(0.5 * (b[0] + b[2]), band.width_px - 0.5 * (b[0] + b[2])) for b in boxes]
+        assert np.argmax(central) == np.argmax(from_end) and central.max() > central.min()
+        assert band.centrality(np.array([[780.0, 0, 790, 1], [0, 0, 0, 1]])).tolist() == [1.0, 0.0]
+        assert band.touches_side(np.array([[0.0, 50, 20, 60], [700, 50, 720, 60], [1560, 50, 1568, 60]])).tolist() \
+            == [True, False, True]
+
+
+def test_the_band_is_round_trip_exact_between_its_pixels_and_rays():
+    band = BandView(*HORIZON_BAND_SIZE_PX, HORIZON_BAND_MARGIN_DEG)
+    x = np.array([200.0, 1632.0, 3000.0])
+    y = np.array([10.0, 224.0, 440.0])
+    x_back, y_back, front = band.ray_to_pixel(band.pixel_to_ray(x, y))
+    assert front.all()
+    assert np.allclose(x_back, x) and np.allclose(y_back, y)
+    assert band.centre_u_px(W) == W / 2 and not band.looks_up
 
 
 def test_denser_views_do_not_change_how_the_others_are_cut_from_a_large_panorama():
