@@ -421,8 +421,8 @@ class Detector:
         its own size (:attr:`takes_any_size`, or that is its input size)."""
         if not self.takes_any_size and (width_px, height_px) != (self.input_w, self.input_h):
             raise InputError("The model {path} takes {w} x {h} px images only; the horizon seen as one band "
-                             "({bw} x {bh} px) needs a model whose input height and width are not fixed, as the "
-                             "bundled detector's are not", path=self.model_path, w=self.input_w, h=self.input_h,
+                             "({bw} x {bh} px) needs a model whose input height and width are free, as the bundled "
+                             "detector's are", path=self.model_path, w=self.input_w, h=self.input_h,
                              bw=width_px, bh=height_px)
 
     def run_raw(self, images: Sequence[np.ndarray], own_size: bool = False):

@@ -4,6 +4,7 @@ The model's output is a constant box at the centre of every view, so each panora
 one detection per view, whose ray must point at that view's centre; the rays are checked
 against the contract's pixel -> ray formula written out in the test.
 """
+import os
 import shutil
 
 import numpy as np
@@ -106,6 +107,37 @@ def test_a_ring_of_six_horizon_views_turned_by_thirty_degrees(qgis_process, stat
     for r in rows:
         start, end = r["points"]
         assert (end - start) / np.linalg.norm(end - start) == pytest.approx(contract_ray_world(r), abs=1e-6)
+
+
+def test_the_horizon_as_one_band_needs_a_model_of_any_size_and_maps_its_box_linearly(qgis_process, stations,
+                                                                                      tmp_path):
+    """HORIZON_VIEWS' third option: the horizon as one band of 3264 x 448 px, run at its own
+    size. The model's one box, at band pixel (32, 32), is azimuth 32 / 8.5 - 180 - 12 deg and
+    elevation (224 - 32) / 8.5 deg: one detection a panorama, its ray there. A model whose
+    input size is fixed is refused before any panorama is read, naming the model."""
+    model = make_model(tmp_path / "any.onnx", yolov8_centre_box(), input_shape=["batch", 3, "h", "w"],
+                       meta={"names": NAMES, "imgsz": "[64, 64]"})
+    out = str(tmp_path / "detections.gpkg")
+    run = qgis_process.run(ALG, STATIONS=stations, MODEL=model, CONFIDENCE=0.5, MIN_SIZE=0, UPWARD_VIEWS=False,
+                           FORE_AFT_VIEWS=False, HORIZON_VIEWS=2, RESCUE_CONFIDENCE=1.0, OUTPUT=out)
+    assert run.returncode == 0, run.text
+    assert "1 views each" in run.text
+    rows = read_rays(out)
+    assert sorted(r["image"] for r in rows) == ["pano_0000.jpg", "pano_0001.jpg", "pano_0002.jpg"]
+    density = 3264 / 384.0
+    az_deg, el_deg = 32 / density - 192.0, (224 - 32) / density
+    for r in rows:
+        W, H = r["width"], r["height"]
+        assert ((r["u0"] + r["u1"]) / 2) % W == pytest.approx(((az_deg / 360.0 + 0.5) * W) % W, abs=0.05)
+        assert (r["v0"] + r["v1"]) / 2 == pytest.approx((0.5 - el_deg / 180.0) * H, abs=0.05)
+        start, end = r["points"]
+        assert (end - start) / np.linalg.norm(end - start) == pytest.approx(contract_ray_world(r), abs=1e-6)
+    fixed = make_model(tmp_path / "fixed.onnx", yolov8_centre_box(), meta={"names": NAMES})
+    refused = str(tmp_path / "refused.gpkg")
+    run = qgis_process.run(ALG, STATIONS=stations, MODEL=fixed, UPWARD_VIEWS=False, HORIZON_VIEWS=2, OUTPUT=refused)
+    assert run.returncode != 0
+    assert "fixed.onnx takes 64 x 64 px images only; the horizon seen as one band (3264 x 448 px)" in run.text
+    assert not os.path.exists(refused)
 
 
 def test_names_from_a_labels_file(qgis_process, stations, tmp_path):
