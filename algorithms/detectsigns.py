@@ -162,7 +162,13 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
                     "both rings found all 137 signs, with no false sign and positions within 3 mm of each other in "
                     "median; on the first 100 m of a test drive with a panorama every 1.2 m, the ring of 6 added one "
                     "false sign (seen in one panorama and scored just over the minimum confidence, flagged for "
-                    "review) to the 6 true ones. 8 by default; 6 trades a little accuracy for speed."), advanced=True)
+                    "review) to the 6 true ones. The third choice sees the horizon as one equirectangular band "
+                    "of 3264 × 448 px (8.5 px a degree, ±26° of elevation), which the detector runs on whole: "
+                    "it needs a model whose input size is free, as the bundled detector's is. In single "
+                    "panoramas of four held-out test streets it found 622 of 652 signs with 10 false boxes, "
+                    "against 621 with 13 for the ring of 8, in 0.82 times the processor time; through the whole "
+                    "chain on a held-out street it found all 45 signs, as the ring does. 8 by default; 6 trades "
+                    "a little accuracy for speed."), advanced=True)
         self.add_boolean(
             self.ZOOMED_LOOK, self.tr("Look again, closer, at small boxes scored under the minimum confidence"),
             DEFAULT_ZOOMED_LOOK,

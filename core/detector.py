@@ -685,7 +685,10 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
     ``detect(image, confidence, iou_threshold) -> ImageDetections`` (``detect_many`` is
     used when present, to batch views). Boxes are mapped to panorama pixels through each
     view and merged by :func:`merge_view_detections`; merged boxes whose shorter side is
-    under ``min_box_px`` panorama pixels are dropped.
+    under ``min_box_px`` panorama pixels are dropped. A view that is run at its own size
+    (``own_size``: the horizon as one :class:`.panorama.BandView`) goes through a
+    :class:`Detector` alone, with ``own_size=True``; another detector's ``detect`` takes it
+    as it is.
 
     A box an upward view (:attr:`~.panorama.PerspectiveView.looks_up`) cuts at its left or
     right side is dropped unless another view's box joins it: those views look over the

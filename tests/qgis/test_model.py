@@ -93,3 +93,21 @@ def test_the_model_passes_its_code_and_view_parameters_on(qgis_process, scene_ti
         dataset = ogr.Open(path)  # kept while its layer is read (OGR frees the layer with it)
         features = list(dataset.GetLayer(0))
         assert features and all(not f["code"] for f in features), path
+
+
+def test_the_model_with_the_horizon_as_one_band_meets_the_goals(qgis_process, scene_tiny, tmp_path):
+    """HORIZON_VIEWS 2: detectsigns sees the horizon as one band (with its 2 fore-and-aft and
+    2 upward views), which the bundled detector runs at its own size; the fused signs meet the
+    evaluate goals on the tiny scene."""
+    scene_dir, scene = scene_tiny
+    run = qgis_process.run("roadsigns:signinventory", POINT_CLOUD=os.path.join(scene_dir, "cloud.laz"),
+                           HORIZON_VIEWS=2, **scene_inputs(scene_dir, scene), **model_outputs(tmp_path))
+    assert run.returncode == 0, run.text
+    assert "5 views each" in run.text and "12 views each" not in run.text
+    run = qgis_process.run("roadsigns:evaluate", SIGNS=str(tmp_path / "fused.gpkg"),
+                           REFERENCE=os.path.join(scene_dir, "reference_signs.csv"), MATCH_RADIUS=1.0,
+                           OUTPUT_REPORT=str(tmp_path / "evaluation.html"))
+    assert run.returncode == 0, run.text
+    r = run.json["results"]
+    assert r["PRECISION"] >= 0.97 and r["RECALL"] >= 0.95 and r["CLASS_ACCURACY"] >= 0.97, r
+    assert r["MEDIAN_ERROR"] <= 0.05 and r["P95_ERROR"] <= 0.20, r
