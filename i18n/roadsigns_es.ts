@@ -117,7 +117,7 @@
         <translation>Ejecuta un detector de señales ONNX en cada panorama; un rayo por señal detectada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="225" />
+        <location filename="../algorithms/detectsigns.py" line="231" />
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
@@ -192,77 +192,77 @@
         <translation>Mirar también hacia arriba (señales elevadas y de pórtico)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="193" />
+        <location filename="../algorithms/detectsigns.py" line="199" />
         <source>CPU threads (0: all)</source>
         <translation>Hilos de CPU (0: todos)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="193" />
+        <location filename="../algorithms/detectsigns.py" line="199" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>Hilos que onnxruntime puede usar en la CPU; 0 le permite usar todos los núcleos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="199" />
+        <location filename="../algorithms/detectsigns.py" line="205" />
         <source>Detections</source>
         <translation>Detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="203" />
+        <location filename="../algorithms/detectsigns.py" line="209" />
         <source>Number of detections</source>
         <translation>Número de detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="204" />
+        <location filename="../algorithms/detectsigns.py" line="210" />
         <source>Panoramas skipped</source>
         <translation>Panoramas omitidos</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="218" />
+        <location filename="../algorithms/detectsigns.py" line="224" />
         <source>ONNX model not found: {}</source>
         <translation>No se encontró el modelo ONNX: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="237" />
+        <location filename="../algorithms/detectsigns.py" line="243" />
         <source>{} panoramas, {} views each</source>
         <translation>{} panoramas, {} vistas cada uno</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="266" />
+        <location filename="../algorithms/detectsigns.py" line="272" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>Se omitieron {} panorama(s) que no se pudieron leer.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="282" />
+        <location filename="../algorithms/detectsigns.py" line="288" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} detecciones en {} panoramas ({} omitidos).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="274" />
+        <location filename="../algorithms/detectsigns.py" line="280" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>No se detectó ninguna señal: la capa de detecciones está vacía.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="199" />
+        <location filename="../algorithms/detectsigns.py" line="205" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>Capa LineStringZ, un rayo por detección, con det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views y los campos de pose de la estación.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="180" />
+        <location filename="../algorithms/detectsigns.py" line="186" />
         <source>Skip stations closer than (m)</source>
         <translation>Omitir estaciones a menos de (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="243" />
+        <location filename="../algorithms/detectsigns.py" line="249" />
         <source>Detecting in {} of the {} panoramas: stations closer than {} m to the last one detected in are skipped.</source>
         <translation>Detectando en {} de los {} panoramas: se omiten las estaciones a menos de {} m de la última en la que se detectó.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="197" />
+        <location filename="../algorithms/detectsigns.py" line="203" />
         <source>in a crop around each detection, voted later across the views of each sign by Refine and merge signs</source>
         <translation>en un recorte alrededor de cada detección; «Refinar y fusionar señales» vota después entre las vistas de cada señal</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="180" />
+        <location filename="../algorithms/detectsigns.py" line="186" />
         <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so skipping saves detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. The default, 2.5 m, keeps a detected panorama at least every 5 m on any drive (every second one of a drive with a panorama every 1.25 m) and skips nothing on drives with panoramas 2.5 m or more apart. 0 detects in every panorama.</source>
         <translation>Detecta solo en las panorámicas cuya estación está al menos a esta distancia de la última estación en la que se detectó; las intermedias se omiten (no se leen, sin detecciones). Una señal permanece visible desde muchas estaciones, así que omitir ahorra tiempo de detección en proporción, pero cada señal se ve entonces desde menos estaciones: menos rayos para situarla, y una señal visible solo desde pocas estaciones (pequeña, u oculta tras árboles o vehículos) puede perderse. Medido en dos calles de prueba reservadas con una panorámica cada 5 m: todas las panorámicas encontraron las 46 y 45 señales; 10 m (una de cada dos) perdió 2 en cada una, 15 m perdió 11 de 46. El valor por defecto, 2,5 m, mantiene una panorámica detectada al menos cada 5 m en cualquier recorrido (una de cada dos en un recorrido con una panorámica cada 1,25 m) y no omite nada en recorridos con panorámicas a 2,5 m o más. 0 detecta en todas las panorámicas.</translation>
     </message>
@@ -277,7 +277,7 @@
         <translation>Segunda mirada desde la confianza</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="252" />
+        <location filename="../algorithms/detectsigns.py" line="258" />
         <source>Second look: boxes scored from {} to {} are kept where the sign-code classifier reads a code.</source>
         <translation>Segunda mirada: los recuadros puntuados de {} a {} se conservan donde el clasificador de códigos de señal lee un código.</translation>
     </message>
@@ -287,7 +287,7 @@
         <translation>Añade dos vistas de 53° justo delante y detrás, con 1,5 veces los píxeles por grado de las vistas del horizonte (la densidad propia de un panorama de 4096 px), para las señales lejanas a lo largo de la vía. Las señales reales necesitan esos píxeles: en fotografías reales de calles, a la densidad de las vistas del horizonte, el detector encontró 0,82 de las señales (GTSDB 500-599) y 0,54 de 376 señales reales reservadas pegadas como señales lejanas; con estas vistas, 0,93 y 0,69, con una precisión que varía menos de 0,01. En panoramas generados reservados: 0,906 de las señales por panorama en lugar de 0,879. Cuestan 1,24 veces el tiempo de detección. Activado por defecto; desactívelo solo por velocidad en recorridos con panoramas muy próximos (cada señal se ve entonces desde muchas estaciones).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="286" />
+        <location filename="../algorithms/detectsigns.py" line="292" />
         <source>Sign codes read in {} of the {} detections (the others: other, or a sign whose code the table lacks).</source>
         <translation>Códigos de señal leídos en {} de las {} detecciones (las demás: other, o una señal cuyo código no está en la tabla).</translation>
     </message>
@@ -307,17 +307,17 @@
         <translation>Los recuadros que el detector puntúa desde este valor hasta la confianza mínima reciben una segunda mirada: se conserva uno cuando el clasificador de códigos de señal lee en él una clase de señales con una probabilidad de al menos {score} (las probabilidades de los códigos de esa clase sumadas: un límite de velocidad cuyas cifras no son seguras sigue siendo una señal de prohibición), su recuadro mide al menos {px} px en su lado más corto (por debajo de {small_px} px, solo con una puntuación del detector de al menos {small_score}) y al menos un {share:.0%} de él son colores de señal (rojo, azul o amarillo saturados); entonces toma esa clase y conserva su propia puntuación. En fotografías reales de calles (GTSDB 500-599), con la confianza mínima por defecto, encuentra 0,958 de las señales con una precisión de 0,971, frente a 0,803 con 0,966 sin ella, por menos de un 5 % del tiempo de detección. Necesita que se lean los códigos de señal; un valor igual o superior a la confianza mínima la desactiva.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="166" />
+        <location filename="../algorithms/detectsigns.py" line="172" />
         <source>Look again, closer, at small boxes scored under the minimum confidence</source>
         <translation>Volver a mirar, más de cerca, las cajas pequeñas puntuadas por debajo de la confianza mínima</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="166" />
+        <location filename="../algorithms/detectsigns.py" line="172" />
         <source>A box of at most {px} px that the detector scores from {score} up to the minimum confidence is cut again from the panorama at a higher pixel density (the box {box_px} px across) and detected once more; it is kept when the detector then scores it at the minimum confidence or more, with that score, class and box. All of a panorama's such boxes go through the detector together, in one extra run. It finds far signs, 15-25 px across: on 376 held-out real signs pasted into street photographs the signs found rose from 0.79 to 0.87 (those 14-20 px high from 0.34 to 0.59) at a precision of 0.96; on real street photographs (GTSDB 500-599) the recall stayed at 0.958 and the precision went from 0.971 to 0.958. It costs 1.05-1.09 times the detection time. On by default.</source>
         <translation>Una caja de {px} px como máximo que el detector puntúa desde {score} hasta la confianza mínima se recorta de nuevo del panorama con una densidad de píxeles mayor (la caja mide {box_px} px) y se detecta otra vez; se conserva cuando el detector la puntúa entonces con la confianza mínima o más, con esa puntuación, clase y caja. Todas esas cajas de un panorama pasan juntas por el detector, en una sola ejecución adicional. Encuentra señales lejanas, de 15-25 px: en 376 señales reales reservadas, pegadas en fotografías de calles, las señales encontradas subieron de 0,79 a 0,87 (las de 14-20 px de alto, de 0,34 a 0,59) con una precisión de 0,96; en fotografías reales de calles (GTSDB 500-599) la exhaustividad se mantuvo en 0,958 y la precisión pasó de 0,971 a 0,958. Cuesta entre 1,05 y 1,09 veces el tiempo de detección. Activado por defecto.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="258" />
+        <location filename="../algorithms/detectsigns.py" line="264" />
         <source>Zoomed look: boxes of at most {} px scored from {} to {} are detected again at a higher pixel density.</source>
         <translation>Mirada de cerca: las cajas de {} px como máximo puntuadas entre {} y {} se detectan de nuevo con una densidad de píxeles mayor.</translation>
     </message>
@@ -338,13 +338,13 @@
     </message>
     <message>
         <location filename="../algorithms/detectsigns.py" line="149" />
-        <source>How many views of 80° across the horizon ring has. 8 views overlap by 35°. 6 views overlap by 20° and are turned by 30°, so that their seams ahead and behind fall inside the fore-and-aft views: the detection takes 0.8-0.87 times the time. In single panoramas of five held-out test streets, 6 views found 0.946 of the signs at a precision of 0.988, against 0.948 at 0.982 with 8: they lose a few signs 14-20 px high and a few very close ones that no longer fit whole into one view. Through the whole chain, on three held-out streets with a panorama every 5 m, both rings found all 137 signs, with no false sign and positions within 3 mm of each other in median; on the first 100 m of a test drive with a panorama every 1.2 m, the ring of 6 added one false sign (seen in one panorama and scored just over the minimum confidence, flagged for review) to the 6 true ones. 8 by default; 6 trades a little accuracy for speed.</source>
-        <translation>Cuántas vistas de 80° de ancho tiene el anillo del horizonte. 8 vistas se solapan 35°. 6 vistas se solapan 20° y están giradas 30°, de modo que sus uniones delante y detrás caen dentro de las vistas hacia delante y hacia atrás: la detección tarda 0,8-0,87 veces el tiempo. En panoramas sueltos de cinco calles de prueba reservadas, 6 vistas encontraron 0,946 de las señales con una precisión de 0,988, frente a 0,948 con 0,982 con 8: pierden algunas señales de 14-20 px de alto y algunas muy cercanas que ya no caben enteras en una vista. En la cadena completa, en tres calles reservadas con un panorama cada 5 m, ambos anillos encontraron las 137 señales, sin ninguna falsa y con posiciones a menos de 3 mm entre sí en la mediana; en los primeros 100 m de un recorrido de prueba con un panorama cada 1,2 m, el anillo de 6 añadió una señal falsa (vista en un solo panorama y puntuada justo por encima de la confianza mínima, marcada para revisión) a las 6 verdaderas. 8 por defecto; 6 cambia un poco de exactitud por velocidad.</translation>
+        <source>One band of {width} × {height} px</source>
+        <translation>Una banda de {width} × {height} px</translation>
     </message>
     <message>
         <location filename="../algorithms/detectsigns.py" line="149" />
-        <source>One band of {width} × {height} px</source>
-        <translation>Una banda de {width} × {height} px</translation>
+        <source>How many views of 80° across the horizon ring has. 8 views overlap by 35°. 6 views overlap by 20° and are turned by 30°, so that their seams ahead and behind fall inside the fore-and-aft views: the detection takes 0.8-0.87 times the time. In single panoramas of five held-out test streets, 6 views found 0.946 of the signs at a precision of 0.988, against 0.948 at 0.982 with 8: they lose a few signs 14-20 px high and a few very close ones that no longer fit whole into one view. Through the whole chain, on three held-out streets with a panorama every 5 m, both rings found all 137 signs, with no false sign and positions within 3 mm of each other in median; on the first 100 m of a test drive with a panorama every 1.2 m, the ring of 6 added one false sign (seen in one panorama and scored just over the minimum confidence, flagged for review) to the 6 true ones. The third choice sees the horizon as one equirectangular band of 3264 × 448 px (8.5 px a degree, ±26° of elevation), which the detector runs on whole: it needs a model whose input size is free, as the bundled detector's is. In single panoramas of four held-out test streets it found 622 of 652 signs with 10 false boxes, against 621 with 13 for the ring of 8, in 0.82 times the processor time; through the whole chain on a held-out street it found all 45 signs, as the ring does. 8 by default; 6 trades a little accuracy for speed.</source>
+        <translation>Cuántas vistas de 80° de ancho tiene el anillo del horizonte. 8 vistas se solapan 35°. 6 vistas se solapan 20° y están giradas 30°, de modo que sus uniones delante y detrás caen dentro de las vistas hacia delante y hacia atrás: la detección tarda 0,8-0,87 veces el tiempo. En panoramas sueltos de cinco calles de prueba reservadas, 6 vistas encontraron 0,946 de las señales con una precisión de 0,988, frente a 0,948 con 0,982 con 8: pierden algunas señales de 14-20 px de alto y algunas muy cercanas que ya no caben enteras en una vista. En la cadena completa, en tres calles reservadas con un panorama cada 5 m, ambos anillos encontraron las 137 señales, sin ninguna falsa y con posiciones a menos de 3 mm entre sí en la mediana; en los primeros 100 m de un recorrido de prueba con un panorama cada 1,2 m, el anillo de 6 añadió una señal falsa (vista en un solo panorama y puntuada justo por encima de la confianza mínima, marcada para revisión) a las 6 verdaderas. La tercera opción ve el horizonte como una sola banda equirrectangular de 3264 × 448 px (8,5 px por grado, ±26° de elevación), que el detector procesa entera: necesita un modelo cuyo tamaño de entrada sea libre, como el del detector incluido. En panoramas sueltos de cuatro calles de prueba reservadas encontró 622 de 652 señales con 10 cajas falsas, frente a 621 con 13 del anillo de 8, en 0,82 veces el tiempo de procesador; en toda la cadena, en una calle reservada, encontró las 45 señales, como el anillo. 8 por defecto; 6 cambia un poco de exactitud por velocidad.</translation>
     </message>
 </context>
 <context>

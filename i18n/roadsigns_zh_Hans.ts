@@ -117,7 +117,7 @@
         <translation>在每张全景图上运行 ONNX 标志检测器；每个检测到的标志生成一条射线。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="225" />
+        <location filename="../algorithms/detectsigns.py" line="231" />
         <source>Panorama stations</source>
         <translation>全景站点</translation>
     </message>
@@ -192,77 +192,77 @@
         <translation>同时向上看（悬挂式和门架式标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="193" />
+        <location filename="../algorithms/detectsigns.py" line="199" />
         <source>CPU threads (0: all)</source>
         <translation>CPU 线程数（0：全部）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="193" />
+        <location filename="../algorithms/detectsigns.py" line="199" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>onnxruntime 在 CPU 上可使用的线程数；0 表示使用所有核心。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="199" />
+        <location filename="../algorithms/detectsigns.py" line="205" />
         <source>Detections</source>
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="203" />
+        <location filename="../algorithms/detectsigns.py" line="209" />
         <source>Number of detections</source>
         <translation>检测数量</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="204" />
+        <location filename="../algorithms/detectsigns.py" line="210" />
         <source>Panoramas skipped</source>
         <translation>跳过的全景图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="218" />
+        <location filename="../algorithms/detectsigns.py" line="224" />
         <source>ONNX model not found: {}</source>
         <translation>未找到 ONNX 模型：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="237" />
+        <location filename="../algorithms/detectsigns.py" line="243" />
         <source>{} panoramas, {} views each</source>
         <translation>{} 张全景图，每张 {} 个视图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="266" />
+        <location filename="../algorithms/detectsigns.py" line="272" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>跳过了 {} 张无法读取的全景图。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="282" />
+        <location filename="../algorithms/detectsigns.py" line="288" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} 个检测，来自 {} 张全景图（跳过 {} 张）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="274" />
+        <location filename="../algorithms/detectsigns.py" line="280" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>未检测到任何标志：检测图层为空。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="199" />
+        <location filename="../algorithms/detectsigns.py" line="205" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>LineStringZ 图层，每个检测一条射线，包含字段 det_id、station_id、image、class、score、code、code_score、u0、v0、u1、v1、n_views 以及站点的位姿字段。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="180" />
+        <location filename="../algorithms/detectsigns.py" line="186" />
         <source>Skip stations closer than (m)</source>
         <translation>跳过间距小于此值的站点 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="243" />
+        <location filename="../algorithms/detectsigns.py" line="249" />
         <source>Detecting in {} of the {} panoramas: stations closer than {} m to the last one detected in are skipped.</source>
         <translation>在 {} 张全景图（共 {} 张）中检测：距上一个检测站点不足 {} m 的站点将被跳过。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="197" />
+        <location filename="../algorithms/detectsigns.py" line="203" />
         <source>in a crop around each detection, voted later across the views of each sign by Refine and merge signs</source>
         <translation>在每个检测结果周围的裁剪图中读取，之后由“精化与合并标志”在每个标志的各视图间投票</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="180" />
+        <location filename="../algorithms/detectsigns.py" line="186" />
         <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so skipping saves detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. The default, 2.5 m, keeps a detected panorama at least every 5 m on any drive (every second one of a drive with a panorama every 1.25 m) and skips nothing on drives with panoramas 2.5 m or more apart. 0 detects in every panorama.</source>
         <translation>仅在其站点与上一个检测站点相距至少此距离的全景图中检测；其间的全景图将被跳过（不读取，无检测结果）。一个标志在许多站点中都可见，因此跳过可按比例节省检测时间，但每个标志被看到的站点会变少：用于定位它的射线更少，而只在少数站点可见的标志（较小，或被树木或车辆遮挡）可能会漏检。在两条保留的测试街道上（每 5 米一张全景图）测得：使用全部全景图找到了全部 46 个和 45 个标志；10 米（隔一张）各漏检 2 个，15 米漏检 46 个中的 11 个。默认值 2.5 米可保证在任何行驶路线上至少每 5 米有一张被检测的全景图（全景图间隔 1.25 米的路线即每隔一张），而对全景图间隔 2.5 米或以上的路线不跳过任何全景图。0 表示在每张全景图中检测。</translation>
     </message>
@@ -277,7 +277,7 @@
         <translation>二次检查起始置信度</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="252" />
+        <location filename="../algorithms/detectsigns.py" line="258" />
         <source>Second look: boxes scored from {} to {} are kept where the sign-code classifier reads a code.</source>
         <translation>二次检查：评分在 {} 到 {} 之间、且标志代码分类器读出代码的框被保留。</translation>
     </message>
@@ -287,7 +287,7 @@
         <translation>在正前方和正后方各添加一个 53° 的视图，其每度像素数为地平线视图的 1.5 倍（即 4096 px 全景图自身的密度），用于沿道路远处的标志。真实标志需要这些像素：在真实街道照片上，按地平线视图的密度，检测器找到了 0.82 的标志（GTSDB 500-599）和作为远处标志粘贴的 376 个保留真实标志中的 0.54；加上这些视图后为 0.93 和 0.69，精度变化不超过 0.01。在保留的生成全景图上：每幅全景图找到 0.906 的标志，而不是 0.879。其代价是 1.24 倍的检测时间。默认开启；仅在全景站点很密的行驶采集中为了速度而关闭（此时每个标志都会从许多全景站点被看到）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="286" />
+        <location filename="../algorithms/detectsigns.py" line="292" />
         <source>Sign codes read in {} of the {} detections (the others: other, or a sign whose code the table lacks).</source>
         <translation>{} 个检测读出了标志代码（共 {} 个检测；其余为 other，或代码表中没有其代码的标志）。</translation>
     </message>
@@ -307,17 +307,17 @@
         <translation>检测器评分介于此值与最低置信度之间的框会接受二次检查：当标志代码分类器以至少 {score} 的概率在框中读出一类标志（该类别各代码的概率之和：数字不确定的限速标志仍是禁令标志）、框的短边至少 {px} 像素（短于 {small_px} 像素时，检测器评分须至少为 {small_score}）且至少 {share:.0%} 的像素为标志颜色（饱和的红、蓝或黄色）时，该框被保留；它随后采用该类别并保留自身的评分。在真实街道照片（GTSDB 500-599）上，使用默认的最低置信度时，它找到 0.958 的标志，精确率为 0.971；不使用时为 0.803，精确率为 0.966。代价不到检测时间的 5 %。需要读取标志代码；取值等于或高于最低置信度时关闭此功能。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="166" />
+        <location filename="../algorithms/detectsigns.py" line="172" />
         <source>Look again, closer, at small boxes scored under the minimum confidence</source>
         <translation>对低于最低置信度的小框放大再看一次</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="166" />
+        <location filename="../algorithms/detectsigns.py" line="172" />
         <source>A box of at most {px} px that the detector scores from {score} up to the minimum confidence is cut again from the panorama at a higher pixel density (the box {box_px} px across) and detected once more; it is kept when the detector then scores it at the minimum confidence or more, with that score, class and box. All of a panorama's such boxes go through the detector together, in one extra run. It finds far signs, 15-25 px across: on 376 held-out real signs pasted into street photographs the signs found rose from 0.79 to 0.87 (those 14-20 px high from 0.34 to 0.59) at a precision of 0.96; on real street photographs (GTSDB 500-599) the recall stayed at 0.958 and the precision went from 0.971 to 0.958. It costs 1.05-1.09 times the detection time. On by default.</source>
         <translation>检测器评分在 {score} 到最低置信度之间、且不超过 {px} px 的框，会以更高的像素密度从全景图中重新裁切（框宽 {box_px} px）并再次检测；若检测器此时的评分达到最低置信度或更高，则保留该框，并采用这次的评分、类别和框。一幅全景图中所有这样的框会一起送入检测器，只需额外运行一次。它能找到 15-25 px 的远处标志：在粘贴到街景照片中的 376 个预留真实标志上，检出率从 0.79 提高到 0.87（高 14-20 px 的从 0.34 提高到 0.59），精度为 0.96；在真实街景照片（GTSDB 500-599）上，召回率保持 0.958，精度从 0.971 变为 0.958。检测时间约为原来的 1.05-1.09 倍。默认开启。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="258" />
+        <location filename="../algorithms/detectsigns.py" line="264" />
         <source>Zoomed look: boxes of at most {} px scored from {} to {} are detected again at a higher pixel density.</source>
         <translation>放大再看：不超过 {} px、评分在 {} 到 {} 之间的框会以更高的像素密度再次检测。</translation>
     </message>
@@ -338,13 +338,13 @@
     </message>
     <message>
         <location filename="../algorithms/detectsigns.py" line="149" />
-        <source>How many views of 80° across the horizon ring has. 8 views overlap by 35°. 6 views overlap by 20° and are turned by 30°, so that their seams ahead and behind fall inside the fore-and-aft views: the detection takes 0.8-0.87 times the time. In single panoramas of five held-out test streets, 6 views found 0.946 of the signs at a precision of 0.988, against 0.948 at 0.982 with 8: they lose a few signs 14-20 px high and a few very close ones that no longer fit whole into one view. Through the whole chain, on three held-out streets with a panorama every 5 m, both rings found all 137 signs, with no false sign and positions within 3 mm of each other in median; on the first 100 m of a test drive with a panorama every 1.2 m, the ring of 6 added one false sign (seen in one panorama and scored just over the minimum confidence, flagged for review) to the 6 true ones. 8 by default; 6 trades a little accuracy for speed.</source>
-        <translation>地平线环包含多少个宽 80° 的视图。8 个视图相互重叠 35°。6 个视图相互重叠 20°，并旋转 30°，使前后方向的接缝落在前后视图之内：检测时间为 0.8-0.87 倍。在五条留出测试街道的单张全景中，6 个视图找到 0.946 的标志，精度 0.988；8 个视图为 0.948，精度 0.982：6 个视图会漏掉少数高 14-20 像素的标志和少数很近、已无法完整落入一个视图的标志。在整条处理链中，在三条每 5 米一张全景的留出街道上，两种环都找到了全部 137 个标志，没有误报，位置中位数相差不到 3 毫米；在一段每 1.2 米一张全景的测试行驶的前 100 米，6 个视图的环在 6 个真实标志之外多出一个误报（只在一张全景中看到，得分刚超过最低置信度，已标记待复核）。默认为 8；6 以少许精度换取速度。</translation>
+        <source>One band of {width} × {height} px</source>
+        <translation>一条 {width} × {height} 像素的条带</translation>
     </message>
     <message>
         <location filename="../algorithms/detectsigns.py" line="149" />
-        <source>One band of {width} × {height} px</source>
-        <translation>一条 {width} × {height} 像素的条带</translation>
+        <source>How many views of 80° across the horizon ring has. 8 views overlap by 35°. 6 views overlap by 20° and are turned by 30°, so that their seams ahead and behind fall inside the fore-and-aft views: the detection takes 0.8-0.87 times the time. In single panoramas of five held-out test streets, 6 views found 0.946 of the signs at a precision of 0.988, against 0.948 at 0.982 with 8: they lose a few signs 14-20 px high and a few very close ones that no longer fit whole into one view. Through the whole chain, on three held-out streets with a panorama every 5 m, both rings found all 137 signs, with no false sign and positions within 3 mm of each other in median; on the first 100 m of a test drive with a panorama every 1.2 m, the ring of 6 added one false sign (seen in one panorama and scored just over the minimum confidence, flagged for review) to the 6 true ones. The third choice sees the horizon as one equirectangular band of 3264 × 448 px (8.5 px a degree, ±26° of elevation), which the detector runs on whole: it needs a model whose input size is free, as the bundled detector's is. In single panoramas of four held-out test streets it found 622 of 652 signs with 10 false boxes, against 621 with 13 for the ring of 8, in 0.82 times the processor time; through the whole chain on a held-out street it found all 45 signs, as the ring does. 8 by default; 6 trades a little accuracy for speed.</source>
+        <translation>地平线环包含多少个宽 80° 的视图。8 个视图相互重叠 35°。6 个视图相互重叠 20°，并旋转 30°，使前后方向的接缝落在前后视图之内：检测时间为 0.8-0.87 倍。在五条留出测试街道的单张全景中，6 个视图找到 0.946 的标志，精度 0.988；8 个视图为 0.948，精度 0.982：6 个视图会漏掉少数高 14-20 像素的标志和少数很近、已无法完整落入一个视图的标志。在整条处理链中，在三条每 5 米一张全景的留出街道上，两种环都找到了全部 137 个标志，没有误报，位置中位数相差不到 3 毫米；在一段每 1.2 米一张全景的测试行驶的前 100 米，6 个视图的环在 6 个真实标志之外多出一个误报（只在一张全景中看到，得分刚超过最低置信度，已标记待复核）。第三个选项把地平线视为一条 3264 × 448 像素的等距柱状条带（每度 8.5 像素，仰角 ±26°），检测器整条处理：它需要输入尺寸不固定的模型，随附的检测器即是如此。在四条留出测试街道的单张全景中，它在 652 个标志中找到 622 个，误报框 10 个；8 个视图的环找到 621 个，误报框 13 个，而处理器时间为 0.82 倍；在整条处理链中，在一条留出街道上，它与环一样找到了全部 45 个标志。默认为 8；6 以少许精度换取速度。</translation>
     </message>
 </context>
 <context>
