@@ -12,7 +12,7 @@
    load falls alike on both; the ratio is what counts on a busy machine.
 
     .venv/bin/python bench/bench_detect_speed.py [--scene bench/out/scene-default-7]
-        [--max-images 20] [--threads 2] [--rounds 2] [--no-codes]
+        [--max-images 20] [--threads 2] [--rounds 2] [--no-codes] [--horizon-views 8|6|band]
 """
 from __future__ import annotations
 
@@ -49,7 +49,11 @@ def split_one(path, detector, views, classifier, confidence, min_box_px, times):
     rows = []
     for start in range(0, len(images), detector.max_batch):
         chunk = images[start:start + detector.max_batch]
-        output, transforms = detector.run_raw(chunk)
+        own = views[start].own_size         # the horizon band: alone, at its own size
+        output, transforms = detector.run_raw(chunk[:1] if own else chunk, own_size=own)
+        if own and len(chunk) > 1:
+            more = detector.run_raw(chunk[1:])
+            output, transforms = list(output) + list(more[0]), list(transforms) + list(more[1])
         rows += [(image, row, tr) for image, row, tr in zip(chunk, output, transforms)]
     t, times["inference"] = time.perf_counter(), times["inference"] + time.perf_counter() - t
     boxes, scores, ids, complete, central, view_k = [], [], [], [], [], []
@@ -95,13 +99,18 @@ def main(argv=None):
     ap.add_argument("--confidence", type=float, default=0.4)
     ap.add_argument("--upward", action="store_true",
                     help="also the upward views (detectsigns' UPWARD_VIEWS; default: the plugin's default)")
+    ap.add_argument("--horizon-views", default=str(panorama_mod.DEFAULT_HORIZON_VIEWS),
+                    choices=[str(c) for c in panorama_mod.HORIZON_CHOICES],
+                    help="detectsigns' HORIZON_VIEWS: a ring of 8 or 6 views, or the horizon as one band")
     args = ap.parse_args(argv)
 
     paths = sorted(glob.glob(os.path.join(args.scene, "images", "*.jpg")))[:args.max_images]
     if not paths:
         sys.exit(f"no panoramas in {args.scene}/images")
     detector = detector_mod.Detector(args.model, threads=args.threads)
-    views = panorama_mod.ViewSet.default(size_px=detector.input_size, upward=True if args.upward else None)
+    horizon = int(args.horizon_views) if args.horizon_views.isdigit() else args.horizon_views
+    views = panorama_mod.ViewSet.default(size_px=detector.input_size, upward=True if args.upward else None,
+                                         horizon_views=horizon)
     classifier = None
     if not args.no_codes:
         table = signcodes_mod.read_codes_table(args.codes_table)
