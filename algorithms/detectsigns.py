@@ -165,8 +165,8 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
                     "review) to the 6 true ones. The third choice sees the horizon as one equirectangular band "
                     "of 3264 × 448 px (8.5 px a degree, ±26° of elevation), which the detector runs on whole: "
                     "it needs a model whose input size is free, as the bundled detector's is. In single "
-                    "panoramas of four held-out test streets it found 622 of 652 signs with 10 false boxes, "
-                    "against 621 with 13 for the ring of 8, in 0.82 times the processor time; through the whole "
+                    "panoramas of four held-out test streets it found 622 of 652 signs with 11 false boxes, "
+                    "against 621 with 15 for the ring of 8, in 0.79 times the processor time; through the whole "
                     "chain on a held-out street it found all 45 signs, as the ring does. 8 by default; 6 trades "
                     "a little accuracy for speed."), advanced=True)
         self.add_boolean(
