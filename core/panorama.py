@@ -313,9 +313,9 @@ class BandView:
     copies merge like the boxes of overlapping views, the one farther from an end ranked
     first (:meth:`centrality`)."""
 
-    width_px: int = 3264
-    height_px: int = 448
-    margin_deg: float = 12.0
+    width_px: int = HORIZON_BAND_SIZE_PX[0]
+    height_px: int = HORIZON_BAND_SIZE_PX[1]
+    margin_deg: float = HORIZON_BAND_MARGIN_DEG
     yaw_deg = 0.0
     pitch_deg = 0.0
     looks_up = False
@@ -455,7 +455,7 @@ class ViewSet:
         one :class:`BandView` instead of a ring (the detector must take images of any size).
         ``ValueError`` for a ring not in :data:`HORIZON_RINGS`, nor the band."""
         if horizon_views == HORIZON_BAND:
-            views = cls((BandView(*HORIZON_BAND_SIZE_PX, HORIZON_BAND_MARGIN_DEG),))
+            views = cls((BandView(),))
         elif horizon_views in HORIZON_RINGS:
             views = cls.ring(horizon_views, 0.0, HORIZON_HFOV_DEG, size_px,
                              first_yaw_deg=HORIZON_RINGS[horizon_views])
