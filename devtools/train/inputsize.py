@@ -17,7 +17,6 @@ size, any multiple of 32 (the horizon seen as one band, ``core.panorama.BandView
 stays the size the views are cut at. The outputs at that size are checked identical, and
 nothing is written otherwise.
 """
-
 from __future__ import annotations
 
 import argparse
@@ -44,7 +43,9 @@ def set_input_height(model_path: str, out_path: str, height_px: int) -> None:
     pixels = tensor.elem_type == onnx.TensorProto.UINT8       # uint8 [batch, h, w, 3] (devtools.train.rawinput)
     h_axis, w_axis = (1, 2) if pixels else (2, 3)
     imgsz = json.loads({e.key: e.value for e in model.metadata_props}.get("imgsz", "[]"))
-    width = dims[w_axis].dim_value or (int(imgsz[1]) if len(imgsz) == 2 else 0) if len(dims) == 4 else 0
+    width = 0
+    if len(dims) == 4:          # the declared width, else (a file of any size) its imgsz's
+        width = dims[w_axis].dim_value or (int(imgsz[1]) if len(imgsz) == 2 else 0)
     if not width:
         raise SystemExit(f"{model_path}: expected a float [batch, 3, height, width] or uint8 [batch, height, "
                          f"width, 3] input with a fixed width, or one in its imgsz metadata")
