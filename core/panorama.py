@@ -169,8 +169,51 @@ def read_panorama(path: str, require_equirectangular: bool = True) -> np.ndarray
     return image
 
 
+class _CutImage:
+    """What a view and the horizon band share: the image cut from a panorama through cached
+    ``cv2.remap`` maps (:func:`_float_maps` of the class's ``pixel_to_ray``), and which boxes
+    touch its borders (the margin from the class's ``_edge_margin_px``)."""
+
+    width_px: int
+    height_px: int
+
+    def _edge_margin_px(self, margin_px: Optional[float]) -> float:
+        raise NotImplementedError
+
+    def remap_maps(self, pano_width_px: int, pano_height_px: int):
+        """``cv2.remap`` maps (fixed-point pair) cutting this image from a W x H panorama; cached."""
+        return _remap_maps(self, int(pano_width_px), int(pano_height_px))
+
+    def cut(self, pano: np.ndarray, cached: bool = True) -> np.ndarray:
+        """The image from a panorama array (no reduction; see :meth:`ViewSet.cut_all`).
+        ``cached=False``: the maps are made for this cut alone and not kept (a view cut once,
+        such as a zoomed look's tile)."""
+        import cv2
+
+        if cached:
+            m1, m2 = self.remap_maps(pano.shape[1], pano.shape[0])
+        else:
+            m1, m2 = _float_maps(self, pano.shape[1], pano.shape[0])
+        # BORDER_WRAP joins the columns across the +-180 deg seam; rows never leave the image
+        # (map_y is clamped), so wrapping never joins top and bottom.
+        return cv2.remap(pano, m1, m2, cv2.INTER_LINEAR, borderMode=cv2.BORDER_WRAP)
+
+    def touches_edge(self, boxes_xyxy, margin_px: Optional[float] = None) -> np.ndarray:
+        """Boxes within ``margin_px`` (default 1 % of the image's size, at least 2) of the
+        border: likely cut by the image's edge."""
+        b = np.asarray(boxes_xyxy, float).reshape(-1, 4)
+        m = self._edge_margin_px(margin_px)
+        return self.touches_side(b, m) | (b[:, 1] <= m) | (b[:, 3] >= self.height_px - m)
+
+    def touches_side(self, boxes_xyxy, margin_px: Optional[float] = None) -> np.ndarray:
+        """Boxes within ``margin_px`` (as :meth:`touches_edge`) of the left or right border."""
+        b = np.asarray(boxes_xyxy, float).reshape(-1, 4)
+        m = self._edge_margin_px(margin_px)
+        return (b[:, 0] <= m) | (b[:, 2] >= self.width_px - m)
+
+
 @dataclass(frozen=True)
-class PerspectiveView:
+class PerspectiveView(_CutImage):
     """One pinhole view cut from the panorama (see the module comment for the convention)."""
 
     yaw_deg: float
@@ -218,24 +261,6 @@ class PerspectiveView:
         """Panorama column of the view's forward ray, in [0, W)."""
         return float(np.mod((self.yaw_deg / 360.0 + 0.5) * pano_width_px, pano_width_px))
 
-    def remap_maps(self, pano_width_px: int, pano_height_px: int):
-        """``cv2.remap`` maps (fixed-point pair) cutting this view from a W x H panorama; cached."""
-        return _remap_maps(self, int(pano_width_px), int(pano_height_px))
-
-    def cut(self, pano: np.ndarray, cached: bool = True) -> np.ndarray:
-        """The view's image from a panorama array (no reduction; see :meth:`ViewSet.cut_all`).
-        ``cached=False``: the maps are made for this cut alone and not kept (a view cut once,
-        such as a zoomed look's tile)."""
-        import cv2
-
-        if cached:
-            m1, m2 = self.remap_maps(pano.shape[1], pano.shape[0])
-        else:
-            m1, m2 = _float_maps(self, pano.shape[1], pano.shape[0])
-        # BORDER_WRAP joins the columns across the +-180 deg seam; rows never leave the image
-        # (map_y is clamped), so wrapping never joins top and bottom.
-        return cv2.remap(pano, m1, m2, cv2.INTER_LINEAR, borderMode=cv2.BORDER_WRAP)
-
     def boxes_to_pano(self, boxes_xyxy, pano_width_px: int, pano_height_px: int) -> np.ndarray:
         """View boxes ``(n, 4)`` x0, y0, x1, y1 -> panorama boxes ``(n, 4)`` u0, v0, u1, v1.
 
@@ -276,19 +301,6 @@ class PerspectiveView:
     def _edge_margin_px(self, margin_px: Optional[float]) -> float:
         return max(2.0, 0.01 * max(self.width_px, self.height_px)) if margin_px is None else margin_px
 
-    def touches_edge(self, boxes_xyxy, margin_px: Optional[float] = None) -> np.ndarray:
-        """Boxes within ``margin_px`` (default 1 % of the view size, at least 2) of the border:
-        likely cut by the view edge."""
-        b = np.asarray(boxes_xyxy, float).reshape(-1, 4)
-        m = self._edge_margin_px(margin_px)
-        return self.touches_side(b, m) | (b[:, 1] <= m) | (b[:, 3] >= self.height_px - m)
-
-    def touches_side(self, boxes_xyxy, margin_px: Optional[float] = None) -> np.ndarray:
-        """Boxes within ``margin_px`` (as :meth:`touches_edge`) of the left or right border."""
-        b = np.asarray(boxes_xyxy, float).reshape(-1, 4)
-        m = self._edge_margin_px(margin_px)
-        return (b[:, 0] <= m) | (b[:, 2] >= self.width_px - m)
-
     @property
     def looks_up(self) -> bool:
         """Whether the view is pitched above the horizon (the upward views)."""
@@ -300,7 +312,7 @@ class PerspectiveView:
 
 
 @dataclass(frozen=True)
-class BandView:
+class BandView(_CutImage):
     """The horizon as one equirectangular band, which the detector runs on whole: the
     panorama's rows within ``vfov_deg / 2`` of the horizon, all 360 deg of azimuth and
     ``margin_deg`` more at each end (the columns wrap, so a sign across the +-180 deg seam
@@ -356,18 +368,6 @@ class BandView:
         """Panorama column of azimuth 0 (straight ahead), as for a view."""
         return 0.5 * float(pano_width_px)
 
-    def remap_maps(self, pano_width_px: int, pano_height_px: int):
-        """``cv2.remap`` maps (fixed-point pair) cutting the band from a W x H panorama; cached."""
-        return _remap_maps(self, int(pano_width_px), int(pano_height_px))
-
-    def cut(self, pano: np.ndarray, cached: bool = True) -> np.ndarray:
-        """The band's image from a panorama array (as :meth:`PerspectiveView.cut`)."""
-        import cv2
-
-        m1, m2 = self.remap_maps(pano.shape[1], pano.shape[0]) if cached else _float_maps(self, pano.shape[1],
-                                                                                          pano.shape[0])
-        return cv2.remap(pano, m1, m2, cv2.INTER_LINEAR, borderMode=cv2.BORDER_WRAP)
-
     def boxes_to_pano(self, boxes_xyxy, pano_width_px: int, pano_height_px: int) -> np.ndarray:
         """Band boxes ``(n, 4)`` -> panorama boxes ``(n, 4)`` in the detections layer's form
         (as :meth:`PerspectiveView.boxes_to_pano`): a linear map of both sides."""
@@ -388,19 +388,8 @@ class BandView:
         return np.clip(from_end_deg / (2.0 * self.margin_deg), 0.0, 1.0)
 
     def _edge_margin_px(self, margin_px: Optional[float]) -> float:
+        """1 % of the band's height (its width would be 33 px), at least 2."""
         return max(2.0, 0.01 * self.height_px) if margin_px is None else margin_px
-
-    def touches_edge(self, boxes_xyxy, margin_px: Optional[float] = None) -> np.ndarray:
-        """As :meth:`PerspectiveView.touches_edge` (the margin is 1 % of the band's height)."""
-        b = np.asarray(boxes_xyxy, float).reshape(-1, 4)
-        m = self._edge_margin_px(margin_px)
-        return self.touches_side(b, m) | (b[:, 1] <= m) | (b[:, 3] >= self.height_px - m)
-
-    def touches_side(self, boxes_xyxy, margin_px: Optional[float] = None) -> np.ndarray:
-        """Boxes within ``margin_px`` of the band's left or right end."""
-        b = np.asarray(boxes_xyxy, float).reshape(-1, 4)
-        m = self._edge_margin_px(margin_px)
-        return (b[:, 0] <= m) | (b[:, 2] >= self.width_px - m)
 
     def max_density_px_per_rad(self) -> float:
         return float(np.degrees(1.0) * self.density_px_per_deg)
