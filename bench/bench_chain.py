@@ -46,11 +46,11 @@ def horizon_views_option(choice) -> int:
     """The index of detectsigns' HORIZON_VIEWS option for a ring of ``choice`` views (an int
     or its digits) or the band (``band``)."""
     from devtools import import_roadsigns
-    choices = list(import_roadsigns("roadsigns.core.panorama").HORIZON_CHOICES)
-    value = int(choice) if str(choice).isdigit() else choice
-    if value not in choices:
-        raise SystemExit(f"--horizon-views: {choice}; expected one of {', '.join(map(str, choices))}")
-    return choices.index(value)
+    panorama = import_roadsigns("roadsigns.core.panorama")
+    try:
+        return panorama.HORIZON_CHOICES.index(panorama.horizon_choice(choice))
+    except ValueError as e:
+        raise SystemExit(f"--horizon-views: {e}")
 
 
 def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=None, upward_views=None, classifier=None,

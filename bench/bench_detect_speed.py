@@ -47,13 +47,9 @@ def split_one(path, detector, views, classifier, confidence, min_box_px, times):
     images = list(views.cut_all(pano))
     t, times["cut"] = time.perf_counter(), times["cut"] + time.perf_counter() - t
     rows = []
-    for start in range(0, len(images), detector.max_batch):
-        chunk = images[start:start + detector.max_batch]
-        own = views[start].own_size         # the horizon band: alone, at its own size
-        output, transforms = detector.run_raw(chunk[:1] if own else chunk, own_size=own)
-        if own and len(chunk) > 1:
-            more = detector.run_raw(chunk[1:])
-            output, transforms = list(output) + list(more[0]), list(transforms) + list(more[1])
+    for run in detector_mod.view_batches(views, detector.max_batch):   # the band alone, at its own size
+        chunk = [images[k] for k in run]
+        output, transforms = detector.run_raw(chunk, own_size=views[run[0]].own_size)
         rows += [(image, row, tr) for image, row, tr in zip(chunk, output, transforms)]
     t, times["inference"] = time.perf_counter(), times["inference"] + time.perf_counter() - t
     boxes, scores, ids, complete, central, view_k = [], [], [], [], [], []
@@ -108,9 +104,8 @@ def main(argv=None):
     if not paths:
         sys.exit(f"no panoramas in {args.scene}/images")
     detector = detector_mod.Detector(args.model, threads=args.threads)
-    horizon = int(args.horizon_views) if args.horizon_views.isdigit() else args.horizon_views
     views = panorama_mod.ViewSet.default(size_px=detector.input_size, upward=True if args.upward else None,
-                                         horizon_views=horizon)
+                                         horizon_views=panorama_mod.horizon_choice(args.horizon_views))
     classifier = None
     if not args.no_codes:
         table = signcodes_mod.read_codes_table(args.codes_table)

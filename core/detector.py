@@ -672,6 +672,15 @@ def _merged(detector, rows: Sequence[np.ndarray], W: int, overlap_threshold: flo
                               lone_upward=lone_upward[wanted])
 
 
+def view_batches(views: ViewSet, batch: int) -> List[List[int]]:
+    """The indices of ``views`` in the runs the detector makes, in view order: a view run at
+    its own size (``own_size``, the horizon band) alone, the others ``batch`` at a time."""
+    fitted = [k for k, view in enumerate(views) if not view.own_size]
+    runs = [[k] for k, view in enumerate(views) if view.own_size]
+    runs += [fitted[start:start + batch] for start in range(0, len(fitted), batch)]
+    return sorted(runs)
+
+
 def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: float = 0.25,
                     iou_threshold: float = 0.45, overlap_threshold: float = 0.5,
                     min_box_px: float = 0.0, candidate_confidence: Optional[float] = None,
@@ -717,10 +726,7 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
     all_boxes, all_scores, all_ids, all_views, all_complete, all_central = [], [], [], [], [], []
     all_upward: List[np.ndarray] = []
     all_side_cut: List[np.ndarray] = []
-    fitted = [k for k, view in enumerate(views) if not view.own_size]
-    chunks = [[k] for k, view in enumerate(views) if view.own_size]
-    chunks += [fitted[start:start + batch] for start in range(0, len(fitted), batch)]
-    for chunk in sorted(chunks):
+    for chunk in view_batches(views, batch):
         images = [view_images[k] for k in chunk]
         if views[chunk[0]].own_size and isinstance(detector, Detector):   # a horizon band, alone
             per_view = detector.detect_many(images, lowest, iou_threshold, own_size=True)

@@ -73,6 +73,15 @@ HORIZON_BAND_MARGIN_DEG = 12.0
 #: What ``ViewSet.default``'s ``horizon_views`` takes, in the order of ``detectsigns``'
 #: ``HORIZON_VIEWS`` options: the rings, then the band.
 HORIZON_CHOICES = tuple(HORIZON_RINGS) + (HORIZON_BAND,)
+
+
+def horizon_choice(text: str) -> Union[int, str]:
+    """The :data:`HORIZON_CHOICES` entry written as ``text`` (``"8"``, ``"6"``, ``"band"``);
+    ``ValueError`` for another."""
+    value: Union[int, str] = int(text) if str(text).isdigit() else str(text)
+    if value not in HORIZON_CHOICES:
+        raise ValueError("horizon views {!r}: expected one of {}".format(text, ", ".join(map(str, HORIZON_CHOICES))))
+    return value
 #: The ring ``ViewSet.default`` cuts unless told otherwise (``detectsigns``' ``HORIZON_VIEWS``).
 DEFAULT_HORIZON_VIEWS = 8
 

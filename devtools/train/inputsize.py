@@ -28,6 +28,11 @@ from .. import REPO_ROOT
 from .onnxfile import cpu_session, save_model, set_metadata
 
 
+def metadata_imgsz(model) -> list:
+    """The ``imgsz`` metadata entry of ``model`` (``[height, width]``), or ``[]``."""
+    return json.loads({e.key: e.value for e in model.metadata_props}.get("imgsz", "[]"))
+
+
 def set_input_height(model_path: str, out_path: str, height_px: int) -> None:
     """Write ``model_path`` with input height ``height_px`` (a multiple of the stride 32 of the
     deepest level) to ``out_path`` (may be the same file; written under a temporary name
@@ -42,7 +47,7 @@ def set_input_height(model_path: str, out_path: str, height_px: int) -> None:
     dims = tensor.shape.dim
     pixels = tensor.elem_type == onnx.TensorProto.UINT8       # uint8 [batch, h, w, 3] (devtools.train.rawinput)
     h_axis, w_axis = (1, 2) if pixels else (2, 3)
-    imgsz = json.loads({e.key: e.value for e in model.metadata_props}.get("imgsz", "[]"))
+    imgsz = metadata_imgsz(model)
     width = 0
     if len(dims) == 4:          # the declared width, else (a file of any size) its imgsz's
         width = dims[w_axis].dim_value or (int(imgsz[1]) if len(imgsz) == 2 else 0)
@@ -87,10 +92,9 @@ def take_any_size(model_path: str, out_path: str) -> None:
     if len(dims) != 4:
         raise SystemExit(f"{model_path}: expected a float [batch, 3, height, width] or uint8 [batch, height, "
                          f"width, 3] input")
-    meta = {e.key: e.value for e in model.metadata_props}
     height, width = (dims[h_axis].dim_value, dims[w_axis].dim_value)
     if not (height and width):
-        height, width = json.loads(meta.get("imgsz", "[]")) or (0, 0)
+        height, width = metadata_imgsz(model) or (0, 0)
     if not (height and width):
         raise SystemExit(f"{model_path}: neither its input nor its imgsz metadata gives a size to check")
     for axis, name in zip((h_axis, w_axis), ANY_SIZE_DIMS):

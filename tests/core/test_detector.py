@@ -301,6 +301,8 @@ def test_the_horizon_as_one_band_finds_a_sign_across_the_seam_once_in_the_right_
     # the plugin's set: the band first, then the fore-and-aft and upward views
     views = ViewSet.default((640, 384), horizon_views=HORIZON_BAND)
     assert views[0].own_size and len(views) == 5
+    assert det.view_batches(views, 3) == [[0], [1, 2, 3], [4]]      # the band alone, the rest batched
+    assert det.view_batches(ViewSet.default((640, 384)), 8) == [list(range(8)), list(range(8, 12))]
 
 
 def test_a_model_of_any_input_size_runs_an_image_at_its_own_size_and_a_fixed_one_says_it_cannot(tmp_path):

@@ -28,6 +28,7 @@ from roadsigns.core.panorama import (
     BandView,
     PerspectiveView,
     ViewSet,
+    horizon_choice,
     read_panorama,
 )
 
@@ -185,6 +186,9 @@ def test_a_ring_of_six_horizon_views_is_turned_so_its_seams_fall_in_the_fore_and
 
 def test_the_horizon_as_one_band_replaces_the_ring_and_keeps_the_other_views():
     assert HORIZON_CHOICES == (8, 6, HORIZON_BAND)
+    assert [horizon_choice(t) for t in ("8", "6", "band")] == list(HORIZON_CHOICES)
+    with pytest.raises(ValueError, match="horizon views '7'"):
+        horizon_choice("7")
     band = ViewSet.default((640, 384), horizon_views=HORIZON_BAND)
     eight = ViewSet.default((640, 384))
     assert band[0] == BandView(*HORIZON_BAND_SIZE_PX, HORIZON_BAND_MARGIN_DEG)
