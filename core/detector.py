@@ -36,14 +36,14 @@ import json
 import os
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
-from typing import Callable, List, Optional, Sequence, Tuple
+from typing import Callable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from . import sheeting
 from .errors import SILENT, InputError, Progress
 from .panorama import ViewSet, boxes_from_seam
-from .zoomlook import ZoomRule, confirm
+from .zoomlook import ZoomRule, confirm, zoom_rules
 
 #: Output layouts this module decodes, as named in messages.
 LAYOUTS = {
@@ -685,7 +685,7 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
                     iou_threshold: float = 0.45, overlap_threshold: float = 0.5,
                     min_box_px: float = 0.0, candidate_confidence: Optional[float] = None,
                     progress: Progress = SILENT, fit_tall: bool = True,
-                    zoom: Optional[ZoomRule] = None,
+                    zoom: Union[ZoomRule, Sequence[ZoomRule], None] = None,
                     view_images: Optional[Sequence[np.ndarray]] = None) -> PanoramaDetections:
     """Run ``detector`` on each view of ``pano`` (BGR array) and merge the results.
     ``view_images``: the views already cut (``list(views.cut_all(pano))``), else cut here.
@@ -709,19 +709,21 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
     ``confidence`` are merged apart (across classes) and added as rows marked ``candidate``,
     except where they overlap a detection; the detections are the same as without it.
 
-    ``zoom`` (a :class:`.zoomlook.ZoomRule`, or None): the zoomed look. The small boxes
-    scoring from ``zoom.min_score`` under ``confidence`` that overlap no detection are cut
-    again at a higher pixel density and detected once more, all of a panorama's in one
-    network run (:func:`.zoomlook.zoomed_scores`); those scored ``confidence`` or more
-    there become detections with the zoomed score, class and box. The rest stay candidates
-    when from ``candidate_confidence``.
+    ``zoom`` (a :class:`.zoomlook.ZoomRule`, several in the order they are taken, or None):
+    the zoomed look. The small boxes scoring from ``zoom.min_score`` under ``confidence`` that
+    overlap no detection are cut again at a higher pixel density and detected once more, all
+    of a panorama's in one network run (:func:`.zoomlook.zoomed_scores`); those scored
+    ``confidence`` or more there become detections with the zoomed score, class and box. The
+    next rule (the edge-on look, :data:`.zoomlook.DEFAULT_EDGE_ON`, first by default) takes
+    the boxes still candidates. The rest stay candidates when from ``candidate_confidence``.
     """
     H, W = pano.shape[:2]
     if view_images is None:
         view_images = list(views.cut_all(pano))
     lowest = confidence if candidate_confidence is None else min(confidence, candidate_confidence)
-    if zoom is not None:
-        lowest = min(lowest, zoom.min_score)
+    looks = zoom_rules(zoom)
+    for rule in looks:
+        lowest = min(lowest, rule.min_score)
     batch = max(1, int(getattr(detector, "max_batch", 1)))
     all_boxes, all_scores, all_ids, all_views, all_complete, all_central = [], [], [], [], [], []
     all_upward: List[np.ndarray] = []
@@ -761,8 +763,8 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
                             for box in low.boxes()], bool).reshape(-1)
         low = low.subset(~on_sign)
         low.candidate[:] = True
-        if zoom is not None:
-            low = zoomed_look(detector, pano, low, confidence, zoom)
+        for rule in looks:
+            low = zoomed_look(detector, pano, low, confidence, rule)
         if candidate_confidence is None:
             low = low.subset(~low.candidate)
         else:
@@ -774,9 +776,12 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
 
 def zoomed_look(detector, pano: np.ndarray, low: PanoramaDetections, confidence: float,
                 zoom: ZoomRule) -> PanoramaDetections:
-    """``low`` (candidates of the panorama ``pano``) with those the zoomed look confirms
-    (:func:`.zoomlook.confirm`) made detections: :func:`detect_panorama`'s ``zoom``."""
-    rows, score, class_id, box = confirm(detector, pano, low.boxes(), low.score, confidence, zoom)
+    """``low`` (rows of the panorama ``pano``) with the candidates among them that the zoomed
+    look ``zoom`` confirms (:func:`.zoomlook.confirm`) made detections: one of
+    :func:`detect_panorama`'s ``zoom``."""
+    still = np.flatnonzero(low.candidate)
+    rows, score, class_id, box = confirm(detector, pano, low.boxes()[still], low.score[still], confidence, zoom)
+    rows = still[rows]
     names = list(detector.class_names)
     box = boxes_from_seam(box, pano.shape[1])   # the detections layer's form
     for k, s, c, b in zip(rows, score, class_id, box):
@@ -845,7 +850,7 @@ def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidenc
                  progress: Progress = SILENT,
                  on_panorama: Optional[Callable[[np.ndarray, PanoramaDetections], object]] = None,
                  prefetch: bool = True, candidate_confidence: Optional[float] = None,
-                 zoom: Optional[ZoomRule] = None) -> DriveDetections:
+                 zoom: Union[ZoomRule, Sequence[ZoomRule], None] = None) -> DriveDetections:
     """:func:`detect_panorama` on each panorama file; missing or corrupt files are skipped.
 
     ``on_panorama(pano, found)`` is called after each panorama is detected, while it is in
@@ -854,9 +859,9 @@ def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidenc
     replaces ``found``. ``candidate_confidence``: boxes from this score up are kept as
     candidates for ``on_panorama`` (:func:`detect_panorama`, :func:`.rescue.second_look`);
     those still marked candidate after it are dropped. ``zoom``: :func:`detect_panorama`'s
-    zoomed look (a :class:`.zoomlook.ZoomRule`, or None for none). Progress advances per view; cancel stops between
-    views. A skipped file adds ``(path, reason)`` to ``skipped`` and a warning to
-    ``progress``. ``prefetch``: decode the next panorama in a background thread while this
+    zoomed looks (a :class:`.zoomlook.ZoomRule`, several, or None for none). Progress
+    advances per view; cancel stops between views. A skipped file adds ``(path, reason)`` to
+    ``skipped`` and a warning to ``progress``. ``prefetch``: decode the next panorama in a background thread while this
     one is detected (OpenCV's decoder releases the GIL; two panoramas are in memory at once);
     results, order and warnings are the same either way. The views are cut in the same
     thread as the panorama is decoded (``cv2.remap`` releases the GIL too).

@@ -42,7 +42,11 @@ class ZoomRule:
     box zoomed (larger boxes have pixels enough); ``box_px``: that side in the tile (the
     detector's surest sizes are 35-70 px); ``tile_px``: the tile's side; ``min_iou``: the
     overlap of the zoomed box, mapped back, with the candidate's for it to count; ``max_fov_deg``
-    and ``min_fov_deg``: the tile's field of view is kept between them.
+    and ``min_fov_deg``: the tile's field of view is kept between them. ``stretch``: the tile
+    is widened so many times after it is cut (its pixels ``stretch`` times as many a degree
+    across as down; 1: a plain pinhole view); ``min_height_to_width``: only boxes at least so
+    many times as tall as wide are taken (0: any). :data:`DEFAULT_EDGE_ON` is the rule of
+    signs seen edge-on.
 
     Set before measuring, then checked (models/README.md, "The zoomed look"): on five
     held-out generated streets, of the candidates of 64 px or less, 15 of the 26 on counted
@@ -57,23 +61,51 @@ class ZoomRule:
     min_iou: float = 0.3
     min_fov_deg: float = 2.0
     max_fov_deg: float = 60.0
+    stretch: float = 1.0
+    min_height_to_width: float = 0.0
+
+    @property
+    def tile_width_px(self) -> int:
+        """The tile's width: ``tile_px`` widened ``stretch`` times."""
+        return int(round(self.tile_px * self.stretch))
 
 
 DEFAULT_ZOOM = ZoomRule()
 
+#: The edge-on look: a candidate box at least ``min_height_to_width`` times as tall as wide
+#: (a sign passed close by, seen more than 60-70 deg off its face's normal, whose face the
+#: view squeezes to a sliver) is cut again as a tile of which its height is ``box_px``,
+#: stretched across ``stretch`` times, so the face is about as wide as it is tall again; a
+#: sign the network scores under 0.2 as a sliver scores 0.5-0.9 stretched (models/README.md,
+#: "The edge-on look").
+DEFAULT_EDGE_ON = ZoomRule(max_box_px=192.0, stretch=2.0, min_height_to_width=2.0)
+
+#: Default of detectsigns' EDGE_ON_LOOK.
+DEFAULT_EDGE_ON_LOOK = True
+
 #: Default of detectsigns' ZOOMED_LOOK.
 DEFAULT_ZOOMED_LOOK = True
+
+def zoom_rules(zoom) -> Tuple[ZoomRule, ...]:
+    """The zoomed looks ``zoom`` names, in the order they are taken: None for none, a
+    :class:`ZoomRule` or a sequence of them."""
+    if zoom is None:
+        return ()
+    return (zoom,) if isinstance(zoom, ZoomRule) else tuple(zoom)
+
 
 #: A tile: its image and the map of boxes ``(n, 4)`` in its pixels to boxes in the source's.
 Tile = Tuple[np.ndarray, Callable[[np.ndarray], np.ndarray]]
 
 
 def zoomable(boxes: np.ndarray, scores: np.ndarray, rule: ZoomRule = DEFAULT_ZOOM) -> np.ndarray:
-    """Mask of the boxes the zoomed look takes: scored from ``rule.min_score`` and at most
-    ``rule.max_box_px`` on their longer side."""
+    """Mask of the boxes the zoomed look takes: scored from ``rule.min_score``, at most
+    ``rule.max_box_px`` on their longer side and at least ``rule.min_height_to_width`` times as
+    tall as wide."""
     b = np.asarray(boxes, float).reshape(-1, 4)
-    longer = np.maximum(b[:, 2] - b[:, 0], b[:, 3] - b[:, 1])
-    return (np.asarray(scores, float) >= rule.min_score) & (longer <= rule.max_box_px)
+    width, height = b[:, 2] - b[:, 0], b[:, 3] - b[:, 1]
+    return ((np.asarray(scores, float) >= rule.min_score) & (np.maximum(width, height) <= rule.max_box_px)
+            & (height >= rule.min_height_to_width * width))
 
 
 def tile_view(box: np.ndarray, pano_width_px: int, pano_height_px: int, rule: ZoomRule = DEFAULT_ZOOM
@@ -90,29 +122,39 @@ def tile_view(box: np.ndarray, pano_width_px: int, pano_height_px: int, rule: Zo
 
 
 def panorama_tiles(pano: np.ndarray, boxes: np.ndarray, rule: ZoomRule = DEFAULT_ZOOM) -> List[Tile]:
-    """A tile per box of the panorama ``pano`` (:func:`tile_view`), with its map back to
-    panorama pixels in the detections' form. The maps are made for each tile (not cached as
-    the fixed views' are: every tile is another view)."""
+    """A tile per box of the panorama ``pano`` (:func:`tile_view`, widened ``rule.stretch``
+    times), with its map back to panorama pixels in the detections' form. The maps are made
+    for each tile (not cached as the fixed views' are: every tile is another view)."""
+    import cv2
+
     H, W = pano.shape[:2]
     tiles: List[Tile] = []
     for box in np.asarray(boxes, float).reshape(-1, 4):
         view = tile_view(box, W, H, rule)
-        tiles.append((view.cut(pano, cached=False), partial(_view_to_pano, view, W, H)))
+        image = view.cut(pano, cached=False)
+        if rule.tile_width_px != view.width_px:
+            image = cv2.resize(image, (rule.tile_width_px, rule.tile_px), interpolation=cv2.INTER_LINEAR)
+        tiles.append((image, partial(_view_to_pano, view, W, H, rule.tile_width_px / view.width_px)))
     return tiles
 
 
-def _view_to_pano(view: PerspectiveView, pano_width_px: int, pano_height_px: int, boxes: np.ndarray) -> np.ndarray:
-    return view.boxes_to_pano(boxes, pano_width_px, pano_height_px)
+def _view_to_pano(view: PerspectiveView, pano_width_px: int, pano_height_px: int, stretch: float,
+                  boxes: np.ndarray) -> np.ndarray:
+    view_boxes = np.asarray(boxes, float).reshape(-1, 4) / [stretch, 1.0, stretch, 1.0]
+    return view.boxes_to_pano(view_boxes, pano_width_px, pano_height_px)
 
 
-def _tile_to_image(x0: float, y0: float, image_px_per_tile_px: float, boxes: np.ndarray) -> np.ndarray:
-    return np.asarray(boxes, float).reshape(-1, 4) * image_px_per_tile_px + [x0, y0, x0, y0]
+def _tile_to_image(x0: float, y0: float, image_px_per_tile_px: float, stretch: float, boxes: np.ndarray
+                   ) -> np.ndarray:
+    scale = image_px_per_tile_px * np.array([1.0 / stretch, 1.0, 1.0 / stretch, 1.0])
+    return np.asarray(boxes, float).reshape(-1, 4) * scale + [x0, y0, x0, y0]
 
 
 def image_tiles(image: np.ndarray, boxes: np.ndarray, rule: ZoomRule = DEFAULT_ZOOM) -> List[Tile]:
     """A tile per box of a photograph (pinhole image): the square around the box's centre
     whose side makes the box's longer side ``rule.box_px``, scaled to ``rule.tile_px``
-    (grey beyond the image's edge), with its map back to image pixels."""
+    (widened ``rule.stretch`` times; grey beyond the image's edge), with its map back to image
+    pixels."""
     import cv2
 
     tiles: List[Tile] = []
@@ -120,26 +162,28 @@ def image_tiles(image: np.ndarray, boxes: np.ndarray, rule: ZoomRule = DEFAULT_Z
         side = max(box[2] - box[0], box[3] - box[1], 1.0) * rule.tile_px / rule.box_px
         scale = rule.tile_px / side
         x0, y0 = 0.5 * (box[0] + box[2]) - 0.5 * side, 0.5 * (box[1] + box[3]) - 0.5 * side
-        to_tile = np.array([[scale, 0.0, -x0 * scale], [0.0, scale, -y0 * scale]])
-        tile = cv2.warpAffine(image, to_tile, (rule.tile_px, rule.tile_px), flags=cv2.INTER_LINEAR,
+        to_tile = np.array([[scale * rule.stretch, 0.0, -x0 * scale * rule.stretch], [0.0, scale, -y0 * scale]])
+        tile = cv2.warpAffine(image, to_tile, (rule.tile_width_px, rule.tile_px), flags=cv2.INTER_LINEAR,
                               borderMode=cv2.BORDER_CONSTANT, borderValue=(MOSAIC_FILL,) * 3)
-        tiles.append((tile, partial(_tile_to_image, x0, y0, side / rule.tile_px)))
+        tiles.append((tile, partial(_tile_to_image, x0, y0, side / rule.tile_px, rule.stretch)))
     return tiles
 
 
-def mosaics(tiles: Sequence[np.ndarray], input_w: int, input_h: int, tile_px: int
+def mosaics(tiles: Sequence[np.ndarray], input_w: int, input_h: int, tile_px: int, tile_width_px: int = 0
             ) -> List[Tuple[np.ndarray, List[int]]]:
-    """The tiles laid out row by row in detector inputs of ``input_w`` x ``input_h``: a list
-    of (image, the tile indices in its slots, left to right and top to bottom). An input
-    smaller than a tile takes one tile, the image a tile's size (the detector letterboxes it)."""
-    per_row, rows = max(1, input_w // tile_px), max(1, input_h // tile_px)
+    """The tiles (``tile_px`` high, ``tile_width_px`` wide; 0: square) laid out row by row in
+    detector inputs of ``input_w`` x ``input_h``: a list of (image, the tile indices in its
+    slots, left to right and top to bottom). An input smaller than a tile takes one tile, the
+    image a tile's size (the detector letterboxes it)."""
+    tile_w = tile_width_px or tile_px
+    per_row, rows = max(1, input_w // tile_w), max(1, input_h // tile_px)
     out = []
     for first in range(0, len(tiles), per_row * rows):
-        image = np.full((max(input_h, tile_px), max(input_w, tile_px), 3), MOSAIC_FILL, np.uint8)
+        image = np.full((max(input_h, tile_px), max(input_w, tile_w), 3), MOSAIC_FILL, np.uint8)
         slots = list(range(first, min(first + per_row * rows, len(tiles))))
         for slot, k in enumerate(slots):
             i, j = divmod(slot, per_row)
-            image[i * tile_px:(i + 1) * tile_px, j * tile_px:(j + 1) * tile_px] = tiles[k]
+            image[i * tile_px:(i + 1) * tile_px, j * tile_w:(j + 1) * tile_w] = tiles[k]
         out.append((image, slots))
     return out
 
@@ -169,18 +213,19 @@ def zoomed_scores(detector, tiles: Sequence[Tile], boxes: np.ndarray, rule: Zoom
     if not len(boxes):
         return score, class_id, best_box
     input_w, input_h = detector.input_size
-    per_row = max(1, input_w // rule.tile_px)
-    layout = mosaics([image for image, _ in tiles], input_w, input_h, rule.tile_px)
+    tile_w, tile_h = rule.tile_width_px, rule.tile_px
+    per_row = max(1, input_w // tile_w)
+    layout = mosaics([image for image, _ in tiles], input_w, input_h, tile_h, tile_w)
     found = detector.detect_many([image for image, _ in layout], confidence)
     for (_, slots), det in zip(layout, found):
         for box_xyxy, s, c in zip(det.boxes_xyxy, det.scores, det.class_ids):
-            j = int(0.5 * (box_xyxy[0] + box_xyxy[2]) // rule.tile_px)
-            i = int(0.5 * (box_xyxy[1] + box_xyxy[3]) // rule.tile_px)
+            j = int(0.5 * (box_xyxy[0] + box_xyxy[2]) // tile_w)
+            i = int(0.5 * (box_xyxy[1] + box_xyxy[3]) // tile_h)
             slot = i * per_row + j
             if j >= per_row or slot >= len(slots) or s <= score[slots[slot]]:
                 continue
             k = slots[slot]
-            local = np.clip(box_xyxy - [j * rule.tile_px, i * rule.tile_px] * 2, 0.0, rule.tile_px)
+            local = np.clip(box_xyxy - [j * tile_w, i * tile_h] * 2, 0.0, [tile_w, tile_h] * 2)
             mapped = tiles[k][1](local[None])[0]
             if wrap_px:   # to the candidate's side of the seam
                 shift = wrap_px * np.round((boxes[k, 0] - mapped[0]) / wrap_px)

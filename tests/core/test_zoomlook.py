@@ -135,3 +135,83 @@ def test_a_zoomed_box_elsewhere_in_the_tile_does_not_count():
     score, class_id, best = Z.zoomed_scores(PixelHungryDetector(), Z.image_tiles(image, nothing), nothing)
     assert score[0] == 0.0 and class_id[0] == -1
     np.testing.assert_array_equal(best, nothing)
+
+
+# --- the edge-on look: tiles stretched across -------------------------------------------------
+
+class SquareHungryDetector(PixelHungryDetector):
+    """Boxes blue blobs, scored by their shape as a real detector scores signs seen edge-on:
+    0.9 when at least 0.4 times as wide as tall, 0.3 for a narrower sliver. 'mandatory'."""
+
+    def detect(self, image, confidence=0.25, iou_threshold=0.45):
+        mask = np.all(np.abs(image.astype(int) - BLUE) < 25, axis=2).astype(np.uint8)
+        n, _, stats, _ = cv2.connectedComponentsWithStats(mask)
+        boxes, scores = [], []
+        for x, y, w, h, area in stats[1:]:
+            score = 0.9 if w >= 0.4 * h else 0.3
+            if area >= 4 and score >= confidence:
+                boxes.append([x, y, x + w, y + h])
+                scores.append(score)
+        return DT.ImageDetections(np.array(boxes, float).reshape(-1, 4), np.array(scores, float),
+                                  np.full(len(boxes), CLASSES.index("mandatory"), np.int64))
+
+
+def _sliver_pano(u0=700, v0=244, width_px=6, height_px=24):
+    """A grey panorama with a blue sliver ``width_px`` x ``height_px`` near the horizon; its box."""
+    pano = np.full((WIDTH // 2, WIDTH, 3), 90, np.uint8)
+    pano[v0:v0 + height_px, u0:u0 + width_px] = BLUE
+    return pano, np.array([u0, v0, u0 + width_px, v0 + height_px], float)
+
+
+def test_a_stretched_tile_widens_the_sliver_and_maps_back():
+    pano, box = _sliver_pano()
+    rule = Z.DEFAULT_EDGE_ON
+    (tile, to_pano), = Z.panorama_tiles(pano, box[None], rule)
+    assert tile.shape == (rule.tile_px, rule.tile_width_px, 3) and rule.tile_width_px == 2 * rule.tile_px
+    ys, xs = np.nonzero(tile[..., 0] > 160)
+    height, width = ys.max() + 1 - ys.min(), xs.max() + 1 - xs.min()
+    assert abs(height - rule.box_px) < rule.box_px / 24 + 1             # the box's height at box_px
+    assert abs(width - rule.stretch * rule.box_px * 6 / 24) < 2 * rule.stretch   # widened twice
+    back = to_pano(np.array([[xs.min(), ys.min(), xs.max() + 1, ys.max() + 1]], float))[0]
+    np.testing.assert_allclose(back, box, atol=1.0)
+    # a photograph's tile the same way
+    image = np.full((200, 300, 3), 90, np.uint8)
+    image[100:124, 200:206] = BLUE
+    photo_box = np.array([200.0, 100.0, 206.0, 124.0])
+    (tile, to_image), = Z.image_tiles(image, photo_box[None], rule)
+    assert tile.shape == (rule.tile_px, rule.tile_width_px, 3)
+    ys, xs = np.nonzero(np.all(np.abs(tile.astype(int) - BLUE) < 25, axis=2))
+    assert abs((xs.max() + 1 - xs.min()) - rule.stretch * rule.box_px * 6 / 24) <= 2 * rule.stretch
+    np.testing.assert_allclose(to_image(np.array([[xs.min(), ys.min(), xs.max() + 1, ys.max() + 1]], float))[0],
+                               photo_box, atol=1.0)
+
+
+def test_wide_tiles_are_laid_out_by_their_own_width():
+    tiles = [np.full((32, 64, 3), k, np.uint8) for k in range(1, 5)]
+    out = Z.mosaics(tiles, 160, 64, 32, 64)
+    assert [slots for _, slots in out] == [[0, 1, 2, 3]]        # two a row (160 // 64), two rows
+    image = out[0][0]
+    assert image[10, 70, 0] == 2 and image[40, 10, 0] == 3 and image[10, 150, 0] == Z.MOSAIC_FILL
+
+
+def test_only_tall_boxes_get_the_edge_on_look():
+    boxes = np.array([[0, 0, 10, 30], [0, 0, 20, 30], [0, 0, 30, 150], [0, 0, 30, 250], [0, 0, 10, 30]], float)
+    np.testing.assert_array_equal(Z.zoomable(boxes, np.array([0.3, 0.3, 0.3, 0.3, 0.1]), Z.DEFAULT_EDGE_ON),
+                                  [True, False, True, False, False])
+    assert Z.zoom_rules(None) == () and Z.zoom_rules(Z.DEFAULT_ZOOM) == (Z.DEFAULT_ZOOM,)
+    assert Z.zoom_rules([Z.DEFAULT_EDGE_ON, Z.DEFAULT_ZOOM]) == (Z.DEFAULT_EDGE_ON, Z.DEFAULT_ZOOM)
+
+
+def test_a_sign_seen_edge_on_is_kept_once_stretched():
+    pano, box = _sliver_pano()
+    looks = (Z.DEFAULT_EDGE_ON, Z.DEFAULT_ZOOM)
+    plain = DT.detect_panorama(SquareHungryDetector(), pano, _views(), 0.5, candidate_confidence=0.1,
+                               zoom=Z.DEFAULT_ZOOM, fit_tall=False)
+    assert len(plain) == 1 and plain.candidate.all()      # zoomed, still a sliver
+    detector = SquareHungryDetector()
+    found = DT.detect_panorama(detector, pano, _views(), 0.5, candidate_confidence=0.1, zoom=looks, fit_tall=False)
+    assert len(found) == 1 and not found.candidate.any()
+    assert found.score[0] == pytest.approx(0.9) and found.class_name == ["mandatory"]
+    np.testing.assert_allclose(found.boxes()[0], box, atol=1.5)
+    # the edge-on look took it: the small boxes' zoomed look had nothing left, so one input more
+    assert len(detector.images) == len(_views()) + 1
