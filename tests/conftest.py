@@ -81,8 +81,7 @@ def scene_tiny(tmp_path_factory):
     """The generated tiny scene with panoramas (2048 x 1024) and its scene.json truth."""
     import json
 
-    from devtools.scenegen import generate_scene
-    folder = str(tmp_path_factory.mktemp("scene_tiny"))
-    generate_scene("tiny", seed=3, out_dir=folder, masks=False)
+    from helpers.scenes import render_scene
+    folder = render_scene(tmp_path_factory.mktemp("scene_tiny"), "tiny", 3, "--no-masks")
     with open(os.path.join(folder, "scene.json")) as f:
         return folder, json.load(f)

@@ -23,6 +23,7 @@ REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 if REPO not in sys.path:
     sys.path.insert(0, REPO)
 from helpers.contract import NED_TO_ENU, Rx, Ry, Rz  # noqa: E402
+from helpers.scenes import render_scene  # noqa: E402
 
 from devtools.scenegen import generate_scene  # noqa: E402
 
@@ -81,9 +82,8 @@ def column(rows, key):
 # --- scenes -------------------------------------------------------------------------------
 @pytest.fixture(scope="module")
 def projected(tmp_path_factory):
-    out = str(tmp_path_factory.mktemp("scene_projected"))
-    generate_scene("tiny", 3, out, crs="projected", panoramas=True, pano_width=PANO_WIDTH)
-    return out
+    return render_scene(tmp_path_factory.mktemp("scene_projected"), "tiny", 3, "--crs", "projected",
+                        "--pano-width", PANO_WIDTH)
 
 
 @pytest.fixture(scope="module")

@@ -29,3 +29,21 @@ def ground_and_oracle(qgis_process, scene_dir, stations, work):
     detections = str(work / "detections.gpkg")
     assert oracle_detections(scene_dir, stations, detections) > 10
     return ground, detections
+
+
+def render_scene(out_dir, preset="tiny", seed=1, *options, jobs=2):
+    """``devtools.scenegen`` run as its own command (options as on its command line:
+    ``"--no-lidar"``, ``"--pano-width", "1024"``, ...), its panoramas rendered by ``jobs``
+    processes forked from that command, not from the tests' process (which holds detector
+    sessions and their threads): the same files as :func:`devtools.scenegen.generate_scene`
+    writes, in about half the time."""
+    import subprocess
+    import sys
+
+    from devtools import REPO_ROOT
+
+    run = subprocess.run([sys.executable, "-m", "devtools.scenegen", "--preset", preset, "--seed", str(seed),
+                          "--jobs", str(jobs), "--out", str(out_dir), *map(str, options)],
+                         cwd=REPO_ROOT, capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    return str(out_dir)

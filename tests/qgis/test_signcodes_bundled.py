@@ -13,7 +13,7 @@ the views. Without the bundled classifier the test is skipped, and fails under C
 import os
 
 import pytest
-from helpers.scenes import scene_inputs
+from helpers.scenes import render_scene, scene_inputs
 from osgeo import ogr
 
 from devtools import REPO_ROOT
@@ -51,8 +51,6 @@ def run(qgis_process, tmp_path_factory):
     every default; each seed run once."""
     import json
 
-    from devtools.scenegen import generate_scene
-
     require_bundled()
     done = {}
 
@@ -60,7 +58,7 @@ def run(qgis_process, tmp_path_factory):
         if seed not in done:
             work = tmp_path_factory.mktemp("codes_bundled_{}".format(seed))
             scene_dir = str(work / "scene")
-            generate_scene("tiny", seed=seed, out_dir=scene_dir, lidar=False, masks=False)
+            render_scene(scene_dir, "tiny", seed, "--no-lidar", "--no-masks")
             with open(os.path.join(scene_dir, "scene.json")) as f:
                 scene = json.load(f)
             stations = str(work / "stations.gpkg")
