@@ -573,12 +573,12 @@ def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, cla
     from devtools.train.codes import crop_square
 
     sure, cands = photo_candidates(boxes, scores, confidence)
-    for rule in zoomlook_mod.zoom_rules(zoom):
+    for zoom_rule in zoomlook_mod.zoom_rules(zoom):
         if not len(cands):
             break
         boxes, scores, ids = np.array(boxes, float), np.array(scores, float), np.array(ids)
         rows, zoomed, zoomed_id, zoomed_box = zoomlook_mod.confirm(detector, image_bgr, boxes[cands], scores[cands],
-                                                                   confidence, rule, panorama=False)
+                                                                   confidence, zoom_rule, panorama=False)
         kept = cands[rows]
         boxes[kept], scores[kept], ids[kept] = zoomed_box, zoomed, zoomed_id
         sure[kept] = True
