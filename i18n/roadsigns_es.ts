@@ -107,244 +107,259 @@
 <context>
     <name>DetectSigns</name>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="57" />
+        <location filename="../algorithms/detectsigns.py" line="58" />
         <source>Detect signs in panoramas</source>
         <translation>Detectar señales en panoramas</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="60" />
+        <location filename="../algorithms/detectsigns.py" line="61" />
         <source>Runs an ONNX sign detector on each panorama; one ray per detected sign.</source>
         <translation>Ejecuta un detector de señales ONNX en cada panorama; un rayo por señal detectada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="231" />
+        <location filename="../algorithms/detectsigns.py" line="251" />
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="87" />
+        <location filename="../algorithms/detectsigns.py" line="88" />
         <source>The output of Import trajectory: one point per panorama with its pose and path.</source>
         <translation>La salida de «Importar trayectoria y panoramas»: un punto por panorama con su pose y su ruta.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="90" />
+        <location filename="../algorithms/detectsigns.py" line="91" />
         <source>ONNX model (empty: the bundled model)</source>
         <translation>Modelo ONNX (vacío: el modelo incluido)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="90" />
+        <location filename="../algorithms/detectsigns.py" line="91" />
         <source>A YOLO-family ONNX detector. Empty uses the model bundled with the plugin.</source>
         <translation>Un detector ONNX de la familia YOLO. Vacío usa el modelo incluido con el complemento.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="90" />
+        <location filename="../algorithms/detectsigns.py" line="91" />
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>Modelos ONNX (*.onnx);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="94" />
+        <location filename="../algorithms/detectsigns.py" line="95" />
         <source>Minimum confidence</source>
         <translation>Confianza mínima</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="94" />
+        <location filename="../algorithms/detectsigns.py" line="95" />
         <source>Detections scoring below this (0-1) are dropped.</source>
         <translation>Se descartan las detecciones con una puntuación inferior a este valor (0-1).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="113" />
+        <location filename="../algorithms/detectsigns.py" line="114" />
         <source>Smallest sign kept (panorama pixels)</source>
         <translation>Señal más pequeña conservada (píxeles de panorama)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="113" />
+        <location filename="../algorithms/detectsigns.py" line="114" />
         <source>Detections whose box is shorter than this on its shorter side are dropped: signs that small are boxed a few pixels off and their class is unsure, and the drive sees them again, larger, from the next stations. 0 keeps every detection.</source>
         <translation>Se descartan las detecciones cuyo recuadro tiene el lado menor por debajo de este valor: en señales tan pequeñas el recuadro se desvía unos píxeles y la clase es dudosa, y el recorrido las vuelve a ver, más grandes, desde las estaciones siguientes. 0 conserva todas las detecciones.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="119" />
+        <location filename="../algorithms/detectsigns.py" line="120" />
         <source>Class names file (optional)</source>
         <translation>Archivo de nombres de clase (opcional)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="119" />
+        <location filename="../algorithms/detectsigns.py" line="120" />
         <source>One class name per line, in the model's class order; needed when the model has no names in its metadata and no labels file beside it.</source>
         <translation>Un nombre de clase por línea, en el orden de clases del modelo; necesario cuando el modelo no tiene nombres en sus metadatos ni un archivo de etiquetas a su lado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="119" />
+        <location filename="../algorithms/detectsigns.py" line="120" />
         <source>Text files (*.txt);;All files (*.*)</source>
         <translation>Archivos de texto (*.txt);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="124" />
+        <location filename="../algorithms/detectsigns.py" line="125" />
         <source>Ray length (m)</source>
         <translation>Longitud del rayo (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="124" />
+        <location filename="../algorithms/detectsigns.py" line="125" />
         <source>Length of each detection ray from the panorama centre, in metres.</source>
         <translation>Longitud de cada rayo de detección desde el centro del panorama, en metros.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="128" />
+        <location filename="../algorithms/detectsigns.py" line="129" />
         <source>Also look upwards (overhead and gantry signs)</source>
         <translation>Mirar también hacia arriba (señales elevadas y de pórtico)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="199" />
+        <location filename="../algorithms/detectsigns.py" line="219" />
         <source>CPU threads (0: all)</source>
         <translation>Hilos de CPU (0: todos)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="199" />
+        <location filename="../algorithms/detectsigns.py" line="219" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>Hilos que onnxruntime puede usar en la CPU; 0 le permite usar todos los núcleos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="205" />
+        <location filename="../algorithms/detectsigns.py" line="225" />
         <source>Detections</source>
         <translation>Detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="209" />
+        <location filename="../algorithms/detectsigns.py" line="229" />
         <source>Number of detections</source>
         <translation>Número de detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="210" />
+        <location filename="../algorithms/detectsigns.py" line="230" />
         <source>Panoramas skipped</source>
         <translation>Panoramas omitidos</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="224" />
+        <location filename="../algorithms/detectsigns.py" line="244" />
         <source>ONNX model not found: {}</source>
         <translation>No se encontró el modelo ONNX: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="243" />
+        <location filename="../algorithms/detectsigns.py" line="263" />
         <source>{} panoramas, {} views each</source>
         <translation>{} panoramas, {} vistas cada uno</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="272" />
+        <location filename="../algorithms/detectsigns.py" line="299" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>Se omitieron {} panorama(s) que no se pudieron leer.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="288" />
+        <location filename="../algorithms/detectsigns.py" line="315" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} detecciones en {} panoramas ({} omitidos).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="280" />
+        <location filename="../algorithms/detectsigns.py" line="307" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>No se detectó ninguna señal: la capa de detecciones está vacía.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="205" />
+        <location filename="../algorithms/detectsigns.py" line="225" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>Capa LineStringZ, un rayo por detección, con det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views y los campos de pose de la estación.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="186" />
+        <location filename="../algorithms/detectsigns.py" line="206" />
         <source>Skip stations closer than (m)</source>
         <translation>Omitir estaciones a menos de (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="249" />
+        <location filename="../algorithms/detectsigns.py" line="269" />
         <source>Detecting in {} of the {} panoramas: stations closer than {} m to the last one detected in are skipped.</source>
         <translation>Detectando en {} de los {} panoramas: se omiten las estaciones a menos de {} m de la última en la que se detectó.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="203" />
+        <location filename="../algorithms/detectsigns.py" line="223" />
         <source>in a crop around each detection, voted later across the views of each sign by Refine and merge signs</source>
         <translation>en un recorte alrededor de cada detección; «Refinar y fusionar señales» vota después entre las vistas de cada señal</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="186" />
+        <location filename="../algorithms/detectsigns.py" line="206" />
         <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so skipping saves detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. The default, 2.5 m, keeps a detected panorama at least every 5 m on any drive (every second one of a drive with a panorama every 1.25 m) and skips nothing on drives with panoramas 2.5 m or more apart. 0 detects in every panorama.</source>
         <translation>Detecta solo en las panorámicas cuya estación está al menos a esta distancia de la última estación en la que se detectó; las intermedias se omiten (no se leen, sin detecciones). Una señal permanece visible desde muchas estaciones, así que omitir ahorra tiempo de detección en proporción, pero cada señal se ve entonces desde menos estaciones: menos rayos para situarla, y una señal visible solo desde pocas estaciones (pequeña, u oculta tras árboles o vehículos) puede perderse. Medido en dos calles de prueba reservadas con una panorámica cada 5 m: todas las panorámicas encontraron las 46 y 45 señales; 10 m (una de cada dos) perdió 2 en cada una, 15 m perdió 11 de 46. El valor por defecto, 2,5 m, mantiene una panorámica detectada al menos cada 5 m en cualquier recorrido (una de cada dos en un recorrido con una panorámica cada 1,25 m) y no omite nada en recorridos con panorámicas a 2,5 m o más. 0 detecta en todas las panorámicas.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="138" />
+        <location filename="../algorithms/detectsigns.py" line="139" />
         <source>Look ahead and behind more closely (small, far signs)</source>
         <translation>Mirar hacia delante y hacia atrás con más detalle (señales pequeñas y lejanas)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="97" />
+        <location filename="../algorithms/detectsigns.py" line="98" />
         <source>Second look from confidence</source>
         <translation>Segunda mirada desde la confianza</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="258" />
+        <location filename="../algorithms/detectsigns.py" line="278" />
         <source>Second look: boxes scored from {} to {} are kept where the sign-code classifier reads a code.</source>
         <translation>Segunda mirada: los recuadros puntuados de {} a {} se conservan donde el clasificador de códigos de señal lee un código.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="138" />
+        <location filename="../algorithms/detectsigns.py" line="139" />
         <source>Adds two views of 53° straight ahead and behind, with 1.5 times the pixels per degree of the horizon views (at a 4096 px panorama's own density), for signs far along the road. Real signs need the pixels: on real street photographs at the horizon views' density the detector found 0.82 of the signs (GTSDB 500-599) and 0.54 of 376 held-out real signs pasted as distant ones; with these views 0.93 and 0.69, precision within 0.01. On held-out generated panoramas: 0.906 of the signs per panorama instead of 0.879. They cost 1.24 times the detection time. On by default; turn it off only for speed on drives with panoramas close together (every sign is then seen from many stations).</source>
         <translation>Añade dos vistas de 53° justo delante y detrás, con 1,5 veces los píxeles por grado de las vistas del horizonte (la densidad propia de un panorama de 4096 px), para las señales lejanas a lo largo de la vía. Las señales reales necesitan esos píxeles: en fotografías reales de calles, a la densidad de las vistas del horizonte, el detector encontró 0,82 de las señales (GTSDB 500-599) y 0,54 de 376 señales reales reservadas pegadas como señales lejanas; con estas vistas, 0,93 y 0,69, con una precisión que varía menos de 0,01. En panoramas generados reservados: 0,906 de las señales por panorama en lugar de 0,879. Cuestan 1,24 veces el tiempo de detección. Activado por defecto; desactívelo solo por velocidad en recorridos con panoramas muy próximos (cada señal se ve entonces desde muchas estaciones).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="292" />
+        <location filename="../algorithms/detectsigns.py" line="319" />
         <source>Sign codes read in {} of the {} detections (the others: other, or a sign whose code the table lacks).</source>
         <translation>Códigos de señal leídos en {} de las {} detecciones (las demás: other, o una señal cuyo código no está en la tabla).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="128" />
+        <location filename="../algorithms/detectsigns.py" line="129" />
         <source>Adds two views tilted 35° up, over the road ahead and behind, for gantry and overhead signs close to the vehicle, above the horizon views. On by default: on five held-out test streets they raised the gantry panels found in a single panorama from 86 % to 91 % for 1.2 times the detection time. A box these views cut at their left or right edge is dropped unless another view finds the same sign: signs beside the road are seen whole in the horizon views. With the second look, a box these views find alone and the sign-code classifier reads as no sign ('other': a facade's dark window, say) is dropped too. Switch it off to save that time where a drive has no overhead signs.</source>
         <translation>Añade dos vistas inclinadas 35° hacia arriba, sobre la calzada hacia delante y hacia atrás, para las señales de pórtico y elevadas cercanas al vehículo, por encima de las vistas horizontales. Activado por defecto: en cinco calles de prueba no usadas en el ajuste elevaron los paneles de pórtico encontrados en un solo panorama del 86 % al 91 %, con 1,2 veces el tiempo de detección. Un recuadro que estas vistas cortan en su borde izquierdo o derecho se descarta salvo que otra vista encuentre la misma señal: las señales al borde de la calzada se ven enteras en las vistas horizontales. Con la segunda mirada, también se descarta un recuadro que solo estas vistas encuentran y en el que el clasificador de códigos de señal no lee ninguna señal («other»: la ventana oscura de una fachada, por ejemplo). Desactívelo para ahorrar ese tiempo en recorridos sin señales elevadas.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="63" />
+        <location filename="../algorithms/detectsigns.py" line="64" />
         <source>Cuts each station's equirectangular panorama into overlapping perspective views (a horizon ring, two closer views ahead and behind, and two views upwards for overhead signs), runs the ONNX detector on each view, maps the boxes back to panorama pixels and merges the same sign found in two views. A box much taller than wide (a sign passed close by, seen nearly edge-on, which the detector boxes about twice as wide as its face) is narrowed to the columns that show sign colours (saturated red, blue or yellow).&lt;br&gt;&lt;br&gt;The &lt;b&gt;model&lt;/b&gt; is the bundled one when left empty, or your own ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model with NMS built in ([1, N, 6]). Class names come from the model's metadata (Ultralytics &lt;i&gt;names&lt;/i&gt;) or a labels file (one name per line).&lt;br&gt;&lt;br&gt;Output: one line per detection from the panorama centre along the ray through the box centre, &lt;i&gt;Ray length&lt;/i&gt; long, with the box (u0, v0, u1, v1 in panorama pixels; across the ±180° seam u1 exceeds the width) and the station's pose. A panorama that cannot be read is skipped with a warning and counted.&lt;br&gt;&lt;br&gt;&lt;b&gt;Sign codes&lt;/b&gt;: a second, small ONNX model (the bundled sign-code classifier, or your own) reads what each detected sign says, from a rectified crop of the panorama around its box at the panorama's own resolution: &lt;i&gt;code&lt;/i&gt; (such as DE:274[50], speed limit 50, from the codes table; &lt;i&gt;other&lt;/i&gt; when it knows none) and &lt;i&gt;code_score&lt;/i&gt; (its probability). Refine signs votes them across the views of each sign. The classifier's format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</source>
         <translation>Corta el panorama equirrectangular de cada estación en vistas en perspectiva superpuestas (un anillo horizontal, dos vistas más cercanas hacia delante y hacia atrás, y dos vistas hacia arriba para las señales elevadas), ejecuta el detector ONNX en cada vista, devuelve los recuadros a píxeles del panorama y fusiona la misma señal encontrada en dos vistas. Un recuadro mucho más alto que ancho (una señal junto a la que se pasa de cerca, vista casi de canto, que el detector encuadra con el doble de ancho que su cara) se estrecha a las columnas que muestran colores de señal (rojo, azul o amarillo saturados).&lt;br&gt;&lt;br&gt;El &lt;b&gt;modelo&lt;/b&gt; es el incluido si se deja vacío, o su propia exportación ONNX: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) o un modelo con NMS integrado ([1, N, 6]). Los nombres de clase provienen de los metadatos del modelo (&lt;i&gt;names&lt;/i&gt; de Ultralytics) o de un archivo de etiquetas (un nombre por línea).&lt;br&gt;&lt;br&gt;Salida: una línea por detección desde el centro del panorama a lo largo del rayo que pasa por el centro del recuadro, de &lt;i&gt;Longitud del rayo&lt;/i&gt; de largo, con el recuadro (u0, v0, u1, v1 en píxeles del panorama; a través de la costura de ±180°, u1 supera el ancho) y la pose de la estación. Un panorama que no se puede leer se omite con una advertencia y se contabiliza.&lt;br&gt;&lt;br&gt;&lt;b&gt;Códigos de señal&lt;/b&gt;: un segundo modelo ONNX, pequeño (el clasificador de códigos de señal incluido, o el suyo propio), lee lo que dice cada señal detectada a partir de un recorte rectificado del panorama alrededor de su recuadro, con la resolución propia del panorama: &lt;i&gt;code&lt;/i&gt; (como DE:274[50], límite de velocidad 50, de la tabla de códigos; &lt;i&gt;other&lt;/i&gt; cuando no conoce ninguno) y &lt;i&gt;code_score&lt;/i&gt; (su probabilidad). «Refinar y fusionar señales» los somete a votación entre las vistas de cada señal. El formato del clasificador está en models/README.md (sección &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="97" />
+        <location filename="../algorithms/detectsigns.py" line="98" />
         <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a class of signs in it with a probability of at least {score} (the probabilities of the codes of that class added up: a speed limit whose digits are unsure is still a prohibitory sign), its box is at least {px} px on its shorter side (under {small_px} px only from a detector score of {small_score}) and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes that class and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.958 of the signs at a precision of 0.971, against 0.803 at 0.966 without it, for under 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
         <translation>Los recuadros que el detector puntúa desde este valor hasta la confianza mínima reciben una segunda mirada: se conserva uno cuando el clasificador de códigos de señal lee en él una clase de señales con una probabilidad de al menos {score} (las probabilidades de los códigos de esa clase sumadas: un límite de velocidad cuyas cifras no son seguras sigue siendo una señal de prohibición), su recuadro mide al menos {px} px en su lado más corto (por debajo de {small_px} px, solo con una puntuación del detector de al menos {small_score}) y al menos un {share:.0%} de él son colores de señal (rojo, azul o amarillo saturados); entonces toma esa clase y conserva su propia puntuación. En fotografías reales de calles (GTSDB 500-599), con la confianza mínima por defecto, encuentra 0,958 de las señales con una precisión de 0,971, frente a 0,803 con 0,966 sin ella, por menos de un 5 % del tiempo de detección. Necesita que se lean los códigos de señal; un valor igual o superior a la confianza mínima la desactiva.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="172" />
+        <location filename="../algorithms/detectsigns.py" line="173" />
         <source>Look again, closer, at small boxes scored under the minimum confidence</source>
         <translation>Volver a mirar, más de cerca, las cajas pequeñas puntuadas por debajo de la confianza mínima</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="172" />
+        <location filename="../algorithms/detectsigns.py" line="173" />
         <source>A box of at most {px} px that the detector scores from {score} up to the minimum confidence is cut again from the panorama at a higher pixel density (the box {box_px} px across) and detected once more; it is kept when the detector then scores it at the minimum confidence or more, with that score, class and box. All of a panorama's such boxes go through the detector together, in one extra run. It finds far signs, 15-25 px across: on 376 held-out real signs pasted into street photographs the signs found rose from 0.79 to 0.87 (those 14-20 px high from 0.34 to 0.59) at a precision of 0.96; on real street photographs (GTSDB 500-599) the recall stayed at 0.958 and the precision went from 0.971 to 0.958. It costs 1.05-1.09 times the detection time. On by default.</source>
         <translation>Una caja de {px} px como máximo que el detector puntúa desde {score} hasta la confianza mínima se recorta de nuevo del panorama con una densidad de píxeles mayor (la caja mide {box_px} px) y se detecta otra vez; se conserva cuando el detector la puntúa entonces con la confianza mínima o más, con esa puntuación, clase y caja. Todas esas cajas de un panorama pasan juntas por el detector, en una sola ejecución adicional. Encuentra señales lejanas, de 15-25 px: en 376 señales reales reservadas, pegadas en fotografías de calles, las señales encontradas subieron de 0,79 a 0,87 (las de 14-20 px de alto, de 0,34 a 0,59) con una precisión de 0,96; en fotografías reales de calles (GTSDB 500-599) la exhaustividad se mantuvo en 0,958 y la precisión pasó de 0,971 a 0,958. Cuesta entre 1,05 y 1,09 veces el tiempo de detección. Activado por defecto.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="264" />
+        <location filename="../algorithms/detectsigns.py" line="291" />
         <source>Zoomed look: boxes of at most {} px scored from {} to {} are detected again at a higher pixel density.</source>
         <translation>Mirada de cerca: las cajas de {} px como máximo puntuadas entre {} y {} se detectan de nuevo con una densidad de píxeles mayor.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="149" />
+        <location filename="../algorithms/detectsigns.py" line="150" />
         <source>Horizon views</source>
         <translation>Vistas del horizonte</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="149" />
+        <location filename="../algorithms/detectsigns.py" line="150" />
         <source>{n} views of {width:g}°</source>
         <translation>{n} vistas de {width:g}°</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="149" />
+        <location filename="../algorithms/detectsigns.py" line="150" />
         <source>{n} views of {width:g}°, turned {yaw:g}°</source>
         <translation>{n} vistas de {width:g}°, giradas {yaw:g}°</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="149" />
+        <location filename="../algorithms/detectsigns.py" line="150" />
         <source>One band of {width} × {height} px</source>
         <translation>Una banda de {width} × {height} px</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="149" />
+        <location filename="../algorithms/detectsigns.py" line="150" />
         <source>How many views of 80° across the horizon ring has. 8 views overlap by 35°. 6 views overlap by 20° and are turned by 30°, so that their seams ahead and behind fall inside the fore-and-aft views: the detection takes 0.8-0.87 times the time. In single panoramas of five held-out test streets, 6 views found 0.946 of the signs at a precision of 0.988, against 0.948 at 0.982 with 8: they lose a few signs 14-20 px high and a few very close ones that no longer fit whole into one view. Through the whole chain, on three held-out streets with a panorama every 5 m, both rings found all 137 signs, with no false sign and positions within 3 mm of each other in median; on the first 100 m of a test drive with a panorama every 1.2 m, the ring of 6 added one false sign (seen in one panorama and scored just over the minimum confidence, flagged for review) to the 6 true ones. The third choice sees the horizon as one equirectangular band of 3264 × 448 px (8.5 px a degree, ±26° of elevation), which the detector runs on whole: it needs a model whose input size is free, as the bundled detector's is. In single panoramas of four held-out test streets it found 622 of 652 signs with 11 false boxes, against 621 with 15 for the ring of 8, in 0.79 times the processor time; through the whole chain on a held-out street it found all 45 signs, as the ring does. 8 by default; 6 trades a little accuracy for speed.</source>
         <translation>Cuántas vistas de 80° de ancho tiene el anillo del horizonte. 8 vistas se solapan 35°. 6 vistas se solapan 20° y están giradas 30°, de modo que sus uniones delante y detrás caen dentro de las vistas hacia delante y hacia atrás: la detección tarda 0,8-0,87 veces el tiempo. En panoramas sueltos de cinco calles de prueba reservadas, 6 vistas encontraron 0,946 de las señales con una precisión de 0,988, frente a 0,948 con 0,982 con 8: pierden algunas señales de 14-20 px de alto y algunas muy cercanas que ya no caben enteras en una vista. En la cadena completa, en tres calles reservadas con un panorama cada 5 m, ambos anillos encontraron las 137 señales, sin ninguna falsa y con posiciones a menos de 3 mm entre sí en la mediana; en los primeros 100 m de un recorrido de prueba con un panorama cada 1,2 m, el anillo de 6 añadió una señal falsa (vista en un solo panorama y puntuada justo por encima de la confianza mínima, marcada para revisión) a las 6 verdaderas. La tercera opción ve el horizonte como una sola banda equirrectangular de 3264 × 448 px (8,5 px por grado, ±26° de elevación), que el detector procesa entera: necesita un modelo cuyo tamaño de entrada sea libre, como el del detector incluido. En panoramas sueltos de cuatro calles de prueba reservadas encontró 622 de 652 señales con 11 cajas falsas, frente a 621 con 15 del anillo de 8, en 0,79 veces el tiempo de procesador; en toda la cadena, en una calle reservada, encontró las 45 señales, como el anillo. 8 por defecto; 6 cambia un poco de exactitud por velocidad.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="187" />
+        <source>Look again, stretched across, at tall boxes of signs seen edge-on</source>
+        <translation>Volver a mirar, estiradas a lo ancho, las cajas altas de señales vistas de canto</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="187" />
+        <source>A sign passed close by is seen far off its face's normal, and the view squeezes it to a sliver that the detector scores low. A box at least {ratio} times as tall as wide, of at most {px} px, that the detector scores from {score} up to the minimum confidence is cut again from the panorama (its height {box_px} px) and stretched {stretch} times across, so that the sign's face is about as wide as tall again, and detected once more; it is kept when the detector then scores it at the minimum confidence or more. Taken before the zoomed look, in one extra detector run for the panorama's such boxes. On five held-out generated streets it found 701 of 734 signs in single panoramas, against 697 without it (signs seen more than 70° off their face's normal: 27 of 45 against 23), with one false box fewer, in 1.03 times the processor time; real signs of street photographs squeezed across to 0.3 of their width are scored 0.5 or more in 44 of 50 cases stretched, against 11 as they are. On the real street photographs themselves it changed nothing. On by default.</source>
+        <translation>Una señal junto a la que se pasa muy cerca se ve muy lejos de la normal de su cara, y la vista la comprime en una franja estrecha a la que el detector da una puntuación baja. Una caja al menos {ratio} veces más alta que ancha, de {px} px como máximo, que el detector puntúa desde {score} hasta la confianza mínima se recorta de nuevo de la panorámica (su altura a {box_px} px), se estira {stretch} veces a lo ancho, de modo que la cara de la señal vuelve a ser casi tan ancha como alta, y se detecta una vez más; se conserva cuando el detector la puntúa entonces con la confianza mínima o más. Se hace antes de la mirada ampliada, en una ejecución adicional del detector para todas esas cajas de la panorámica. En cinco calles generadas reservadas encontró 701 de 734 señales en panorámicas sueltas, frente a 697 sin ella (señales vistas a más de 70° de la normal de su cara: 27 de 45 frente a 23), con una caja falsa menos, en 1,03 veces el tiempo de procesador; señales reales de fotografías de calle comprimidas a lo ancho a 0,3 de su anchura se puntúan con 0,5 o más en 44 de 50 casos estiradas, frente a 11 tal como están. En las propias fotografías de calle reales no cambió nada. Activada por defecto.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="285" />
+        <source>Edge-on look: boxes at least {} times as tall as wide scored from {} to {} are detected again stretched {} times across.</source>
+        <translation>Mirada de canto: las cajas al menos {} veces más altas que anchas puntuadas de {} a {} se detectan de nuevo estiradas {} veces a lo ancho.</translation>
     </message>
 </context>
 <context>
@@ -2958,44 +2973,44 @@
         <translation>La salida {path} no se escribió</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="117" />
+        <location filename="../core/panorama.py" line="126" />
         <source>The panorama {path} is {width} x {height} pixels, more than the {limit} the plugin reads</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El panorama {path} tiene {width} x {height} píxeles, más que los {limit} que lee el complemento</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="126" />
+        <location filename="../core/panorama.py" line="135" />
         <source>The panorama {path} is {width} x {height} pixels: an equirectangular panorama must be twice as wide as it is high</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El panorama {path} tiene {width} x {height} píxeles: un panorama equirrectangular debe ser el doble de ancho que de alto</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="158" />
-        <location filename="../core/panorama.py" line="109" />
+        <location filename="../core/panorama.py" line="167" />
+        <location filename="../core/panorama.py" line="118" />
         <source>Panorama not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró el panorama: {path}</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="165" />
+        <location filename="../core/panorama.py" line="174" />
         <source>Cannot read the panorama {path}: the file is not a JPEG or PNG image or is corrupt</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer el panorama {path}: el archivo no es una imagen JPEG o PNG o está dañado</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="111" />
+        <location filename="../core/panorama.py" line="120" />
         <source>The panorama {path} has more pixels than the {limit} the plugin reads</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El panorama {path} tiene más píxeles que los {limit} que lee el complemento</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="114" />
+        <location filename="../core/panorama.py" line="123" />
         <source>Cannot read the panorama {path}: expected a JPEG or PNG image ({error})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer el panorama {path}: se esperaba una imagen JPEG o PNG ({error})</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="163" />
+        <location filename="../core/panorama.py" line="172" />
         <source>Cannot read the panorama {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer el panorama {path}: {error}</translation>

@@ -107,244 +107,259 @@
 <context>
     <name>DetectSigns</name>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="57" />
+        <location filename="../algorithms/detectsigns.py" line="58" />
         <source>Detect signs in panoramas</source>
         <translation>在全景图中检测标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="60" />
+        <location filename="../algorithms/detectsigns.py" line="61" />
         <source>Runs an ONNX sign detector on each panorama; one ray per detected sign.</source>
         <translation>在每张全景图上运行 ONNX 标志检测器；每个检测到的标志生成一条射线。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="231" />
+        <location filename="../algorithms/detectsigns.py" line="251" />
         <source>Panorama stations</source>
         <translation>全景站点</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="87" />
+        <location filename="../algorithms/detectsigns.py" line="88" />
         <source>The output of Import trajectory: one point per panorama with its pose and path.</source>
         <translation>“导入轨迹和全景图”的输出：每张全景图一个点，带有其位姿和路径。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="90" />
+        <location filename="../algorithms/detectsigns.py" line="91" />
         <source>ONNX model (empty: the bundled model)</source>
         <translation>ONNX 模型（留空：使用内置模型）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="90" />
+        <location filename="../algorithms/detectsigns.py" line="91" />
         <source>A YOLO-family ONNX detector. Empty uses the model bundled with the plugin.</source>
         <translation>YOLO 系列 ONNX 检测器。留空则使用插件内置的模型。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="90" />
+        <location filename="../algorithms/detectsigns.py" line="91" />
         <source>ONNX models (*.onnx);;All files (*.*)</source>
         <translation>ONNX 模型 (*.onnx);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="94" />
+        <location filename="../algorithms/detectsigns.py" line="95" />
         <source>Minimum confidence</source>
         <translation>最低置信度</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="94" />
+        <location filename="../algorithms/detectsigns.py" line="95" />
         <source>Detections scoring below this (0-1) are dropped.</source>
         <translation>得分低于此值（0-1）的检测将被丢弃。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="113" />
+        <location filename="../algorithms/detectsigns.py" line="114" />
         <source>Smallest sign kept (panorama pixels)</source>
         <translation>保留的最小标志（全景像素）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="113" />
+        <location filename="../algorithms/detectsigns.py" line="114" />
         <source>Detections whose box is shorter than this on its shorter side are dropped: signs that small are boxed a few pixels off and their class is unsure, and the drive sees them again, larger, from the next stations. 0 keeps every detection.</source>
         <translation>检测框短边小于此值的检测将被丢弃：这么小的标志框会偏差几个像素，类别也不可靠，而车辆在后续站点会以更大的尺寸再次看到它们。0 保留所有检测。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="119" />
+        <location filename="../algorithms/detectsigns.py" line="120" />
         <source>Class names file (optional)</source>
         <translation>类别名称文件（可选）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="119" />
+        <location filename="../algorithms/detectsigns.py" line="120" />
         <source>One class name per line, in the model's class order; needed when the model has no names in its metadata and no labels file beside it.</source>
         <translation>每行一个类别名称，按模型的类别顺序排列；当模型元数据中没有名称且旁边没有标签文件时需要提供。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="119" />
+        <location filename="../algorithms/detectsigns.py" line="120" />
         <source>Text files (*.txt);;All files (*.*)</source>
         <translation>文本文件 (*.txt);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="124" />
+        <location filename="../algorithms/detectsigns.py" line="125" />
         <source>Ray length (m)</source>
         <translation>射线长度 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="124" />
+        <location filename="../algorithms/detectsigns.py" line="125" />
         <source>Length of each detection ray from the panorama centre, in metres.</source>
         <translation>每条检测射线从全景图中心起算的长度，单位为米。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="128" />
+        <location filename="../algorithms/detectsigns.py" line="129" />
         <source>Also look upwards (overhead and gantry signs)</source>
         <translation>同时向上看（悬挂式和门架式标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="199" />
+        <location filename="../algorithms/detectsigns.py" line="219" />
         <source>CPU threads (0: all)</source>
         <translation>CPU 线程数（0：全部）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="199" />
+        <location filename="../algorithms/detectsigns.py" line="219" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>onnxruntime 在 CPU 上可使用的线程数；0 表示使用所有核心。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="205" />
+        <location filename="../algorithms/detectsigns.py" line="225" />
         <source>Detections</source>
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="209" />
+        <location filename="../algorithms/detectsigns.py" line="229" />
         <source>Number of detections</source>
         <translation>检测数量</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="210" />
+        <location filename="../algorithms/detectsigns.py" line="230" />
         <source>Panoramas skipped</source>
         <translation>跳过的全景图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="224" />
+        <location filename="../algorithms/detectsigns.py" line="244" />
         <source>ONNX model not found: {}</source>
         <translation>未找到 ONNX 模型：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="243" />
+        <location filename="../algorithms/detectsigns.py" line="263" />
         <source>{} panoramas, {} views each</source>
         <translation>{} 张全景图，每张 {} 个视图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="272" />
+        <location filename="../algorithms/detectsigns.py" line="299" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>跳过了 {} 张无法读取的全景图。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="288" />
+        <location filename="../algorithms/detectsigns.py" line="315" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} 个检测，来自 {} 张全景图（跳过 {} 张）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="280" />
+        <location filename="../algorithms/detectsigns.py" line="307" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>未检测到任何标志：检测图层为空。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="205" />
+        <location filename="../algorithms/detectsigns.py" line="225" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>LineStringZ 图层，每个检测一条射线，包含字段 det_id、station_id、image、class、score、code、code_score、u0、v0、u1、v1、n_views 以及站点的位姿字段。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="186" />
+        <location filename="../algorithms/detectsigns.py" line="206" />
         <source>Skip stations closer than (m)</source>
         <translation>跳过间距小于此值的站点 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="249" />
+        <location filename="../algorithms/detectsigns.py" line="269" />
         <source>Detecting in {} of the {} panoramas: stations closer than {} m to the last one detected in are skipped.</source>
         <translation>在 {} 张全景图（共 {} 张）中检测：距上一个检测站点不足 {} m 的站点将被跳过。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="203" />
+        <location filename="../algorithms/detectsigns.py" line="223" />
         <source>in a crop around each detection, voted later across the views of each sign by Refine and merge signs</source>
         <translation>在每个检测结果周围的裁剪图中读取，之后由“精化与合并标志”在每个标志的各视图间投票</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="186" />
+        <location filename="../algorithms/detectsigns.py" line="206" />
         <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so skipping saves detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. The default, 2.5 m, keeps a detected panorama at least every 5 m on any drive (every second one of a drive with a panorama every 1.25 m) and skips nothing on drives with panoramas 2.5 m or more apart. 0 detects in every panorama.</source>
         <translation>仅在其站点与上一个检测站点相距至少此距离的全景图中检测；其间的全景图将被跳过（不读取，无检测结果）。一个标志在许多站点中都可见，因此跳过可按比例节省检测时间，但每个标志被看到的站点会变少：用于定位它的射线更少，而只在少数站点可见的标志（较小，或被树木或车辆遮挡）可能会漏检。在两条保留的测试街道上（每 5 米一张全景图）测得：使用全部全景图找到了全部 46 个和 45 个标志；10 米（隔一张）各漏检 2 个，15 米漏检 46 个中的 11 个。默认值 2.5 米可保证在任何行驶路线上至少每 5 米有一张被检测的全景图（全景图间隔 1.25 米的路线即每隔一张），而对全景图间隔 2.5 米或以上的路线不跳过任何全景图。0 表示在每张全景图中检测。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="138" />
+        <location filename="../algorithms/detectsigns.py" line="139" />
         <source>Look ahead and behind more closely (small, far signs)</source>
         <translation>更仔细地向前和向后看（小而远的标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="97" />
+        <location filename="../algorithms/detectsigns.py" line="98" />
         <source>Second look from confidence</source>
         <translation>二次检查起始置信度</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="258" />
+        <location filename="../algorithms/detectsigns.py" line="278" />
         <source>Second look: boxes scored from {} to {} are kept where the sign-code classifier reads a code.</source>
         <translation>二次检查：评分在 {} 到 {} 之间、且标志代码分类器读出代码的框被保留。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="138" />
+        <location filename="../algorithms/detectsigns.py" line="139" />
         <source>Adds two views of 53° straight ahead and behind, with 1.5 times the pixels per degree of the horizon views (at a 4096 px panorama's own density), for signs far along the road. Real signs need the pixels: on real street photographs at the horizon views' density the detector found 0.82 of the signs (GTSDB 500-599) and 0.54 of 376 held-out real signs pasted as distant ones; with these views 0.93 and 0.69, precision within 0.01. On held-out generated panoramas: 0.906 of the signs per panorama instead of 0.879. They cost 1.24 times the detection time. On by default; turn it off only for speed on drives with panoramas close together (every sign is then seen from many stations).</source>
         <translation>在正前方和正后方各添加一个 53° 的视图，其每度像素数为地平线视图的 1.5 倍（即 4096 px 全景图自身的密度），用于沿道路远处的标志。真实标志需要这些像素：在真实街道照片上，按地平线视图的密度，检测器找到了 0.82 的标志（GTSDB 500-599）和作为远处标志粘贴的 376 个保留真实标志中的 0.54；加上这些视图后为 0.93 和 0.69，精度变化不超过 0.01。在保留的生成全景图上：每幅全景图找到 0.906 的标志，而不是 0.879。其代价是 1.24 倍的检测时间。默认开启；仅在全景站点很密的行驶采集中为了速度而关闭（此时每个标志都会从许多全景站点被看到）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="292" />
+        <location filename="../algorithms/detectsigns.py" line="319" />
         <source>Sign codes read in {} of the {} detections (the others: other, or a sign whose code the table lacks).</source>
         <translation>{} 个检测读出了标志代码（共 {} 个检测；其余为 other，或代码表中没有其代码的标志）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="128" />
+        <location filename="../algorithms/detectsigns.py" line="129" />
         <source>Adds two views tilted 35° up, over the road ahead and behind, for gantry and overhead signs close to the vehicle, above the horizon views. On by default: on five held-out test streets they raised the gantry panels found in a single panorama from 86 % to 91 % for 1.2 times the detection time. A box these views cut at their left or right edge is dropped unless another view finds the same sign: signs beside the road are seen whole in the horizon views. With the second look, a box these views find alone and the sign-code classifier reads as no sign ('other': a facade's dark window, say) is dropped too. Switch it off to save that time where a drive has no overhead signs.</source>
         <translation>增加两个上仰 35° 的视图，分别朝向前方和后方的道路上空，用于车辆附近、位于水平视图上方的门架式和悬挂式标志。默认勾选：在五条未参与调参的测试街道上，单张全景图中找到的门架标志牌从 86 % 提高到 91 %，检测时间为原来的 1.2 倍。这些视图在其左右边缘截断的检测框会被丢弃，除非另一个视图找到了同一个标志：道路两侧的标志在水平视图中是完整可见的。启用二次确认时，仅由这些视图找到、且标志代码分类器判读为非标志（“other”，例如建筑立面上的深色窗户）的检测框也会被丢弃。对于没有悬挂式标志的行驶采集，可取消勾选以节省这部分时间。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="63" />
+        <location filename="../algorithms/detectsigns.py" line="64" />
         <source>Cuts each station's equirectangular panorama into overlapping perspective views (a horizon ring, two closer views ahead and behind, and two views upwards for overhead signs), runs the ONNX detector on each view, maps the boxes back to panorama pixels and merges the same sign found in two views. A box much taller than wide (a sign passed close by, seen nearly edge-on, which the detector boxes about twice as wide as its face) is narrowed to the columns that show sign colours (saturated red, blue or yellow).&lt;br&gt;&lt;br&gt;The &lt;b&gt;model&lt;/b&gt; is the bundled one when left empty, or your own ONNX export: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) or a model with NMS built in ([1, N, 6]). Class names come from the model's metadata (Ultralytics &lt;i&gt;names&lt;/i&gt;) or a labels file (one name per line).&lt;br&gt;&lt;br&gt;Output: one line per detection from the panorama centre along the ray through the box centre, &lt;i&gt;Ray length&lt;/i&gt; long, with the box (u0, v0, u1, v1 in panorama pixels; across the ±180° seam u1 exceeds the width) and the station's pose. A panorama that cannot be read is skipped with a warning and counted.&lt;br&gt;&lt;br&gt;&lt;b&gt;Sign codes&lt;/b&gt;: a second, small ONNX model (the bundled sign-code classifier, or your own) reads what each detected sign says, from a rectified crop of the panorama around its box at the panorama's own resolution: &lt;i&gt;code&lt;/i&gt; (such as DE:274[50], speed limit 50, from the codes table; &lt;i&gt;other&lt;/i&gt; when it knows none) and &lt;i&gt;code_score&lt;/i&gt; (its probability). Refine signs votes them across the views of each sign. The classifier's format is in models/README.md (section &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</source>
         <translation>将每个站点的等距柱状全景图切分为相互重叠的透视视图（一圈水平视图、前后方向各一个更近的视图，以及前后各一个用于悬挂式标志的上视视图），在每个视图上运行 ONNX 检测器，将检测框映射回全景图像素，并合并在两个视图中找到的同一标志。高度远大于宽度的检测框（近距离经过、几乎从侧面看到的标志，检测器给出的框约为其标志面宽度的两倍）会收窄到显示标志颜色（饱和的红色、蓝色或黄色）的列。&lt;br&gt;&lt;br&gt;&lt;b&gt;模型&lt;/b&gt;留空时使用内置模型，也可以是您自己导出的 ONNX 模型：Ultralytics YOLOv8/11（[1, 4+nc, N]）、YOLOv5/7（[1, N, 5+nc]）或内置 NMS 的模型（[1, N, 6]）。类别名称来自模型元数据（Ultralytics &lt;i&gt;names&lt;/i&gt;）或标签文件（每行一个名称）。&lt;br&gt;&lt;br&gt;输出：每个检测一条线，从全景图中心沿穿过检测框中心的射线延伸，长度为&lt;i&gt;射线长度&lt;/i&gt;，附带检测框（u0、v0、u1、v1，单位为全景图像素；跨越 ±180° 接缝时 u1 大于图像宽度）和站点位姿。无法读取的全景图将被跳过，并给出警告和计数。&lt;br&gt;&lt;br&gt;&lt;b&gt;标志代码&lt;/b&gt;：第二个小型 ONNX 模型（内置的标志代码分类器或您自己的分类器）从全景图中围绕检测框、按全景图原始分辨率截取的校正裁剪图像中读取每个检测到的标志的内容：&lt;i&gt;code&lt;/i&gt;（例如 DE:274[50]，即限速 50，取自代码表；不认识时为 &lt;i&gt;other&lt;/i&gt;）和 &lt;i&gt;code_score&lt;/i&gt;（其概率）。“精化与合并标志”在每个标志的各视图之间对其进行投票。分类器的格式见 models/README.md（&lt;i&gt;Sign-code classifier: the format&lt;/i&gt; 一节）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="97" />
+        <location filename="../algorithms/detectsigns.py" line="98" />
         <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a class of signs in it with a probability of at least {score} (the probabilities of the codes of that class added up: a speed limit whose digits are unsure is still a prohibitory sign), its box is at least {px} px on its shorter side (under {small_px} px only from a detector score of {small_score}) and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes that class and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.958 of the signs at a precision of 0.971, against 0.803 at 0.966 without it, for under 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
         <translation>检测器评分介于此值与最低置信度之间的框会接受二次检查：当标志代码分类器以至少 {score} 的概率在框中读出一类标志（该类别各代码的概率之和：数字不确定的限速标志仍是禁令标志）、框的短边至少 {px} 像素（短于 {small_px} 像素时，检测器评分须至少为 {small_score}）且至少 {share:.0%} 的像素为标志颜色（饱和的红、蓝或黄色）时，该框被保留；它随后采用该类别并保留自身的评分。在真实街道照片（GTSDB 500-599）上，使用默认的最低置信度时，它找到 0.958 的标志，精确率为 0.971；不使用时为 0.803，精确率为 0.966。代价不到检测时间的 5 %。需要读取标志代码；取值等于或高于最低置信度时关闭此功能。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="172" />
+        <location filename="../algorithms/detectsigns.py" line="173" />
         <source>Look again, closer, at small boxes scored under the minimum confidence</source>
         <translation>对低于最低置信度的小框放大再看一次</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="172" />
+        <location filename="../algorithms/detectsigns.py" line="173" />
         <source>A box of at most {px} px that the detector scores from {score} up to the minimum confidence is cut again from the panorama at a higher pixel density (the box {box_px} px across) and detected once more; it is kept when the detector then scores it at the minimum confidence or more, with that score, class and box. All of a panorama's such boxes go through the detector together, in one extra run. It finds far signs, 15-25 px across: on 376 held-out real signs pasted into street photographs the signs found rose from 0.79 to 0.87 (those 14-20 px high from 0.34 to 0.59) at a precision of 0.96; on real street photographs (GTSDB 500-599) the recall stayed at 0.958 and the precision went from 0.971 to 0.958. It costs 1.05-1.09 times the detection time. On by default.</source>
         <translation>检测器评分在 {score} 到最低置信度之间、且不超过 {px} px 的框，会以更高的像素密度从全景图中重新裁切（框宽 {box_px} px）并再次检测；若检测器此时的评分达到最低置信度或更高，则保留该框，并采用这次的评分、类别和框。一幅全景图中所有这样的框会一起送入检测器，只需额外运行一次。它能找到 15-25 px 的远处标志：在粘贴到街景照片中的 376 个预留真实标志上，检出率从 0.79 提高到 0.87（高 14-20 px 的从 0.34 提高到 0.59），精度为 0.96；在真实街景照片（GTSDB 500-599）上，召回率保持 0.958，精度从 0.971 变为 0.958。检测时间约为原来的 1.05-1.09 倍。默认开启。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="264" />
+        <location filename="../algorithms/detectsigns.py" line="291" />
         <source>Zoomed look: boxes of at most {} px scored from {} to {} are detected again at a higher pixel density.</source>
         <translation>放大再看：不超过 {} px、评分在 {} 到 {} 之间的框会以更高的像素密度再次检测。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="149" />
+        <location filename="../algorithms/detectsigns.py" line="150" />
         <source>Horizon views</source>
         <translation>地平线视图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="149" />
+        <location filename="../algorithms/detectsigns.py" line="150" />
         <source>{n} views of {width:g}°</source>
         <translation>{n} 个 {width:g}° 视图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="149" />
+        <location filename="../algorithms/detectsigns.py" line="150" />
         <source>{n} views of {width:g}°, turned {yaw:g}°</source>
         <translation>{n} 个 {width:g}° 视图，旋转 {yaw:g}°</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="149" />
+        <location filename="../algorithms/detectsigns.py" line="150" />
         <source>One band of {width} × {height} px</source>
         <translation>一条 {width} × {height} 像素的条带</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="149" />
+        <location filename="../algorithms/detectsigns.py" line="150" />
         <source>How many views of 80° across the horizon ring has. 8 views overlap by 35°. 6 views overlap by 20° and are turned by 30°, so that their seams ahead and behind fall inside the fore-and-aft views: the detection takes 0.8-0.87 times the time. In single panoramas of five held-out test streets, 6 views found 0.946 of the signs at a precision of 0.988, against 0.948 at 0.982 with 8: they lose a few signs 14-20 px high and a few very close ones that no longer fit whole into one view. Through the whole chain, on three held-out streets with a panorama every 5 m, both rings found all 137 signs, with no false sign and positions within 3 mm of each other in median; on the first 100 m of a test drive with a panorama every 1.2 m, the ring of 6 added one false sign (seen in one panorama and scored just over the minimum confidence, flagged for review) to the 6 true ones. The third choice sees the horizon as one equirectangular band of 3264 × 448 px (8.5 px a degree, ±26° of elevation), which the detector runs on whole: it needs a model whose input size is free, as the bundled detector's is. In single panoramas of four held-out test streets it found 622 of 652 signs with 11 false boxes, against 621 with 15 for the ring of 8, in 0.79 times the processor time; through the whole chain on a held-out street it found all 45 signs, as the ring does. 8 by default; 6 trades a little accuracy for speed.</source>
         <translation>地平线环包含多少个宽 80° 的视图。8 个视图相互重叠 35°。6 个视图相互重叠 20°，并旋转 30°，使前后方向的接缝落在前后视图之内：检测时间为 0.8-0.87 倍。在五条留出测试街道的单张全景中，6 个视图找到 0.946 的标志，精度 0.988；8 个视图为 0.948，精度 0.982：6 个视图会漏掉少数高 14-20 像素的标志和少数很近、已无法完整落入一个视图的标志。在整条处理链中，在三条每 5 米一张全景的留出街道上，两种环都找到了全部 137 个标志，没有误报，位置中位数相差不到 3 毫米；在一段每 1.2 米一张全景的测试行驶的前 100 米，6 个视图的环在 6 个真实标志之外多出一个误报（只在一张全景中看到，得分刚超过最低置信度，已标记待复核）。第三个选项把地平线视为一条 3264 × 448 像素的等距柱状条带（每度 8.5 像素，仰角 ±26°），检测器整条处理：它需要输入尺寸不固定的模型，随附的检测器即是如此。在四条留出测试街道的单张全景中，它在 652 个标志中找到 622 个，误报框 11 个；8 个视图的环找到 621 个，误报框 15 个，而处理器时间为 0.79 倍；在整条处理链中，在一条留出街道上，它与环一样找到了全部 45 个标志。默认为 8；6 以少许精度换取速度。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="187" />
+        <source>Look again, stretched across, at tall boxes of signs seen edge-on</source>
+        <translation>对侧面看到的标志的高框横向拉伸后再看一次</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="187" />
+        <source>A sign passed close by is seen far off its face's normal, and the view squeezes it to a sliver that the detector scores low. A box at least {ratio} times as tall as wide, of at most {px} px, that the detector scores from {score} up to the minimum confidence is cut again from the panorama (its height {box_px} px) and stretched {stretch} times across, so that the sign's face is about as wide as tall again, and detected once more; it is kept when the detector then scores it at the minimum confidence or more. Taken before the zoomed look, in one extra detector run for the panorama's such boxes. On five held-out generated streets it found 701 of 734 signs in single panoramas, against 697 without it (signs seen more than 70° off their face's normal: 27 of 45 against 23), with one false box fewer, in 1.03 times the processor time; real signs of street photographs squeezed across to 0.3 of their width are scored 0.5 or more in 44 of 50 cases stretched, against 11 as they are. On the real street photographs themselves it changed nothing. On by default.</source>
+        <translation>车辆从近处经过的标志，其视线远离标志面的法线，视图将其压缩成一条窄条，检测器给出的得分很低。高度至少为宽度 {ratio} 倍、最长边不超过 {px} px、检测器得分在 {score} 到最低置信度之间的框，会从全景图中重新裁切（其高度为 {box_px} px），并横向拉伸 {stretch} 倍，使标志面重新接近宽高相等，然后再检测一次；如果检测器此时的得分达到最低置信度或更高，则保留该框。此步骤在放大查看之前进行，全景图中所有此类框只需额外运行一次检测器。在五条留出的生成街道上，单张全景图中找到了 734 个标志中的 701 个，不使用时为 697 个（偏离标志面法线超过 70° 的标志：45 个中找到 27 个，不使用时为 23 个），误检框少一个，处理器时间为 1.03 倍；真实街道照片中的标志横向压缩到其宽度的 0.3 后，拉伸后 50 个中有 44 个得分达到 0.5 或以上，未拉伸时为 11 个。在真实街道照片本身上没有任何变化。默认开启。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="285" />
+        <source>Edge-on look: boxes at least {} times as tall as wide scored from {} to {} are detected again stretched {} times across.</source>
+        <translation>侧面查看：高度至少为宽度 {} 倍、得分在 {} 到 {} 之间的框横向拉伸 {} 倍后再检测一次。</translation>
     </message>
 </context>
 <context>
@@ -2958,44 +2973,44 @@
         <translation>输出 {path} 未被写入</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="117" />
+        <location filename="../core/panorama.py" line="126" />
         <source>The panorama {path} is {width} x {height} pixels, more than the {limit} the plugin reads</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>全景图 {path} 为 {width} x {height} 像素，超过插件可读取的 {limit}</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="126" />
+        <location filename="../core/panorama.py" line="135" />
         <source>The panorama {path} is {width} x {height} pixels: an equirectangular panorama must be twice as wide as it is high</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>全景图 {path} 为 {width} x {height} 像素：等距柱状全景图的宽度必须是高度的两倍</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="158" />
-        <location filename="../core/panorama.py" line="109" />
+        <location filename="../core/panorama.py" line="167" />
+        <location filename="../core/panorama.py" line="118" />
         <source>Panorama not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到全景图：{path}</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="165" />
+        <location filename="../core/panorama.py" line="174" />
         <source>Cannot read the panorama {path}: the file is not a JPEG or PNG image or is corrupt</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取全景图 {path}：该文件不是 JPEG 或 PNG 图像，或已损坏</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="111" />
+        <location filename="../core/panorama.py" line="120" />
         <source>The panorama {path} has more pixels than the {limit} the plugin reads</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>全景图 {path} 的像素数超过插件可读取的 {limit}</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="114" />
+        <location filename="../core/panorama.py" line="123" />
         <source>Cannot read the panorama {path}: expected a JPEG or PNG image ({error})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取全景图 {path}：应为 JPEG 或 PNG 图像（{error}）</translation>
     </message>
     <message>
-        <location filename="../core/panorama.py" line="163" />
+        <location filename="../core/panorama.py" line="172" />
         <source>Cannot read the panorama {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取全景图 {path}：{error}</translation>

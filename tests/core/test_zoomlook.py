@@ -215,3 +215,43 @@ def test_a_sign_seen_edge_on_is_kept_once_stretched():
     np.testing.assert_allclose(found.boxes()[0], box, atol=1.5)
     # the edge-on look took it: the small boxes' zoomed look had nothing left, so one input more
     assert len(detector.images) == len(_views()) + 1
+
+
+def test_real_signs_squeezed_to_slivers_are_scored_sure_once_stretched():
+    """The bundled detector on real signs (GTSDB 500-599, held out from its training, 30 px
+    high or more) squeezed across to 0.3 of their width, as a sign seen about 73 deg off its
+    face's normal is: as they are, it scores few of them 0.5 or more; cut again by the edge-on
+    look (:data:`zoomlook.DEFAULT_EDGE_ON`, stretched twice across), most. A plain zoomed tile
+    (the same box, not stretched) does not do it."""
+    import os
+
+    from devtools.train.data import GTSDB_HELDOUT_IDS, read_gtsdb
+    from roadsigns.algorithms.paths import BUNDLED_MODEL
+    from roadsigns.core.detector import Detector
+
+    frames = list(zip(GTSDB_HELDOUT_IDS[:25], read_gtsdb(GTSDB_HELDOUT_IDS[:25])))
+    if not all(os.path.isfile(path) for _, (path, _, _) in frames):
+        (pytest.fail if os.environ.get("CI", "").lower() == "true" else pytest.skip)("GTSDB 500-524 missing")
+    detector = Detector(BUNDLED_MODEL, threads=2)
+    plain_rule = Z.ZoomRule(max_box_px=Z.DEFAULT_EDGE_ON.max_box_px, min_height_to_width=2.0)
+    as_they_are, plain, stretched = [], [], []
+    for _, (path, boxes, _) in frames:
+        image = cv2.imread(path)
+        for box in boxes[(boxes[:, 3] - boxes[:, 1]) >= 30]:
+            cx, cy = 0.5 * (box[0] + box[2]), 0.5 * (box[1] + box[3])
+            x0, y0 = int(max(0, cx - 150)), int(max(0, cy - 100))
+            crop = image[y0:y0 + 200, x0:x0 + 300]
+            squeezed = cv2.resize(crop, (int(crop.shape[1] * 0.3), crop.shape[0]), interpolation=cv2.INTER_AREA)
+            sliver = np.array([[(box[0] - x0) * 0.3, box[1] - y0, (box[2] - x0) * 0.3, box[3] - y0]])
+            assert Z.zoomable(sliver, [0.3], Z.DEFAULT_EDGE_ON).all()
+            found = detector.detect(squeezed, 0.05)
+            on_it = [s for b, s in zip(found.boxes_xyxy, found.scores) if Z._iou(np.asarray(b), sliver[0]) >= 0.3]
+            as_they_are.append(max(on_it, default=0.0))
+            for rule, scores in ((plain_rule, plain), (Z.DEFAULT_EDGE_ON, stretched)):
+                score, _, _ = Z.zoomed_scores(detector, Z.image_tiles(squeezed, sliver, rule), sliver, rule)
+                scores.append(score[0])
+    as_they_are, plain, stretched = map(np.array, (as_they_are, plain, stretched))
+    assert len(stretched) >= 20
+    assert (stretched >= 0.5).mean() >= 0.8, stretched.round(2)
+    assert (as_they_are >= 0.5).mean() <= 0.5 and (plain >= 0.5).mean() <= 0.5, (as_they_are.round(2), plain.round(2))
+    assert np.median(stretched) > np.median(as_they_are) + 0.2

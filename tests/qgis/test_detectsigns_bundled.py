@@ -80,6 +80,7 @@ def detections(qgis_process, scene_tiny_stations, tmp_path_factory):
     run = qgis_process.run("roadsigns:detectsigns", STATIONS=stations, UPWARD_VIEWS=True, OUTPUT=out)
     assert run.returncode == 0, run.text
     assert "roadsigns-int8.onnx" in run.text
+    assert "Edge-on look" in run.text and "Zoomed look" in run.text   # both on by default
     return read_detections(out)
 
 
@@ -152,17 +153,17 @@ def test_second_look_adds_only_boxes_the_classifier_reads(qgis_process, scene_ti
 
 
 def test_zoomed_look_adds_sure_boxes_on_signs(qgis_process, scene_tiny_stations, scene_tiny, tmp_path):
-    """ZOOMED_LOOK (core/zoomlook.py), the second look off (RESCUE_CONFIDENCE at the
-    confidence) to see it alone: the detections of a run without it are all there, and each box
-    it adds scores the confidence or more and lies on a sign."""
+    """ZOOMED_LOOK (core/zoomlook.py), the second look and the edge-on look off (RESCUE_CONFIDENCE
+    at the confidence, EDGE_ON_LOOK false) to see it alone: the detections of a run without it
+    are all there, and each box it adds scores the confidence or more and lies on a sign."""
     _, scene = scene_tiny
     runs = {}
     for name, zoom in (("off", False), ("on", True)):
         out = str(tmp_path / f"{name}.gpkg")
         run = qgis_process.run("roadsigns:detectsigns", STATIONS=scene_tiny_stations, ZOOMED_LOOK=zoom,
-                               RESCUE_CONFIDENCE=DEFAULT_CONFIDENCE, OUTPUT=out)
+                               EDGE_ON_LOOK=False, RESCUE_CONFIDENCE=DEFAULT_CONFIDENCE, OUTPUT=out)
         assert run.returncode == 0, run.text
-        assert ("Zoomed look" in run.text) == zoom
+        assert ("Zoomed look" in run.text) == zoom and "Edge-on look" not in run.text
         runs[name] = read_detections(out)
 
     def key(r):
