@@ -55,7 +55,7 @@ def horizon_views_option(choice) -> int:
 
 def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=None, upward_views=None, classifier=None,
                fore_aft_views=None, rescue_confidence=None, confidence=None, zoomed_look=None,
-               horizon_views=None):
+               horizon_views=None, edge_on_look=None):
     """(stage id, parameters, output key, what it needs) in chain order; ``horizon_views``: the
     number of views of detectsigns' horizon ring (None: its default)."""
     p = lambda name: os.path.join(scene_dir, name)  # noqa: E731
@@ -78,6 +78,7 @@ def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=None, upward
                                 if horizon_views is not None else {}),
                              **({"RESCUE_CONFIDENCE": rescue_confidence} if rescue_confidence is not None else {}),
                              **({"ZOOMED_LOOK": zoomed_look} if zoomed_look is not None else {}),
+                             **({"EDGE_ON_LOOK": edge_on_look} if edge_on_look is not None else {}),
                              **({"MODEL": model} if model else {}),
                              **({"CLASSIFIER": classifier} if classifier else {})),
          "OUTPUT", ["importtrajectory"]),
@@ -146,6 +147,9 @@ def main(argv=None):
     parser.add_argument("--zoomed-look", action=argparse.BooleanOptionalAction, default=None,
                         help="detectsigns with or without its zoomed look at small boxes (ZOOMED_LOOK; default: "
                              "the algorithm's, on)")
+    parser.add_argument("--edge-on-look", action=argparse.BooleanOptionalAction, default=None,
+                        help="detectsigns with or without its edge-on look at tall boxes (EDGE_ON_LOOK; default: "
+                             "the algorithm's, on)")
     parser.add_argument("--rescue-confidence", type=float, metavar="S",
                         help="detectsigns' RESCUE_CONFIDENCE (its second look; the confidence or more: off)")
     parser.add_argument("--confidence", type=float, metavar="S",
@@ -162,6 +166,7 @@ def main(argv=None):
         + {None: "", False: "-noupward", True: "-upward"}[args.upward]
         + {None: "", False: "-noforeaft", True: "-foreaft"}[args.fore_aft]
         + {None: "", False: "-nozoom", True: "-zoom"}[args.zoomed_look]
+        + {None: "", False: "-noedge", True: "-edge"}[args.edge_on_look]
         + (f"-horizon{args.horizon_views}" if args.horizon_views is not None else "")
         + (f"-rescue{args.rescue_confidence:g}" if args.rescue_confidence is not None else "")
         + (f"-conf{args.confidence:g}" if args.confidence is not None else "")
@@ -176,10 +181,12 @@ def main(argv=None):
                "detections": args.detections, "station_spacing_m": args.station_spacing,
                "upward_views": args.upward, "fore_aft_views": args.fore_aft, "classifier": args.classifier,
                "rescue_confidence": args.rescue_confidence, "confidence": args.confidence,
-               "zoomed_look": args.zoomed_look, "horizon_views": args.horizon_views, "stages": {}}
+               "zoomed_look": args.zoomed_look, "edge_on_look": args.edge_on_look, "horizon_views": args.horizon_views,
+               "stages": {}}
     done = set()
     plan = stage_plan(scene_dir, meta, work, args.model, args.station_spacing, args.upward, args.classifier,
-                      args.fore_aft, args.rescue_confidence, args.confidence, args.zoomed_look, args.horizon_views)
+                      args.fore_aft, args.rescue_confidence, args.confidence, args.zoomed_look, args.horizon_views,
+                      args.edge_on_look)
     if args.from_stage and args.from_stage not in [p[0] for p in plan]:
         parser.error(f"--from: no stage {args.from_stage}")
     reuse = args.from_stage is not None
