@@ -713,9 +713,10 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
     the zoomed look. The small boxes scoring from ``zoom.min_score`` under ``confidence`` that
     overlap no detection are cut again at a higher pixel density and detected once more, all
     of a panorama's in one network run (:func:`.zoomlook.zoomed_scores`); those scored
-    ``confidence`` or more there become detections with the zoomed score, class and box. The
-    next rule (the edge-on look, :data:`.zoomlook.DEFAULT_EDGE_ON`, first by default) takes
-    the boxes still candidates. The rest stay candidates when from ``candidate_confidence``.
+    ``confidence`` or more there become detections with the zoomed score, class and box. With
+    several rules, each takes the boxes the ones before it left candidates (``detectsigns``
+    takes the edge-on look, :data:`.zoomlook.DEFAULT_EDGE_ON`, first). The rest stay
+    candidates when from ``candidate_confidence``.
     """
     H, W = pano.shape[:2]
     if view_images is None:
@@ -861,10 +862,11 @@ def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidenc
     those still marked candidate after it are dropped. ``zoom``: :func:`detect_panorama`'s
     zoomed looks (a :class:`.zoomlook.ZoomRule`, several, or None for none). Progress
     advances per view; cancel stops between views. A skipped file adds ``(path, reason)`` to
-    ``skipped`` and a warning to ``progress``. ``prefetch``: decode the next panorama in a background thread while this
-    one is detected (OpenCV's decoder releases the GIL; two panoramas are in memory at once);
-    results, order and warnings are the same either way. The views are cut in the same
-    thread as the panorama is decoded (``cv2.remap`` releases the GIL too).
+    ``skipped`` and a warning to ``progress``. ``prefetch``: decode the next panorama in a
+    background thread while this one is detected (OpenCV's decoder releases the GIL; two
+    panoramas are in memory at once); results, order and warnings are the same either way.
+    The views are cut in the same thread as the panorama is decoded (``cv2.remap`` releases
+    the GIL too).
     """
     from .panorama import read_panorama
 
