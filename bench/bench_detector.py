@@ -383,8 +383,8 @@ SECOND_LOOKS = {"off": None, "on": rescue_mod.DEFAULT_RULE,
                 "on+zoom": rescue_mod.DEFAULT_RULE, "on+zoom+edge": rescue_mod.DEFAULT_RULE}
 LOOK_LABELS = {"off": "", "on": " +2nd", "on-keep-overhead-other": " +2nd keep", "on+zoom": " +zoom+2nd",
                "on+zoom+edge": " +edge+zoom+2nd"}
-#: The looks that run detectsigns' zoomed looks before the second look, and their rules in
-#: order: ``on+zoom`` the small boxes' alone, ``on+zoom+edge`` the edge-on look's first.
+#: The looks that run detectsigns' zoomed looks before the second look, and their rules:
+#: ``on+zoom`` the small boxes' alone, ``on+zoom+edge`` the edge-on look's too.
 ZOOMED_LOOKS = {"on+zoom": zoomlook_mod.DEFAULT_ZOOM,
                 "on+zoom+edge": (zoomlook_mod.DEFAULT_EDGE_ON, zoomlook_mod.DEFAULT_ZOOM)}
 
@@ -573,12 +573,10 @@ def second_look_image(classifier, image_bgr, boxes, scores, ids, confidence, cla
     from devtools.train.codes import crop_square
 
     sure, cands = photo_candidates(boxes, scores, confidence)
-    for zoom_rule in zoomlook_mod.zoom_rules(zoom):
-        if not len(cands):
-            break
+    if zoom is not None and len(cands):
         boxes, scores, ids = np.array(boxes, float), np.array(scores, float), np.array(ids)
         rows, zoomed, zoomed_id, zoomed_box = zoomlook_mod.confirm(detector, image_bgr, boxes[cands], scores[cands],
-                                                                   confidence, zoom_rule, panorama=False)
+                                                                   confidence, zoom, panorama=False)
         kept = cands[rows]
         boxes[kept], scores[kept], ids[kept] = zoomed_box, zoomed, zoomed_id
         sure[kept] = True

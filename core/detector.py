@@ -714,8 +714,9 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
     overlap no detection are cut again at a higher pixel density and detected once more, all
     of a panorama's in one network run (:func:`.zoomlook.zoomed_scores`); those scored
     ``confidence`` or more there become detections with the zoomed score, class and box. With
-    several rules, each takes the boxes the ones before it left candidates (``detectsigns``
-    takes the edge-on look, :data:`.zoomlook.DEFAULT_EDGE_ON`, first). The rest stay
+    several rules (``detectsigns``' edge-on look, :data:`.zoomlook.DEFAULT_EDGE_ON`, and its
+    zoomed look), each cuts its own tiles of the boxes it takes, all packed into the same
+    network runs, and a box two rules take keeps its higher zoomed score. The rest stay
     candidates when from ``candidate_confidence``.
     """
     H, W = pano.shape[:2]
@@ -764,8 +765,8 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
                             for box in low.boxes()], bool).reshape(-1)
         low = low.subset(~on_sign)
         low.candidate[:] = True
-        for rule in looks:
-            low = zoomed_look(detector, pano, low, confidence, rule)
+        if looks:
+            low = zoomed_look(detector, pano, low, confidence, looks)
         if candidate_confidence is None:
             low = low.subset(~low.candidate)
         else:
@@ -776,10 +777,10 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
 
 
 def zoomed_look(detector, pano: np.ndarray, low: PanoramaDetections, confidence: float,
-                zoom: ZoomRule) -> PanoramaDetections:
+                zoom: Union[ZoomRule, Sequence[ZoomRule]]) -> PanoramaDetections:
     """``low`` (rows of the panorama ``pano``) with the candidates among them that the zoomed
-    look ``zoom`` confirms (:func:`.zoomlook.confirm`) made detections: one of
-    :func:`detect_panorama`'s ``zoom``."""
+    looks ``zoom`` confirm (:func:`.zoomlook.confirm`) made detections: :func:`detect_panorama`'s
+    ``zoom``."""
     still = np.flatnonzero(low.candidate)
     rows, score, class_id, box = confirm(detector, pano, low.boxes()[still], low.score[still], confidence, zoom)
     rows = still[rows]

@@ -13,6 +13,10 @@ input (a mosaic: one extra network run for up to ``(w // tile_px) x (h // tile_p
 candidates), and a candidate the network then scores at the confidence or more, at the
 same place, becomes a detection with the zoomed score, class and box.
 
+The edge-on look (:data:`DEFAULT_EDGE_ON`) is the same with tiles stretched across, for
+boxes much taller than wide: signs passed close by, which the views squeeze to slivers. Both
+looks' tiles are packed into the same detector inputs (:func:`confirm`, :func:`mosaics`).
+
 Conventions: boxes ``(u0, v0, u1, v1)`` in source pixels (a panorama's, with ``u1`` past
 the width across its seam, or a photograph's); images in OpenCV's BGR order. The tiles of
 a panorama are pinhole views (:class:`.panorama.PerspectiveView`), those of a photograph
@@ -22,7 +26,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import partial
-from typing import Callable, List, Sequence, Tuple
+from typing import Callable, List, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -170,22 +174,34 @@ def image_tiles(image: np.ndarray, boxes: np.ndarray, rule: ZoomRule = DEFAULT_Z
     return tiles
 
 
-def mosaics(tiles: Sequence[np.ndarray], input_w: int, input_h: int, tile_px: int, tile_width_px: int = 0
-            ) -> List[Tuple[np.ndarray, List[int]]]:
-    """The tiles (``tile_px`` high, ``tile_width_px`` wide; 0: square) laid out row by row in
-    detector inputs of ``input_w`` x ``input_h``: a list of (image, the tile indices in its
-    slots, left to right and top to bottom). An input smaller than a tile takes one tile, the
-    image a tile's size (the detector letterboxes it)."""
-    tile_w = tile_width_px or tile_px
-    per_row, rows = max(1, input_w // tile_w), max(1, input_h // tile_px)
-    out = []
-    for first in range(0, len(tiles), per_row * rows):
-        image = np.full((max(input_h, tile_px), max(input_w, tile_w), 3), MOSAIC_FILL, np.uint8)
-        slots = list(range(first, min(first + per_row * rows, len(tiles))))
-        for slot, k in enumerate(slots):
-            i, j = divmod(slot, per_row)
-            image[i * tile_px:(i + 1) * tile_px, j * tile_w:(j + 1) * tile_w] = tiles[k]
-        out.append((image, slots))
+def mosaics(tiles: Sequence[np.ndarray], input_w: int, input_h: int
+            ) -> List[Tuple[np.ndarray, List[int], List[Tuple[int, int]]]]:
+    """The tiles (as high as each other, of any widths) packed in detector inputs of
+    ``input_w`` x ``input_h`` on grey: rows of the tiles' height, the widest tiles first (in
+    their order among equals), each tile in the first row of the current input with room left,
+    the next input when none has. A list of (image, the tile indices in its slots, each slot's
+    top-left corner ``(x, y)``); tiles of one width fill the rows left to right, top to bottom.
+    An input smaller than a tile takes one tile, the image a tile's size (the detector
+    letterboxes it)."""
+    out: List[Tuple[np.ndarray, List[int], List[Tuple[int, int]]]] = []
+    if not len(tiles):
+        return out
+    row_h = max(int(t.shape[0]) for t in tiles)
+    filled: List[int] = []
+    for k in sorted(range(len(tiles)), key=lambda k: -int(tiles[k].shape[1])):
+        w = int(tiles[k].shape[1])
+        row = next((r for r, used in enumerate(filled) if out and used + w <= out[-1][0].shape[1]), None)
+        if row is None:
+            image = np.full((max(input_h, row_h), max(input_w, w), 3), MOSAIC_FILL, np.uint8)
+            out.append((image, [], []))
+            filled = [0] * max(1, image.shape[0] // row_h)
+            row = 0
+        image, slots, corners = out[-1]
+        x, y = filled[row], row * row_h
+        image[y:y + tiles[k].shape[0], x:x + w] = tiles[k]
+        slots.append(k)
+        corners.append((x, y))
+        filled[row] += w
     return out
 
 
@@ -202,11 +218,12 @@ def zoomed_scores(detector, tiles: Sequence[Tile], boxes: np.ndarray, rule: Zoom
                   confidence: float = 0.05, wrap_px: float = 0.0
                   ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The network's best box on each candidate in its tile: per box of ``boxes`` (source
-    pixels; ``tiles`` in the same order), the score (0 where none), class id (-1) and box (the
-    candidate's where none) of the highest-scoring detection from ``confidence`` whose centre
-    lies in the candidate's tile and that overlaps the candidate by ``rule.min_iou`` once
-    mapped back. ``wrap_px``: the panorama's width, for boxes across its seam (0: a photograph).
-    ``detector``: a :class:`.detector.Detector` (``input_size``, ``detect_many``)."""
+    pixels; ``tiles`` in the same order, packed by :func:`mosaics`), the score (0 where none),
+    class id (-1) and box (the candidate's where none) of the highest-scoring detection from
+    ``confidence`` whose centre lies in the candidate's tile and that overlaps the candidate
+    by ``rule.min_iou`` once mapped back. ``wrap_px``: the panorama's width, for boxes across
+    its seam (0: a photograph). ``detector``: a :class:`.detector.Detector` (``input_size``,
+    ``detect_many``)."""
     boxes = np.asarray(boxes, float).reshape(-1, 4)
     score = np.zeros(len(boxes))
     class_id = np.full(len(boxes), -1, np.int64)
@@ -214,19 +231,18 @@ def zoomed_scores(detector, tiles: Sequence[Tile], boxes: np.ndarray, rule: Zoom
     if not len(boxes):
         return score, class_id, best_box
     input_w, input_h = detector.input_size
-    tile_w, tile_h = rule.tile_width_px, rule.tile_px
-    per_row = max(1, input_w // tile_w)
-    layout = mosaics([image for image, _ in tiles], input_w, input_h, tile_h, tile_w)
-    found = detector.detect_many([image for image, _ in layout], confidence)
-    for (_, slots), det in zip(layout, found):
+    layout = mosaics([image for image, _ in tiles], input_w, input_h)
+    found = detector.detect_many([image for image, _, _ in layout], confidence)
+    for (_, slots, corners), det in zip(layout, found):
         for box_xyxy, s, c in zip(det.boxes_xyxy, det.scores, det.class_ids):
-            j = int(0.5 * (box_xyxy[0] + box_xyxy[2]) // tile_w)
-            i = int(0.5 * (box_xyxy[1] + box_xyxy[3]) // tile_h)
-            slot = i * per_row + j
-            if j >= per_row or slot >= len(slots) or s <= score[slots[slot]]:
+            cx, cy = 0.5 * (box_xyxy[0] + box_xyxy[2]), 0.5 * (box_xyxy[1] + box_xyxy[3])
+            slot = next((n for n, (k, (x, y)) in enumerate(zip(slots, corners))
+                         if x <= cx < x + tiles[k][0].shape[1] and y <= cy < y + tiles[k][0].shape[0]), None)
+            if slot is None or s <= score[slots[slot]]:
                 continue
-            k = slots[slot]
-            local = np.clip(box_xyxy - [j * tile_w, i * tile_h] * 2, 0.0, [tile_w, tile_h] * 2)
+            k, (x, y) = slots[slot], corners[slot]
+            h, w = tiles[k][0].shape[:2]
+            local = np.clip(box_xyxy - [x, y] * 2, 0.0, [w, h] * 2)
             mapped = tiles[k][1](local[None])[0]
             if wrap_px:   # to the candidate's side of the seam
                 shift = wrap_px * np.round((boxes[k, 0] - mapped[0]) / wrap_px)
@@ -237,19 +253,35 @@ def zoomed_scores(detector, tiles: Sequence[Tile], boxes: np.ndarray, rule: Zoom
 
 
 def confirm(detector, image: np.ndarray, boxes: np.ndarray, scores: np.ndarray, confidence: float,
-            rule: ZoomRule = DEFAULT_ZOOM, panorama: bool = True
+            rule: Union[ZoomRule, Sequence[ZoomRule]] = DEFAULT_ZOOM, panorama: bool = True
             ) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The zoomed look on candidates ``boxes`` scored ``scores`` in ``image`` (a panorama,
-    else a photograph): the rows the detector scores at ``confidence`` or more once the
-    :func:`zoomable` ones are cut again (:func:`panorama_tiles` or :func:`image_tiles`) and
-    detected in mosaics (:func:`zoomed_scores`), with their zoomed scores, class ids and boxes
-    (a panorama's on the candidate's side of its seam)."""
+    """The zoomed looks ``rule`` (one :class:`ZoomRule` or several) on candidates ``boxes``
+    scored ``scores`` in ``image`` (a panorama, else a photograph): the rows the detector
+    scores at ``confidence`` or more once cut again (:func:`panorama_tiles` or
+    :func:`image_tiles`), with their zoomed scores, class ids and boxes (a panorama's on the
+    candidate's side of its seam). Each rule cuts a tile of each candidate it takes
+    (:func:`zoomable`); the tiles of all rules are packed together (:func:`mosaics`) and
+    detected in the same network runs (:func:`zoomed_scores`); a candidate two rules take
+    keeps its higher zoomed score. The rules must agree on ``min_iou``."""
+    rules = zoom_rules(rule)
+    if len({r.min_iou for r in rules}) > 1:
+        raise ValueError("zoomed looks run together must have the same min_iou")
     boxes = np.asarray(boxes, float).reshape(-1, 4)
-    rows = np.flatnonzero(zoomable(boxes, scores, rule))
-    if not len(rows):
-        return rows, np.zeros(0), np.zeros(0, np.int64), np.zeros((0, 4))
-    tiles = panorama_tiles(image, boxes[rows], rule) if panorama else image_tiles(image, boxes[rows], rule)
-    score, class_id, box = zoomed_scores(detector, tiles, boxes[rows], rule, confidence=confidence,
+    owners, tiles = [], []
+    for r in rules:
+        rows = np.flatnonzero(zoomable(boxes, scores, r))
+        tiles += panorama_tiles(image, boxes[rows], r) if panorama else image_tiles(image, boxes[rows], r)
+        owners.append(rows)
+    owner = np.concatenate(owners) if owners else np.zeros(0, np.int64)
+    if not len(owner):
+        return owner, np.zeros(0), np.zeros(0, np.int64), np.zeros((0, 4))
+    score, class_id, box = zoomed_scores(detector, tiles, boxes[owner], rules[0], confidence=confidence,
                                          wrap_px=image.shape[1] if panorama else 0.0)
-    kept = score >= confidence
-    return rows[kept], score[kept], class_id[kept], box[kept]
+    best: dict = {}   # candidate row -> its tile with the highest zoomed score (the first among equals)
+    for t, k in enumerate(owner):
+        if int(k) not in best or score[t] > score[best[int(k)]]:
+            best[int(k)] = t
+    rows = np.array(sorted(best), np.int64)
+    picked = np.array([best[k] for k in rows], np.int64)
+    kept = score[picked] >= confidence
+    return rows[kept], score[picked][kept], class_id[picked][kept], box[picked][kept]

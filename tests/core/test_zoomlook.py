@@ -52,15 +52,17 @@ def _views():
 
 def test_the_tiles_are_laid_out_row_by_row():
     tiles = [np.full((32, 32, 3), k, np.uint8) for k in range(1, 8)]
-    out = Z.mosaics(tiles, 96, 64, 32)
-    assert [slots for _, slots in out] == [[0, 1, 2, 3, 4, 5], [6]]
+    out = Z.mosaics(tiles, 96, 64)
+    assert [slots for _, slots, _ in out] == [[0, 1, 2, 3, 4, 5], [6]]
+    assert out[0][2] == [(0, 0), (32, 0), (64, 0), (0, 32), (32, 32), (64, 32)]
     first, second = out[0][0], out[1][0]
     assert first.shape == (64, 96, 3)
     assert first[40, 70, 0] == 6 and first[10, 40, 0] == 2    # slot (1, 2) holds tile 5, slot (0, 1) tile 1
     assert second[10, 10, 0] == 7 and second[10, 50, 0] == Z.MOSAIC_FILL
     # an input smaller than a tile: one tile an image, the tile's size
-    small = Z.mosaics(tiles[:2], 24, 24, 32)
-    assert [slots for _, slots in small] == [[0], [1]] and small[1][0].shape == (32, 32, 3)
+    small = Z.mosaics(tiles[:2], 24, 24)
+    assert [slots for _, slots, _ in small] == [[0], [1]] and small[1][0].shape == (32, 32, 3)
+    assert Z.mosaics([], 96, 64) == []
 
 
 def test_a_tile_centres_the_box_at_the_size_asked():
@@ -141,7 +143,9 @@ def test_a_zoomed_box_elsewhere_in_the_tile_does_not_count():
 
 class SquareHungryDetector(PixelHungryDetector):
     """Boxes blue blobs, scored by their shape as a real detector scores signs seen edge-on:
-    0.9 when at least 0.4 times as wide as tall, 0.3 for a narrower sliver. 'mandatory'."""
+    0.9 when at least 0.4 times as wide as tall, 0.3 for a narrower sliver. 'mandatory'. Its
+    input is 384 x 128: a stretched tile and a square one side by side."""
+    input_size = (384, 128)
 
     def detect(self, image, confidence=0.25, iou_threshold=0.45):
         mask = np.all(np.abs(image.astype(int) - BLUE) < 25, axis=2).astype(np.uint8)
@@ -188,10 +192,23 @@ def test_a_stretched_tile_widens_the_sliver_and_maps_back():
 
 def test_wide_tiles_are_laid_out_by_their_own_width():
     tiles = [np.full((32, 64, 3), k, np.uint8) for k in range(1, 5)]
-    out = Z.mosaics(tiles, 160, 64, 32, 64)
-    assert [slots for _, slots in out] == [[0, 1, 2, 3]]        # two a row (160 // 64), two rows
+    out = Z.mosaics(tiles, 160, 64)
+    assert [slots for _, slots, _ in out] == [[0, 1, 2, 3]]        # two a row (160 // 64), two rows
     image = out[0][0]
     assert image[10, 70, 0] == 2 and image[40, 10, 0] == 3 and image[10, 150, 0] == Z.MOSAIC_FILL
+
+
+def test_square_tiles_fill_the_room_the_wide_ones_leave():
+    """Wide tiles first, then the square ones in the first row with room: two wide and one
+    square make a row of 160 px; one input for all seven."""
+    wide = [np.full((32, 64, 3), k, np.uint8) for k in (1, 2, 3)]
+    square = [np.full((32, 32, 3), k, np.uint8) for k in (4, 5, 6, 7)]
+    out = Z.mosaics(square + wide, 160, 64)
+    assert len(out) == 1
+    image, slots, corners = out[0]
+    assert slots == [4, 5, 6, 0, 1, 2, 3]
+    assert corners == [(0, 0), (64, 0), (0, 32), (128, 0), (64, 32), (96, 32), (128, 32)]
+    assert image[10, 140, 0] == 4 and image[40, 70, 0] == 5 and image[40, 150, 0] == 7
 
 
 def test_only_tall_boxes_get_the_edge_on_look():
@@ -213,8 +230,10 @@ def test_a_sign_seen_edge_on_is_kept_once_stretched():
     assert len(found) == 1 and not found.candidate.any()
     assert found.score[0] == pytest.approx(0.9) and found.class_name == ["mandatory"]
     np.testing.assert_allclose(found.boxes()[0], box, atol=1.5)
-    # the edge-on look took it: the small boxes' zoomed look had nothing left, so one input more
+    # both looks took it (small and tall), their tiles in one input: one input more
     assert len(detector.images) == len(_views()) + 1
+    assert detector.images[-1].shape[:2] == (128, 384)
+    assert (detector.images[-1][:, 256:] != Z.MOSAIC_FILL).any()      # the zoomed tile beside the stretched one
 
 
 def test_real_signs_squeezed_to_slivers_are_scored_sure_once_stretched():
@@ -255,3 +274,25 @@ def test_real_signs_squeezed_to_slivers_are_scored_sure_once_stretched():
     assert (stretched >= 0.5).mean() >= 0.8, stretched.round(2)
     assert (as_they_are >= 0.5).mean() <= 0.5 and (plain >= 0.5).mean() <= 0.5, (as_they_are.round(2), plain.round(2))
     assert np.median(stretched) > np.median(as_they_are) + 0.2
+
+
+def test_looks_run_together_keep_a_candidates_better_tile():
+    """The edge-on look and the zoomed look on one tall, small sliver: both cut a tile of it,
+    in one input; the stretched tile's 0.9 beats the plain one's 0.3. Looks that disagree on
+    the overlap a zoomed box needs are refused."""
+    from dataclasses import replace
+
+    image = np.full((200, 300, 3), 90, np.uint8)
+    image[100:124, 200:206] = BLUE
+    sliver = np.array([[200.0, 100.0, 206.0, 124.0]])
+    detector = SquareHungryDetector()
+    rows, score, class_id, box = Z.confirm(detector, image, sliver, np.array([0.3]), 0.5,
+                                           (Z.DEFAULT_ZOOM, Z.DEFAULT_EDGE_ON), panorama=False)
+    assert rows.tolist() == [0] and score[0] == pytest.approx(0.9) and len(detector.images) == 1
+    np.testing.assert_allclose(box[0], sliver[0], atol=1.0)
+    rows, _, _, _ = Z.confirm(SquareHungryDetector(), image, sliver, np.array([0.3]), 0.5, Z.DEFAULT_ZOOM,
+                              panorama=False)
+    assert rows.tolist() == []                                   # the plain tile alone: still a sliver
+    with pytest.raises(ValueError, match="min_iou"):
+        Z.confirm(detector, image, sliver, np.array([0.3]), 0.5,
+                  (Z.DEFAULT_EDGE_ON, replace(Z.DEFAULT_ZOOM, min_iou=0.5)), panorama=False)
