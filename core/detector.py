@@ -709,10 +709,10 @@ def detect_panorama(detector, pano: np.ndarray, views: ViewSet, confidence: floa
     ``confidence`` are merged apart (across classes) and added as rows marked ``candidate``,
     except where they overlap a detection; the detections are the same as without it.
 
-    ``zoom`` (a :class:`.zoomlook.ZoomRule`, several in the order they are taken, or None):
-    the zoomed look. The small boxes scoring from ``zoom.min_score`` under ``confidence`` that
-    overlap no detection are cut again at a higher pixel density and detected once more, all
-    of a panorama's in one network run (:func:`.zoomlook.zoomed_scores`); those scored
+    ``zoom`` (a :class:`.zoomlook.ZoomRule`, several, or None): the zoomed look. The small
+    boxes scoring from ``zoom.min_score`` under ``confidence`` that overlap no detection are
+    cut again at a higher pixel density and detected once more, all of a panorama's in one
+    network run (:func:`.zoomlook.zoomed_scores`); those scored
     ``confidence`` or more there become detections with the zoomed score, class and box. With
     several rules (``detectsigns``' edge-on look, :data:`.zoomlook.DEFAULT_EDGE_ON`, and its
     zoomed look), each cuts its own tiles of the boxes it takes, all packed into the same

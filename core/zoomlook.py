@@ -92,8 +92,8 @@ DEFAULT_ZOOMED_LOOK = True
 
 
 def zoom_rules(zoom) -> Tuple[ZoomRule, ...]:
-    """The zoomed looks ``zoom`` names, in the order they are taken: None for none, a
-    :class:`ZoomRule` or a sequence of them."""
+    """The zoomed looks ``zoom`` names: None for none, a :class:`ZoomRule` or a sequence of
+    them (:func:`confirm` runs them together)."""
     if zoom is None:
         return ()
     return (zoom,) if isinstance(zoom, ZoomRule) else tuple(zoom)
