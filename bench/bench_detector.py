@@ -433,6 +433,12 @@ VIEW_SETS = {
     # the plugin's views with the horizon seen as one equirectangular band instead of the ring
     # (detectsigns' HORIZON_VIEWS "band"; the detector must take images of any size)
     "band": lambda size: panorama_mod.ViewSet.default(size_px=size, horizon_views=panorama_mod.HORIZON_BAND),
+    # the plugin's views and the two side views stretched across (detectsigns' SIDE_VIEWS)
+    "default+side": lambda size: panorama_mod.ViewSet.default(size_px=size, side=True),
+    # the same 12 views as the plugin's, the ring's two views at +-90 deg replaced by the side views
+    "side-for-ring-sides": lambda size: panorama_mod.ViewSet(tuple(
+        v for v in panorama_mod.ViewSet.default(size_px=size, side=True)
+        if not (v.stretch == 1.0 and v.pitch_deg == 0.0 and abs(v.yaw_deg % 180.0 - 90.0) < 1e-6))),
     # the band alone, and the ring of 8 alone: the horizon without the other views
     "band-alone": lambda size: panorama_mod.ViewSet.default(size_px=size, upward=False, fore_aft=False,
                                                             horizon_views=panorama_mod.HORIZON_BAND),

@@ -22,6 +22,9 @@ from roadsigns.core.panorama import (
     HORIZON_BAND_SIZE_PX,
     HORIZON_CHOICES,
     HORIZON_HFOV_DEG,
+    SIDE_HFOV_DEG,
+    SIDE_STRETCH,
+    SIDE_YAWS_DEG,
     UPWARD_HFOV_DEG,
     UPWARD_PITCH_DEG,
     UPWARD_RING_VIEWS,
@@ -162,6 +165,42 @@ def test_view_sets():
     assert training[:len(ViewSet.default(640, upward=False))] == ViewSet.default(640, upward=False).views
     assert len(training) == len(ViewSet.default(640, upward=False)) + UPWARD_RING_VIEWS
     assert sorted(v.yaw_deg for v in training if v.looks_up) == [k * 60.0 for k in range(UPWARD_RING_VIEWS)]
+
+
+def test_a_view_stretched_across_shows_a_disc_twice_as_wide_as_tall_where_the_pinhole_puts_it():
+    pano = paint_discs([(95.0, 5.0, 3.0, RED)])
+    square = PerspectiveView(90.0, 0.0, 50.0, 320, 320)
+    stretched = PerspectiveView(90.0, 0.0, 50.0, 320, 320, stretch=2.0)
+    assert stretched.focal_px == square.focal_px and stretched.focal_y_px == pytest.approx(square.focal_px / 2)
+    assert stretched.vfov_deg > 1.5 * square.vfov_deg
+    (cx, cy), box = red_blob(stretched.cut(pano))
+    _, square_box = red_blob(square.cut(pano))
+    # across as in the square view; up and down at half its density
+    want_x, want_y = pinhole(90.0, 0.0, 50.0, 320, 95.0, 5.0)
+    assert cx == pytest.approx(want_x, abs=1.0) and cy == pytest.approx(160.0 + 0.5 * (want_y - 160.0), abs=1.0)
+    width, height = box[2] - box[0], box[3] - box[1]
+    assert width == pytest.approx(square_box[2] - square_box[0], abs=1.0)
+    assert width == pytest.approx(2.0 * height, rel=0.15)
+    # rays round-trip, and the disc's box maps back around the disc in the panorama
+    xs, ys = np.array([3.0, 160.0, 317.0]), np.array([5.0, 160.0, 300.0])
+    x, y, front = stretched.ray_to_pixel(stretched.pixel_to_ray(xs, ys))
+    assert front.all() and np.allclose(x, xs) and np.allclose(y, ys)
+    got = stretched.boxes_to_pano(box[None], W, H)[0]
+    want = disc_pano_box(95.0, 5.0, 3.0)
+    assert np.all(np.abs(got - want) < 2.5), (got, want)
+
+
+def test_the_side_views_look_left_and_right_stretched_across_after_the_others():
+    plain = ViewSet.default((640, 384))
+    side = ViewSet.default((640, 384), side=True)
+    assert side[:len(plain)] == plain.views and len(side) == len(plain) + 2
+    assert [(v.yaw_deg, v.pitch_deg, v.hfov_deg, v.stretch) for v in side[len(plain):]] == [
+        (yaw, 0.0, SIDE_HFOV_DEG, SIDE_STRETCH) for yaw in SIDE_YAWS_DEG]
+    assert sorted(abs(yaw) for yaw in SIDE_YAWS_DEG) == [90.0, 90.0]
+    assert all(v.stretch == 1.0 for v in plain)
+    # as tall as the ring's views (within 10 deg), across about a 4096 px panorama's density
+    assert abs(side[-1].vfov_deg - plain[0].vfov_deg) < 10.0
+    assert side[-1].focal_px == pytest.approx(4096 / (2 * np.pi), rel=0.1)
 
 
 def test_a_ring_of_six_horizon_views_is_turned_so_its_seams_fall_in_the_fore_and_aft_views():
