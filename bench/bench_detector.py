@@ -433,12 +433,13 @@ VIEW_SETS = {
     # the plugin's views with the horizon seen as one equirectangular band instead of the ring
     # (detectsigns' HORIZON_VIEWS "band"; the detector must take images of any size)
     "band": lambda size: panorama_mod.ViewSet.default(size_px=size, horizon_views=panorama_mod.HORIZON_BAND),
-    # the plugin's views and the two side views stretched across (detectsigns' SIDE_VIEWS)
-    "default+side": lambda size: panorama_mod.ViewSet.default(size_px=size, side=True),
+    # the plugin's views and two side views stretched across (side_views; measured 2 December,
+    # not taken: models/README.md, "Side views stretched across")
+    "default+side": lambda size: panorama_mod.ViewSet.default(size_px=size) + side_views(size),
     # the same 12 views as the plugin's, the ring's two views at +-90 deg replaced by the side views
     "side-for-ring-sides": lambda size: panorama_mod.ViewSet(tuple(
-        v for v in panorama_mod.ViewSet.default(size_px=size, side=True)
-        if not (v.stretch == 1.0 and v.pitch_deg == 0.0 and abs(v.yaw_deg % 180.0 - 90.0) < 1e-6))),
+        v for v in panorama_mod.ViewSet.default(size_px=size)
+        if not (v.pitch_deg == 0.0 and abs(v.yaw_deg % 180.0 - 90.0) < 1e-6))) + side_views(size),
     # the band alone, and the ring of 8 alone: the horizon without the other views
     "band-alone": lambda size: panorama_mod.ViewSet.default(size_px=size, upward=False, fore_aft=False,
                                                             horizon_views=panorama_mod.HORIZON_BAND),
@@ -450,6 +451,25 @@ def _with_ring(size, n_views: int, first_yaw_deg: float):
     ring = panorama_mod.ViewSet.ring(n_views, 0.0, panorama_mod.HORIZON_HFOV_DEG, size, first_yaw_deg=first_yaw_deg)
     rest = panorama_mod.ViewSet.default(size_px=size).views[panorama_mod.DEFAULT_HORIZON_VIEWS:]
     return ring + panorama_mod.ViewSet(rest)
+
+
+#: The side views (``--views default+side``): left and right, :data:`SIDE_HFOV_DEG` across
+#: at :data:`SIDE_STRETCH` times their vertical density. A sign beside the road faces the
+#: traffic, so a camera passing it sees it 70-110 deg off its face's normal: a sliver,
+#: which the ring's views shrink further (0.58 x a 4096 px panorama's density at their
+#: centres). Across, these views sample about a 4096 px panorama's own density (686 px a
+#: radian at 640 px wide), up and down half of it, so a sign seen 75 deg off its normal looks
+#: as wide for its height as one seen 60 deg off in the ring.
+SIDE_YAWS_DEG = (90.0, -90.0)
+SIDE_HFOV_DEG = 50.0
+SIDE_STRETCH = 2.0
+
+
+def side_views(size) -> "panorama_mod.ViewSet":
+    """The two side views (:data:`SIDE_YAWS_DEG`) at the detector's input ``size``."""
+    w, h = (size, size) if isinstance(size, int) else size
+    return panorama_mod.ViewSet(tuple(panorama_mod.PerspectiveView(yaw, 0.0, SIDE_HFOV_DEG, int(w), int(h),
+                                                                   SIDE_STRETCH) for yaw in SIDE_YAWS_DEG))
 
 
 def half_density_hfov_deg(hfov_deg: float) -> float:

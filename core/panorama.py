@@ -54,19 +54,6 @@ FORE_AFT_HFOV_DEG = HORIZON_HFOV_DEG / 1.5
 #: held-out generated streets 0.879 and 0.906 per panorama, precision within 0.01 on all
 #: three; 1.24 x the detection time (models/README.md, "Pixels for real signs").
 DEFAULT_FORE_AFT_VIEWS = True
-#: Two more horizon views, to the left and right (yaw +-90 deg), stretched across
-#: (``detectsigns``' ``SIDE_VIEWS``). A sign stands beside the road facing the traffic, so
-#: a camera passing it sees it 70-110 deg off its face's normal: a sliver a few pixels wide,
-#: which the ring's views shrink further (0.58 x a 4096 px panorama's density at their
-#: centres). These views are :data:`SIDE_HFOV_DEG` across at :data:`SIDE_STRETCH` times
-#: their vertical density: across, about a 4096 px panorama's own density (686 px a radian
-#: at 640 px wide), up and down half of it (343), so a sign seen 75 deg off its normal looks
-#: as wide as one seen 60 deg off in the ring.
-SIDE_YAWS_DEG = (90.0, -90.0)
-SIDE_HFOV_DEG = 50.0
-SIDE_STRETCH = 2.0
-#: Whether detection adds them by default.
-DEFAULT_SIDE_VIEWS = False
 #: The horizon rings detection can cut: number of views -> yaw of the first (deg, 0 ahead).
 #: 8 views overlap by 35 deg. 6 views overlap by 20 deg and are turned by 30 deg, so that
 #: the seams ahead and behind fall inside the fore-and-aft views: 0.8-0.87 x the detection's
@@ -240,8 +227,8 @@ class PerspectiveView(_CutImage):
 
     ``stretch``: how many times the view's horizontal focal length (pixels a radian across,
     :attr:`focal_px`, set by ``hfov_deg`` and ``width_px``) is its vertical one
-    (:attr:`focal_y_px`): 1 for square pixels; the side views' 2 show a sign seen edge-on
-    twice as wide as it is tall in the panorama (:data:`SIDE_STRETCH`)."""
+    (:attr:`focal_y_px`): 1 for square pixels; 2 shows a sign seen edge-on twice as wide,
+    relative to its height, as the panorama does (``bench_detector``'s side views)."""
 
     yaw_deg: float
     pitch_deg: float = 0.0
@@ -465,8 +452,8 @@ class ViewSet:
 
     @classmethod
     def default(cls, size_px=640, upward: Optional[bool] = None,
-                fore_aft: Optional[bool] = None, horizon_views: Union[int, str] = DEFAULT_HORIZON_VIEWS,
-                side: Optional[bool] = None) -> "ViewSet":
+                fore_aft: Optional[bool] = None, horizon_views: Union[int, str] = DEFAULT_HORIZON_VIEWS
+                ) -> "ViewSet":
         """Horizon ring: ``horizon_views`` views of 80 deg across (a key of
         :data:`HORIZON_RINGS`; 8: 35 deg overlap; square views span elevations -40..+40 deg at
         their centres, about +-33 deg at their edges, 640 x 384 views +-26.7 deg); for overhead
@@ -476,9 +463,7 @@ class ViewSet:
         :data:`DEFAULT_FORE_AFT_VIEWS`) adds two views of :data:`FORE_AFT_HFOV_DEG` ahead and
         behind, after the horizon ring. ``horizon_views`` :data:`HORIZON_BAND`: the horizon as
         one :class:`BandView` instead of a ring (the detector must take images of any size).
-        ``side`` (None: :data:`DEFAULT_SIDE_VIEWS`) adds the two side views stretched across
-        (:data:`SIDE_STRETCH`), last. ``ValueError`` for a ring not in :data:`HORIZON_RINGS`,
-        nor the band."""
+        ``ValueError`` for a ring not in :data:`HORIZON_RINGS`, nor the band."""
         if horizon_views == HORIZON_BAND:
             views = cls((BandView(),))
         elif horizon_views in HORIZON_RINGS:
@@ -491,10 +476,6 @@ class ViewSet:
             views = views + cls.ring(2, 0.0, FORE_AFT_HFOV_DEG, size_px)
         if upward if upward is not None else DEFAULT_UPWARD_VIEWS:
             views = views + cls.ring(2, UPWARD_PITCH_DEG, UPWARD_HFOV_DEG, size_px)
-        if side if side is not None else DEFAULT_SIDE_VIEWS:
-            w, h = (size_px, size_px) if isinstance(size_px, (int, float, np.number)) else size_px
-            views = views + cls(tuple(PerspectiveView(yaw, 0.0, SIDE_HFOV_DEG, int(w), int(h), SIDE_STRETCH)
-                                      for yaw in SIDE_YAWS_DEG))
         return views
 
     @classmethod

@@ -22,9 +22,6 @@ from roadsigns.core.panorama import (
     HORIZON_BAND_SIZE_PX,
     HORIZON_CHOICES,
     HORIZON_HFOV_DEG,
-    SIDE_HFOV_DEG,
-    SIDE_STRETCH,
-    SIDE_YAWS_DEG,
     UPWARD_HFOV_DEG,
     UPWARD_PITCH_DEG,
     UPWARD_RING_VIEWS,
@@ -188,19 +185,6 @@ def test_a_view_stretched_across_shows_a_disc_twice_as_wide_as_tall_where_the_pi
     got = stretched.boxes_to_pano(box[None], W, H)[0]
     want = disc_pano_box(95.0, 5.0, 3.0)
     assert np.all(np.abs(got - want) < 2.5), (got, want)
-
-
-def test_the_side_views_look_left_and_right_stretched_across_after_the_others():
-    plain = ViewSet.default((640, 384))
-    side = ViewSet.default((640, 384), side=True)
-    assert side[:len(plain)] == plain.views and len(side) == len(plain) + 2
-    assert [(v.yaw_deg, v.pitch_deg, v.hfov_deg, v.stretch) for v in side[len(plain):]] == [
-        (yaw, 0.0, SIDE_HFOV_DEG, SIDE_STRETCH) for yaw in SIDE_YAWS_DEG]
-    assert sorted(abs(yaw) for yaw in SIDE_YAWS_DEG) == [90.0, 90.0]
-    assert all(v.stretch == 1.0 for v in plain)
-    # as tall as the ring's views (within 10 deg), across about a 4096 px panorama's density
-    assert abs(side[-1].vfov_deg - plain[0].vfov_deg) < 10.0
-    assert side[-1].focal_px == pytest.approx(4096 / (2 * np.pi), rel=0.1)
 
 
 def test_a_ring_of_six_horizon_views_is_turned_so_its_seams_fall_in_the_fore_and_aft_views():
