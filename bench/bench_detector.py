@@ -433,8 +433,15 @@ VIEW_SETS = {
     # the plugin's views with the horizon seen as one equirectangular band instead of the ring
     # (detectsigns' HORIZON_VIEWS "band"; the detector must take images of any size)
     "band": lambda size: panorama_mod.ViewSet.default(size_px=size, horizon_views=panorama_mod.HORIZON_BAND),
+    # the plugin's views and two more upward views turned 60 deg left and right, where the
+    # panels of a gantry over the next lanes stand as the car passes under it: 14 views
+    # (measured 2 December, not taken: the same models/README.md section as the side views)
+    "default+up-60": lambda size: (panorama_mod.ViewSet.default(size_px=size)
+                                   + panorama_mod.ViewSet(panorama_mod.ViewSet.ring(
+                                       6, panorama_mod.UPWARD_PITCH_DEG, panorama_mod.UPWARD_HFOV_DEG,
+                                       size)[1::4])),
     # the plugin's views and two side views stretched across (side_views; measured 2 December,
-    # not taken: models/README.md, "Side views stretched across")
+    # not taken: models/README.md, "Side views stretched across, and upward views turned 60°")
     "default+side": lambda size: panorama_mod.ViewSet.default(size_px=size) + side_views(size),
     # the same 12 views as the plugin's, the ring's two views at +-90 deg replaced by the side views
     "side-for-ring-sides": lambda size: panorama_mod.ViewSet(tuple(
