@@ -437,16 +437,15 @@ VIEW_SETS = {
     # panels of a gantry over the next lanes stand as the car passes under it: 14 views
     # (measured 2 December, not taken: the same models/README.md section as the side views)
     "default+up-60": lambda size: (panorama_mod.ViewSet.default(size_px=size)
-                                   + panorama_mod.ViewSet(panorama_mod.ViewSet.ring(
-                                       6, panorama_mod.UPWARD_PITCH_DEG, panorama_mod.UPWARD_HFOV_DEG,
-                                       size)[1::4])),
+                                   + views_at(size, (60.0, -60.0), panorama_mod.UPWARD_PITCH_DEG,
+                                              panorama_mod.UPWARD_HFOV_DEG)),
     # the plugin's views and two side views stretched across (side_views; measured 2 December,
     # not taken: models/README.md, "Side views stretched across, and upward views turned 60°")
     "default+side": lambda size: panorama_mod.ViewSet.default(size_px=size) + side_views(size),
     # the same 12 views as the plugin's, the ring's two views at +-90 deg replaced by the side views
     "side-for-ring-sides": lambda size: panorama_mod.ViewSet(tuple(
         v for v in panorama_mod.ViewSet.default(size_px=size)
-        if not (v.pitch_deg == 0.0 and abs(v.yaw_deg % 180.0 - 90.0) < 1e-6))) + side_views(size),
+        if not (v.pitch_deg == 0.0 and v.yaw_deg in (90.0, 270.0)))) + side_views(size),
     # the band alone, and the ring of 8 alone: the horizon without the other views
     "band-alone": lambda size: panorama_mod.ViewSet.default(size_px=size, upward=False, fore_aft=False,
                                                             horizon_views=panorama_mod.HORIZON_BAND),
@@ -472,11 +471,17 @@ SIDE_HFOV_DEG = 50.0
 SIDE_STRETCH = 2.0
 
 
+def views_at(size, yaws_deg, pitch_deg: float, hfov_deg: float, stretch: float = 1.0) -> "panorama_mod.ViewSet":
+    """One view at each yaw of ``yaws_deg``, at the detector's input ``size`` (as
+    ``ViewSet.ring`` takes it), widened ``stretch`` times across."""
+    return panorama_mod.ViewSet(tuple(
+        replace(panorama_mod.ViewSet.ring(1, pitch_deg, hfov_deg, size, first_yaw_deg=yaw)[0], stretch=stretch)
+        for yaw in yaws_deg))
+
+
 def side_views(size) -> "panorama_mod.ViewSet":
     """The two side views (:data:`SIDE_YAWS_DEG`) at the detector's input ``size``."""
-    w, h = (size, size) if isinstance(size, int) else size
-    return panorama_mod.ViewSet(tuple(panorama_mod.PerspectiveView(yaw, 0.0, SIDE_HFOV_DEG, int(w), int(h),
-                                                                   SIDE_STRETCH) for yaw in SIDE_YAWS_DEG))
+    return views_at(size, SIDE_YAWS_DEG, 0.0, SIDE_HFOV_DEG, SIDE_STRETCH)
 
 
 def half_density_hfov_deg(hfov_deg: float) -> float:
