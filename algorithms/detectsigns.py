@@ -13,7 +13,7 @@ from qgis.core import (
 )
 
 from ..core.detections import DETECTION_FIELDS, drive_detections
-from ..core.detector import DEFAULT_CONFIDENCE, DEFAULT_MIN_BOX_PX, DEFAULT_MIN_STATION_SPACING_M, spaced_stations
+from ..core.detector import DEFAULT_CONFIDENCE, DEFAULT_MIN_BOX_PX, DEFAULT_STATION_SPACING_M, spaced_stations
 from ..core.panorama import (
     DEFAULT_FORE_AFT_VIEWS,
     DEFAULT_HORIZON_VIEWS,
@@ -49,7 +49,7 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
     ZOOMED_LOOK = "ZOOMED_LOOK"
     EDGE_ON_LOOK = "EDGE_ON_LOOK"
     THREADS = "THREADS"
-    MIN_STATION_SPACING = "MIN_STATION_SPACING_M"
+    STATION_SPACING = "STATION_SPACING_M"
     OUTPUT = "OUTPUT"
     DETECTIONS = "DETECTIONS"
     SKIPPED_IMAGES = "SKIPPED_IMAGES"
@@ -204,17 +204,19 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
                         stretch=DEFAULT_EDGE_ON.stretch),
             advanced=True)
         self.add_number(
-            self.MIN_STATION_SPACING, self.tr("Skip stations closer than (m)"), DEFAULT_MIN_STATION_SPACING_M,
-            self.tr("Detects only in panoramas whose station stands at least this far from the last station "
-                    "detected in; the ones between are skipped (not read, no detections). A sign stays in view "
-                    "over many stations, so skipping saves detection time in proportion, but each sign is "
-                    "then seen from fewer stations: fewer rays to place it, and a sign visible from only a "
-                    "few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two "
-                    "held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; "
-                    "10 m (every other one) lost 2 of each, 15 m lost 11 of 46. The default, 2.5 m, keeps a "
-                    "detected panorama at least every 5 m on any drive (every second one of a drive with a "
-                    "panorama every 1.25 m) and skips nothing on drives with panoramas 2.5 m or more apart. "
-                    "0 detects in every panorama."),
+            self.STATION_SPACING, self.tr("Detect in a panorama at least every (m)"), DEFAULT_STATION_SPACING_M,
+            self.tr("Detects in as few panoramas as leave no more than this distance between one panorama "
+                    "detected in and the next; the ones between are skipped (not read, no detections). The "
+                    "first and the last panorama are always detected in, and a drive whose panoramas stand "
+                    "this far apart or more keeps every one. A sign stays in view over many stations, so "
+                    "skipping saves detection time in proportion, but each sign is then seen from fewer "
+                    "stations: fewer rays to place it, and a sign visible from only a few stations (small, or "
+                    "hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with "
+                    "a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost "
+                    "2 of each, 15 m lost 11 of 46. On two held-out streets with a panorama every 1.25 m, one every "
+                    "5 m found the same 87 signs as one every 2.5 m, in 0.55 times the detection time; the median "
+                    "position error went from 11 to 13 mm, and one sign, read in 3 of its 7 views instead of 13 "
+                    "of 19, was left without a code. 0 detects in every panorama."),
             minimum=0.0, advanced=True)
         self.add_number(
             self.THREADS, self.tr("CPU threads (0: all)"), 0,
@@ -263,11 +265,11 @@ class DetectSigns(ReadsCodes, RoadSignsAlgorithm):
             feedback.pushInfo(self.tr("{} panoramas, {} views each").format(len(stations), len(views)))
             classifier = self.code_classifier(parameters, context, feedback,
                                               self.parameterAsInt(parameters, self.THREADS, context))
-            spacing_m = self.parameterAsDouble(parameters, self.MIN_STATION_SPACING, context)
+            spacing_m = self.parameterAsDouble(parameters, self.STATION_SPACING, context)
             chosen = spaced_stations(stations.xyz_world, spacing_m)
             if len(chosen) < len(stations):
-                feedback.pushInfo(self.tr("Detecting in {} of the {} panoramas: stations closer than {} m to "
-                                          "the last one detected in are skipped.").format(
+                feedback.pushInfo(self.tr("Detecting in {} of the {} panoramas: one at least every {} m of the "
+                                          "drive, the ones between skipped.").format(
                                               len(chosen), len(stations), spacing_m))
             rescue_from = self.parameterAsDouble(parameters, self.RESCUE_CONFIDENCE, context)
             second_look_on = classifier is not None and rescue_from < confidence

@@ -71,7 +71,7 @@ def stage_plan(scene_dir, meta, work, model=None, station_spacing_m=None, upward
                                   OUTPUT=w("stations.gpkg")), "OUTPUT", []),
         ("detectsigns", dict(STATIONS=w("stations.gpkg"), OUTPUT=w("detections.gpkg"),
                              **({"CONFIDENCE": confidence} if confidence is not None else {}),
-                             **({"MIN_STATION_SPACING_M": station_spacing_m} if station_spacing_m is not None else {}),
+                             **({"STATION_SPACING_M": station_spacing_m} if station_spacing_m is not None else {}),
                              **({"UPWARD_VIEWS": upward_views} if upward_views is not None else {}),
                              **({"FORE_AFT_VIEWS": fore_aft_views} if fore_aft_views is not None else {}),
                              **({"HORIZON_VIEWS": horizon_views_option(horizon_views)}
@@ -133,8 +133,8 @@ def main(argv=None):
     parser.add_argument("--model", help="an ONNX model instead of the bundled one")
     parser.add_argument("--classifier", help="a sign-code classifier (ONNX) instead of the bundled one")
     parser.add_argument("--station-spacing", type=float, metavar="M",
-                        help="detectsigns' MIN_STATION_SPACING_M: detect only on stations at least M metres "
-                             "apart (0: every station; default: the algorithm's)")
+                        help="detectsigns' STATION_SPACING_M: detect in a panorama at least every M metres, "
+                             "the ones between skipped (0: every station; default: the algorithm's)")
     parser.add_argument("--upward", action=argparse.BooleanOptionalAction, default=None,
                         help="detectsigns with or without its upward views (UPWARD_VIEWS; default: the "
                              "algorithm's, off: the horizon views only)")

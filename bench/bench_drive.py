@@ -365,7 +365,7 @@ def main(argv=None):
                              "(as a crew delivers a drive)")
     parser.add_argument("--tile-m", type=float, default=500.0)
     parser.add_argument("--station-spacing", type=float,
-                        help="the model's MIN_STATION_SPACING_M (default: the model's own)")
+                        help="the model's STATION_SPACING_M (default: the model's own)")
     parser.add_argument("--horizon-views",
                         help="the model's HORIZON_VIEWS: the views of detectsigns' horizon ring, 8 or 6, or band for "
                              "the horizon as one band (default: the model's own, 8)")
@@ -393,7 +393,7 @@ def main(argv=None):
         cloud = write_tiles(drive_dir, args.tile_m, verbose=True)
     inputs, outputs = model_parameters(drive_dir, meta, work, cloud, args.ground_format)
     if args.station_spacing is not None:
-        inputs["MIN_STATION_SPACING_M"] = args.station_spacing
+        inputs["STATION_SPACING_M"] = args.station_spacing
     if args.horizon_views is not None:
         inputs["HORIZON_VIEWS"] = horizon_views_option(args.horizon_views)
     args_run = ["--verbose", "run", MODEL_ID, "--"] + [f"{k}={v}" for k, v in {**inputs, **outputs}.items()]
@@ -406,7 +406,7 @@ def main(argv=None):
                "length_m": drive["length_m"], "road_length_m": drive["road_length_m"],
                "panoramas": n_pano, "rendered": drive["rendered"], "reused": drive["reused"],
                "reuse": drive["reuse"], "points": n_points, "cloud": inputs["POINT_CLOUD"],
-               "min_station_spacing_m": inputs.get("MIN_STATION_SPACING_M"),
+               "station_spacing_m": inputs.get("STATION_SPACING_M"),
                "horizon_views": args.horizon_views,
                "ground_output": outputs["ground:Ground-classified cloud"],
                "pano_width": drive["pano_width"],
@@ -464,7 +464,7 @@ def main(argv=None):
           "load average {:.1f} before, {:.1f} after (2 shared cores: times are inflated)."
           .format(MODEL_ID, rc, wall, peak, load0[0], load1[0]))
     if args.station_spacing is not None:
-        print(f"MIN_STATION_SPACING_M = {args.station_spacing:g} m: detection only in panoramas that far apart "
+        print(f"STATION_SPACING_M = {args.station_spacing:g} m: detection in a panorama at least that often "
               f"(panoramas every {drive['image_spacing_m']} m here); s/panorama still divides by all of them.")
     if args.horizon_views is not None:
         seen = "as one band" if args.horizon_views == "band" else f"ring of {args.horizon_views} views"

@@ -811,27 +811,39 @@ def fit_tall_boxes(pano: np.ndarray, found: PanoramaDetections, rows: Optional[n
 
 # --- a drive ------------------------------------------------------------------------------
 
-#: Default of detectsigns' MIN_STATION_SPACING_M (metres). A drive with panoramas every
-#: ``d`` metres is then detected in at least every ``d + 2.5`` m (< 5 m when ``d`` < 2.5 m;
-#: sparser drives keep every panorama): two held-out streets with a panorama every 5 m had
-#: every sign found, every 10 m lost 2 in 45 (bench/README.md, "Fewer views, fewer stations").
-DEFAULT_MIN_STATION_SPACING_M = 2.5
+#: Default of detectsigns' STATION_SPACING_M (metres): a panorama detected in at least every
+#: 5 m of drive. Two held-out streets with a panorama every 5 m had every sign found, every
+#: 10 m lost 2 in 45 (bench/README.md, "Fewer views, fewer stations"); two held-out streets
+#: with a panorama every 1.25 m, detected in every 2.5 and every 5 m, in "Detection every 5 m".
+DEFAULT_STATION_SPACING_M = 5.0
 
 
-def spaced_stations(xyz_world, min_spacing_m: float) -> np.ndarray:
-    """Indices of the stations to detect in, in order: the first, then each station at least
-    ``min_spacing_m`` (3-D distance) from the last one kept. ``min_spacing_m`` <= 0 keeps all.
+def spaced_stations(xyz_world, spacing_m: float) -> np.ndarray:
+    """Indices of the stations to detect in, in order: the fewest that leave no more than
+    ``spacing_m`` (3-D distance) between one kept station and the next, where the stations
+    allow it. The first and the last station are kept; a station is kept when the one after
+    it stands more than ``spacing_m`` from the last one kept (so a station farther than that
+    from the one before it is kept, and so is that one). ``spacing_m`` <= 0 keeps all.
 
     A sign stays in view over many stations: skipping the ones that stand close together
-    saves their detection time, at the price of fewer views (fewer rays) of each sign.
+    saves their detection time, at the price of fewer views (fewer rays) of each sign. A
+    drive whose panoramas stand ``spacing_m`` or more apart keeps every one; one stopped at a
+    crossing keeps one panorama where it stood.
     """
     xyz = np.asarray(xyz_world, float).reshape(-1, 3)
-    if min_spacing_m <= 0 or len(xyz) == 0:
-        return np.arange(len(xyz), dtype=np.int64)
+    n = len(xyz)
+    if spacing_m <= 0 or n <= 2:
+        return np.arange(n, dtype=np.int64)
+    limit2 = float(spacing_m) ** 2
+    points = xyz.tolist()
     kept = [0]
-    for k in range(1, len(xyz)):
-        if np.linalg.norm(xyz[k] - xyz[kept[-1]]) >= min_spacing_m:
+    last = points[0]
+    for k in range(1, n - 1):
+        after = points[k + 1]
+        if (after[0] - last[0]) ** 2 + (after[1] - last[1]) ** 2 + (after[2] - last[2]) ** 2 > limit2:
             kept.append(k)
+            last = points[k]
+    kept.append(n - 1)
     return np.array(kept, dtype=np.int64)
 
 

@@ -117,7 +117,7 @@
         <translation>Ejecuta un detector de señales ONNX en cada panorama; un rayo por señal detectada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="251" />
+        <location filename="../algorithms/detectsigns.py" line="253" />
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
@@ -192,79 +192,64 @@
         <translation>Mirar también hacia arriba (señales elevadas y de pórtico)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="219" />
+        <location filename="../algorithms/detectsigns.py" line="221" />
         <source>CPU threads (0: all)</source>
         <translation>Hilos de CPU (0: todos)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="219" />
+        <location filename="../algorithms/detectsigns.py" line="221" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>Hilos que onnxruntime puede usar en la CPU; 0 le permite usar todos los núcleos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="225" />
+        <location filename="../algorithms/detectsigns.py" line="227" />
         <source>Detections</source>
         <translation>Detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="229" />
+        <location filename="../algorithms/detectsigns.py" line="231" />
         <source>Number of detections</source>
         <translation>Número de detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="230" />
+        <location filename="../algorithms/detectsigns.py" line="232" />
         <source>Panoramas skipped</source>
         <translation>Panoramas omitidos</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="244" />
+        <location filename="../algorithms/detectsigns.py" line="246" />
         <source>ONNX model not found: {}</source>
         <translation>No se encontró el modelo ONNX: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="263" />
+        <location filename="../algorithms/detectsigns.py" line="265" />
         <source>{} panoramas, {} views each</source>
         <translation>{} panoramas, {} vistas cada uno</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="299" />
+        <location filename="../algorithms/detectsigns.py" line="301" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>Se omitieron {} panorama(s) que no se pudieron leer.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="315" />
+        <location filename="../algorithms/detectsigns.py" line="317" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} detecciones en {} panoramas ({} omitidos).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="307" />
+        <location filename="../algorithms/detectsigns.py" line="309" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>No se detectó ninguna señal: la capa de detecciones está vacía.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="225" />
+        <location filename="../algorithms/detectsigns.py" line="227" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>Capa LineStringZ, un rayo por detección, con det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views y los campos de pose de la estación.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="206" />
-        <source>Skip stations closer than (m)</source>
-        <translation>Omitir estaciones a menos de (m)</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="269" />
-        <source>Detecting in {} of the {} panoramas: stations closer than {} m to the last one detected in are skipped.</source>
-        <translation>Detectando en {} de los {} panoramas: se omiten las estaciones a menos de {} m de la última en la que se detectó.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="223" />
+        <location filename="../algorithms/detectsigns.py" line="225" />
         <source>in a crop around each detection, voted later across the views of each sign by Refine and merge signs</source>
         <translation>en un recorte alrededor de cada detección; «Refinar y fusionar señales» vota después entre las vistas de cada señal</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="206" />
-        <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so skipping saves detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. The default, 2.5 m, keeps a detected panorama at least every 5 m on any drive (every second one of a drive with a panorama every 1.25 m) and skips nothing on drives with panoramas 2.5 m or more apart. 0 detects in every panorama.</source>
-        <translation>Detecta solo en las panorámicas cuya estación está al menos a esta distancia de la última estación en la que se detectó; las intermedias se omiten (no se leen, sin detecciones). Una señal permanece visible desde muchas estaciones, así que omitir ahorra tiempo de detección en proporción, pero cada señal se ve entonces desde menos estaciones: menos rayos para situarla, y una señal visible solo desde pocas estaciones (pequeña, u oculta tras árboles o vehículos) puede perderse. Medido en dos calles de prueba reservadas con una panorámica cada 5 m: todas las panorámicas encontraron las 46 y 45 señales; 10 m (una de cada dos) perdió 2 en cada una, 15 m perdió 11 de 46. El valor por defecto, 2,5 m, mantiene una panorámica detectada al menos cada 5 m en cualquier recorrido (una de cada dos en un recorrido con una panorámica cada 1,25 m) y no omite nada en recorridos con panorámicas a 2,5 m o más. 0 detecta en todas las panorámicas.</translation>
     </message>
     <message>
         <location filename="../algorithms/detectsigns.py" line="139" />
@@ -277,7 +262,7 @@
         <translation>Segunda mirada desde la confianza</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="278" />
+        <location filename="../algorithms/detectsigns.py" line="280" />
         <source>Second look: boxes scored from {} to {} are kept where the sign-code classifier reads a code.</source>
         <translation>Segunda mirada: los recuadros puntuados de {} a {} se conservan donde el clasificador de códigos de señal lee un código.</translation>
     </message>
@@ -287,7 +272,7 @@
         <translation>Añade dos vistas de 53° justo delante y detrás, con 1,5 veces los píxeles por grado de las vistas del horizonte (la densidad propia de un panorama de 4096 px), para las señales lejanas a lo largo de la vía. Las señales reales necesitan esos píxeles: en fotografías reales de calles, a la densidad de las vistas del horizonte, el detector encontró 0,82 de las señales (GTSDB 500-599) y 0,54 de 376 señales reales reservadas pegadas como señales lejanas; con estas vistas, 0,93 y 0,69, con una precisión que varía menos de 0,01. En panoramas generados reservados: 0,906 de las señales por panorama en lugar de 0,879. Cuestan 1,24 veces el tiempo de detección. Activado por defecto; desactívelo solo por velocidad en recorridos con panoramas muy próximos (cada señal se ve entonces desde muchas estaciones).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="319" />
+        <location filename="../algorithms/detectsigns.py" line="321" />
         <source>Sign codes read in {} of the {} detections (the others: other, or a sign whose code the table lacks).</source>
         <translation>Códigos de señal leídos en {} de las {} detecciones (las demás: other, o una señal cuyo código no está en la tabla).</translation>
     </message>
@@ -317,7 +302,7 @@
         <translation>Una caja de {px} px como máximo que el detector puntúa desde {score} hasta la confianza mínima se recorta de nuevo del panorama con una densidad de píxeles mayor (la caja mide {box_px} px) y se detecta otra vez; se conserva cuando el detector la puntúa entonces con la confianza mínima o más, con esa puntuación, clase y caja. Todas esas cajas de un panorama pasan juntas por el detector, en una sola ejecución adicional. Encuentra señales lejanas, de 15-25 px: en 376 señales reales reservadas, pegadas en fotografías de calles, las señales encontradas subieron de 0,79 a 0,87 (las de 14-20 px de alto, de 0,34 a 0,59) con una precisión de 0,96; en fotografías reales de calles (GTSDB 500-599) la exhaustividad se mantuvo en 0,958 y la precisión pasó de 0,971 a 0,958. Cuesta entre 1,05 y 1,09 veces el tiempo de detección. Activado por defecto.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="291" />
+        <location filename="../algorithms/detectsigns.py" line="293" />
         <source>Zoomed look: boxes of at most {} px scored from {} to {} are detected again at a higher pixel density.</source>
         <translation>Mirada de cerca: las cajas de {} px como máximo puntuadas entre {} y {} se detectan de nuevo con una densidad de píxeles mayor.</translation>
     </message>
@@ -352,7 +337,7 @@
         <translation>Volver a mirar, estiradas a lo ancho, las cajas altas de señales vistas de canto</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="285" />
+        <location filename="../algorithms/detectsigns.py" line="287" />
         <source>Edge-on look: boxes at least {} times as tall as wide scored from {} to {} are detected again stretched {} times across.</source>
         <translation>Mirada de canto: las cajas al menos {} veces más altas que anchas puntuadas de {} a {} se detectan de nuevo estiradas {} veces a lo ancho.</translation>
     </message>
@@ -360,6 +345,21 @@
         <location filename="../algorithms/detectsigns.py" line="187" />
         <source>A sign passed close by is seen far off its face's normal, and the view squeezes it to a sliver that the detector scores low. A box at least {ratio} times as tall as wide, of at most {px} px, that the detector scores from {score} up to the minimum confidence is cut again from the panorama (its height {box_px} px) and stretched {stretch} times across, so that the sign's face is about as wide as tall again, and detected once more; it is kept when the detector then scores it at the minimum confidence or more. Its tiles go into the zoomed look's detector runs, and a box both looks take keeps the higher score. On five held-out generated streets it found 701 of 734 signs in single panoramas, against 697 without it (signs seen more than 70° off their face's normal: 27 of 45 against 23), with one false box fewer, in 1.02 to 1.03 times the processor time; real signs of street photographs squeezed across to 0.3 of their width are scored 0.5 or more in 44 of 50 cases stretched, against 11 as they are. On the real street photographs themselves it changed nothing. On by default.</source>
         <translation>Una señal junto a la que se pasa muy cerca se ve muy lejos de la normal de su cara, y la vista la comprime en una franja estrecha a la que el detector da una puntuación baja. Una caja al menos {ratio} veces más alta que ancha, de {px} px como máximo, que el detector puntúa desde {score} hasta la confianza mínima se recorta de nuevo de la panorámica (su altura a {box_px} px), se estira {stretch} veces a lo ancho, de modo que la cara de la señal vuelve a ser casi tan ancha como alta, y se detecta una vez más; se conserva cuando el detector la puntúa entonces con la confianza mínima o más. Sus recortes van en las mismas ejecuciones del detector que los de la mirada ampliada, y una caja que toman ambas miradas conserva la puntuación más alta. En cinco calles generadas reservadas encontró 701 de 734 señales en panorámicas sueltas, frente a 697 sin ella (señales vistas a más de 70° de la normal de su cara: 27 de 45 frente a 23), con una caja falsa menos, en 1,02 a 1,03 veces el tiempo de procesador; señales reales de fotografías de calle comprimidas a lo ancho a 0,3 de su anchura se puntúan con 0,5 o más en 44 de 50 casos estiradas, frente a 11 tal como están. En las propias fotografías de calle reales no cambió nada. Activada por defecto.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="206" />
+        <source>Detect in a panorama at least every (m)</source>
+        <translation>Detectar en una panorámica al menos cada (m)</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="206" />
+        <source>Detects in as few panoramas as leave no more than this distance between one panorama detected in and the next; the ones between are skipped (not read, no detections). The first and the last panorama are always detected in, and a drive whose panoramas stand this far apart or more keeps every one. A sign stays in view over many stations, so skipping saves detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. On two held-out streets with a panorama every 1.25 m, one every 5 m found the same 87 signs as one every 2.5 m, in 0.55 times the detection time; the median position error went from 11 to 13 mm, and one sign, read in 3 of its 7 views instead of 13 of 19, was left without a code. 0 detects in every panorama.</source>
+        <translation>Detecta en tan pocas panorámicas como permitan que entre una panorámica detectada y la siguiente no haya más que esta distancia; las intermedias se omiten (no se leen, sin detecciones). La primera y la última panorámica se detectan siempre, y un recorrido cuyas panorámicas distan esto o más las conserva todas. Una señal permanece visible desde muchas estaciones, así que omitir ahorra tiempo de detección en proporción, pero cada señal se ve desde menos estaciones: menos rayos para situarla, y una señal visible solo desde unas pocas estaciones (pequeña, u oculta tras árboles o vehículos) puede perderse. Medido en dos calles de prueba reservadas con una panorámica cada 5 m: todas las panorámicas encontraron las 46 y 45 señales; cada 10 m (una de cada dos) se perdieron 2 de cada una, cada 15 m 11 de 46. En dos calles reservadas con una panorámica cada 1,25 m, una cada 5 m encontró las mismas 87 señales que una cada 2,5 m, en 0,55 veces el tiempo de detección; la mediana del error de posición pasó de 11 a 13 mm, y una señal, leída en 3 de sus 7 vistas en lugar de 13 de 19, quedó sin código. 0 detecta en todas las panorámicas.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="271" />
+        <source>Detecting in {} of the {} panoramas: one at least every {} m of the drive, the ones between skipped.</source>
+        <translation>Detectando en {} de las {} panorámicas: una al menos cada {} m del recorrido, las intermedias omitidas.</translation>
     </message>
 </context>
 <context>
@@ -3747,27 +3747,27 @@
     </message>
     <message>
         <location filename="../models/sign_inventory.model3" line="740" />
-        <source>Detects only in panoramas at least this far from the last one detected in (the ones between are skipped); 0 detects in every panorama. The default, 2.5 m, detects at least every 5 m on any drive: on held-out test streets a panorama every 5 m found every sign, every 10 m lost 2 in 45.</source>
-        <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
-        <translation>Detecta solo en las panorámicas al menos a esta distancia de la última en la que se detectó (las intermedias se omiten); 0 detecta en todas las panorámicas. El valor por defecto, 2,5 m, detecta al menos cada 5 m en cualquier recorrido: en calles de prueba reservadas, una panorámica cada 5 m encontró todas las señales y una cada 10 m perdió 2 de 45.</translation>
-    </message>
-    <message>
-        <location filename="../models/sign_inventory.model3" line="741" />
         <source>Your own ONNX detector, or empty for the bundled one.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Su propio detector ONNX, o vacío para usar el incluido.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="742" />
+        <location filename="../models/sign_inventory.model3" line="741" />
         <source>The drive's LiDAR cloud.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>La nube LiDAR del recorrido.</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="743" />
+        <location filename="../models/sign_inventory.model3" line="742" />
         <source>Reads what each sign says (its code, such as DE:274[50] for speed limit 50) with the sign-code classifier; unchecked, the code fields stay empty.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>Lee lo que dice cada señal (su código, como DE:274[50] para el límite de velocidad 50) con el clasificador de códigos de señal; si se desmarca, los campos de código quedan vacíos.</translation>
+    </message>
+    <message>
+        <location filename="../models/sign_inventory.model3" line="743" />
+        <source>Detects in as few panoramas as leave no more than this distance between one detected in and the next (the ones between are skipped); 0 detects in every panorama. On held-out test streets a panorama every 5 m found every sign, every 10 m lost 2 in 45.</source>
+        <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
+        <translation>Detecta en tan pocas panorámicas como permitan que entre una detectada y la siguiente no haya más que esta distancia (las intermedias se omiten); 0 detecta en todas las panorámicas. En calles de prueba reservadas, una panorámica cada 5 m encontró todas las señales; cada 10 m se perdieron 2 de 45.</translation>
     </message>
     <message>
         <location filename="../models/sign_inventory.model3" line="744" />

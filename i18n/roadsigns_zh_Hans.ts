@@ -117,7 +117,7 @@
         <translation>在每张全景图上运行 ONNX 标志检测器；每个检测到的标志生成一条射线。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="251" />
+        <location filename="../algorithms/detectsigns.py" line="253" />
         <source>Panorama stations</source>
         <translation>全景站点</translation>
     </message>
@@ -192,79 +192,64 @@
         <translation>同时向上看（悬挂式和门架式标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="219" />
+        <location filename="../algorithms/detectsigns.py" line="221" />
         <source>CPU threads (0: all)</source>
         <translation>CPU 线程数（0：全部）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="219" />
+        <location filename="../algorithms/detectsigns.py" line="221" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>onnxruntime 在 CPU 上可使用的线程数；0 表示使用所有核心。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="225" />
+        <location filename="../algorithms/detectsigns.py" line="227" />
         <source>Detections</source>
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="229" />
+        <location filename="../algorithms/detectsigns.py" line="231" />
         <source>Number of detections</source>
         <translation>检测数量</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="230" />
+        <location filename="../algorithms/detectsigns.py" line="232" />
         <source>Panoramas skipped</source>
         <translation>跳过的全景图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="244" />
+        <location filename="../algorithms/detectsigns.py" line="246" />
         <source>ONNX model not found: {}</source>
         <translation>未找到 ONNX 模型：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="263" />
+        <location filename="../algorithms/detectsigns.py" line="265" />
         <source>{} panoramas, {} views each</source>
         <translation>{} 张全景图，每张 {} 个视图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="299" />
+        <location filename="../algorithms/detectsigns.py" line="301" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>跳过了 {} 张无法读取的全景图。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="315" />
+        <location filename="../algorithms/detectsigns.py" line="317" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} 个检测，来自 {} 张全景图（跳过 {} 张）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="307" />
+        <location filename="../algorithms/detectsigns.py" line="309" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>未检测到任何标志：检测图层为空。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="225" />
+        <location filename="../algorithms/detectsigns.py" line="227" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>LineStringZ 图层，每个检测一条射线，包含字段 det_id、station_id、image、class、score、code、code_score、u0、v0、u1、v1、n_views 以及站点的位姿字段。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="206" />
-        <source>Skip stations closer than (m)</source>
-        <translation>跳过间距小于此值的站点 (m)</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="269" />
-        <source>Detecting in {} of the {} panoramas: stations closer than {} m to the last one detected in are skipped.</source>
-        <translation>在 {} 张全景图（共 {} 张）中检测：距上一个检测站点不足 {} m 的站点将被跳过。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="223" />
+        <location filename="../algorithms/detectsigns.py" line="225" />
         <source>in a crop around each detection, voted later across the views of each sign by Refine and merge signs</source>
         <translation>在每个检测结果周围的裁剪图中读取，之后由“精化与合并标志”在每个标志的各视图间投票</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="206" />
-        <source>Detects only in panoramas whose station stands at least this far from the last station detected in; the ones between are skipped (not read, no detections). A sign stays in view over many stations, so skipping saves detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. The default, 2.5 m, keeps a detected panorama at least every 5 m on any drive (every second one of a drive with a panorama every 1.25 m) and skips nothing on drives with panoramas 2.5 m or more apart. 0 detects in every panorama.</source>
-        <translation>仅在其站点与上一个检测站点相距至少此距离的全景图中检测；其间的全景图将被跳过（不读取，无检测结果）。一个标志在许多站点中都可见，因此跳过可按比例节省检测时间，但每个标志被看到的站点会变少：用于定位它的射线更少，而只在少数站点可见的标志（较小，或被树木或车辆遮挡）可能会漏检。在两条保留的测试街道上（每 5 米一张全景图）测得：使用全部全景图找到了全部 46 个和 45 个标志；10 米（隔一张）各漏检 2 个，15 米漏检 46 个中的 11 个。默认值 2.5 米可保证在任何行驶路线上至少每 5 米有一张被检测的全景图（全景图间隔 1.25 米的路线即每隔一张），而对全景图间隔 2.5 米或以上的路线不跳过任何全景图。0 表示在每张全景图中检测。</translation>
     </message>
     <message>
         <location filename="../algorithms/detectsigns.py" line="139" />
@@ -277,7 +262,7 @@
         <translation>二次检查起始置信度</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="278" />
+        <location filename="../algorithms/detectsigns.py" line="280" />
         <source>Second look: boxes scored from {} to {} are kept where the sign-code classifier reads a code.</source>
         <translation>二次检查：评分在 {} 到 {} 之间、且标志代码分类器读出代码的框被保留。</translation>
     </message>
@@ -287,7 +272,7 @@
         <translation>在正前方和正后方各添加一个 53° 的视图，其每度像素数为地平线视图的 1.5 倍（即 4096 px 全景图自身的密度），用于沿道路远处的标志。真实标志需要这些像素：在真实街道照片上，按地平线视图的密度，检测器找到了 0.82 的标志（GTSDB 500-599）和作为远处标志粘贴的 376 个保留真实标志中的 0.54；加上这些视图后为 0.93 和 0.69，精度变化不超过 0.01。在保留的生成全景图上：每幅全景图找到 0.906 的标志，而不是 0.879。其代价是 1.24 倍的检测时间。默认开启；仅在全景站点很密的行驶采集中为了速度而关闭（此时每个标志都会从许多全景站点被看到）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="319" />
+        <location filename="../algorithms/detectsigns.py" line="321" />
         <source>Sign codes read in {} of the {} detections (the others: other, or a sign whose code the table lacks).</source>
         <translation>{} 个检测读出了标志代码（共 {} 个检测；其余为 other，或代码表中没有其代码的标志）。</translation>
     </message>
@@ -317,7 +302,7 @@
         <translation>检测器评分在 {score} 到最低置信度之间、且不超过 {px} px 的框，会以更高的像素密度从全景图中重新裁切（框宽 {box_px} px）并再次检测；若检测器此时的评分达到最低置信度或更高，则保留该框，并采用这次的评分、类别和框。一幅全景图中所有这样的框会一起送入检测器，只需额外运行一次。它能找到 15-25 px 的远处标志：在粘贴到街景照片中的 376 个预留真实标志上，检出率从 0.79 提高到 0.87（高 14-20 px 的从 0.34 提高到 0.59），精度为 0.96；在真实街景照片（GTSDB 500-599）上，召回率保持 0.958，精度从 0.971 变为 0.958。检测时间约为原来的 1.05-1.09 倍。默认开启。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="291" />
+        <location filename="../algorithms/detectsigns.py" line="293" />
         <source>Zoomed look: boxes of at most {} px scored from {} to {} are detected again at a higher pixel density.</source>
         <translation>放大再看：不超过 {} px、评分在 {} 到 {} 之间的框会以更高的像素密度再次检测。</translation>
     </message>
@@ -352,7 +337,7 @@
         <translation>对侧面看到的标志的高框横向拉伸后再看一次</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="285" />
+        <location filename="../algorithms/detectsigns.py" line="287" />
         <source>Edge-on look: boxes at least {} times as tall as wide scored from {} to {} are detected again stretched {} times across.</source>
         <translation>侧面查看：高度至少为宽度 {} 倍、得分在 {} 到 {} 之间的框横向拉伸 {} 倍后再检测一次。</translation>
     </message>
@@ -360,6 +345,21 @@
         <location filename="../algorithms/detectsigns.py" line="187" />
         <source>A sign passed close by is seen far off its face's normal, and the view squeezes it to a sliver that the detector scores low. A box at least {ratio} times as tall as wide, of at most {px} px, that the detector scores from {score} up to the minimum confidence is cut again from the panorama (its height {box_px} px) and stretched {stretch} times across, so that the sign's face is about as wide as tall again, and detected once more; it is kept when the detector then scores it at the minimum confidence or more. Its tiles go into the zoomed look's detector runs, and a box both looks take keeps the higher score. On five held-out generated streets it found 701 of 734 signs in single panoramas, against 697 without it (signs seen more than 70° off their face's normal: 27 of 45 against 23), with one false box fewer, in 1.02 to 1.03 times the processor time; real signs of street photographs squeezed across to 0.3 of their width are scored 0.5 or more in 44 of 50 cases stretched, against 11 as they are. On the real street photographs themselves it changed nothing. On by default.</source>
         <translation>车辆从近处经过的标志，其视线远离标志面的法线，视图将其压缩成一条窄条，检测器给出的得分很低。高度至少为宽度 {ratio} 倍、最长边不超过 {px} px、检测器得分在 {score} 到最低置信度之间的框，会从全景图中重新裁切（其高度为 {box_px} px），并横向拉伸 {stretch} 倍，使标志面重新接近宽高相等，然后再检测一次；如果检测器此时的得分达到最低置信度或更高，则保留该框。其切片与放大查看的切片放入同一次检测器运行中，两种查看都选中的框保留较高的得分。在五条留出的生成街道上，单张全景图中找到了 734 个标志中的 701 个，不使用时为 697 个（偏离标志面法线超过 70° 的标志：45 个中找到 27 个，不使用时为 23 个），误检框少一个，处理器时间为 1.02 至 1.03 倍；真实街道照片中的标志横向压缩到其宽度的 0.3 后，拉伸后 50 个中有 44 个得分达到 0.5 或以上，未拉伸时为 11 个。在真实街道照片本身上没有任何变化。默认开启。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="206" />
+        <source>Detect in a panorama at least every (m)</source>
+        <translation>至少每隔多少米在一幅全景图中检测（米）</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="206" />
+        <source>Detects in as few panoramas as leave no more than this distance between one panorama detected in and the next; the ones between are skipped (not read, no detections). The first and the last panorama are always detected in, and a drive whose panoramas stand this far apart or more keeps every one. A sign stays in view over many stations, so skipping saves detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. On two held-out streets with a panorama every 1.25 m, one every 5 m found the same 87 signs as one every 2.5 m, in 0.55 times the detection time; the median position error went from 11 to 13 mm, and one sign, read in 3 of its 7 views instead of 13 of 19, was left without a code. 0 detects in every panorama.</source>
+        <translation>只在尽可能少的全景图中检测，使相邻两幅被检测的全景图之间的距离不超过此值；其间的全景图被跳过（不读取，无检测结果）。第一幅和最后一幅全景图总会被检测；若全景图之间的间距已达到或超过此值，则全部保留。一个标志在许多测站中都可见，因此跳过可按比例节省检测时间，但每个标志被看到的测站会减少：用于定位的射线更少，仅在少数测站可见的标志（较小，或被树木、车辆遮挡）可能被漏检。在两条留出的测试街道上（每 5 米一幅全景图）测得：使用全部全景图可找到全部 46 和 45 个标志；每 10 米（隔一幅）各漏检 2 个，每 15 米漏检 46 个中的 11 个。在两条每 1.25 米一幅全景图的留出街道上，每 5 米检测一幅与每 2.5 米检测一幅找到的是同样的 87 个标志，检测时间为其 0.55 倍；位置误差中位数从 11 毫米增至 13 毫米，另有一个标志因只在其 7 个视图中的 3 个被读出（而非 19 个中的 13 个）而没有代码。0 表示在每幅全景图中检测。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="271" />
+        <source>Detecting in {} of the {} panoramas: one at least every {} m of the drive, the ones between skipped.</source>
+        <translation>正在 {} 幅全景图中检测（共 {} 幅）：沿行驶路线至少每 {} 米一幅，其间的跳过。</translation>
     </message>
 </context>
 <context>
@@ -3747,27 +3747,27 @@
     </message>
     <message>
         <location filename="../models/sign_inventory.model3" line="740" />
-        <source>Detects only in panoramas at least this far from the last one detected in (the ones between are skipped); 0 detects in every panorama. The default, 2.5 m, detects at least every 5 m on any drive: on held-out test streets a panorama every 5 m found every sign, every 10 m lost 2 in 45.</source>
-        <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
-        <translation>仅在与上一个检测全景图相距至少此距离的全景图中检测（其间的将被跳过）；0 表示在每张全景图中检测。默认值 2.5 米可在任何行驶路线上至少每 5 米检测一次：在保留的测试街道上，每 5 米一张全景图找到了全部标志，每 10 米一张则漏检 45 个中的 2 个。</translation>
-    </message>
-    <message>
-        <location filename="../models/sign_inventory.model3" line="741" />
         <source>Your own ONNX detector, or empty for the bundled one.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>您自己的 ONNX 检测器；留空则使用内置检测器。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="742" />
+        <location filename="../models/sign_inventory.model3" line="741" />
         <source>The drive's LiDAR cloud.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>本次行驶采集的激光雷达点云。</translation>
     </message>
     <message>
-        <location filename="../models/sign_inventory.model3" line="743" />
+        <location filename="../models/sign_inventory.model3" line="742" />
         <source>Reads what each sign says (its code, such as DE:274[50] for speed limit 50) with the sign-code classifier; unchecked, the code fields stay empty.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
         <translation>使用标志代码分类器读取每个标志的内容（其代码，例如 DE:274[50] 表示限速 50）；不勾选时代码字段保持为空。</translation>
+    </message>
+    <message>
+        <location filename="../models/sign_inventory.model3" line="743" />
+        <source>Detects in as few panoramas as leave no more than this distance between one detected in and the next (the ones between are skipped); 0 detects in every panorama. On held-out test streets a panorama every 5 m found every sign, every 10 m lost 2 in 45.</source>
+        <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
+        <translation>只在尽可能少的全景图中检测，使相邻两幅被检测的全景图之间的距离不超过此值（其间的跳过）；0 表示在每幅全景图中检测。在留出的测试街道上，每 5 米一幅全景图找到了全部标志，每 10 米则 45 个中漏检 2 个。</translation>
     </message>
     <message>
         <location filename="../models/sign_inventory.model3" line="744" />

@@ -79,7 +79,7 @@ def static(value):
 
 
 def build():
-    from roadsigns.core.detector import DEFAULT_CONFIDENCE, DEFAULT_MIN_STATION_SPACING_M  # after import_roadsigns()
+    from roadsigns.core.detector import DEFAULT_CONFIDENCE, DEFAULT_STATION_SPACING_M  # after import_roadsigns()
     from roadsigns.core.signcodes import DEFAULT_CODE_CONFIDENCE
     horizon_views = QgsApplication.processingRegistry().algorithmById(
         "roadsigns:detectsigns").parameterDefinition("HORIZON_VIEWS")
@@ -115,11 +115,11 @@ def build():
         (QgsProcessingParameterNumber("CONFIDENCE", "Minimum detection confidence", DOUBLE, DEFAULT_CONFIDENCE,
                                       False, 0, 1),
          "Detections scoring below this are dropped."),
-        (QgsProcessingParameterNumber("MIN_STATION_SPACING_M", "Skip stations closer than (m)", DOUBLE,
-                                      DEFAULT_MIN_STATION_SPACING_M, False, 0),
-         "Detects only in panoramas at least this far from the last one detected in (the ones between are "
-         "skipped); 0 detects in every panorama. The default, 2.5 m, detects at least every 5 m on any drive: "
-         "on held-out test streets a panorama every 5 m found every sign, every 10 m lost 2 in 45."),
+        (QgsProcessingParameterNumber("STATION_SPACING_M", "Detect in a panorama at least every (m)", DOUBLE,
+                                      DEFAULT_STATION_SPACING_M, False, 0),
+         "Detects in as few panoramas as leave no more than this distance between one detected in and the "
+         "next (the ones between are skipped); 0 detects in every panorama. On held-out test streets a "
+         "panorama every 5 m found every sign, every 10 m lost 2 in 45."),
         (QgsProcessingParameterEnum(  # detectsigns' own choices, labels and default
             "HORIZON_VIEWS", horizon_views.description(), options=horizon_views.options(),
             defaultValue=horizon_views.defaultValue()),
@@ -165,7 +165,7 @@ def build():
     codes = {n: param(n) for n in ("READ_CODES", "CLASSIFIER", "CODES_TABLE")}
     detections = child(model, "detections", "roadsigns:detectsigns", dict(
         STATIONS=output_of(stations), MODEL=param("MODEL"), CONFIDENCE=param("CONFIDENCE"),
-        MIN_STATION_SPACING_M=param("MIN_STATION_SPACING_M"), HORIZON_VIEWS=param("HORIZON_VIEWS"), **codes),
+        STATION_SPACING_M=param("STATION_SPACING_M"), HORIZON_VIEWS=param("HORIZON_VIEWS"), **codes),
         450, 220,
         [("OUTPUT", "Detections")])
     ground = child(model, "ground", "roadsigns:groundfilter", dict(

@@ -633,26 +633,47 @@ def test_detect_drive_cuts_the_next_panoramas_views_with_its_decoding(tmp_path, 
     assert all((ident != main) == prefetch for ident in cut_in)
 
 
-def test_spaced_stations_keeps_each_station_far_enough_from_the_last_kept():
-    xyz = np.array([[0, 0, 0], [1, 0, 0], [2.5, 0, 0], [3, 0, 0], [5, 0, 0], [5, 0, 3]], float)
-    assert det.spaced_stations(xyz, 0.0).tolist() == [0, 1, 2, 3, 4, 5]
-    assert det.spaced_stations(xyz, 2.0).tolist() == [0, 2, 4, 5]  # 2.5 m, then 2.5 m, then 3 m up
-    assert det.spaced_stations(xyz, 10.0).tolist() == [0]
+def test_spaced_stations_keeps_the_fewest_stations_no_farther_apart_than_the_spacing():
+    xyz = np.array([[0, 0, 0], [1, 0, 0], [2.5, 0, 0], [3, 0, 0], [5, 0, 0], [5, 0, 3], [5, 0, 3.5]], float)
+    assert det.spaced_stations(xyz, 0.0).tolist() == [0, 1, 2, 3, 4, 5, 6]
+    # 3 m: station 3 is kept as station 4 stands 5 m from station 0, station 4 as station 5
+    # stands 3.6 m from station 3, station 5 as station 6 stands 3.5 m from station 4; the
+    # last is always kept
+    assert det.spaced_stations(xyz, 3.0).tolist() == [0, 3, 4, 5, 6]
+    assert det.spaced_stations(xyz, 5.0).tolist() == [0, 4, 6]
+    assert det.spaced_stations(xyz, 10.0).tolist() == [0, 6]
+    assert det.spaced_stations(xyz[:2], 10.0).tolist() == [0, 1]
     assert det.spaced_stations(np.zeros((0, 3)), 2.0).tolist() == []
 
 
-@pytest.mark.parametrize("gap_m", [0.5, 1.2447, 1.9, 2.4, 2.5, 3.0, 5.0])
+def test_spaced_stations_keeps_one_station_of_a_stop_and_every_station_of_a_sparse_gap():
+    stop = np.column_stack([np.r_[np.arange(4.0), np.full(20, 4.0), np.arange(5.0, 11.0)],
+                            np.zeros(30), np.zeros(30)])
+    kept = det.spaced_stations(stop, 2.0)
+    assert stop[kept, 0].tolist() == [0.0, 2.0, 4.0, 6.0, 8.0, 10.0]   # the twenty panoramas at 4 m: one
+    sparse = np.array([[0, 0, 0], [1, 0, 0], [9, 0, 0], [10, 0, 0]], float)
+    assert det.spaced_stations(sparse, 2.0).tolist() == [0, 1, 2, 3]  # the 8 m gap: both ends
+
+
+@pytest.mark.parametrize("gap_m", [0.5, 1.2447, 1.9, 2.4, 2.5, 3.0, 5.0, 7.0])
 def test_default_spacing_detects_at_least_every_5_m_and_skips_nothing_on_sparse_drives(gap_m):
     rng = np.random.default_rng(int(gap_m * 100))
     s = np.cumsum(np.r_[0.0, np.full(400, gap_m) + rng.uniform(-0.05, 0.05, 400) * gap_m])
     xyz = np.column_stack([s, 0.1 * np.sin(s / 30.0), np.zeros_like(s)])
-    kept = det.spaced_stations(xyz, det.DEFAULT_MIN_STATION_SPACING_M)
+    kept = det.spaced_stations(xyz, det.DEFAULT_STATION_SPACING_M)
     kept_gaps = np.linalg.norm(np.diff(xyz[kept], axis=0), axis=1)
-    assert kept_gaps.max() < 5.0 or gap_m >= det.DEFAULT_MIN_STATION_SPACING_M
-    if gap_m * 0.95 >= det.DEFAULT_MIN_STATION_SPACING_M:
-        assert len(kept) == len(xyz)                   # panoramas already that far apart: all kept
+    steps = np.linalg.norm(np.diff(xyz, axis=0), axis=1)
+    assert kept_gaps.max() <= max(det.DEFAULT_STATION_SPACING_M, steps.max()) + 1e-9
+    assert kept[0] == 0 and kept[-1] == len(xyz) - 1
+    if gap_m * 0.95 > det.DEFAULT_STATION_SPACING_M / 2:
+        # no two consecutive steps fit in 5 m: every panorama kept
+        assert len(kept) == len(xyz)
+    else:
+        # as few as the spacing allows: skipping one more station would leave a gap over 5 m
+        after_next = np.linalg.norm(xyz[np.minimum(kept[1:-1] + 1, len(xyz) - 1)] - xyz[kept[:-2]], axis=1)
+        assert (after_next > det.DEFAULT_STATION_SPACING_M).all()
     if gap_m < 1.3:
-        assert len(kept) <= len(xyz) / 1.9            # a dense drive: half the panoramas or fewer
+        assert len(kept) <= len(xyz) / 3.5            # a dense drive: about one panorama in four or fewer
 
 
 def test_an_int8_model_takes_the_views_uint8_bgr_pixels(tmp_path):

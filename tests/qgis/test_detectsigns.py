@@ -188,24 +188,27 @@ def test_bad_models(qgis_process, stations, tmp_path, case, message):
     assert not out.exists()
 
 
-def test_stations_closer_than_the_spacing_are_skipped(qgis_process, stations, tmp_path):
+def test_stations_between_ones_within_the_spacing_are_skipped(qgis_process, stations, tmp_path):
     model = make_model(tmp_path / "m.onnx", yolov8_centre_box(), meta={"names": NAMES})
     dataset = ogr.Open(stations)  # kept: the layer dies with it
     xyz = {f["image"]: np.array([f["x"], f["y"], f["z"]]) for f in dataset.GetLayer(0)}
     dataset = None
     order = sorted(xyz, key=lambda name: (name == "broken.jpg", name))  # the drive's order
-    gaps = [np.linalg.norm(xyz[b] - xyz[a]) for a, b in zip(order, order[1:])]
-    spacing = 1.5 * gaps[0]  # the second station is skipped, the third is far enough from the first
-    assert np.linalg.norm(xyz[order[2]] - xyz[order[0]]) >= spacing
+    # the second station is skipped: the third stands within the spacing of the first; the
+    # third is kept: the fourth (the last, always kept) stands farther than that from the first
+    to_third, to_fourth = (float(np.linalg.norm(xyz[order[k]] - xyz[order[0]])) for k in (2, 3))
+    assert to_third < to_fourth
+    spacing = 0.5 * (to_third + to_fourth)
 
     def images(spacing_m):
         out = str(tmp_path / "d{}.gpkg".format(spacing_m))
         run = qgis_process.run(ALG, STATIONS=stations, MODEL=model, MIN_SIZE=0, UPWARD_VIEWS=False,
-                               MIN_STATION_SPACING_M=spacing_m, OUTPUT=out)
+                               STATION_SPACING_M=spacing_m, OUTPUT=out)
         assert run.returncode == 0, run.text
         return run, sorted({r["image"] for r in read_rays(out)})
     run, every = images(0)
     assert every == order[:3] and run.json["results"]["SKIPPED_IMAGES"] == 1
     run, spaced = images(spacing)
     assert spaced == [order[0], order[2]]
+    assert run.json["results"]["SKIPPED_IMAGES"] == 1   # the last station, kept, cannot be read
     assert "of the 4 panoramas" in run.text
