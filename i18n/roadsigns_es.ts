@@ -349,17 +349,17 @@
     <message>
         <location filename="../algorithms/detectsigns.py" line="206" />
         <source>Detect in a panorama at least every (m)</source>
-        <translation>Detectar en una panorámica al menos cada (m)</translation>
+        <translation>Detectar en un panorama al menos cada (m)</translation>
     </message>
     <message>
         <location filename="../algorithms/detectsigns.py" line="206" />
         <source>Detects in as few panoramas as leave no more than this distance between one panorama detected in and the next; the ones between are skipped (not read, no detections). The first and the last panorama are always detected in, and a drive whose panoramas stand this far apart or more keeps every one. A sign stays in view over many stations, so skipping saves detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. On two held-out streets with a panorama every 1.25 m, one every 5 m found the same 87 signs as one every 2.5 m, in 0.55 times the detection time; the median position error went from 11 to 13 mm, and one sign, read in 3 of its 7 views instead of 13 of 19, was left without a code. 0 detects in every panorama.</source>
-        <translation>Detecta en tan pocas panorámicas como permitan que entre una panorámica detectada y la siguiente no haya más que esta distancia; las intermedias se omiten (no se leen, sin detecciones). La primera y la última panorámica se detectan siempre, y un recorrido cuyas panorámicas distan esto o más las conserva todas. Una señal permanece visible desde muchas estaciones, así que omitir ahorra tiempo de detección en proporción, pero cada señal se ve desde menos estaciones: menos rayos para situarla, y una señal visible solo desde unas pocas estaciones (pequeña, u oculta tras árboles o vehículos) puede perderse. Medido en dos calles de prueba reservadas con una panorámica cada 5 m: todas las panorámicas encontraron las 46 y 45 señales; cada 10 m (una de cada dos) se perdieron 2 de cada una, cada 15 m 11 de 46. En dos calles reservadas con una panorámica cada 1,25 m, una cada 5 m encontró las mismas 87 señales que una cada 2,5 m, en 0,55 veces el tiempo de detección; la mediana del error de posición pasó de 11 a 13 mm, y una señal, leída en 3 de sus 7 vistas en lugar de 13 de 19, quedó sin código. 0 detecta en todas las panorámicas.</translation>
+        <translation>Detecta en tan pocos panoramas como permitan que entre un panorama detectado y el siguiente no haya más que esta distancia; los intermedios se omiten (no se leen, sin detecciones). El primer y el último panorama se detectan siempre, y un recorrido cuyos panoramas distan esto o más los conserva todos. Una señal permanece visible desde muchas estaciones, así que omitir ahorra tiempo de detección en proporción, pero cada señal se ve desde menos estaciones: menos rayos para situarla, y una señal visible solo desde unas pocas estaciones (pequeña, u oculta tras árboles o vehículos) puede perderse. Medido en dos calles de prueba reservadas con un panorama cada 5 m: todos los panoramas encontraron las 46 y 45 señales; cada 10 m (uno de cada dos) se perdieron 2 de cada una, cada 15 m 11 de 46. En dos calles reservadas con un panorama cada 1,25 m, uno cada 5 m encontró las mismas 87 señales que uno cada 2,5 m, en 0,55 veces el tiempo de detección; la mediana del error de posición pasó de 11 a 13 mm, y una señal, leída en 3 de sus 7 vistas en lugar de 13 de 19, quedó sin código. 0 detecta en todos los panoramas.</translation>
     </message>
     <message>
         <location filename="../algorithms/detectsigns.py" line="271" />
         <source>Detecting in {} of the {} panoramas: one at least every {} m of the drive, the ones between skipped.</source>
-        <translation>Detectando en {} de las {} panorámicas: una al menos cada {} m del recorrido, las intermedias omitidas.</translation>
+        <translation>Detectando en {} de los {} panoramas: uno al menos cada {} m del recorrido, los intermedios omitidos.</translation>
     </message>
 </context>
 <context>
@@ -3767,7 +3767,7 @@
         <location filename="../models/sign_inventory.model3" line="743" />
         <source>Detects in as few panoramas as leave no more than this distance between one detected in and the next (the ones between are skipped); 0 detects in every panorama. On held-out test streets a panorama every 5 m found every sign, every 10 m lost 2 in 45.</source>
         <extracomment>Help of the shipped Processing model (models/*.model3).</extracomment>
-        <translation>Detecta en tan pocas panorámicas como permitan que entre una detectada y la siguiente no haya más que esta distancia (las intermedias se omiten); 0 detecta en todas las panorámicas. En calles de prueba reservadas, una panorámica cada 5 m encontró todas las señales; cada 10 m se perdieron 2 de 45.</translation>
+        <translation>Detecta en tan pocos panoramas como permitan que entre uno detectado y el siguiente no haya más que esta distancia (los intermedios se omiten); 0 detecta en todos los panoramas. En calles de prueba reservadas, un panorama cada 5 m encontró todas las señales; cada 10 m se perdieron 2 de 45.</translation>
     </message>
     <message>
         <location filename="../models/sign_inventory.model3" line="744" />
