@@ -36,6 +36,10 @@
    intersected by least squares (outlying rays dropped), and kept when the point's depth
    along the rays is certain to ``max_depth_sigma_m`` (nearly parallel rays, as of a
    distant sign straight ahead, are not); ``position_source = image``.
+5. **Plausible signs** (:func:`plausible`). Dropped, each logged: a panel larger than its
+   class allows (a billboard); a sign seen in one panorama only with a weak score, or one
+   that other panoramas nearer to its face did not see (:func:`nearer_stations_that_missed`:
+   a look-alike boxed once from afar).
 
 Memory (:class:`CloudBlocks`): the cloud is read and refined in blocks of ``block_m`` (150 m)
 along the drive, each merged group in the block holding its centre, each block holding only
@@ -229,6 +233,19 @@ class RefineParams:
     #: no false single-view sign with either detector of 27 November; the true ones scored
     #: 0.48-0.96, the lowest a rescued 14-25 px sign (models/README.md, "Bundled on 27 November")
     min_single_view_score: float = 0.4
+    #: a sign seen in a single panorama is dropped when at least this many other panoramas
+    #: that gave detections stand nearer to it, in front of its face and with it low enough
+    #: in their views (:func:`nearer_stations_that_missed`), and none of them saw it: a real
+    #: sign grows as the vehicle nears it, a look-alike boxed once from afar (a convex
+    #: mirror, a roundel on a wall) is not boxed again. 0: the rule is off
+    single_view_max_nearer_misses: int = 2
+    #: what "in front" and "nearer" mean there: within this angle of the face's normal
+    #: (horizontal), this elevation above the panorama's horizon, at least this horizontal
+    #: range, and at least this much nearer than the station that saw it
+    view_check_max_angle_deg: float = 60.0
+    view_check_max_elevation_deg: float = 20.0
+    view_check_min_range_m: float = 4.0
+    view_check_nearer_by_m: float = 1.0
 
     def max_side_m(self, klass: str) -> float:
         return dict(self.max_panel_side_m).get(klass, self.max_panel_side_default_m)
@@ -985,9 +1002,11 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
         image_only = triangulate_image_only(candidates, unplaced, params)
         blocks.ground_of(image_only, params)
     drafts += image_only
+    stations = Stations.of(candidates)
     for draft in drafts:
         if not draft.absorbed:
-            add_sign(result, candidates, draft, None, params, progress, codes_table, code_confidence)
+            add_sign(result, candidates, draft, None, params, progress, codes_table, code_confidence,
+                     stations)
     warn_ground_fallbacks(result, params, progress)
     log_codes(result, progress)
     n_img = sum(s.position_source == "image" for s in result.signs)
@@ -1632,33 +1651,93 @@ def source_images(cand: ProjectionResult, views: Sequence[int]) -> List[str]:
     return images
 
 
+@dataclass(frozen=True)
+class Stations:
+    """The panoramas that gave candidates, each once: ``images`` and their centres
+    ``centre_world`` (n, 3), in the order first met."""
+
+    images: List[str]
+    centre_world: np.ndarray
+
+    @classmethod
+    def of(cls, cand: ProjectionResult) -> "Stations":
+        det = cand.detections
+        first: Dict[str, int] = {}
+        for k, image in enumerate(det.image):
+            first.setdefault(image, k)
+        rows = np.fromiter(first.values(), np.int64, len(first))
+        return cls(list(first), det.centre_world[rows].reshape(-1, 3))
+
+
+def nearer_stations_that_missed(place: Placement, images: Sequence[str], stations: Stations,
+                                params: RefineParams) -> Tuple[int, float]:
+    """How many of ``stations`` not among ``images`` (the panoramas that saw the sign) stand
+    in front of the sign's face, nearer to it than the nearest panorama that saw it, and
+    would show it low enough in their views; and that nearest horizontal range (m).
+
+    In front: the horizontal direction to the station within ``view_check_max_angle_deg``
+    of the face's normal. Nearer: a horizontal range of at least ``view_check_min_range_m``
+    and ``view_check_nearer_by_m`` less than the seeing station's. Low enough: the sign's
+    centre at most ``view_check_max_elevation_deg`` above the station's centre (a gantry
+    overhead is above the horizon views). The sign is then bigger and nearer the horizon
+    there than where it was seen.
+    """
+    seen = np.isin(np.asarray(stations.images, dtype=object), np.asarray(list(images), dtype=object))
+    to_station = stations.centre_world - place.centre
+    range_m = np.hypot(to_station[:, 0], to_station[:, 1])
+    if not seen.any():
+        return 0, math.nan
+    seen_range_m = float(range_m[seen].min())
+    normal = np.array([place.normal[0], place.normal[1]], float)
+    if not np.all(np.isfinite(normal)) or np.linalg.norm(normal) < 1e-6:
+        return 0, seen_range_m
+    normal /= np.linalg.norm(normal)
+    cos_angle = (to_station[:, :2] @ normal) / np.maximum(range_m, 1e-9)
+    elevation_deg = np.degrees(np.arctan2(-to_station[:, 2], np.maximum(range_m, 1e-9)))
+    should_see = (~seen & (cos_angle >= math.cos(math.radians(params.view_check_max_angle_deg)))
+                  & (range_m >= params.view_check_min_range_m)
+                  & (range_m <= seen_range_m - params.view_check_nearer_by_m)
+                  & (elevation_deg <= params.view_check_max_elevation_deg))
+    return int(should_see.sum()), seen_range_m
+
+
 def plausible(cand: ProjectionResult, views: Sequence[int], klass: str, score: float,
-              place: Placement, n_images: int, params: RefineParams,
-              progress: Progress = SILENT) -> bool:
+              place: Placement, images: Sequence[str], params: RefineParams,
+              progress: Progress = SILENT, stations: Optional[Stations] = None) -> bool:
     """False, logged, for a panel larger than its class allows (:meth:`RefineParams.max_side_m`:
-    a billboard?) and for a sign seen in one panorama only (``n_images``) with a score below
-    ``min_single_view_score``."""
+    a billboard?) and for a sign seen in one panorama only (``images``) with a score below
+    ``min_single_view_score``, or missed by ``single_view_max_nearer_misses`` or more of the
+    ``stations`` nearer to it (:func:`nearer_stations_that_missed`)."""
     ids = cand.detections.det_id[list(views)].tolist()
     if max(place.width_m, place.height_m) > params.max_side_m(klass):
         progress.info("Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too "
                       "large for a {sign_class} sign (a billboard?)",
                       ids=ids, width=place.width_m, height=place.height_m, sign_class=klass)
         return False
-    if n_images == 1 and score < params.min_single_view_score:
+    if len(images) == 1 and score < params.min_single_view_score:
         progress.info("Candidates {ids} dropped: seen in one panorama only, with a score of "
                       "{score:.2f}", ids=ids, score=score)
         return False
+    if len(images) == 1 and stations is not None and params.single_view_max_nearer_misses > 0:
+        missed, seen_range_m = nearer_stations_that_missed(place, images, stations, params)
+        if missed >= params.single_view_max_nearer_misses:
+            progress.info("Candidates {ids} dropped: seen in one panorama only ({image}, {range:.1f} m "
+                          "away), not in the {missed} panoramas nearer to its face",
+                          ids=ids, image=images[0], range=seen_range_m, missed=missed)
+            return False
     return True
 
 
 def add_sign(result: RefineResult, cand: ProjectionResult, draft: SignDraft,
              index: Optional[TiledIndex], params: RefineParams, progress: Progress = SILENT,
              codes_table: Optional[CodesTable] = None,
-             code_confidence: float = DEFAULT_CODE_CONFIDENCE) -> None:
+             code_confidence: float = DEFAULT_CODE_CONFIDENCE,
+             stations: Optional[Stations] = None) -> None:
     """Append the record of a sign (numbered on from 1), its outline, points and ground
     source to ``result`` and point its views there in ``result.candidate_sign``, unless it is
-    not :func:`plausible`. Heights are above the ground under the centre
-    (:func:`ground_with_fallbacks`); the code and the class check: :func:`vote_code`."""
+    not :func:`plausible` (``stations``: the drive's panoramas, for its view check). Heights
+    are above the ground under the centre (:func:`ground_with_fallbacks`); the code and the
+    class check: :func:`vote_code`."""
     det = cand.detections
     views = draft.views
     klass, score = vote_class(cand, views)
@@ -1666,7 +1745,7 @@ def add_sign(result: RefineResult, cand: ProjectionResult, draft: SignDraft,
     klass = code.klass
     place = placement(cand, draft)
     images = source_images(cand, views)
-    if not plausible(cand, views, klass, score, place, len(images), params, progress):
+    if not plausible(cand, views, klass, score, place, images, params, progress, stations):
         return
     ground_z, ground_source = ground_with_fallbacks(index, place.centre, place.bottom_z,
                                                     det.centre_world[views, 2], params, draft.ground)

@@ -1,5 +1,6 @@
 """Candidates -> signs (core.refine) on a scene of known sign panels."""
 import dataclasses
+import math
 import os
 
 import numpy as np
@@ -722,7 +723,8 @@ def test_plausible_signs(candidates, klass, width, n_images, score, kept, says):
     place = R.Placement(np.zeros(3), EAST, width, 0.6, -0.3, np.zeros(0, np.int64), np.nan,
                         np.nan, "lidar", None)
     messages = []
-    assert R.plausible(candidates, [0, 1], klass, score, place, n_images, R.RefineParams(),
+    images = [f"pano_{k:05d}.jpg" for k in range(n_images)]
+    assert R.plausible(candidates, [0, 1], klass, score, place, images, R.RefineParams(),
                        Progress(on_info=messages.append)) == kept
     assert messages == ([] if kept else [messages[0]])
     if says:
@@ -1059,3 +1061,76 @@ def test_median_of_counts_is_numpys_median():
         med = np.median(v)
         assert R.median_of_counts(np.abs(np.arange(20.0) - med), hist) == np.median(np.abs(v - med))
     assert np.isnan(R.median_of_counts(np.arange(3.0), np.zeros(3, np.int64)))
+
+
+@pytest.mark.parametrize("seen_in,limit,kept,missed", [
+    ("pano_00015.jpg", 2, False, 4),   # 25.8 m away; stations 16-19 (21-8 m) saw sign 6, not this
+    ("pano_00015.jpg", 5, True, 4),    # fewer misses than the limit
+    ("pano_00015.jpg", 0, True, 4),    # the rule off
+    ("pano_00019.jpg", 2, True, 0),    # seen from the nearest station in front: none nearer
+])
+def test_a_sign_seen_once_from_afar_and_missed_nearer_is_dropped(scene, index, seen_in, limit, kept, missed):
+    """Sign 7 (x = 100 m, on the left, facing the oncoming stations 15-19) keeps one of its
+    five views. From station 15 the four stations nearer to its face, which gave detections
+    of sign 6, did not see it: a look-alike, dropped unless the rule allows four misses or
+    is off. From station 19 no station in front stands nearer, so the lone view is kept."""
+    rows = [d for d in scene.detections if d["truth_id"] != 7 or d["image"] == seen_in]
+    messages = []
+    cand = P.project_detections(P.Detections.from_records(rows), index)
+    out = R.refine_signs(cand, index, params=R.RefineParams(single_view_max_nearer_misses=limit),
+                         progress=Progress(on_info=messages.append))
+    p = truth(scene, 7)
+    found = match(out.signs, [p])
+    assert (p.sign_id in found) == kept
+    if kept:
+        assert found[p.sign_id].n_views == 1 and found[p.sign_id].source_images == seen_in
+    said = [m for m in messages if "not in the" in m]
+    assert said == ([] if kept else [said[0]])
+    if not kept:
+        assert f"seen in one panorama only ({seen_in}, 25.8 m away)" in said[0]
+        assert f"not in the {missed} panoramas nearer to its face" in said[0]
+    place = R.Placement(p.centre_world, p.normal, 0.6, 0.6, p.centre_world[2] - 0.3,
+                        np.zeros(0, np.int64), np.nan, np.nan, "lidar", None)
+    assert R.nearer_stations_that_missed(place, [seen_in], R.Stations.of(cand), R.RefineParams())[0] == missed
+
+
+def test_only_panoramas_that_gave_detections_count_as_having_missed(scene, index):
+    """Sign 1 (x = 20 m) seen only from station 0, 21 m away: of the three stations nearer to
+    its face only station 3 gave any detection (of signs 2 and 3); stations 1 and 2 saw
+    nothing at all and are not known to the stage, so one miss is counted and the sign kept."""
+    rows = [d for d in scene.detections if d["truth_id"] != 1 or d["image"] == "pano_00000.jpg"]
+    cand = P.project_detections(P.Detections.from_records(rows), index)
+    stations = R.Stations.of(cand)
+    assert "pano_00001.jpg" not in stations.images and "pano_00003.jpg" in stations.images
+    p = truth(scene, 1)
+    place = R.Placement(p.centre_world, p.normal, 0.6, 0.6, p.centre_world[2] - 0.3,
+                        np.zeros(0, np.int64), np.nan, np.nan, "lidar", None)
+    assert R.nearer_stations_that_missed(place, ["pano_00000.jpg"], stations, R.RefineParams())[0] == 1
+    assert p.sign_id in match(R.refine_signs(cand, index).signs, [p])
+
+
+def _stations_along_x(xs, z=2.4):
+    return R.Stations([f"pano_{k:05d}.jpg" for k in range(len(xs))],
+                      np.column_stack([xs, np.zeros(len(xs)), np.full(len(xs), z)]))
+
+
+@pytest.mark.parametrize("centre,normal,seen_from,expected", [
+    # a sign 6 m right of the road at x = 40 m facing the stations coming from x < 40: seen
+    # from x = 0 (40.4 m), missed from x = 5 ... 35
+    ((40.0, -6.0, 2.6), (-1.0, 0.0, 0.0), 0, 7),
+    # the same sign facing +x, seen from x = 55 (16.2 m): missed from x = 45 and 50 in front
+    # of it; the stations before it see its back
+    ((40.0, -6.0, 2.6), (1.0, 0.0, 0.0), 11, 2),
+    # a gantry panel 6 m over the road, seen from x = 0: from x = 35 (5 m) it stands 36 deg
+    # above the horizon, out of the horizon views, so only x = 5 ... 30 missed it
+    ((40.0, 0.0, 6.0), (-1.0, 0.0, 0.0), 0, 6),
+])
+def test_nearer_stations_that_missed_are_in_front_nearer_and_below_the_elevation_limit(centre, normal, seen_from,
+                                                                                      expected):
+    stations = _stations_along_x(np.arange(0.0, 60.0, 5.0))
+    place = R.Placement(np.array(centre), np.array(normal), 0.6, 0.6, centre[2] - 0.3,
+                        np.zeros(0, np.int64), np.nan, np.nan, "lidar", None)
+    image = stations.images[seen_from]
+    missed, seen_range_m = R.nearer_stations_that_missed(place, [image], stations, R.RefineParams())
+    assert seen_range_m == pytest.approx(math.hypot(centre[0] - 5.0 * seen_from, centre[1]))
+    assert missed == expected
