@@ -50,8 +50,8 @@ the winning class; ``best_image``: the view minimising range / cos(incidence).
 
 Codes (:func:`vote_code`): the sign codes read in the views (the candidates' ``code`` and
 ``code_score``) are put to :func:`.signcodes.vote`, each view weighing its detection score
-x its crop side; the code is kept when it is not ``other`` and its support reaches
-``code_confidence``; when its class (codes table) is not the class vote's, the better
+x its legible side (its crop's side x its box's aspect); the code is kept when it is not
+``other`` and its support reaches ``code_confidence``; when its class (codes table) is not the class vote's, the better
 supported of the two wins (``code_check``).
 """
 from __future__ import annotations
@@ -107,6 +107,7 @@ from .signcodes import (  # noqa: F401 (CodeVote and the constants are the refin
     SIGN_CODE_FIELDS,
     CodesTable,
     CodeVote,
+    box_angles_deg,
     code_support,
     crop_view,
     decide_code,
@@ -360,6 +361,25 @@ def crop_side_px(det: Detections, rows: Rows) -> np.ndarray:
                      for k in rows], float)
 
 
+def box_aspect(det: Detections, rows: Rows) -> np.ndarray:
+    """Each view's box, its smaller angular side over its larger (0..1; the sides of
+    :func:`.signcodes.box_angles_deg`, as the crop is cut): 1 for a sign seen face on, small
+    for one seen edge-on."""
+    out = np.zeros(len(rows))
+    for i, k in enumerate(rows):
+        _, _, w_deg, h_deg = box_angles_deg(det.box_px[k], int(det.pano_size_px[k, 0]), int(det.pano_size_px[k, 1]))
+        out[i] = min(w_deg, h_deg) / max(w_deg, h_deg) if max(w_deg, h_deg) > 0 else 0.0
+    return out
+
+
+def legible_side_px(det: Detections, rows: Rows) -> np.ndarray:
+    """The pixels the classifier gets across each view's sign at its narrower side: the
+    crop's side (:func:`crop_side_px`) x the box's aspect (:func:`box_aspect`). A sign seen
+    face on keeps its crop side; one passed close by at a steep angle, boxed tall and narrow,
+    is read from a crop squeezed across, and weighs that much less."""
+    return crop_side_px(det, rows) * box_aspect(det, rows)
+
+
 def class_support(cand: ProjectionResult, rows: Rows, klass: str) -> float:
     """How well the views ``rows`` support the class ``klass`` (:func:`.signcodes.class_support`)."""
     rows = np.asarray(list(rows), np.int64)
@@ -373,15 +393,15 @@ def vote_code(cand: ProjectionResult, rows: Rows, klass: str, table: Optional[Co
     (:func:`vote_class`) gave ``klass``.
 
     **Vote.** The views that read a code (non-empty ``code``) vote with
-    :func:`.signcodes.vote`, view ``i`` weighing ``w_i = detection score x crop side``
-    (:func:`crop_side_px`) x its code probability ``p_i``. The winner's **support** is its
-    share of the vote x the ``w``-weighted mean ``p`` of the views that read it (0..1; a
-    code all views read with certainty has 1): ``code_score``. ``code_views``: the views
-    that read it. ``code`` and ``code_name`` (from ``table``) are left empty when the winner
-    is :data:`.signcodes.OTHER_CODE` or a class whose code the table lacks (``unlisted:...``,
-    :func:`.signcodes.is_code`), or its support is below ``confidence``
-    (``code_score`` and ``code_views`` still describe the winner); no view with a code:
-    all empty, ``code_score`` NaN.
+    :func:`.signcodes.vote`, view ``i`` weighing ``w_i = detection score x legible side``
+    (:func:`legible_side_px`: the crop's side x the box's aspect) x its code probability
+    ``p_i``. The winner's **support** is its share of the vote x the ``w``-weighted mean
+    ``p`` of the views that read it (0..1; a code all views read with certainty has 1):
+    ``code_score``. ``code_views``: the views that read it. ``code`` and ``code_name`` (from
+    ``table``) are left empty when the winner is :data:`.signcodes.OTHER_CODE` or a class
+    whose code the table lacks (``unlisted:...``, :func:`.signcodes.is_code`), or its support
+    is below ``confidence`` (``code_score`` and ``code_views`` still describe the winner); no
+    view with a code: all empty, ``code_score`` NaN.
 
     **Class check**, for a kept code whose class in ``table`` differs from ``klass`` (when
     ``klass`` is one of the six :data:`.signcodes.SIGN_CLASSES`): the class's support is
@@ -399,7 +419,7 @@ def vote_code(cand: ProjectionResult, rows: Rows, klass: str, table: Optional[Co
     if not read:
         return CodeVote("", "", math.nan, 0, "", klass)
     codes = [det.code[k] for k in read]
-    w = np.clip(np.nan_to_num(det.score[read]), 0.0, None) * crop_side_px(det, read)
+    w = np.clip(np.nan_to_num(det.score[read]), 0.0, None) * legible_side_px(det, read)
     winner, support, n_views = code_support(codes, det.code_score[read], w)
     if table is not None and is_code(winner) and support >= confidence and winner not in table:
         k = read[codes.index(winner)]

@@ -410,14 +410,9 @@ def square_view(yaw_deg: float, pitch_deg: float, size_deg: float, width_px: int
     return PerspectiveView(float(yaw_deg), float(pitch_deg), fov_deg, side, side), int(round(native_px))
 
 
-def crop_view(box_px, width_px: int, height_px: int, margin: float = DEFAULT_CROP_MARGIN,
-              max_side_px: int = 256) -> Tuple[PerspectiveView, int]:
-    """The square view :func:`cut_crop` cuts for a panorama box, and the box's native side.
-
-    The view looks along the ray of the box centre; the sign's size is the box's larger
-    angular side (width ``(u1 - u0) / W x 360 x cos(elevation)``, height ``(v1 - v0) / H x
-    180``); the rest is :func:`square_view`.
-    """
+def box_angles_deg(box_px, width_px: int, height_px: int) -> Tuple[float, float, float, float]:
+    """A panorama box's centre ray (yaw, pitch) and its angular width and height, degrees:
+    width ``(u1 - u0) / W x 360 x cos(elevation)``, height ``(v1 - v0) / H x 180``."""
     u0, v0, u1, v1 = (float(x) for x in box_px)
     if not all(math.isfinite(x) for x in (u0, v0, u1, v1)):
         raise InputError("The box {box} is not four finite pixel coordinates u0, v0, u1, v1",
@@ -426,8 +421,18 @@ def crop_view(box_px, width_px: int, height_px: int, margin: float = DEFAULT_CRO
     yaw_rad, pitch_rad = geometry.pixel_to_angles_rad(u, v, width_px, height_px)
     box_w_deg = max(u1 - u0, 0.0) / width_px * 360.0 * math.cos(float(pitch_rad))
     box_h_deg = max(v1 - v0, 0.0) / height_px * 180.0
-    return square_view(float(np.degrees(yaw_rad)), float(np.degrees(pitch_rad)), max(box_w_deg, box_h_deg),
-                       width_px, margin, max_side_px)
+    return float(np.degrees(yaw_rad)), float(np.degrees(pitch_rad)), box_w_deg, box_h_deg
+
+
+def crop_view(box_px, width_px: int, height_px: int, margin: float = DEFAULT_CROP_MARGIN,
+              max_side_px: int = 256) -> Tuple[PerspectiveView, int]:
+    """The square view :func:`cut_crop` cuts for a panorama box, and the box's native side.
+
+    The view looks along the ray of the box centre; the sign's size is the box's larger
+    angular side (:func:`box_angles_deg`); the rest is :func:`square_view`.
+    """
+    yaw_deg, pitch_deg, box_w_deg, box_h_deg = box_angles_deg(box_px, width_px, height_px)
+    return square_view(yaw_deg, pitch_deg, max(box_w_deg, box_h_deg), width_px, margin, max_side_px)
 
 
 def view_box_crop_view(view: PerspectiveView, box_xyxy, width_px: int, margin: float = DEFAULT_CROP_MARGIN,

@@ -1669,174 +1669,174 @@
         <translation>Fusiona las vistas de cada señal y la refina en la nube: la capa de señales.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="149" />
+        <location filename="../algorithms/refinesigns.py" line="150" />
         <source>Sign candidates</source>
         <translation>Candidatos de señal</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="87" />
+        <location filename="../algorithms/refinesigns.py" line="88" />
         <source>The output of Project detections.</source>
         <translation>La salida de «Proyectar detecciones en la nube de puntos».</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="90" />
+        <location filename="../algorithms/refinesigns.py" line="91" />
         <source>Ground-classified point cloud (LAS/LAZ)</source>
         <translation>Nube de puntos con suelo clasificado (LAS/LAZ)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="90" />
+        <location filename="../algorithms/refinesigns.py" line="91" />
         <source>The same cloud as for Project detections (ground as class 2).</source>
         <translation>La misma nube que para «Proyectar detecciones en la nube de puntos» (suelo como clase 2).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="93" />
+        <location filename="../algorithms/refinesigns.py" line="94" />
         <source>Merge radius (m)</source>
         <translation>Radio de fusión (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="93" />
+        <location filename="../algorithms/refinesigns.py" line="94" />
         <source>Candidates of the same class closer than this (metres) with agreeing plane normals are taken as one sign.</source>
         <translation>Los candidatos de la misma clase más cercanos que esto (metros) y con normales de plano concordantes se toman como una sola señal.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="110" />
+        <location filename="../algorithms/refinesigns.py" line="111" />
         <source>Panorama folder (for review chips)</source>
         <translation>Carpeta de panoramas (para las miniaturas de revisión)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="110" />
+        <location filename="../algorithms/refinesigns.py" line="111" />
         <source>The folder of the panoramas (as for Import trajectory). When given, an image chip of each sign is cut from its best panorama for review.</source>
         <translation>La carpeta de los panoramas (como para «Importar trayectoria y panoramas»). Si se indica, se recorta una miniatura de cada señal de su mejor panorama para la revisión.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="118" />
+        <location filename="../algorithms/refinesigns.py" line="119" />
         <source>Signs</source>
         <translation>Señales</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="118" />
+        <location filename="../algorithms/refinesigns.py" line="119" />
         <source>PointZ sign layer at the panel centres (fields in docs/formats.md), and chip: the relative path of the sign's review picture.</source>
         <translation>Capa de señales PointZ en los centros de los paneles (campos en docs/formats.md), y chip: la ruta relativa de la imagen de revisión de la señal.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="122" />
+        <location filename="../algorithms/refinesigns.py" line="123" />
         <source>Panel outlines</source>
         <translation>Contornos de los paneles</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="122" />
+        <location filename="../algorithms/refinesigns.py" line="123" />
         <source>PolygonZ layer of each panel's rectangle in its plane (signs placed from the cloud).</source>
         <translation>Capa PolygonZ con el rectángulo de cada panel en su plano (señales situadas a partir de la nube).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="126" />
+        <location filename="../algorithms/refinesigns.py" line="127" />
         <source>Sign points</source>
         <translation>Puntos de las señales</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="126" />
+        <location filename="../algorithms/refinesigns.py" line="127" />
         <source>LAZ (*.laz);;LAS (*.las)</source>
         <translation>LAZ (*.laz);;LAS (*.las)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="126" />
+        <location filename="../algorithms/refinesigns.py" line="127" />
         <source>A LAS/LAZ file of the points of every sign panel, all dimensions kept.</source>
         <translation>Un archivo LAS/LAZ con los puntos de cada panel de señal, con todas las dimensiones.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="129" />
+        <location filename="../algorithms/refinesigns.py" line="130" />
         <source>Review report</source>
         <translation>Informe de revisión</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="129" />
+        <location filename="../algorithms/refinesigns.py" line="130" />
         <source>HTML files (*.html)</source>
         <translation>Archivos HTML (*.html)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="129" />
+        <location filename="../algorithms/refinesigns.py" line="130" />
         <source>An HTML page with every sign's chip and attributes, to confirm signs without opening panoramas (needs the panorama folder).</source>
         <translation>Una página HTML con la miniatura y los atributos de cada señal, para confirmar las señales sin abrir los panoramas (necesita la carpeta de panoramas).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="147" />
+        <location filename="../algorithms/refinesigns.py" line="148" />
         <source>The candidates</source>
         <translation>Los candidatos</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="180" />
+        <location filename="../algorithms/refinesigns.py" line="181" />
         <source>The review report needs the panorama folder: not written.</source>
         <translation>El informe de revisión necesita la carpeta de panoramas: no se escribió.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="186" />
+        <location filename="../algorithms/refinesigns.py" line="187" />
         <source>{} sign points written to {}</source>
         <translation>{} puntos de señales escritos en {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="211" />
+        <location filename="../algorithms/refinesigns.py" line="212" />
         <source>{} signs from {} candidates ({})</source>
         <translation>{} señales a partir de {} candidatos ({})</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="221" />
+        <location filename="../algorithms/refinesigns.py" line="222" />
         <source>Review chips need a sign layer written to a file: skipped.</source>
         <translation>Las miniaturas de revisión necesitan una capa de señales escrita en un archivo: se omiten.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="234" />
+        <location filename="../algorithms/refinesigns.py" line="235" />
         <source>Road signs for review</source>
         <translation>Señales viales para revisión</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="236" />
+        <location filename="../algorithms/refinesigns.py" line="237" />
         <source>{} review chips in {}</source>
         <translation>{} miniaturas de revisión en {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="114" />
+        <location filename="../algorithms/refinesigns.py" line="115" />
         <source>Cloud CRS (when the file has none)</source>
         <translation>SRC de la nube (si el archivo no tiene)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="114" />
+        <location filename="../algorithms/refinesigns.py" line="115" />
         <source>The cloud's CRS when the file records none (it must be the candidates' CRS); it overrides a CRS in the file. The CRS is never guessed.</source>
         <translation>El SRC de la nube cuando el archivo no registra ninguno (debe ser el SRC de los candidatos); sustituye al SRC del archivo. El SRC nunca se adivina.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="154" />
+        <location filename="../algorithms/refinesigns.py" line="155" />
         <source>Panorama folder not found: {}</source>
         <translation>No se encontró la carpeta de panoramas: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="97" />
+        <location filename="../algorithms/refinesigns.py" line="98" />
         <source>Minimum code confidence</source>
         <translation>Confianza mínima de código</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="104" />
+        <location filename="../algorithms/refinesigns.py" line="105" />
         <source>Sign codes table (empty: the bundled one)</source>
         <translation>Tabla de códigos de señal (vacío: la incluida)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="104" />
+        <location filename="../algorithms/refinesigns.py" line="105" />
         <source>The codes table the classifier of Detect signs was run with: it gives each code its name (code_name) and its class (for the class check). Format in models/README.md; empty uses the bundled table of German codes (models/sign-codes-de.csv).</source>
         <translation>La tabla de códigos con la que se ejecutó el clasificador de «Detectar señales en panoramas»: da a cada código su nombre (code_name) y su clase (para la comprobación de clase). Formato en models/README.md; vacío usa la tabla incluida de códigos alemanes (models/sign-codes-de.csv).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="104" />
+        <location filename="../algorithms/refinesigns.py" line="105" />
         <source>CSV files (*.csv *.txt);;All files (*.*)</source>
         <translation>Archivos CSV (*.csv *.txt);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="97" />
+        <location filename="../algorithms/refinesigns.py" line="98" />
         <source>A sign's voted code is kept when its support (its share of the views' weighted vote x the mean probability the classifier gave it, 0-1: the code_score field) is at least this; else the code field stays empty. 0 keeps every code but 'other' and 'unlisted:...' (a sign whose code the table lacks).</source>
         <translation>El código votado de una señal se conserva cuando su apoyo (su proporción en la votación ponderada de las vistas x la probabilidad media que le dio el clasificador, 0-1: el campo code_score) es al menos este valor; si no, el campo code queda vacío. 0 conserva todos los códigos salvo 'other' y 'unlisted:...' (una señal cuyo código no está en la tabla).</translation>
     </message>
     <message>
         <location filename="../algorithms/refinesigns.py" line="52" />
-        <source>Groups the candidates of different panoramas that are the same physical sign (same class, within the merge radius, plane normals agreeing; panels stacked on one pole stay apart), then refines each sign in the cloud: Euclidean clustering, an intensity filter whose threshold adapts to the cloud (Otsu), a near-vertical RANSAC plane and PCA dimensionality to keep the panel and drop the pole.&lt;br&gt;&lt;br&gt;Each sign gets its panel centre, width and panel height, the azimuth its face looks towards (clockwise from grid north), its height above the ground directly below (class-2 points near the sign; the log names any fallback), the bottom height, the number of views and points, the images it was seen in and the best of them (closest, most frontal), the mean intensity and planarity. A sign seen in two or more panoramas but with no cloud points is placed by triangulating its rays (position_source = image).&lt;br&gt;&lt;br&gt;&lt;b&gt;Not signs&lt;/b&gt;, dropped and named in the log: a panel larger than its class allows (a billboard), a curved one (a convex mirror), a picture on a larger flat surface, and a sign seen in one panorama only when its score is under 0.4 or when two or more panoramas nearer to its face, which detected other signs, did not see it (a look-alike boxed once from afar).&lt;br&gt;&lt;br&gt;Optional outputs: panel outlines (PolygonZ) and the sign points (LAS/LAZ).&lt;br&gt;&lt;br&gt;&lt;b&gt;Review&lt;/b&gt;: with the panorama folder, each sign gets an image chip from its best panorama (its box with a margin, undistorted), written into a folder beside the sign layer and linked by the &lt;i&gt;chip&lt;/i&gt; field (a relative path); the review report shows every sign's chip and attributes. The sign layer is styled with a symbol per class and its height as label (a .qml file beside it).&lt;br&gt;&lt;br&gt;&lt;b&gt;Sign codes&lt;/b&gt;: the codes Detect signs read in the views of a sign are put to a vote, each view weighing its detection score x its crop size x the code's probability. The sign gets &lt;i&gt;code&lt;/i&gt; (empty when the vote says &lt;i&gt;other&lt;/i&gt; or the support is below the minimum code confidence), &lt;i&gt;code_name&lt;/i&gt; (from the codes table), &lt;i&gt;code_score&lt;/i&gt; (the support: the code's share of the vote x its mean probability) and &lt;i&gt;code_views&lt;/i&gt;. When the code's class (codes table) is not the class vote's, the better supported one wins: the code's support against the class's (its share of the score-weighted class vote x its views' mean detection score); &lt;i&gt;code_check&lt;/i&gt; says &lt;i&gt;class_from_code&lt;/i&gt; (the class was taken from the code) or &lt;i&gt;code_dropped&lt;/i&gt; (the code was emptied). The label shows the code's name, or the figure of a speed limit.</source>
-        <translation>Agrupa los candidatos de distintos panoramas que son la misma señal física (misma clase, dentro del radio de fusión, normales de plano concordantes; los paneles apilados en un mismo poste se mantienen separados) y después refina cada señal en la nube: agrupamiento euclidiano, un filtro de intensidad cuyo umbral se adapta a la nube (Otsu), un plano RANSAC casi vertical y la dimensionalidad PCA para conservar el panel y descartar el poste.&lt;br&gt;&lt;br&gt;Cada señal obtiene el centro de su panel, el ancho y el alto del panel, el acimut hacia el que mira su cara (en sentido horario desde el norte de cuadrícula), su altura sobre el suelo justo debajo (puntos de clase 2 cerca de la señal; el registro indica cualquier alternativa usada), la altura inferior, el número de vistas y de puntos, las imágenes en las que se vio y la mejor de ellas (la más cercana y frontal), la intensidad media y la planaridad. Una señal vista en dos o más panoramas pero sin puntos en la nube se sitúa triangulando sus rayos (position_source = image).&lt;br&gt;&lt;br&gt;&lt;b&gt;No son señales&lt;/b&gt;, descartadas y nombradas en el registro: un panel mayor de lo que admite su clase (una valla publicitaria), uno curvo (un espejo convexo), una imagen sobre una superficie plana mayor, y una señal vista en un solo panorama cuando su puntuación es menor que 0,4 o cuando dos o más panoramas más cercanos a su cara, que detectaron otras señales, no la vieron (algo parecido a una señal, recuadrado una vez desde lejos).&lt;br&gt;&lt;br&gt;Salidas opcionales: contornos de los paneles (PolygonZ) y los puntos de las señales (LAS/LAZ).&lt;br&gt;&lt;br&gt;&lt;b&gt;Revisión&lt;/b&gt;: con la carpeta de panoramas, cada señal obtiene una miniatura de su mejor panorama (su recuadro con un margen, sin distorsión), escrita en una carpeta junto a la capa de señales y enlazada por el campo &lt;i&gt;chip&lt;/i&gt; (una ruta relativa); el informe de revisión muestra la miniatura y los atributos de cada señal. La capa de señales se simboliza con un símbolo por clase y su altura como etiqueta (un archivo .qml a su lado).&lt;br&gt;&lt;br&gt;&lt;b&gt;Códigos de señal&lt;/b&gt;: los códigos que «Detectar señales en panoramas» leyó en las vistas de una señal se someten a votación, y cada vista pesa su puntuación de detección x el tamaño de su recorte x la probabilidad del código. La señal obtiene &lt;i&gt;code&lt;/i&gt; (vacío cuando la votación dice &lt;i&gt;other&lt;/i&gt; o el apoyo queda por debajo de la confianza mínima de código), &lt;i&gt;code_name&lt;/i&gt; (de la tabla de códigos), &lt;i&gt;code_score&lt;/i&gt; (el apoyo: la proporción del código en la votación x su probabilidad media) y &lt;i&gt;code_views&lt;/i&gt;. Cuando la clase del código (tabla de códigos) no es la de la votación de clase, gana la que tiene más apoyo: el apoyo del código frente al de la clase (su proporción en la votación de clase ponderada por la puntuación x la puntuación de detección media de sus vistas); &lt;i&gt;code_check&lt;/i&gt; indica &lt;i&gt;class_from_code&lt;/i&gt; (la clase se tomó del código) o &lt;i&gt;code_dropped&lt;/i&gt; (el código se vació). La etiqueta muestra el nombre del código, o la cifra de un límite de velocidad.</translation>
+        <source>Groups the candidates of different panoramas that are the same physical sign (same class, within the merge radius, plane normals agreeing; panels stacked on one pole stay apart), then refines each sign in the cloud: Euclidean clustering, an intensity filter whose threshold adapts to the cloud (Otsu), a near-vertical RANSAC plane and PCA dimensionality to keep the panel and drop the pole.&lt;br&gt;&lt;br&gt;Each sign gets its panel centre, width and panel height, the azimuth its face looks towards (clockwise from grid north), its height above the ground directly below (class-2 points near the sign; the log names any fallback), the bottom height, the number of views and points, the images it was seen in and the best of them (closest, most frontal), the mean intensity and planarity. A sign seen in two or more panoramas but with no cloud points is placed by triangulating its rays (position_source = image).&lt;br&gt;&lt;br&gt;&lt;b&gt;Not signs&lt;/b&gt;, dropped and named in the log: a panel larger than its class allows (a billboard), a curved one (a convex mirror), a picture on a larger flat surface, and a sign seen in one panorama only when its score is under 0.4 or when two or more panoramas nearer to its face, which detected other signs, did not see it (a look-alike boxed once from afar).&lt;br&gt;&lt;br&gt;Optional outputs: panel outlines (PolygonZ) and the sign points (LAS/LAZ).&lt;br&gt;&lt;br&gt;&lt;b&gt;Review&lt;/b&gt;: with the panorama folder, each sign gets an image chip from its best panorama (its box with a margin, undistorted), written into a folder beside the sign layer and linked by the &lt;i&gt;chip&lt;/i&gt; field (a relative path); the review report shows every sign's chip and attributes. The sign layer is styled with a symbol per class and its height as label (a .qml file beside it).&lt;br&gt;&lt;br&gt;&lt;b&gt;Sign codes&lt;/b&gt;: the codes Detect signs read in the views of a sign are put to a vote, each view weighing its detection score x the pixels its crop holds across the sign's narrower side (a sign passed close by, seen at a steep angle, weighs less) x the code's probability. The sign gets &lt;i&gt;code&lt;/i&gt; (empty when the vote says &lt;i&gt;other&lt;/i&gt; or the support is below the minimum code confidence), &lt;i&gt;code_name&lt;/i&gt; (from the codes table), &lt;i&gt;code_score&lt;/i&gt; (the support: the code's share of the vote x its mean probability) and &lt;i&gt;code_views&lt;/i&gt;. When the code's class (codes table) is not the class vote's, the better supported one wins: the code's support against the class's (its share of the score-weighted class vote x its views' mean detection score); &lt;i&gt;code_check&lt;/i&gt; says &lt;i&gt;class_from_code&lt;/i&gt; (the class was taken from the code) or &lt;i&gt;code_dropped&lt;/i&gt; (the code was emptied). The label shows the code's name, or the figure of a speed limit.</source>
+        <translation>Agrupa los candidatos de distintos panoramas que son la misma señal física (misma clase, dentro del radio de fusión, normales de plano concordantes; los paneles apilados en un mismo poste se mantienen separados) y después refina cada señal en la nube: agrupamiento euclidiano, un filtro de intensidad cuyo umbral se adapta a la nube (Otsu), un plano RANSAC casi vertical y la dimensionalidad PCA para conservar el panel y descartar el poste.&lt;br&gt;&lt;br&gt;Cada señal obtiene el centro de su panel, el ancho y el alto del panel, el acimut hacia el que mira su cara (en sentido horario desde el norte de cuadrícula), su altura sobre el suelo justo debajo (puntos de clase 2 cerca de la señal; el registro indica cualquier alternativa usada), la altura inferior, el número de vistas y de puntos, las imágenes en las que se vio y la mejor de ellas (la más cercana y frontal), la intensidad media y la planaridad. Una señal vista en dos o más panoramas pero sin puntos en la nube se sitúa triangulando sus rayos (position_source = image).&lt;br&gt;&lt;br&gt;&lt;b&gt;No son señales&lt;/b&gt;, descartadas y nombradas en el registro: un panel mayor de lo que admite su clase (una valla publicitaria), uno curvo (un espejo convexo), una imagen sobre una superficie plana mayor, y una señal vista en un solo panorama cuando su puntuación es menor que 0,4 o cuando dos o más panoramas más cercanos a su cara, que detectaron otras señales, no la vieron (algo parecido a una señal, recuadrado una vez desde lejos).&lt;br&gt;&lt;br&gt;Salidas opcionales: contornos de los paneles (PolygonZ) y los puntos de las señales (LAS/LAZ).&lt;br&gt;&lt;br&gt;&lt;b&gt;Revisión&lt;/b&gt;: con la carpeta de panoramas, cada señal obtiene una miniatura de su mejor panorama (su recuadro con un margen, sin distorsión), escrita en una carpeta junto a la capa de señales y enlazada por el campo &lt;i&gt;chip&lt;/i&gt; (una ruta relativa); el informe de revisión muestra la miniatura y los atributos de cada señal. La capa de señales se simboliza con un símbolo por clase y su altura como etiqueta (un archivo .qml a su lado).&lt;br&gt;&lt;br&gt;&lt;b&gt;Códigos de señal&lt;/b&gt;: los códigos que «Detectar señales en panoramas» leyó en las vistas de una señal se someten a votación, y cada vista pesa su puntuación de detección x los píxeles que su recorte tiene a lo ancho del lado más estrecho de la señal (una señal pasada de cerca, vista en un ángulo pronunciado, pesa menos) x la probabilidad del código. La señal obtiene &lt;i&gt;code&lt;/i&gt; (vacío cuando la votación dice &lt;i&gt;other&lt;/i&gt; o el apoyo queda por debajo de la confianza mínima de código), &lt;i&gt;code_name&lt;/i&gt; (de la tabla de códigos), &lt;i&gt;code_score&lt;/i&gt; (el apoyo: la proporción del código en la votación x su probabilidad media) y &lt;i&gt;code_views&lt;/i&gt;. Cuando la clase del código (tabla de códigos) no es la de la votación de clase, gana la que tiene más apoyo: el apoyo del código frente al de la clase (su proporción en la votación de clase ponderada por la puntuación x la puntuación de detección media de sus vistas); &lt;i&gt;code_check&lt;/i&gt; indica &lt;i&gt;class_from_code&lt;/i&gt; (la clase se tomó del código) o &lt;i&gt;code_dropped&lt;/i&gt; (el código se vació). La etiqueta muestra el nombre del código, o la cifra de un límite de velocidad.</translation>
     </message>
 </context>
 <context>
@@ -3119,121 +3119,121 @@
         <translation>{path} no tiene puntos dentro de los troncos de visión de las detecciones; no se encontró ningún candidato</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="141" />
+        <location filename="../core/refine.py" line="142" />
         <source>curved surface (a convex mirror?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>superficie curva (¿un espejo convexo?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="142" />
+        <location filename="../core/refine.py" line="143" />
         <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>parte de una superficie plana mayor (¿una imagen en una valla publicitaria o una pared?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1013" />
+        <location filename="../core/refine.py" line="1033" />
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} señales a partir de {candidates} candidatos ({from_images} situadas solo a partir de las imágenes)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1772" />
+        <location filename="../core/refine.py" line="1793" />
         <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{coded} de {signs} señales tienen código de señal; {from_code} tomaron su clase del código, {dropped} códigos se descartaron por la votación de clase (code_check)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1781" />
+        <location filename="../core/refine.py" line="1802" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>la altura de las estaciones menos {height} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="406" />
+        <location filename="../core/refine.py" line="426" />
         <source>Detection {det_id} has the sign code {code}, which is not in the sign codes table {table}: give the codes table the classifier was run with</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La detección {det_id} tiene el código de señal {code}, que no está en la tabla de códigos de señal {table}: indique la tabla de códigos con la que se ejecutó el clasificador</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="990" />
+        <location filename="../core/refine.py" line="1010" />
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El radio de fusión debe ser positivo; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="993" />
+        <location filename="../core/refine.py" line="1013" />
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay candidatos que refinar; la capa de señales está vacía</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1518" />
+        <location filename="../core/refine.py" line="1538" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids}: {reason}; situados en la mediana de los candidatos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1713" />
+        <location filename="../core/refine.py" line="1733" />
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: un panel de {width:.2f} x {height:.2f} m es demasiado grande para una señal {sign_class} (¿una valla publicitaria?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1718" />
+        <location filename="../core/refine.py" line="1738" />
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: vistos en una sola panorámica, con una puntuación de {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="507" />
+        <location filename="../core/refine.py" line="527" />
         <source>too few points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="510" />
+        <location filename="../core/refine.py" line="530" />
         <source>too few points in the boxes</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos en los recuadros</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="516" />
+        <location filename="../core/refine.py" line="536" />
         <source>no near-vertical plane</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>ningún plano casi vertical</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="520" />
+        <location filename="../core/refine.py" line="540" />
         <source>too few planar points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos planos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1512" />
+        <location filename="../core/refine.py" line="1532" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>sin nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1515" />
+        <location filename="../core/refine.py" line="1535" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: {reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1724" />
+        <location filename="../core/refine.py" line="1744" />
         <source>Candidates {ids} dropped: seen in one panorama only ({image}, {range:.1f} m away), not in the {missed} panoramas nearer to its face</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: vistos en un solo panorama ({image}, a {range:.1f} m), no en los {missed} panoramas más cercanos a su cara</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1782" />
+        <location filename="../core/refine.py" line="1803" />
         <source>the lowest points below the sign</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>los puntos más bajos bajo la señal</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1786" />
+        <location filename="../core/refine.py" line="1807" />
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} señal(es) no tienen puntos de suelo (clase 2) a menos de {radius} m: su altura se mide desde {source}</translation>
@@ -3251,7 +3251,7 @@
         <translation>La tabla de códigos de señal {path} no contiene códigos: se esperaba una fila por código tras la cabecera {expected}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="423" />
+        <location filename="../core/signcodes.py" line="418" />
         <source>The box {box} is not four finite pixel coordinates u0, v0, u1, v1</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El recuadro {box} no son cuatro coordenadas de píxel finitas u0, v0, u1, v1</translation>

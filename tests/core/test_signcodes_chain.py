@@ -167,7 +167,7 @@ def test_a_unanimous_code_agreeing_with_the_class(table):
     cand, rows = views([("prohibitory", 0.8, "DE:274[50]", 0.9, 40), ("prohibitory", 0.7, "DE:274[50]", 0.8, 30)])
     v = R.vote_code(cand, rows, "prohibitory", table)
     assert (v.code, v.name, v.views, v.check, v.klass) == ("DE:274[50]", "speed limit 50", 2, "", "prohibitory")
-    w = np.array([0.8, 0.7]) * R.crop_side_px(cand.detections, rows)
+    w = np.array([0.8, 0.7]) * R.legible_side_px(cand.detections, rows)
     assert v.score == pytest.approx(float((w * [0.9, 0.8]).sum() / w.sum()))  # share 1 x mean probability
     assert v.fields() == {"code": "DE:274[50]", "code_name": "speed limit 50", "code_score": v.score,
                           "code_views": 2, "code_check": ""}
@@ -178,6 +178,35 @@ def test_crop_side_is_the_crop_cut_for_the_box():
     sides = R.crop_side_px(cand.detections, rows)
     assert sides[0] == pytest.approx(40 * (1 + 2 * SC.DEFAULT_CROP_MARGIN), abs=1.5)
     assert sides[1] == 256  # clamped as cut_crop clamps it
+
+
+def test_the_legible_side_is_the_crop_side_across_the_narrower_side_of_the_box():
+    """Boxes on the horizon (v = 1024 of 2048): a square box keeps its crop side; one of a
+    sign passed close by, 90 px high and 30 px wide, is read from a crop squeezed across
+    to a third."""
+    det = D.Detections(np.arange(1, 3), np.arange(1, 3), ["p0.jpg", "p1.jpg"], ["prohibitory"] * 2,
+                       np.array([0.9, 0.9]), np.array([[500.0, 1004, 540, 1044], [500.0, 979, 530, 1069]]),
+                       np.tile([4096.0, 2048.0], (2, 1)), np.zeros((2, 3)), np.tile([1.0, 0, 0, 0], (2, 1)),
+                       code=["DE:274[50]"] * 2, code_score=np.array([0.9, 0.9]))
+    crop = R.crop_side_px(det, [0, 1])
+    np.testing.assert_allclose(R.box_aspect(det, [0, 1]), [1.0, 1 / 3], atol=0.01)
+    np.testing.assert_allclose(R.legible_side_px(det, [0, 1]), crop * [1.0, 1 / 3], rtol=0.02)
+    assert crop[1] > crop[0]  # the tall box's crop is larger, its legible side smaller
+
+
+def test_a_close_view_seen_edge_on_does_not_outvote_the_face_on_views(table):
+    """A speed limit passed close by, boxed 30 x 90 px, read as 30 (p 0.9), against two views
+    face on at 40 px that read 50 (p 0.9): by crop side the tall box outweighs them (its crop
+    is cut for its 90 px height); across its narrow side it does not."""
+    det = D.Detections(np.arange(1, 4), np.arange(1, 4), ["p0.jpg", "p1.jpg", "p2.jpg"], ["prohibitory"] * 3,
+                       np.array([0.9, 0.9, 0.9]),
+                       np.array([[500.0, 979, 530, 1069], [900.0, 1004, 940, 1044], [1300.0, 1004, 1340, 1044]]),
+                       np.tile([4096.0, 2048.0], (3, 1)), np.zeros((3, 3)), np.tile([1.0, 0, 0, 0], (3, 1)),
+                       code=["DE:274[30]", "DE:274[50]", "DE:274[50]"], code_score=np.array([0.9, 0.9, 0.9]))
+    sides = R.crop_side_px(det, [0, 1, 2])
+    assert sides[0] > sides[1] + sides[2]
+    v = R.vote_code(SimpleNamespace(detections=det), [0, 1, 2], "prohibitory", table, confidence=0.0)
+    assert v.code == "DE:274[50]" and v.views == 2
 
 
 def test_the_weightier_view_wins(table):

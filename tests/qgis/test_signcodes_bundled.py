@@ -7,8 +7,9 @@ seen at 22 and 27 px.)
 
 Each sign's detections (its own class, IoU >= 0.5 with its visible or whole box in a
 panorama that sees its front) are put to the vote refine makes (core.signcodes.vote,
-weight = detection score x crop side), which the code must win, read in at least half of
-the views. Without the bundled classifier the test is skipped, and fails under CI=true.
+weight = detection score x the crop's side across the box's narrower side), which the code
+must win, read in at least half of the views. Without the bundled classifier the test is
+skipped, and fails under CI=true.
 """
 import os
 
@@ -79,7 +80,7 @@ def run(qgis_process, tmp_path_factory):
 
 @pytest.mark.parametrize("variant", sorted(EXPECTED), ids=lambda v: v[0])
 def test_bundled_classifier_reads_the_generated_signs(run, variant):
-    from roadsigns.core.signcodes import crop_view, vote
+    from roadsigns.core.signcodes import box_angles_deg, crop_view, vote
 
     seed, expected = EXPECTED[variant]
     scene, rows, text = run(seed)
@@ -97,7 +98,8 @@ def test_bundled_classifier_reads_the_generated_signs(run, variant):
                 box = [d["u0"], d["v0"], d["u1"], d["v1"]]
                 if d["image"] == meta["image"] and d["class"] == variant[0] and max(
                         seam_iou(box, seen["visible_box"], width), seam_iou(box, seen["box"], width)) >= 0.5:
-                    side = crop_view(box, d["width"], d["height"])[0].width_px
+                    _, _, w_deg, h_deg = box_angles_deg(box, d["width"], d["height"])
+                    side = crop_view(box, d["width"], d["height"])[0].width_px * min(w_deg, h_deg) / max(w_deg, h_deg)
                     views.append((d["code"], d["code_score"], d["score"] * side, meta["image"]))
     assert views, "the bundled detector found no {} sign".format(variant)
     code, share, n = vote([v[0] for v in views], [v[1] for v in views], [v[2] for v in views])
