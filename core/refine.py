@@ -51,8 +51,8 @@ the winning class; ``best_image``: the view minimising range / cos(incidence).
 Codes (:func:`vote_code`): the sign codes read in the views (the candidates' ``code`` and
 ``code_score``) are put to :func:`.signcodes.vote`, each view weighing its detection score
 x its legible side (its crop's side x its box's aspect); the code is kept when it is not
-``other`` and its support reaches ``code_confidence``; when its class (codes table) is not the class vote's, the better
-supported of the two wins (``code_check``).
+``other`` and its support reaches ``code_confidence``; when its class (codes table) is not
+the class vote's, the better supported of the two wins (``code_check``).
 """
 from __future__ import annotations
 
@@ -237,8 +237,8 @@ class RefineParams:
     #: a sign seen in a single panorama is dropped when at least this many other panoramas
     #: that gave detections stand nearer to it, in front of its face and with it low enough
     #: in their views (:func:`nearer_stations_that_missed`), and none of them saw it: a real
-    #: sign grows as the vehicle nears it, a look-alike boxed once from afar (a convex
-    #: mirror, a roundel on a wall) is not boxed again. 0: the rule is off
+    #: sign grows as the vehicle nears it, a look-alike boxed once from afar (such as a
+    #: convex mirror) is not boxed again. 0: the rule is off
     single_view_max_nearer_misses: int = 2
     #: what "in front" and "nearer" mean there: within this angle of the face's normal
     #: (horizontal), this elevation above the panorama's horizon, at least this horizontal
