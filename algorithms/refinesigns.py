@@ -34,6 +34,7 @@ class RefineSigns(RoadSignsAlgorithm):
     POINT_CLOUD = "POINT_CLOUD"
     MERGE_RADIUS = "MERGE_RADIUS"
     CODE_CONFIDENCE = "CODE_CONFIDENCE"
+    SINGLE_VIEW_MISSES = "SINGLE_VIEW_MAX_NEARER_MISSES"
     CODES_TABLE = "CODES_TABLE"
     IMAGES = "IMAGES"
     CLOUD_CRS = "CLOUD_CRS"
@@ -102,6 +103,15 @@ class RefineSigns(RoadSignsAlgorithm):
                     "this; else the code field stays empty. 0 keeps every code but 'other' and 'unlisted:...' (a sign "
                     "whose code the table lacks)."),
             minimum=0.0, maximum=1.0)
+        self.add_number(
+            self.SINGLE_VIEW_MISSES, self.tr("Drop a sign seen once when this many nearer panoramas missed it"),
+            2,  # core.refine.RefineParams.single_view_max_nearer_misses
+            self.tr("A sign seen in one panorama only is dropped when at least this many other panoramas, "
+                    "which detected other signs, stand nearer to its face and did not see it (within 60 "
+                    "degrees of its normal, at least 4 m away, with the sign at most 20 degrees above their "
+                    "horizon): a look-alike boxed once from afar, such as a convex mirror. 0 keeps every such "
+                    "sign, for example a real sign that a lorry hid from the nearer panoramas."),
+            minimum=0, integer=True, advanced=True)
         self.add_file(
             self.CODES_TABLE, self.tr("Sign codes table (empty: the bundled one)"),
             self.tr("The codes table the classifier of Detect signs was run with: it gives each code its name "
@@ -136,7 +146,7 @@ class RefineSigns(RoadSignsAlgorithm):
         self.check_dependencies()
         from ..core.detections import OPTIONAL_FIELDS
         from ..core.projection import CANDIDATE_FIELDS, ProjectionResult
-        from ..core.refine import OUTLINE_FIELDS, SIGN_FIELDS, refine_signs, write_sign_points
+        from ..core.refine import OUTLINE_FIELDS, SIGN_FIELDS, RefineParams, refine_signs, write_sign_points
         from ..core.signcodes import read_codes_table
 
         sign_layer_fields = SIGN_FIELDS + (CHIP_FIELD,)  # the sign fields and the review chip's path
@@ -164,6 +174,8 @@ class RefineSigns(RoadSignsAlgorithm):
                 self.parameterAsFile(parameters, self.CODES_TABLE, context) or BUNDLED_CODES_TABLE)
             result = refine_signs(candidates, cloud_path,
                                   merge_radius_m=self.parameterAsDouble(parameters, self.MERGE_RADIUS, context),
+                                  params=RefineParams(single_view_max_nearer_misses=self.parameterAsInt(
+                                      parameters, self.SINGLE_VIEW_MISSES, context)),
                                   progress=progress.sub(0.0, 0.85), codes_table=codes_table,
                                   code_confidence=self.parameterAsDouble(parameters, self.CODE_CONFIDENCE, context))
         records = result.records()

@@ -1659,184 +1659,194 @@
 <context>
     <name>RefineSigns</name>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="46" />
+        <location filename="../algorithms/refinesigns.py" line="47" />
         <source>Refine and merge signs</source>
         <translation>Refinar y fusionar señales</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="49" />
+        <location filename="../algorithms/refinesigns.py" line="50" />
         <source>Merges the views of each sign and refines it in the cloud: the sign layer.</source>
         <translation>Fusiona las vistas de cada señal y la refina en la nube: la capa de señales.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="150" />
+        <location filename="../algorithms/refinesigns.py" line="160" />
         <source>Sign candidates</source>
         <translation>Candidatos de señal</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="88" />
+        <location filename="../algorithms/refinesigns.py" line="89" />
         <source>The output of Project detections.</source>
         <translation>La salida de «Proyectar detecciones en la nube de puntos».</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="91" />
+        <location filename="../algorithms/refinesigns.py" line="92" />
         <source>Ground-classified point cloud (LAS/LAZ)</source>
         <translation>Nube de puntos con suelo clasificado (LAS/LAZ)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="91" />
+        <location filename="../algorithms/refinesigns.py" line="92" />
         <source>The same cloud as for Project detections (ground as class 2).</source>
         <translation>La misma nube que para «Proyectar detecciones en la nube de puntos» (suelo como clase 2).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="94" />
+        <location filename="../algorithms/refinesigns.py" line="95" />
         <source>Merge radius (m)</source>
         <translation>Radio de fusión (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="94" />
+        <location filename="../algorithms/refinesigns.py" line="95" />
         <source>Candidates of the same class closer than this (metres) with agreeing plane normals are taken as one sign.</source>
         <translation>Los candidatos de la misma clase más cercanos que esto (metros) y con normales de plano concordantes se toman como una sola señal.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="111" />
+        <location filename="../algorithms/refinesigns.py" line="121" />
         <source>Panorama folder (for review chips)</source>
         <translation>Carpeta de panoramas (para las miniaturas de revisión)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="111" />
+        <location filename="../algorithms/refinesigns.py" line="121" />
         <source>The folder of the panoramas (as for Import trajectory). When given, an image chip of each sign is cut from its best panorama for review.</source>
         <translation>La carpeta de los panoramas (como para «Importar trayectoria y panoramas»). Si se indica, se recorta una miniatura de cada señal de su mejor panorama para la revisión.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="119" />
+        <location filename="../algorithms/refinesigns.py" line="129" />
         <source>Signs</source>
         <translation>Señales</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="119" />
+        <location filename="../algorithms/refinesigns.py" line="129" />
         <source>PointZ sign layer at the panel centres (fields in docs/formats.md), and chip: the relative path of the sign's review picture.</source>
         <translation>Capa de señales PointZ en los centros de los paneles (campos en docs/formats.md), y chip: la ruta relativa de la imagen de revisión de la señal.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="123" />
+        <location filename="../algorithms/refinesigns.py" line="133" />
         <source>Panel outlines</source>
         <translation>Contornos de los paneles</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="123" />
+        <location filename="../algorithms/refinesigns.py" line="133" />
         <source>PolygonZ layer of each panel's rectangle in its plane (signs placed from the cloud).</source>
         <translation>Capa PolygonZ con el rectángulo de cada panel en su plano (señales situadas a partir de la nube).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="127" />
+        <location filename="../algorithms/refinesigns.py" line="137" />
         <source>Sign points</source>
         <translation>Puntos de las señales</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="127" />
+        <location filename="../algorithms/refinesigns.py" line="137" />
         <source>LAZ (*.laz);;LAS (*.las)</source>
         <translation>LAZ (*.laz);;LAS (*.las)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="127" />
+        <location filename="../algorithms/refinesigns.py" line="137" />
         <source>A LAS/LAZ file of the points of every sign panel, all dimensions kept.</source>
         <translation>Un archivo LAS/LAZ con los puntos de cada panel de señal, con todas las dimensiones.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="130" />
+        <location filename="../algorithms/refinesigns.py" line="140" />
         <source>Review report</source>
         <translation>Informe de revisión</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="130" />
+        <location filename="../algorithms/refinesigns.py" line="140" />
         <source>HTML files (*.html)</source>
         <translation>Archivos HTML (*.html)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="130" />
+        <location filename="../algorithms/refinesigns.py" line="140" />
         <source>An HTML page with every sign's chip and attributes, to confirm signs without opening panoramas (needs the panorama folder).</source>
         <translation>Una página HTML con la miniatura y los atributos de cada señal, para confirmar las señales sin abrir los panoramas (necesita la carpeta de panoramas).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="148" />
+        <location filename="../algorithms/refinesigns.py" line="158" />
         <source>The candidates</source>
         <translation>Los candidatos</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="181" />
+        <location filename="../algorithms/refinesigns.py" line="193" />
         <source>The review report needs the panorama folder: not written.</source>
         <translation>El informe de revisión necesita la carpeta de panoramas: no se escribió.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="187" />
+        <location filename="../algorithms/refinesigns.py" line="199" />
         <source>{} sign points written to {}</source>
         <translation>{} puntos de señales escritos en {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="212" />
+        <location filename="../algorithms/refinesigns.py" line="224" />
         <source>{} signs from {} candidates ({})</source>
         <translation>{} señales a partir de {} candidatos ({})</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="222" />
+        <location filename="../algorithms/refinesigns.py" line="234" />
         <source>Review chips need a sign layer written to a file: skipped.</source>
         <translation>Las miniaturas de revisión necesitan una capa de señales escrita en un archivo: se omiten.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="235" />
+        <location filename="../algorithms/refinesigns.py" line="247" />
         <source>Road signs for review</source>
         <translation>Señales viales para revisión</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="237" />
+        <location filename="../algorithms/refinesigns.py" line="249" />
         <source>{} review chips in {}</source>
         <translation>{} miniaturas de revisión en {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="115" />
+        <location filename="../algorithms/refinesigns.py" line="125" />
         <source>Cloud CRS (when the file has none)</source>
         <translation>SRC de la nube (si el archivo no tiene)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="115" />
+        <location filename="../algorithms/refinesigns.py" line="125" />
         <source>The cloud's CRS when the file records none (it must be the candidates' CRS); it overrides a CRS in the file. The CRS is never guessed.</source>
         <translation>El SRC de la nube cuando el archivo no registra ninguno (debe ser el SRC de los candidatos); sustituye al SRC del archivo. El SRC nunca se adivina.</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="155" />
+        <location filename="../algorithms/refinesigns.py" line="165" />
         <source>Panorama folder not found: {}</source>
         <translation>No se encontró la carpeta de panoramas: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="98" />
+        <location filename="../algorithms/refinesigns.py" line="99" />
         <source>Minimum code confidence</source>
         <translation>Confianza mínima de código</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="105" />
+        <location filename="../algorithms/refinesigns.py" line="115" />
         <source>Sign codes table (empty: the bundled one)</source>
         <translation>Tabla de códigos de señal (vacío: la incluida)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="105" />
+        <location filename="../algorithms/refinesigns.py" line="115" />
         <source>The codes table the classifier of Detect signs was run with: it gives each code its name (code_name) and its class (for the class check). Format in models/README.md; empty uses the bundled table of German codes (models/sign-codes-de.csv).</source>
         <translation>La tabla de códigos con la que se ejecutó el clasificador de «Detectar señales en panoramas»: da a cada código su nombre (code_name) y su clase (para la comprobación de clase). Formato en models/README.md; vacío usa la tabla incluida de códigos alemanes (models/sign-codes-de.csv).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="105" />
+        <location filename="../algorithms/refinesigns.py" line="115" />
         <source>CSV files (*.csv *.txt);;All files (*.*)</source>
         <translation>Archivos CSV (*.csv *.txt);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="98" />
+        <location filename="../algorithms/refinesigns.py" line="99" />
         <source>A sign's voted code is kept when its support (its share of the views' weighted vote x the mean probability the classifier gave it, 0-1: the code_score field) is at least this; else the code field stays empty. 0 keeps every code but 'other' and 'unlisted:...' (a sign whose code the table lacks).</source>
         <translation>El código votado de una señal se conserva cuando su apoyo (su proporción en la votación ponderada de las vistas x la probabilidad media que le dio el clasificador, 0-1: el campo code_score) es al menos este valor; si no, el campo code queda vacío. 0 conserva todos los códigos salvo 'other' y 'unlisted:...' (una señal cuyo código no está en la tabla).</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="52" />
+        <location filename="../algorithms/refinesigns.py" line="53" />
         <source>Groups the candidates of different panoramas that are the same physical sign (same class, within the merge radius, plane normals agreeing; panels stacked on one pole stay apart), then refines each sign in the cloud: Euclidean clustering, an intensity filter whose threshold adapts to the cloud (Otsu), a near-vertical RANSAC plane and PCA dimensionality to keep the panel and drop the pole.&lt;br&gt;&lt;br&gt;Each sign gets its panel centre, width and panel height, the azimuth its face looks towards (clockwise from grid north), its height above the ground directly below (class-2 points near the sign; the log names any fallback), the bottom height, the number of views and points, the images it was seen in and the best of them (closest, most frontal), the mean intensity and planarity. A sign seen in two or more panoramas but with no cloud points is placed by triangulating its rays (position_source = image).&lt;br&gt;&lt;br&gt;&lt;b&gt;Not signs&lt;/b&gt;, dropped and named in the log: a panel larger than its class allows (a billboard), a curved one (a convex mirror), a picture on a larger flat surface, and a sign seen in one panorama only when its score is under 0.4 or when two or more panoramas nearer to its face, which detected other signs, did not see it (a look-alike boxed once from afar).&lt;br&gt;&lt;br&gt;Optional outputs: panel outlines (PolygonZ) and the sign points (LAS/LAZ).&lt;br&gt;&lt;br&gt;&lt;b&gt;Review&lt;/b&gt;: with the panorama folder, each sign gets an image chip from its best panorama (its box with a margin, undistorted), written into a folder beside the sign layer and linked by the &lt;i&gt;chip&lt;/i&gt; field (a relative path); the review report shows every sign's chip and attributes. The sign layer is styled with a symbol per class and its height as label (a .qml file beside it).&lt;br&gt;&lt;br&gt;&lt;b&gt;Sign codes&lt;/b&gt;: the codes Detect signs read in the views of a sign are put to a vote, each view weighing its detection score x the pixels its crop holds across the sign's narrower side (a sign passed close by, seen at a steep angle, weighs less) x the code's probability. The sign gets &lt;i&gt;code&lt;/i&gt; (empty when the vote says &lt;i&gt;other&lt;/i&gt; or the support is below the minimum code confidence), &lt;i&gt;code_name&lt;/i&gt; (from the codes table), &lt;i&gt;code_score&lt;/i&gt; (the support: the code's share of the vote x its mean probability) and &lt;i&gt;code_views&lt;/i&gt;. When the code's class (codes table) is not the class vote's, the better supported one wins: the code's support against the class's (its share of the score-weighted class vote x its views' mean detection score); &lt;i&gt;code_check&lt;/i&gt; says &lt;i&gt;class_from_code&lt;/i&gt; (the class was taken from the code) or &lt;i&gt;code_dropped&lt;/i&gt; (the code was emptied). The label shows the code's name, or the figure of a speed limit.</source>
         <translation>Agrupa los candidatos de distintos panoramas que son la misma señal física (misma clase, dentro del radio de fusión, normales de plano concordantes; los paneles apilados en un mismo poste se mantienen separados) y después refina cada señal en la nube: agrupamiento euclidiano, un filtro de intensidad cuyo umbral se adapta a la nube (Otsu), un plano RANSAC casi vertical y la dimensionalidad PCA para conservar el panel y descartar el poste.&lt;br&gt;&lt;br&gt;Cada señal obtiene el centro de su panel, el ancho y el alto del panel, el acimut hacia el que mira su cara (en sentido horario desde el norte de cuadrícula), su altura sobre el suelo justo debajo (puntos de clase 2 cerca de la señal; el registro indica cualquier alternativa usada), la altura inferior, el número de vistas y de puntos, las imágenes en las que se vio y la mejor de ellas (la más cercana y frontal), la intensidad media y la planaridad. Una señal vista en dos o más panoramas pero sin puntos en la nube se sitúa triangulando sus rayos (position_source = image).&lt;br&gt;&lt;br&gt;&lt;b&gt;No son señales&lt;/b&gt;, descartadas y nombradas en el registro: un panel mayor de lo que admite su clase (una valla publicitaria), uno curvo (un espejo convexo), una imagen sobre una superficie plana mayor, y una señal vista en un solo panorama cuando su puntuación es menor que 0,4 o cuando dos o más panoramas más cercanos a su cara, que detectaron otras señales, no la vieron (algo parecido a una señal, recuadrado una vez desde lejos).&lt;br&gt;&lt;br&gt;Salidas opcionales: contornos de los paneles (PolygonZ) y los puntos de las señales (LAS/LAZ).&lt;br&gt;&lt;br&gt;&lt;b&gt;Revisión&lt;/b&gt;: con la carpeta de panoramas, cada señal obtiene una miniatura de su mejor panorama (su recuadro con un margen, sin distorsión), escrita en una carpeta junto a la capa de señales y enlazada por el campo &lt;i&gt;chip&lt;/i&gt; (una ruta relativa); el informe de revisión muestra la miniatura y los atributos de cada señal. La capa de señales se simboliza con un símbolo por clase y su altura como etiqueta (un archivo .qml a su lado).&lt;br&gt;&lt;br&gt;&lt;b&gt;Códigos de señal&lt;/b&gt;: los códigos que «Detectar señales en panoramas» leyó en las vistas de una señal se someten a votación, y cada vista pesa su puntuación de detección x los píxeles que su recorte tiene a lo ancho del lado más estrecho de la señal (una señal pasada de cerca, vista en un ángulo pronunciado, pesa menos) x la probabilidad del código. La señal obtiene &lt;i&gt;code&lt;/i&gt; (vacío cuando la votación dice &lt;i&gt;other&lt;/i&gt; o el apoyo queda por debajo de la confianza mínima de código), &lt;i&gt;code_name&lt;/i&gt; (de la tabla de códigos), &lt;i&gt;code_score&lt;/i&gt; (el apoyo: la proporción del código en la votación x su probabilidad media) y &lt;i&gt;code_views&lt;/i&gt;. Cuando la clase del código (tabla de códigos) no es la de la votación de clase, gana la que tiene más apoyo: el apoyo del código frente al de la clase (su proporción en la votación de clase ponderada por la puntuación x la puntuación de detección media de sus vistas); &lt;i&gt;code_check&lt;/i&gt; indica &lt;i&gt;class_from_code&lt;/i&gt; (la clase se tomó del código) o &lt;i&gt;code_dropped&lt;/i&gt; (el código se vació). La etiqueta muestra el nombre del código, o la cifra de un límite de velocidad.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="106" />
+        <source>Drop a sign seen once when this many nearer panoramas missed it</source>
+        <translation>Descartar una señal vista una sola vez cuando tantos panoramas más cercanos no la vieron</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="106" />
+        <source>A sign seen in one panorama only is dropped when at least this many other panoramas, which detected other signs, stand nearer to its face and did not see it (within 60 degrees of its normal, at least 4 m away, with the sign at most 20 degrees above their horizon): a look-alike boxed once from afar, such as a convex mirror. 0 keeps every such sign, for example a real sign that a lorry hid from the nearer panoramas.</source>
+        <translation>Una señal vista en un solo panorama se descarta cuando al menos este número de otros panoramas, que detectaron otras señales, están más cerca de su cara y no la vieron (a menos de 60 grados de su normal, a 4 m o más, con la señal a lo sumo 20 grados por encima de su horizonte): algo parecido a una señal, recuadrado una vez desde lejos, como un espejo convexo. 0 conserva todas esas señales, por ejemplo una señal real que un camión ocultó a los panoramas más cercanos.</translation>
     </message>
 </context>
 <context>

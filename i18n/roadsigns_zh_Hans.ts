@@ -1659,184 +1659,194 @@
 <context>
     <name>RefineSigns</name>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="46" />
+        <location filename="../algorithms/refinesigns.py" line="47" />
         <source>Refine and merge signs</source>
         <translation>精化与合并标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="49" />
+        <location filename="../algorithms/refinesigns.py" line="50" />
         <source>Merges the views of each sign and refines it in the cloud: the sign layer.</source>
         <translation>合并每个标志的多个视图，并在点云中对其精化：生成标志图层。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="150" />
+        <location filename="../algorithms/refinesigns.py" line="160" />
         <source>Sign candidates</source>
         <translation>标志候选</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="88" />
+        <location filename="../algorithms/refinesigns.py" line="89" />
         <source>The output of Project detections.</source>
         <translation>“将检测投影到点云”的输出。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="91" />
+        <location filename="../algorithms/refinesigns.py" line="92" />
         <source>Ground-classified point cloud (LAS/LAZ)</source>
         <translation>已地面分类的点云（LAS/LAZ）</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="91" />
+        <location filename="../algorithms/refinesigns.py" line="92" />
         <source>The same cloud as for Project detections (ground as class 2).</source>
         <translation>与“将检测投影到点云”相同的点云（地面为类别 2）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="94" />
+        <location filename="../algorithms/refinesigns.py" line="95" />
         <source>Merge radius (m)</source>
         <translation>合并半径 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="94" />
+        <location filename="../algorithms/refinesigns.py" line="95" />
         <source>Candidates of the same class closer than this (metres) with agreeing plane normals are taken as one sign.</source>
         <translation>类别相同、距离小于此值（米）且平面法向量一致的候选被视为同一个标志。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="111" />
+        <location filename="../algorithms/refinesigns.py" line="121" />
         <source>Panorama folder (for review chips)</source>
         <translation>全景图文件夹（用于审核切片）</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="111" />
+        <location filename="../algorithms/refinesigns.py" line="121" />
         <source>The folder of the panoramas (as for Import trajectory). When given, an image chip of each sign is cut from its best panorama for review.</source>
         <translation>全景图所在的文件夹（与“导入轨迹和全景图”相同）。提供时，将从每个标志的最佳全景图中截取一张图像切片用于审核。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="119" />
+        <location filename="../algorithms/refinesigns.py" line="129" />
         <source>Signs</source>
         <translation>标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="119" />
+        <location filename="../algorithms/refinesigns.py" line="129" />
         <source>PointZ sign layer at the panel centres (fields in docs/formats.md), and chip: the relative path of the sign's review picture.</source>
         <translation>位于标志牌中心的 PointZ 标志图层（字段见 docs/formats.md），以及 chip：标志审核图片的相对路径。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="123" />
+        <location filename="../algorithms/refinesigns.py" line="133" />
         <source>Panel outlines</source>
         <translation>标志牌轮廓</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="123" />
+        <location filename="../algorithms/refinesigns.py" line="133" />
         <source>PolygonZ layer of each panel's rectangle in its plane (signs placed from the cloud).</source>
         <translation>每个标志牌在其所在平面内的矩形的 PolygonZ 图层（由点云定位的标志）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="127" />
+        <location filename="../algorithms/refinesigns.py" line="137" />
         <source>Sign points</source>
         <translation>标志点</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="127" />
+        <location filename="../algorithms/refinesigns.py" line="137" />
         <source>LAZ (*.laz);;LAS (*.las)</source>
         <translation>LAZ (*.laz);;LAS (*.las)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="127" />
+        <location filename="../algorithms/refinesigns.py" line="137" />
         <source>A LAS/LAZ file of the points of every sign panel, all dimensions kept.</source>
         <translation>包含每个标志牌所有点的 LAS/LAZ 文件，保留全部维度。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="130" />
+        <location filename="../algorithms/refinesigns.py" line="140" />
         <source>Review report</source>
         <translation>审核报告</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="130" />
+        <location filename="../algorithms/refinesigns.py" line="140" />
         <source>HTML files (*.html)</source>
         <translation>HTML 文件 (*.html)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="130" />
+        <location filename="../algorithms/refinesigns.py" line="140" />
         <source>An HTML page with every sign's chip and attributes, to confirm signs without opening panoramas (needs the panorama folder).</source>
         <translation>一个 HTML 页面，列出每个标志的切片和属性，无需打开全景图即可确认标志（需要全景图文件夹）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="148" />
+        <location filename="../algorithms/refinesigns.py" line="158" />
         <source>The candidates</source>
         <translation>候选</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="181" />
+        <location filename="../algorithms/refinesigns.py" line="193" />
         <source>The review report needs the panorama folder: not written.</source>
         <translation>审核报告需要全景图文件夹：未写入。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="187" />
+        <location filename="../algorithms/refinesigns.py" line="199" />
         <source>{} sign points written to {}</source>
         <translation>已将 {} 个标志点写入 {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="212" />
+        <location filename="../algorithms/refinesigns.py" line="224" />
         <source>{} signs from {} candidates ({})</source>
         <translation>{} 个标志，来自 {} 个候选（{}）</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="222" />
+        <location filename="../algorithms/refinesigns.py" line="234" />
         <source>Review chips need a sign layer written to a file: skipped.</source>
         <translation>审核切片需要写入文件的标志图层：已跳过。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="235" />
+        <location filename="../algorithms/refinesigns.py" line="247" />
         <source>Road signs for review</source>
         <translation>待审核的道路标志</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="237" />
+        <location filename="../algorithms/refinesigns.py" line="249" />
         <source>{} review chips in {}</source>
         <translation>{} 张审核切片，位于 {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="115" />
+        <location filename="../algorithms/refinesigns.py" line="125" />
         <source>Cloud CRS (when the file has none)</source>
         <translation>点云坐标参考系（文件中没有时）</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="115" />
+        <location filename="../algorithms/refinesigns.py" line="125" />
         <source>The cloud's CRS when the file records none (it must be the candidates' CRS); it overrides a CRS in the file. The CRS is never guessed.</source>
         <translation>文件中没有记录坐标参考系时点云的坐标参考系（必须与候选的坐标参考系相同）；它会覆盖文件中的坐标参考系。坐标参考系从不猜测。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="155" />
+        <location filename="../algorithms/refinesigns.py" line="165" />
         <source>Panorama folder not found: {}</source>
         <translation>未找到全景图文件夹：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="98" />
+        <location filename="../algorithms/refinesigns.py" line="99" />
         <source>Minimum code confidence</source>
         <translation>最低代码置信度</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="105" />
+        <location filename="../algorithms/refinesigns.py" line="115" />
         <source>Sign codes table (empty: the bundled one)</source>
         <translation>标志代码表（留空：使用内置代码表）</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="105" />
+        <location filename="../algorithms/refinesigns.py" line="115" />
         <source>The codes table the classifier of Detect signs was run with: it gives each code its name (code_name) and its class (for the class check). Format in models/README.md; empty uses the bundled table of German codes (models/sign-codes-de.csv).</source>
         <translation>运行“在全景图中检测标志”的分类器时所用的代码表：为每个代码提供名称（code_name）和类别（用于类别检查）。格式见 models/README.md；留空则使用内置的德国代码表（models/sign-codes-de.csv）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="105" />
+        <location filename="../algorithms/refinesigns.py" line="115" />
         <source>CSV files (*.csv *.txt);;All files (*.*)</source>
         <translation>CSV 文件 (*.csv *.txt);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="98" />
+        <location filename="../algorithms/refinesigns.py" line="99" />
         <source>A sign's voted code is kept when its support (its share of the views' weighted vote x the mean probability the classifier gave it, 0-1: the code_score field) is at least this; else the code field stays empty. 0 keeps every code but 'other' and 'unlisted:...' (a sign whose code the table lacks).</source>
         <translation>当标志投票得出的代码的支持度（其在各视图加权投票中的占比 x 分类器给出的平均概率，0-1：即 code_score 字段）不低于此值时保留该代码；否则 code 字段保持为空。0 保留除 'other' 和 'unlisted:...'（代码表中没有其代码的标志）以外的所有代码。</translation>
     </message>
     <message>
-        <location filename="../algorithms/refinesigns.py" line="52" />
+        <location filename="../algorithms/refinesigns.py" line="53" />
         <source>Groups the candidates of different panoramas that are the same physical sign (same class, within the merge radius, plane normals agreeing; panels stacked on one pole stay apart), then refines each sign in the cloud: Euclidean clustering, an intensity filter whose threshold adapts to the cloud (Otsu), a near-vertical RANSAC plane and PCA dimensionality to keep the panel and drop the pole.&lt;br&gt;&lt;br&gt;Each sign gets its panel centre, width and panel height, the azimuth its face looks towards (clockwise from grid north), its height above the ground directly below (class-2 points near the sign; the log names any fallback), the bottom height, the number of views and points, the images it was seen in and the best of them (closest, most frontal), the mean intensity and planarity. A sign seen in two or more panoramas but with no cloud points is placed by triangulating its rays (position_source = image).&lt;br&gt;&lt;br&gt;&lt;b&gt;Not signs&lt;/b&gt;, dropped and named in the log: a panel larger than its class allows (a billboard), a curved one (a convex mirror), a picture on a larger flat surface, and a sign seen in one panorama only when its score is under 0.4 or when two or more panoramas nearer to its face, which detected other signs, did not see it (a look-alike boxed once from afar).&lt;br&gt;&lt;br&gt;Optional outputs: panel outlines (PolygonZ) and the sign points (LAS/LAZ).&lt;br&gt;&lt;br&gt;&lt;b&gt;Review&lt;/b&gt;: with the panorama folder, each sign gets an image chip from its best panorama (its box with a margin, undistorted), written into a folder beside the sign layer and linked by the &lt;i&gt;chip&lt;/i&gt; field (a relative path); the review report shows every sign's chip and attributes. The sign layer is styled with a symbol per class and its height as label (a .qml file beside it).&lt;br&gt;&lt;br&gt;&lt;b&gt;Sign codes&lt;/b&gt;: the codes Detect signs read in the views of a sign are put to a vote, each view weighing its detection score x the pixels its crop holds across the sign's narrower side (a sign passed close by, seen at a steep angle, weighs less) x the code's probability. The sign gets &lt;i&gt;code&lt;/i&gt; (empty when the vote says &lt;i&gt;other&lt;/i&gt; or the support is below the minimum code confidence), &lt;i&gt;code_name&lt;/i&gt; (from the codes table), &lt;i&gt;code_score&lt;/i&gt; (the support: the code's share of the vote x its mean probability) and &lt;i&gt;code_views&lt;/i&gt;. When the code's class (codes table) is not the class vote's, the better supported one wins: the code's support against the class's (its share of the score-weighted class vote x its views' mean detection score); &lt;i&gt;code_check&lt;/i&gt; says &lt;i&gt;class_from_code&lt;/i&gt; (the class was taken from the code) or &lt;i&gt;code_dropped&lt;/i&gt; (the code was emptied). The label shows the code's name, or the figure of a speed limit.</source>
         <translation>将来自不同全景图、属于同一实体标志的候选分为一组（类别相同、位于合并半径内、平面法向量一致；同一根杆上叠放的标志牌保持分开），然后在点云中精化每个标志：欧氏聚类、阈值随点云自适应的强度滤波（Otsu）、近似竖直的 RANSAC 平面以及 PCA 维度特征，以保留标志牌并去除杆体。&lt;br&gt;&lt;br&gt;每个标志将得到：标志牌中心、宽度和标志牌高度，牌面朝向的方位角（从坐标北起顺时针），其相对于正下方地面的高度（标志附近的类别 2 点；若使用了替代方法，日志会说明），底部高度，视图数和点数，看到它的图像及其中最佳的一张（最近、最正对），平均强度和平面度。在两张或更多全景图中看到但没有点云点的标志，通过其射线的三角测量定位（position_source = image）。&lt;br&gt;&lt;br&gt;&lt;b&gt;非标志&lt;/b&gt;（丢弃并在日志中列出）：超出其类别允许尺寸的标志牌（广告牌）、弯曲的标志牌（凸面镜）、更大平面上的图案，以及只在一张全景图中出现的标志——其得分低于 0.4，或有两张及以上距其牌面更近、且检测到其他标志的全景图没有看到它（远处被框出一次的类似标志的物体）。&lt;br&gt;&lt;br&gt;可选输出：标志牌轮廓（PolygonZ）和标志点（LAS/LAZ）。&lt;br&gt;&lt;br&gt;&lt;b&gt;审核&lt;/b&gt;：提供全景图文件夹时，每个标志会从其最佳全景图中截取一张图像切片（其检测框加边距，已去畸变），写入标志图层旁的文件夹，并通过 &lt;i&gt;chip&lt;/i&gt; 字段（相对路径）关联；审核报告显示每个标志的切片和属性。标志图层按类别使用不同符号，并以高度作为标注（其旁的 .qml 文件）。&lt;br&gt;&lt;br&gt;&lt;b&gt;标志代码&lt;/b&gt;：“在全景图中检测标志”在一个标志的各视图中读出的代码将进行投票，每个视图的权重为其检测得分 x 其裁剪在标志较窄一边方向上的像素数（近距离驶过、以大角度斜视的标志权重更小）x 该代码的概率。标志将得到 &lt;i&gt;code&lt;/i&gt;（投票结果为 &lt;i&gt;other&lt;/i&gt; 或支持度低于最低代码置信度时为空）、&lt;i&gt;code_name&lt;/i&gt;（取自代码表）、&lt;i&gt;code_score&lt;/i&gt;（支持度：该代码在投票中的占比 x 其平均概率）和 &lt;i&gt;code_views&lt;/i&gt;。当代码的类别（代码表）与类别投票的结果不一致时，支持度更高的一方胜出：比较代码的支持度与类别的支持度（该类别在按得分加权的类别投票中的占比 x 其视图的平均检测得分）；&lt;i&gt;code_check&lt;/i&gt; 注明 &lt;i&gt;class_from_code&lt;/i&gt;（类别取自代码）或 &lt;i&gt;code_dropped&lt;/i&gt;（代码被清空）。标注显示代码的名称，限速标志则显示限速数值。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="106" />
+        <source>Drop a sign seen once when this many nearer panoramas missed it</source>
+        <translation>当这么多张更近的全景图未看到时，丢弃只出现一次的标志</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/refinesigns.py" line="106" />
+        <source>A sign seen in one panorama only is dropped when at least this many other panoramas, which detected other signs, stand nearer to its face and did not see it (within 60 degrees of its normal, at least 4 m away, with the sign at most 20 degrees above their horizon): a look-alike boxed once from afar, such as a convex mirror. 0 keeps every such sign, for example a real sign that a lorry hid from the nearer panoramas.</source>
+        <translation>只在一张全景图中出现的标志，若至少有这么多张检测到其他标志的全景图距其牌面更近却没有看到它（在其法向 60 度以内、相距至少 4 m，且标志在其地平线以上不超过 20 度），则被丢弃：这是远处被框出一次的类似标志的物体，例如凸面镜。0 保留所有此类标志，例如被卡车挡住、更近的全景图未能看到的真实标志。</translation>
     </message>
 </context>
 <context>

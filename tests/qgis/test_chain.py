@@ -198,3 +198,46 @@ def test_empty_detections_give_empty_layers(qgis_process, chain, tmp_path):
                            OUTPUT=signs)
     assert run.returncode == 0, run.text
     assert "No candidates" in run.text and rows(signs) == []
+
+
+def test_a_sign_left_with_its_farthest_view_is_dropped_unless_the_view_check_is_off(qgis_process, chain, tmp_path):
+    """The sign with the most views keeps only its farthest one: the nearer panoramas that saw
+    it saw other signs too, so by default (SINGLE_VIEW_MAX_NEARER_MISSES 2) the lone view is
+    a look-alike and dropped, and the log says so; with 0 it is kept, where the sign stands."""
+    from roadsigns.core.refine import RefineParams
+
+    info = qgis_process("--json", "help", "roadsigns:refinesigns")
+    assert info.returncode == 0, info.text
+    parameter = info.json["parameters"]["SINGLE_VIEW_MAX_NEARER_MISSES"]
+    assert parameter["default_value"] == RefineParams().single_view_max_nearer_misses == 2
+
+    candidates = rows(project(qgis_process, chain, chain["ground"], "candidates.gpkg"))
+    ok = [c for c in candidates if c["status"] == "ok"]
+    panels = chain["scene"]["signs"]
+
+    def panel_of(c):
+        p = np.array([c["cand_x"], c["cand_y"], c["cand_z"]])
+        return min(range(len(panels)), key=lambda k: np.linalg.norm(p - np.array(panels[k]["centre"])))
+
+    views = {}
+    for c in ok:
+        views.setdefault(panel_of(c), []).append(c)
+    sign, its = max(views.items(), key=lambda kv: (len({c["image"] for c in kv[1]}), -kv[0]))
+    farthest = max(its, key=lambda c: c["range_m"])
+    others = [c["det_id"] for c in its if c["det_id"] != farthest["det_id"]]
+    seen_elsewhere = {c["image"] for c in ok if panel_of(c) != sign}
+    assert len(others) >= 3 and {c["image"] for c in its} - {farthest["image"]} <= seen_elsewhere
+    lone = edited_copy(str(chain["work"] / "candidates.gpkg"), str(tmp_path / "lone.gpkg"),
+                       "DELETE FROM candidates WHERE det_id IN ({})".format(",".join(map(str, others))))
+    centre = np.array(panels[sign]["centre"])
+
+    def found(layer):
+        return [s for s in layer if np.linalg.norm(np.array([s["x"], s["y"], s["z"]]) - centre) < 0.5]
+
+    signs, run = refine(qgis_process, chain, lone, chain["ground"], "lone.gpkg")
+    assert found(rows(signs)) == []
+    assert "Candidates [{}] dropped: seen in one panorama only ({}".format(farthest["det_id"], farthest["image"]) \
+        in run.text and "panoramas nearer to its face" in run.text
+    kept, run = refine(qgis_process, chain, lone, chain["ground"], "lone-kept.gpkg", SINGLE_VIEW_MAX_NEARER_MISSES=0)
+    assert [s["source_images"] for s in found(rows(kept))] == [farthest["image"]]
+    assert len(rows(kept)) == len(rows(signs)) + 1 and "nearer to its face" not in run.text
