@@ -83,6 +83,10 @@ class Detections:
     def __len__(self) -> int:
         return len(self.det_id)
 
+    def station_rows(self) -> np.ndarray:
+        """The first row of each station (panorama), in ascending ``station_id``."""
+        return np.unique(self.station_id, return_index=True)[1]
+
     @classmethod
     def empty(cls) -> "Detections":
         return cls(np.zeros(0, np.int64), np.zeros(0, np.int64), [], [], np.zeros(0),

@@ -632,8 +632,7 @@ def _non_ground(index: TiledIndex, tile_size_m: float) -> TiledIndex:
 def station_track(det: Detections) -> Optional[Track]:
     """The drive's track through the detections' panorama centres, in station order; None
     when they stand at fewer than two places (one block then)."""
-    ids, first = np.unique(det.station_id, return_index=True)
-    xyz = det.centre_world[first[np.argsort(ids)]]
+    xyz = det.centre_world[det.station_rows()]
     moving = np.r_[True, np.linalg.norm(np.diff(xyz[:, :2], axis=0), axis=1) > 1e-6]
     return Track(xyz[moving]) if moving.sum() >= 2 else None
 

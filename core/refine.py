@@ -107,7 +107,6 @@ from .signcodes import (  # noqa: F401 (CodeVote and the constants are the refin
     SIGN_CODE_FIELDS,
     CodesTable,
     CodeVote,
-    box_angles_deg,
     code_support,
     crop_view,
     decide_code,
@@ -362,22 +361,18 @@ def crop_side_px(det: Detections, rows: Rows) -> np.ndarray:
 
 
 def box_aspect(det: Detections, rows: Rows) -> np.ndarray:
-    """Each view's box, its smaller angular side over its larger (0..1; the sides of
-    :func:`.signcodes.box_angles_deg`, as the crop is cut): 1 for a sign seen face on, small
-    for one seen edge-on."""
-    out = np.zeros(len(rows))
-    for i, k in enumerate(rows):
-        _, _, w_deg, h_deg = box_angles_deg(det.box_px[k], int(det.pano_size_px[k, 0]), int(det.pano_size_px[k, 1]))
-        out[i] = min(w_deg, h_deg) / max(w_deg, h_deg) if max(w_deg, h_deg) > 0 else 0.0
-    return out
+    """Each view's :func:`.signcodes.box_aspect`: 1 for a sign seen face on, small for one
+    seen edge-on."""
+    return np.array([signcodes.box_aspect(det.box_px[k], int(det.pano_size_px[k, 0]), int(det.pano_size_px[k, 1]))
+                     for k in rows], float)
 
 
 def legible_side_px(det: Detections, rows: Rows) -> np.ndarray:
-    """The pixels the classifier gets across each view's sign at its narrower side: the
-    crop's side (:func:`crop_side_px`) x the box's aspect (:func:`box_aspect`). A sign seen
-    face on keeps its crop side; one passed close by at a steep angle, boxed tall and narrow,
-    is read from a crop squeezed across, and weighs that much less."""
-    return crop_side_px(det, rows) * box_aspect(det, rows)
+    """Each view's :func:`.signcodes.legible_side_px`: its crop's side (:func:`crop_side_px`)
+    x its box's aspect (:func:`box_aspect`)."""
+    return np.array([signcodes.legible_side_px(det.box_px[k], int(det.pano_size_px[k, 0]),
+                                               int(det.pano_size_px[k, 1]), DEFAULT_CROP_MARGIN)
+                     for k in rows], float)
 
 
 def class_support(cand: ProjectionResult, rows: Rows, klass: str) -> float:
@@ -1022,7 +1017,7 @@ def refine_signs(candidates: ProjectionResult, cloud: Union[str, TiledIndex, Non
         image_only = triangulate_image_only(candidates, unplaced, params)
         blocks.ground_of(image_only, params)
     drafts += image_only
-    stations = Stations.of(candidates)
+    stations = DetectedStations.of(candidates)
     for draft in drafts:
         if not draft.absorbed:
             add_sign(result, candidates, draft, None, params, progress, codes_table, code_confidence,
@@ -1088,9 +1083,9 @@ def drive_axis_of(cand: ProjectionResult) -> Optional[DriveAxis]:
     det = cand.detections
     if not len(det.station_id):
         return None
-    ids, first = np.unique(det.station_id, return_index=True)
+    first = det.station_rows()
     xyz, t = det.centre_world[first], det.time_s[first]
-    order = np.argsort(t, kind="stable") if np.all(np.isfinite(t)) else np.arange(len(ids))
+    order = np.argsort(t, kind="stable") if np.all(np.isfinite(t)) else np.arange(len(first))
     try:
         return DriveAxis(Track(xyz[order]))
     except InputError:
@@ -1672,24 +1667,21 @@ def source_images(cand: ProjectionResult, views: Sequence[int]) -> List[str]:
 
 
 @dataclass(frozen=True)
-class Stations:
-    """The panoramas that gave candidates, each once: ``images`` and their centres
-    ``centre_world`` (n, 3), in the order first met."""
+class DetectedStations:
+    """The panoramas that gave candidates, each once (:meth:`.Detections.station_rows`):
+    ``images`` and their centres ``centre_world`` (n, 3)."""
 
     images: List[str]
     centre_world: np.ndarray
 
     @classmethod
-    def of(cls, cand: ProjectionResult) -> "Stations":
+    def of(cls, cand: ProjectionResult) -> "DetectedStations":
         det = cand.detections
-        first: Dict[str, int] = {}
-        for k, image in enumerate(det.image):
-            first.setdefault(image, k)
-        rows = np.fromiter(first.values(), np.int64, len(first))
-        return cls(list(first), det.centre_world[rows].reshape(-1, 3))
+        rows = det.station_rows()
+        return cls([det.image[k] for k in rows], det.centre_world[rows].reshape(-1, 3))
 
 
-def nearer_stations_that_missed(place: Placement, images: Sequence[str], stations: Stations,
+def nearer_stations_that_missed(place: Placement, images: Sequence[str], stations: DetectedStations,
                                 params: RefineParams) -> Tuple[int, float]:
     """How many of ``stations`` not among ``images`` (the panoramas that saw the sign) stand
     in front of the sign's face, nearer to it than the nearest panorama that saw it, and
@@ -1702,7 +1694,7 @@ def nearer_stations_that_missed(place: Placement, images: Sequence[str], station
     overhead is above the horizon views). The sign is then bigger and nearer the horizon
     there than where it was seen.
     """
-    seen = np.isin(np.asarray(stations.images, dtype=object), np.asarray(list(images), dtype=object))
+    seen = np.array([image in images for image in stations.images], bool)
     to_station = stations.centre_world - place.centre
     range_m = np.hypot(to_station[:, 0], to_station[:, 1])
     if not seen.any():
@@ -1723,7 +1715,7 @@ def nearer_stations_that_missed(place: Placement, images: Sequence[str], station
 
 def plausible(cand: ProjectionResult, views: Sequence[int], klass: str, score: float,
               place: Placement, images: Sequence[str], params: RefineParams,
-              progress: Progress = SILENT, stations: Optional[Stations] = None) -> bool:
+              progress: Progress = SILENT, stations: Optional[DetectedStations] = None) -> bool:
     """False, logged, for a panel larger than its class allows (:meth:`RefineParams.max_side_m`:
     a billboard?) and for a sign seen in one panorama only (``images``) with a score below
     ``min_single_view_score``, or missed by ``single_view_max_nearer_misses`` or more of the
@@ -1752,7 +1744,7 @@ def add_sign(result: RefineResult, cand: ProjectionResult, draft: SignDraft,
              index: Optional[TiledIndex], params: RefineParams, progress: Progress = SILENT,
              codes_table: Optional[CodesTable] = None,
              code_confidence: float = DEFAULT_CODE_CONFIDENCE,
-             stations: Optional[Stations] = None) -> None:
+             stations: Optional[DetectedStations] = None) -> None:
     """Append the record of a sign (numbered on from 1), its outline, points and ground
     source to ``result`` and point its views there in ``result.candidate_sign``, unless it is
     not :func:`plausible` (``stations``: the drive's panoramas, for its view check). Heights

@@ -1091,7 +1091,7 @@ def test_a_sign_seen_once_from_afar_and_missed_nearer_is_dropped(scene, index, s
         assert f"not in the {missed} panoramas nearer to its face" in said[0]
     place = R.Placement(p.centre_world, p.normal, 0.6, 0.6, p.centre_world[2] - 0.3,
                         np.zeros(0, np.int64), np.nan, np.nan, "lidar", None)
-    assert R.nearer_stations_that_missed(place, [seen_in], R.Stations.of(cand), R.RefineParams())[0] == missed
+    assert R.nearer_stations_that_missed(place, [seen_in], R.DetectedStations.of(cand), R.RefineParams())[0] == missed
 
 
 def test_only_panoramas_that_gave_detections_count_as_having_missed(scene, index):
@@ -1100,7 +1100,7 @@ def test_only_panoramas_that_gave_detections_count_as_having_missed(scene, index
     nothing at all and are not known to the stage, so one miss is counted and the sign kept."""
     rows = [d for d in scene.detections if d["truth_id"] != 1 or d["image"] == "pano_00000.jpg"]
     cand = P.project_detections(P.Detections.from_records(rows), index)
-    stations = R.Stations.of(cand)
+    stations = R.DetectedStations.of(cand)
     assert "pano_00001.jpg" not in stations.images and "pano_00003.jpg" in stations.images
     p = truth(scene, 1)
     place = R.Placement(p.centre_world, p.normal, 0.6, 0.6, p.centre_world[2] - 0.3,
@@ -1110,7 +1110,7 @@ def test_only_panoramas_that_gave_detections_count_as_having_missed(scene, index
 
 
 def _stations_along_x(xs, z=2.4):
-    return R.Stations([f"pano_{k:05d}.jpg" for k in range(len(xs))],
+    return R.DetectedStations([f"pano_{k:05d}.jpg" for k in range(len(xs))],
                       np.column_stack([xs, np.zeros(len(xs)), np.full(len(xs), z)]))
 
 

@@ -80,7 +80,7 @@ def run(qgis_process, tmp_path_factory):
 
 @pytest.mark.parametrize("variant", sorted(EXPECTED), ids=lambda v: v[0])
 def test_bundled_classifier_reads_the_generated_signs(run, variant):
-    from roadsigns.core.signcodes import box_angles_deg, crop_view, vote
+    from roadsigns.core.signcodes import legible_side_px, vote
 
     seed, expected = EXPECTED[variant]
     scene, rows, text = run(seed)
@@ -98,8 +98,7 @@ def test_bundled_classifier_reads_the_generated_signs(run, variant):
                 box = [d["u0"], d["v0"], d["u1"], d["v1"]]
                 if d["image"] == meta["image"] and d["class"] == variant[0] and max(
                         seam_iou(box, seen["visible_box"], width), seam_iou(box, seen["box"], width)) >= 0.5:
-                    _, _, w_deg, h_deg = box_angles_deg(box, d["width"], d["height"])
-                    side = crop_view(box, d["width"], d["height"])[0].width_px * min(w_deg, h_deg) / max(w_deg, h_deg)
+                    side = legible_side_px(box, d["width"], d["height"])
                     views.append((d["code"], d["code_score"], d["score"] * side, meta["image"]))
     assert views, "the bundled detector found no {} sign".format(variant)
     code, share, n = vote([v[0] for v in views], [v[1] for v in views], [v[2] for v in views])
