@@ -45,7 +45,7 @@ from qgis.core import (
 )
 from qgis.PyQt.QtGui import QIcon
 
-from ..core.errors import Cancelled, InputError, Message, Progress
+from ..core.errors import Cancelled, InputError, Message, Progress, StepThrottle
 from ..core.memory import release_freed_memory
 from ..dependencies import missing_message, shapely_geos_conflict
 from .i18n import Translatable, tr_core
@@ -238,10 +238,12 @@ class RoadSignsAlgorithm(Translatable, QgsProcessingAlgorithm):
             raise QgsProcessingException(message)
 
     def progress(self, feedback):
-        """A core Progress that forwards to ``feedback`` (percent, log, cancel)."""
+        """A core Progress that forwards to ``feedback`` (percent, log, cancel, and the
+        current step as the progress text, at most every few seconds: :class:`StepThrottle`)."""
         return Progress(on_progress=feedback.setProgress, is_cancelled=feedback.isCanceled,
                         on_info=lambda m: feedback.pushInfo(self.localise(m)),
-                        on_warning=lambda m: feedback.pushWarning(self.localise(m)))
+                        on_warning=lambda m: feedback.pushWarning(self.localise(m)),
+                        on_step=StepThrottle(lambda m: feedback.setProgressText(self.localise(m))))
 
     #: core message fields whose (English) words are translated too ("Trajectory", ...)
     TRANSLATED_FIELDS = ("what", "role", "kind")

@@ -754,6 +754,8 @@ def find_signs_in_cloud(cloud_path: Union[str, CloudSource], track: Union[Track,
             if diagnostics is not None and res.diagnostics:
                 diagnostics.extend(res.diagnostics)
             win_progress.report((res.window_index + 1) / len(windows))   # a window's parts share it
+            win_progress.step("Searching the drive for signs and poles: window {n} of {count}",
+                              n=res.window_index + 1, count=len(windows))
     signs, poles = _finish(found, poles, threshold, params, messages, progress)
     ref = drive_reference(np.array([f.stats["retro"] for f in found if f.panel.bright and f.face_seen]),
                           threshold.value, params.retro_reference)

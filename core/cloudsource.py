@@ -332,6 +332,8 @@ class CloudSource:
             for index, chunk in chunks:
                 done += len(chunk)
                 since_trim += len(chunk)
+                progress.step("Reading {name}: {done:.1f} of {total:.1f} million points",
+                              name=os.path.basename(tile.path), done=done / 1e6, total=total / 1e6)
                 yield index, chunk
                 del index, chunk
                 if since_trim >= TRIM_EVERY_POINTS:

@@ -898,6 +898,8 @@ def detect_drive(detector, image_paths: Sequence[str], views: ViewSet, confidenc
         pending = reader.submit(load, image_paths[0]) if reader is not None else None
         for k, path in enumerate(image_paths):
             progress.report(k / n)
+            progress.step("Detecting signs: panorama {n} of {count} ({image})", n=k + 1,
+                          count=len(image_paths), image=os.path.basename(path))
             if reader is not None and pending is not None:
                 pano, view_images, error = pending.result()
                 pending = reader.submit(load, image_paths[k + 1]) if k + 1 < len(image_paths) else None

@@ -8,6 +8,7 @@ translate the same way.
 """
 from __future__ import annotations
 
+import time
 from typing import Any, Callable, List, Optional, Tuple
 
 
@@ -47,7 +48,9 @@ class Progress:
     """Progress in percent, a log and a cancel flag, for long loops in ``core``.
 
     ``report(fraction)`` takes 0..1 of the current step; ``check()`` raises
-    :class:`Cancelled` when cancel was asked for. All callbacks are optional.
+    :class:`Cancelled` when cancel was asked for; ``step(template, ...)`` says what the work
+    is doing now (the Processing dialog's progress text: the adapters show it through a
+    :class:`StepThrottle`). All callbacks are optional.
     """
 
     def __init__(self,
@@ -55,18 +58,20 @@ class Progress:
                  is_cancelled: Optional[Callable[[], bool]] = None,
                  on_info: Optional[Callable[[str], None]] = None,
                  on_warning: Optional[Callable[[str], None]] = None,
-                 start: float = 0.0, span: float = 100.0):
+                 start: float = 0.0, span: float = 100.0, *,
+                 on_step: Optional[Callable[[str], None]] = None):
         self._on_progress = on_progress
         self._is_cancelled = is_cancelled
         self._on_info = on_info
         self._on_warning = on_warning
+        self._on_step = on_step
         self._start, self._span = start, span
 
     def sub(self, start_fraction: float, end_fraction: float) -> "Progress":
         """A child reporting into ``[start, end]`` of this one's range."""
         return Progress(self._on_progress, self._is_cancelled, self._on_info, self._on_warning,
                         self._start + self._span * start_fraction,
-                        self._span * (end_fraction - start_fraction))
+                        self._span * (end_fraction - start_fraction), on_step=self._on_step)
 
     def report(self, fraction: float) -> None:
         self.check()
@@ -91,9 +96,18 @@ class Progress:
             self._on_warning(message)
         return message
 
+    def step(self, template: str, **fields) -> Message:
+        """Say what the work is doing now (English ``template`` with ``{named}`` fields, such
+        as "Panorama {n} of {count}"): the current step, not a log line. Long loops call it
+        once an item; the adapter decides how often it is shown (:class:`StepThrottle`)."""
+        message = Message(template, **fields)
+        if self._on_step is not None:
+            self._on_step(message)
+        return message
+
     def recorder(self) -> Tuple["Progress", List[Tuple[str, Message]]]:
         """A Progress for work in another thread and the list its log goes to: it reports no
-        progress, keeps its messages as ``(kind, message)`` (``info`` or ``warning``) for
+        progress and no steps, keeps its messages as ``(kind, message)`` (``info`` or ``warning``) for
         :meth:`replay` in this thread, and checks this one's cancel."""
         kept: List[Tuple[str, Message]] = []
 
@@ -107,6 +121,31 @@ class Progress:
             callback = self._on_info if kind == "info" else self._on_warning
             if callback is not None:
                 callback(message)
+
+
+#: Seconds between two steps of the same kind shown by a :class:`StepThrottle`.
+STEP_INTERVAL_S = 5.0
+
+
+class StepThrottle:
+    """Shows :meth:`Progress.step` messages through ``show`` (an adapter's progress text,
+    which the Processing dialog also writes to its log): a step of another kind (another
+    template) at once, one of the same kind at most every ``interval_s`` seconds, so that a
+    loop over 7,000 panoramas says where it is without filling the log. ``clock``: seconds
+    (``time.monotonic``; tests give their own)."""
+
+    def __init__(self, show: Callable[[Message], None], interval_s: float = STEP_INTERVAL_S,
+                 clock: Callable[[], float] = time.monotonic):
+        self.show, self.interval_s, self.clock = show, float(interval_s), clock
+        self._template: Optional[str] = None
+        self._shown_at = float("-inf")
+
+    def __call__(self, message: Message) -> None:
+        now = self.clock()
+        template = getattr(message, "template", str(message))
+        if template != self._template or now - self._shown_at >= self.interval_s:
+            self._template, self._shown_at = template, now
+            self.show(message)
 
 
 #: A Progress that reports nothing and never cancels.

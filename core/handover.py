@@ -419,6 +419,7 @@ def build_handover(signs: Sequence[Dict], stations: Sequence[Dict], crs, roads: 
     road_list = list(roads or [])
     for k, sign in enumerate(chosen):
         progress.report(k / len(chosen))
+        progress.step("Preparing the handover: sign {n} of {count}", n=k + 1, count=len(chosen))
         images = image_names_of(sign)
         seen = [station_index[name] for name in images if name in station_index]
         window = None

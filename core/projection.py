@@ -611,6 +611,7 @@ def project_detections(detections: Detections, cloud: Union[str, CloudSource, Ti
             result.n_tiles += n_tiles
         n_done += n_rows
         searching.report(n_done / len(det))
+        searching.step("Searching the detections' surfaces: {n} of {count}", n=n_done, count=len(det))
     if result.n_indexed == 0:
         result.warnings.append(progress.warning(
             "{path} has no point inside the detections' frusta; no candidate found", path=source))

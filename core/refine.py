@@ -1465,6 +1465,7 @@ class CloudBlocks:
                 drafts[g] = draft
             done += len(out)
             progress.report(done / len(self.groups))
+            progress.step("Refining the signs: {n} of {count} candidate groups", n=done, count=len(self.groups))
         return [d for d in drafts if d is not None]
 
     def ground_of(self, drafts: Sequence[SignDraft], params: RefineParams) -> None:

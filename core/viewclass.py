@@ -72,6 +72,8 @@ def classify_from_views(signs: Sequence[Dict], stations: Sequence[Dict], detecto
     size_px = int(min(detector.input_size))
     out: List[ViewClass] = []
     for k, sign in enumerate(signs):
+        progress.step("Looking for the cloud's signs in the panoramas: sign {n} of {count}", n=k + 1,
+                      count=len(signs))
         votes: Dict[str, float] = {}
         best: Dict[str, float] = {}
         seen: List[str] = []

@@ -2213,7 +2213,7 @@
         <translation>{path} no tiene dimensión de clasificación: ejecute primero roadsigns:groundfilter sobre ella</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="761" />
+        <location filename="../core/cloudsigns.py" line="763" />
         <source>Found {signs} sign panels ({bright} retroreflective) and {poles} poles in {n} points ({cand} kept near the road, {windows} windows of {w} m); condition reference {ref:.3f} ({src})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se encontraron {signs} paneles de señal ({bright} retrorreflectantes) y {poles} postes en {n} puntos ({cand} conservados cerca de la vía, {windows} ventanas de {w} m); referencia de estado {ref:.3f} ({src})</translation>
@@ -2243,7 +2243,13 @@
         <translation>Intensidad: exponente de distancia {alpha:.2f} ({source}), umbral de brillo {thr:.3f} del fondo de escala a 10 m ({method}; nivel de fondo {bg:.3f}, moda brillante {mode:.3f}; {n} puntos que no son de suelo cerca de la vía)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="830" />
+        <location filename="../core/cloudsigns.py" line="757" />
+        <source>Searching the drive for signs and poles: window {n} of {count}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Buscando señales y postes a lo largo del recorrido: ventana {n} de {count}</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsigns.py" line="832" />
         <source>{n} gantry posts</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} postes de pórtico</translation>
@@ -2267,8 +2273,8 @@
         <translation>El {share:.0%} de los puntos cercanos a la vía tiene la intensidad saturada: el umbral de brillo {thr:.3f} del fondo de escala y el estado de las señales pueden carecer de sentido</translation>
     </message>
     <message>
+        <location filename="../core/cloudsource.py" line="575" />
         <location filename="../core/cloudsource.py" line="573" />
-        <location filename="../core/cloudsource.py" line="571" />
         <source>expected a virtual point cloud: a JSON FeatureCollection (STAC ItemCollection) whose features each have assets.data.href (the tile's file, relative to the .vpc) and properties, as QGIS's Build virtual point cloud writes it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>se esperaba una nube de puntos virtual: una FeatureCollection JSON (ItemCollection de STAC) cuyas entidades tengan cada una assets.data.href (el archivo de la tesela, relativo al .vpc) y properties, tal como la escribe «Construir nube de puntos virtual» de QGIS</translation>
@@ -2280,25 +2286,25 @@
         <translation>sin SRC</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="532" />
+        <location filename="../core/cloudsource.py" line="534" />
         <source>The folder {path} holds no LAS or LAZ file (*.las, *.laz); expected a point cloud file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La carpeta {path} no contiene ningún archivo LAS ni LAZ (*.las, *.laz); se esperaba un archivo de nube de puntos, una carpeta de teselas LAS/LAZ o una nube de puntos virtual (.vpc)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="575" />
+        <location filename="../core/cloudsource.py" line="577" />
         <source>Cannot read {path}: the JSON is not an object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el JSON no es un objeto; {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="578" />
+        <location filename="../core/cloudsource.py" line="580" />
         <source>Cannot read {path}: it is not a 'FeatureCollection' with a 'features' list; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: no es una 'FeatureCollection' con una lista 'features'; {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="581" />
+        <location filename="../core/cloudsource.py" line="583" />
         <source>The virtual point cloud {path} lists no tile</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} no enumera ninguna tesela</translation>
@@ -2311,20 +2317,20 @@
         <translation>{path} no tiene la dimensión {names} (formato de punto {fmt})</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="525" />
+        <location filename="../core/cloudsource.py" line="527" />
         <source>Cannot read the folder {path}: {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer la carpeta {path}: {detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="564" />
+        <location filename="../core/cloudsource.py" line="566" />
         <location filename="../core/pointcloud.py" line="72" />
         <source>Cannot read {path}: the file does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo no existe</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="566" />
+        <location filename="../core/cloudsource.py" line="568" />
         <location filename="../core/ground/pdal.py" line="306" />
         <location filename="../core/pointcloud.py" line="74" />
         <location filename="../core/pointcloud.py" line="117" />
@@ -2333,58 +2339,64 @@
         <translation>No se puede leer {path}: {detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="570" />
+        <location filename="../core/cloudsource.py" line="572" />
         <source>Cannot read {path}: it is not valid JSON ({detail}); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: no es un JSON válido ({detail}); {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="588" />
+        <location filename="../core/cloudsource.py" line="590" />
         <source>Cannot read {path}: feature {feature} has no 'assets' object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: la entidad {feature} no tiene objeto 'assets'; {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="596" />
+        <location filename="../core/cloudsource.py" line="598" />
         <source>Cannot read {path}: feature {feature} has no asset with an 'href' (assets.data.href); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: la entidad {feature} no tiene ningún asset con 'href' (assets.data.href); {expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="600" />
+        <location filename="../core/cloudsource.py" line="602" />
         <source>The virtual point cloud {path} lists the remote tile {href}: only local files are read; download the tiles and build the virtual point cloud again</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} enumera la tesela remota {href}: solo se leen archivos locales; descargue las teselas y vuelva a construir la nube de puntos virtual</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="606" />
+        <location filename="../core/cloudsource.py" line="608" />
         <source>The virtual point cloud {path} lists the tile {tile} twice (features {first} and {second})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} enumera la tesela {tile} dos veces (entidades {first} y {second})</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="610" />
+        <location filename="../core/cloudsource.py" line="612" />
         <source>The virtual point cloud {path} lists the tile {tile} (feature {feature}), which does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La nube de puntos virtual {path} enumera la tesela {tile} (entidad {feature}), que no existe</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="625" />
+        <location filename="../core/cloudsource.py" line="627" />
         <source>The tiles of {path} cannot be read as one cloud: {tile_a} has point format {fmt_a}, {tile_b} point format {fmt_b}; every tile needs the same point format (convert them to one, e.g. with PDAL's translate)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Las teselas de {path} no se pueden leer como una sola nube: {tile_a} tiene el formato de punto {fmt_a}, {tile_b} el formato de punto {fmt_b}; todas las teselas necesitan el mismo formato de punto (conviértalas a uno solo, p. ej. con translate de PDAL)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="631" />
+        <location filename="../core/cloudsource.py" line="633" />
         <source>The tiles of {path} are in different CRSs: {tile_a} in {crs_a}, {tile_b} in {crs_b}; every tile must be in the same CRS (reproject them to one first)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Las teselas de {path} están en SRC distintos: {tile_a} en {crs_a}, {tile_b} en {crs_b}; todas las teselas deben estar en el mismo SRC (reproyéctelas antes a uno solo)</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="660" />
+        <location filename="../core/cloudsource.py" line="662" />
         <source>The points cannot be written with the first tile's scale {scale} and offset {offset} in {axis}: their coordinates are too far from it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Los puntos no se pueden escribir con la escala {scale} y el desplazamiento {offset} de la primera tesela en {axis}: sus coordenadas están demasiado lejos de ellos</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="335" />
+        <source>Reading {name}: {done:.1f} of {total:.1f} million points</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Leyendo {name}: {done:.1f} de {total:.1f} millones de puntos</translation>
     </message>
     <message>
         <location filename="../core/crs.py" line="19" />
@@ -2492,32 +2504,32 @@
         <translation>No se pueden transformar las posiciones de {source} a {target}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="100" />
+        <location filename="../core/detections.py" line="104" />
         <source>The detections lack the field(s) {fields}; expected the output of Detect signs</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>A las detecciones les faltan los campos {fields}; se esperaba la salida de «Detectar señales en panoramas»</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="143" />
+        <location filename="../core/detections.py" line="147" />
         <source>Detection {det_id}: the box ({u0}, {v0}, {u1}, {v1}) is not u0 &lt; u1, v0 &lt; v1 inside a {w} x {h} panorama</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}: el recuadro ({u0}, {v0}, {u1}, {v1}) no cumple u0 &lt; u1, v0 &lt; v1 dentro de un panorama de {w} x {h}</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="151" />
+        <location filename="../core/detections.py" line="155" />
         <source>Detection {det_id}: the station pose is invalid (quaternion norm {norm:.4f}, position {xyz})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}: la pose de la estación no es válida (norma del cuaternión {norm:.4f}, posición {xyz})</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="106" />
+        <location filename="../core/detections.py" line="110" />
         <location filename="../core/projection.py" line="417" />
         <source>Detection {det_id}: the field {field} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Detección {det_id}: el campo {field} está vacío</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="114" />
+        <location filename="../core/detections.py" line="118" />
         <location filename="../core/projection.py" line="409" />
         <source>Detection {det_id}, field {field}: expected a number, found '{value}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -2594,6 +2606,12 @@
         <source>The model {path} takes {w} x {h} px images only; the horizon seen as one band ({bw} x {bh} px) needs a model whose input height and width are free, as the bundled detector's are</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} solo admite imágenes de {w} x {h} px; el horizonte visto como una sola banda ({bw} x {bh} px) necesita un modelo cuya altura y anchura de entrada sean libres, como las del detector incluido</translation>
+    </message>
+    <message>
+        <location filename="../core/detector.py" line="901" />
+        <source>Detecting signs: panorama {n} of {count} ({image})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Detectando señales: panorama {n} de {count} ({image})</translation>
     </message>
     <message>
         <location filename="../core/detector.py" line="373" />
@@ -2704,101 +2722,114 @@
         <translation>El CSF integrado necesita el paquete de Python cloth-simulation-filter (módulo CSF): {detail}</translation>
     </message>
     <message>
+        <location filename="../core/ground/csf.py" line="229" />
+        <location filename="../core/ground/smrf.py" line="176" />
+        <source>Fitting the ground surface: tile {n} of {count}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Ajustando la superficie del terreno: tesela {n} de {count}</translation>
+    </message>
+    <message>
         <location filename="../core/ground/engine.py" line="81" />
         <source>Unknown return type {kinds} in '{returns}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tipo de retorno desconocido {kinds} en '{returns}'</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="335" />
+        <location filename="../core/ground/engine.py" line="336" />
         <source>Not enough free disk space in {folder} to keep the points between the two passes: the cloud is read twice</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay espacio libre suficiente en el disco en {folder} para guardar los puntos entre las dos pasadas: la nube se lee dos veces</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="379" />
+        <location filename="../core/ground/engine.py" line="380" />
         <location filename="../core/pointcloud.py" line="274" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la salida debe terminar en .las o .laz</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="391" />
+        <location filename="../core/ground/engine.py" line="392" />
         <location filename="../core/ground/tiled.py" line="150" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SRC de la nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="464" />
+        <location filename="../core/ground/engine.py" line="465" />
         <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró PDAL: se usa el motor integrado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="514" />
+        <location filename="../core/ground/engine.py" line="515" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay polígonos de recorte: se ignora el búfer de recorte</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="348" />
+        <location filename="../core/ground/engine.py" line="219" />
+        <source>Classifying and writing the points: part {n} of {count}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Clasificando y escribiendo los puntos: parte {n} de {count}</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="349" />
         <source>No point of {path} has the returns '{returns}': nothing was classified</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} tiene los retornos '{returns}': no se clasificó nada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="385" />
+        <location filename="../core/ground/engine.py" line="386" />
         <source>The output {path} must not be the input file</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La salida {path} no puede ser el archivo de entrada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="393" />
+        <location filename="../core/ground/engine.py" line="394" />
         <location filename="../core/ground/tiled.py" line="152" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene sistema de referencia de coordenadas: indique el SRC de la nube (nunca se adivina)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="451" />
+        <location filename="../core/ground/engine.py" line="452" />
         <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: el motor integrado, más rápido que PDAL en las mediciones para {method} (y procesa la nube en flujo continuo con memoria acotada)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="456" />
+        <location filename="../core/ground/engine.py" line="457" />
         <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, porque el {method} integrado necesita el paquete de Python cloth-simulation-filter, que no está instalado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="462" />
+        <location filename="../core/ground/engine.py" line="463" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se pidió PDAL, pero no se encontró ni el módulo de Python pdal ni un ejecutable pdal (PATH, carpeta bin de QGIS)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="466" />
+        <location filename="../core/ground/engine.py" line="467" />
         <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, más rápido que el motor integrado en las mediciones para {method}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="501" />
+        <location filename="../core/ground/engine.py" line="502" />
         <source>No point of {path} is left after the crop: {output} has no points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No queda ningún punto de {path} tras el recorte: {output} no tiene puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="344" />
+        <location filename="../core/ground/engine.py" line="345" />
         <location filename="../core/ground/tiled.py" line="283" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo está dañado ({detail})</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="416" />
+        <location filename="../core/ground/engine.py" line="417" />
         <location filename="../core/ground/tiled.py" line="183" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -2936,7 +2967,13 @@
         <translation>Ninguna señal tiene el estado o estados de revisión {states} ({counts}): revise las señales con el panel de revisión o elija otros estados</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="478" />
+        <location filename="../core/handover.py" line="422" />
+        <source>Preparing the handover: sign {n} of {count}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Preparando la entrega: señal {n} de {count}</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="479" />
         <source>{n} of {total} signs handed over (review states {states}); left out: {left}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} de {total} señales entregadas (estados de revisión {states}); excluidas: {left}</translation>
@@ -3074,7 +3111,7 @@
         <translation>Ningún punto de {path} está dentro del área de recorte; {output} está vacío</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="619" />
+        <location filename="../core/projection.py" line="620" />
         <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{ok} de {count} detecciones encontraron una superficie en la nube ({no_points} sin puntos, {no_surface} sin superficie plana)</translation>
@@ -3091,6 +3128,12 @@
         <source>The maximum range must exceed {min} m, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El alcance máximo debe superar {min} m; se recibió {value} m</translation>
+    </message>
+    <message>
+        <location filename="../core/projection.py" line="614" />
+        <source>Searching the detections' surfaces: {n} of {count}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Buscando las superficies de las detecciones: {n} de {count}</translation>
     </message>
     <message>
         <location filename="../core/projection.py" line="402" />
@@ -3123,127 +3166,133 @@
         <translation>No hay detecciones que proyectar; los candidatos están vacíos</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="615" />
+        <location filename="../core/projection.py" line="616" />
         <source>{path} has no point inside the detections' frusta; no candidate found</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene puntos dentro de los troncos de visión de las detecciones; no se encontró ningún candidato</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="142" />
+        <location filename="../core/refine.py" line="141" />
         <source>curved surface (a convex mirror?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>superficie curva (¿un espejo convexo?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="143" />
+        <location filename="../core/refine.py" line="142" />
         <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>parte de una superficie plana mayor (¿una imagen en una valla publicitaria o una pared?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1033" />
+        <location filename="../core/refine.py" line="1028" />
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} señales a partir de {candidates} candidatos ({from_images} situadas solo a partir de las imágenes)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1793" />
+        <location filename="../core/refine.py" line="1786" />
         <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{coded} de {signs} señales tienen código de señal; {from_code} tomaron su clase del código, {dropped} códigos se descartaron por la votación de clase (code_check)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1802" />
+        <location filename="../core/refine.py" line="1795" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>la altura de las estaciones menos {height} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="426" />
+        <location filename="../core/refine.py" line="421" />
         <source>Detection {det_id} has the sign code {code}, which is not in the sign codes table {table}: give the codes table the classifier was run with</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La detección {det_id} tiene el código de señal {code}, que no está en la tabla de códigos de señal {table}: indique la tabla de códigos con la que se ejecutó el clasificador</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1010" />
+        <location filename="../core/refine.py" line="1005" />
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El radio de fusión debe ser positivo; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1013" />
+        <location filename="../core/refine.py" line="1008" />
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay candidatos que refinar; la capa de señales está vacía</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1538" />
+        <location filename="../core/refine.py" line="1534" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids}: {reason}; situados en la mediana de los candidatos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1733" />
+        <location filename="../core/refine.py" line="1726" />
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: un panel de {width:.2f} x {height:.2f} m es demasiado grande para una señal {sign_class} (¿una valla publicitaria?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1738" />
+        <location filename="../core/refine.py" line="1731" />
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: vistos en una sola panorámica, con una puntuación de {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="527" />
+        <location filename="../core/refine.py" line="522" />
         <source>too few points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="530" />
+        <location filename="../core/refine.py" line="525" />
         <source>too few points in the boxes</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos en los recuadros</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="536" />
+        <location filename="../core/refine.py" line="531" />
         <source>no near-vertical plane</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>ningún plano casi vertical</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="540" />
+        <location filename="../core/refine.py" line="535" />
         <source>too few planar points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos planos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1532" />
+        <location filename="../core/refine.py" line="1468" />
+        <source>Refining the signs: {n} of {count} candidate groups</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Refinando las señales: {n} de {count} grupos de candidatos</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="1528" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>sin nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1535" />
+        <location filename="../core/refine.py" line="1531" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: {reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1744" />
+        <location filename="../core/refine.py" line="1737" />
         <source>Candidates {ids} dropped: seen in one panorama only ({image}, {range:.1f} m away), not in the {missed} panoramas nearer to its face</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: vistos en un solo panorama ({image}, a {range:.1f} m), no en los {missed} panoramas más cercanos a su cara</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1803" />
+        <location filename="../core/refine.py" line="1796" />
         <source>the lowest points below the sign</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>los puntos más bajos bajo la señal</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1807" />
+        <location filename="../core/refine.py" line="1800" />
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} señal(es) no tienen puntos de suelo (clase 2) a menos de {radius} m: su altura se mide desde {source}</translation>
@@ -3666,6 +3715,12 @@
         <translation>{layer}: estación {station}, campo {field}: se esperaba un número finito, se encontró '{value}'; se esperaba la salida de Importar trayectoria</translation>
     </message>
     <message>
+        <location filename="../core/viewclass.py" line="75" />
+        <source>Looking for the cloud's signs in the panoramas: sign {n} of {count}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Buscando en los panoramas las señales de la nube: señal {n} de {count}</translation>
+    </message>
+    <message>
         <location filename="../dependencies.py" line="72" />
         <source>The installed shapely is a wheel with its own copy of GEOS, which clashes with QGIS's GEOS {geos} on Linux and crashes QGIS. Install shapely built against the system GEOS: sudo apt install libgeos-dev &amp;&amp; python3 -m pip install --user --break-system-packages --force-reinstall --no-deps --no-binary shapely "shapely&gt;=2"</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -3812,27 +3867,27 @@
         <translation>Inventario de señales viales</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="279" />
+        <location filename="../algorithms/base.py" line="281" />
         <source>Cancelled: nothing was written.</source>
         <translation>Cancelado: no se escribió nada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="285" />
+        <location filename="../algorithms/base.py" line="287" />
         <source>Out of memory: nothing was written. Crop the point cloud (Ground filter with a crop layer) or process the drive in parts.</source>
         <translation>Memoria insuficiente: no se escribió nada. Recorte la nube de puntos (Filtro de suelo con una capa de recorte) o procese el recorrido por partes.</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="288" />
+        <location filename="../algorithms/base.py" line="290" />
         <source>Cannot read or write {}: {}. Nothing was written.</source>
         <translation>No se puede leer o escribir {}: {}. No se escribió nada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="291" />
+        <location filename="../algorithms/base.py" line="293" />
         <source>Unexpected error ({}: {}); nothing was written. The details are in the QGIS message log (Road sign inventory); please report them.</source>
         <translation>Error inesperado ({}: {}); no se escribió nada. Los detalles están en el registro de mensajes de QGIS (Road sign inventory); por favor, notifíquelos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="296" />
+        <location filename="../algorithms/base.py" line="298" />
         <source>{} However, these partial outputs could not be removed: {}</source>
         <translation>{} Sin embargo, estas salidas parciales no se pudieron eliminar: {}</translation>
     </message>

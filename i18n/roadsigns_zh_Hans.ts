@@ -2213,7 +2213,7 @@
         <translation>{path} 没有分类维度：请先对其运行 roadsigns:groundfilter</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="761" />
+        <location filename="../core/cloudsigns.py" line="763" />
         <source>Found {signs} sign panels ({bright} retroreflective) and {poles} poles in {n} points ({cand} kept near the road, {windows} windows of {w} m); condition reference {ref:.3f} ({src})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>在 {n} 个点中找到 {signs} 个标志牌（其中 {bright} 个具有逆反射性）和 {poles} 根杆（道路附近保留 {cand} 个点，{windows} 个 {w} m 的窗口）；状态参考值 {ref:.3f}（{src}）</translation>
@@ -2243,7 +2243,13 @@
         <translation>强度：距离指数 {alpha:.2f}（{source}），亮度阈值为 10 m 处满量程的 {thr:.3f}（{method}；背景水平 {bg:.3f}，亮峰 {mode:.3f}；道路附近 {n} 个非地面点）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsigns.py" line="830" />
+        <location filename="../core/cloudsigns.py" line="757" />
+        <source>Searching the drive for signs and poles: window {n} of {count}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>正在沿行驶路线搜索标志和杆：第 {n} 个窗口，共 {count} 个</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsigns.py" line="832" />
         <source>{n} gantry posts</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} 根门架立柱</translation>
@@ -2267,8 +2273,8 @@
         <translation>道路附近 {share:.0%} 的点强度饱和：满量程的亮度阈值 {thr:.3f} 以及标志的状态可能没有意义</translation>
     </message>
     <message>
+        <location filename="../core/cloudsource.py" line="575" />
         <location filename="../core/cloudsource.py" line="573" />
-        <location filename="../core/cloudsource.py" line="571" />
         <source>expected a virtual point cloud: a JSON FeatureCollection (STAC ItemCollection) whose features each have assets.data.href (the tile's file, relative to the .vpc) and properties, as QGIS's Build virtual point cloud writes it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>应为虚拟点云：一个 JSON FeatureCollection（STAC ItemCollection），其每个要素都有 assets.data.href（分块文件，相对于 .vpc 的路径）和 properties，即 QGIS 的“构建虚拟点云”写出的格式</translation>
@@ -2280,25 +2286,25 @@
         <translation>无坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="532" />
+        <location filename="../core/cloudsource.py" line="534" />
         <source>The folder {path} holds no LAS or LAZ file (*.las, *.laz); expected a point cloud file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>文件夹 {path} 中没有 LAS 或 LAZ 文件（*.las、*.laz）；应为点云文件、LAS/LAZ 分块文件夹或虚拟点云（.vpc）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="575" />
+        <location filename="../core/cloudsource.py" line="577" />
         <source>Cannot read {path}: the JSON is not an object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：该 JSON 不是对象；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="578" />
+        <location filename="../core/cloudsource.py" line="580" />
         <source>Cannot read {path}: it is not a 'FeatureCollection' with a 'features' list; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：不是带有 'features' 列表的 'FeatureCollection'；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="581" />
+        <location filename="../core/cloudsource.py" line="583" />
         <source>The virtual point cloud {path} lists no tile</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 未列出任何分块</translation>
@@ -2311,20 +2317,20 @@
         <translation>{path} 没有维度 {names}（点格式 {fmt}）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="525" />
+        <location filename="../core/cloudsource.py" line="527" />
         <source>Cannot read the folder {path}: {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取文件夹 {path}：{detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="564" />
+        <location filename="../core/cloudsource.py" line="566" />
         <location filename="../core/pointcloud.py" line="72" />
         <source>Cannot read {path}: the file does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件不存在</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="566" />
+        <location filename="../core/cloudsource.py" line="568" />
         <location filename="../core/ground/pdal.py" line="306" />
         <location filename="../core/pointcloud.py" line="74" />
         <location filename="../core/pointcloud.py" line="117" />
@@ -2333,58 +2339,64 @@
         <translation>无法读取 {path}：{detail}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="570" />
+        <location filename="../core/cloudsource.py" line="572" />
         <source>Cannot read {path}: it is not valid JSON ({detail}); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：不是有效的 JSON（{detail}）；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="588" />
+        <location filename="../core/cloudsource.py" line="590" />
         <source>Cannot read {path}: feature {feature} has no 'assets' object; {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：要素 {feature} 没有 'assets' 对象；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="596" />
+        <location filename="../core/cloudsource.py" line="598" />
         <source>Cannot read {path}: feature {feature} has no asset with an 'href' (assets.data.href); {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：要素 {feature} 没有带 'href' 的 asset（assets.data.href）；{expected}</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="600" />
+        <location filename="../core/cloudsource.py" line="602" />
         <source>The virtual point cloud {path} lists the remote tile {href}: only local files are read; download the tiles and build the virtual point cloud again</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 列出了远程分块 {href}：只读取本地文件；请下载这些分块并重新构建虚拟点云</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="606" />
+        <location filename="../core/cloudsource.py" line="608" />
         <source>The virtual point cloud {path} lists the tile {tile} twice (features {first} and {second})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 两次列出分块 {tile}（要素 {first} 和 {second}）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="610" />
+        <location filename="../core/cloudsource.py" line="612" />
         <source>The virtual point cloud {path} lists the tile {tile} (feature {feature}), which does not exist</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云 {path} 列出的分块 {tile}（要素 {feature}）不存在</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="625" />
+        <location filename="../core/cloudsource.py" line="627" />
         <source>The tiles of {path} cannot be read as one cloud: {tile_a} has point format {fmt_a}, {tile_b} point format {fmt_b}; every tile needs the same point format (convert them to one, e.g. with PDAL's translate)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 的分块无法作为一个点云读取：{tile_a} 的点格式为 {fmt_a}，{tile_b} 的点格式为 {fmt_b}；所有分块必须使用相同的点格式（请将其转换为同一格式，例如使用 PDAL 的 translate）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="631" />
+        <location filename="../core/cloudsource.py" line="633" />
         <source>The tiles of {path} are in different CRSs: {tile_a} in {crs_a}, {tile_b} in {crs_b}; every tile must be in the same CRS (reproject them to one first)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 的分块位于不同的坐标参考系中：{tile_a} 为 {crs_a}，{tile_b} 为 {crs_b}；所有分块必须位于同一坐标参考系中（请先将其重投影到同一坐标参考系）</translation>
     </message>
     <message>
-        <location filename="../core/cloudsource.py" line="660" />
+        <location filename="../core/cloudsource.py" line="662" />
         <source>The points cannot be written with the first tile's scale {scale} and offset {offset} in {axis}: their coordinates are too far from it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法以第一个分块在 {axis} 方向的缩放 {scale} 和偏移 {offset} 写入这些点：其坐标离偏移太远</translation>
+    </message>
+    <message>
+        <location filename="../core/cloudsource.py" line="335" />
+        <source>Reading {name}: {done:.1f} of {total:.1f} million points</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>正在读取 {name}：已读 {done:.1f} 百万点，共 {total:.1f} 百万点</translation>
     </message>
     <message>
         <location filename="../core/crs.py" line="19" />
@@ -2492,32 +2504,32 @@
         <translation>无法将位置从 {source} 转换到 {target}：{error}</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="100" />
+        <location filename="../core/detections.py" line="104" />
         <source>The detections lack the field(s) {fields}; expected the output of Detect signs</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测结果缺少字段 {fields}；应为“在全景图中检测标志”的输出</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="143" />
+        <location filename="../core/detections.py" line="147" />
         <source>Detection {det_id}: the box ({u0}, {v0}, {u1}, {v1}) is not u0 &lt; u1, v0 &lt; v1 inside a {w} x {h} panorama</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}：检测框 ({u0}, {v0}, {u1}, {v1}) 不满足在 {w} x {h} 全景图内 u0 &lt; u1、v0 &lt; v1</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="151" />
+        <location filename="../core/detections.py" line="155" />
         <source>Detection {det_id}: the station pose is invalid (quaternion norm {norm:.4f}, position {xyz})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}：站点位姿无效（四元数范数 {norm:.4f}，位置 {xyz}）</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="106" />
+        <location filename="../core/detections.py" line="110" />
         <location filename="../core/projection.py" line="417" />
         <source>Detection {det_id}: the field {field} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id}：字段 {field} 为空</translation>
     </message>
     <message>
-        <location filename="../core/detections.py" line="114" />
+        <location filename="../core/detections.py" line="118" />
         <location filename="../core/projection.py" line="409" />
         <source>Detection {det_id}, field {field}: expected a number, found '{value}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -2594,6 +2606,12 @@
         <source>The model {path} takes {w} x {h} px images only; the horizon seen as one band ({bw} x {bh} px) needs a model whose input height and width are free, as the bundled detector's are</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 只接受 {w} x {h} 像素的图像；将地平线作为一条条带（{bw} x {bh} 像素）需要输入高度和宽度不固定的模型，如随附的检测器</translation>
+    </message>
+    <message>
+        <location filename="../core/detector.py" line="901" />
+        <source>Detecting signs: panorama {n} of {count} ({image})</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>正在检测标志：第 {n} 张全景图，共 {count} 张（{image}）</translation>
     </message>
     <message>
         <location filename="../core/detector.py" line="373" />
@@ -2704,101 +2722,114 @@
         <translation>内置 CSF 需要 Python 包 cloth-simulation-filter（模块 CSF）：{detail}</translation>
     </message>
     <message>
+        <location filename="../core/ground/csf.py" line="229" />
+        <location filename="../core/ground/smrf.py" line="176" />
+        <source>Fitting the ground surface: tile {n} of {count}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>正在拟合地面：第 {n} 块，共 {count} 块</translation>
+    </message>
+    <message>
         <location filename="../core/ground/engine.py" line="81" />
         <source>Unknown return type {kinds} in '{returns}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>'{returns}' 中有未知的回波类型 {kinds}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="335" />
+        <location filename="../core/ground/engine.py" line="336" />
         <source>Not enough free disk space in {folder} to keep the points between the two passes: the cloud is read twice</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{folder} 中的可用磁盘空间不足，无法在两遍处理之间保存点：点云将被读取两次</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="379" />
+        <location filename="../core/ground/engine.py" line="380" />
         <location filename="../core/pointcloud.py" line="274" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：输出文件必须以 .las 或 .laz 结尾</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="391" />
+        <location filename="../core/ground/engine.py" line="392" />
         <location filename="../core/ground/tiled.py" line="150" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>点云坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="464" />
+        <location filename="../core/ground/engine.py" line="465" />
         <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到 PDAL：使用内置引擎</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="514" />
+        <location filename="../core/ground/engine.py" line="515" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有裁剪多边形：忽略裁剪缓冲区</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="348" />
+        <location filename="../core/ground/engine.py" line="219" />
+        <source>Classifying and writing the points: part {n} of {count}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>正在分类并写出点：第 {n} 部分，共 {count} 部分</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="349" />
         <source>No point of {path} has the returns '{returns}': nothing was classified</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中没有回波为 '{returns}' 的点：未分类任何点</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="385" />
+        <location filename="../core/ground/engine.py" line="386" />
         <source>The output {path} must not be the input file</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>输出 {path} 不能是输入文件</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="393" />
+        <location filename="../core/ground/engine.py" line="394" />
         <location filename="../core/ground/tiled.py" line="152" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有坐标参考系：请给出点云的坐标参考系（从不猜测）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="451" />
+        <location filename="../core/ground/engine.py" line="452" />
         <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：内置引擎，对 {method} 实测比 PDAL 更快（且以有限内存流式处理点云）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="456" />
+        <location filename="../core/ground/engine.py" line="457" />
         <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：PDAL，因为内置 {method} 需要 Python 包 cloth-simulation-filter，而该包未安装</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="462" />
+        <location filename="../core/ground/engine.py" line="463" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>要求使用 PDAL，但既没有找到 pdal Python 模块，也没有找到 pdal 可执行文件（PATH、QGIS 的 bin 文件夹）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="466" />
+        <location filename="../core/ground/engine.py" line="467" />
         <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：PDAL，对 {method} 实测比内置引擎更快</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="501" />
+        <location filename="../core/ground/engine.py" line="502" />
         <source>No point of {path} is left after the crop: {output} has no points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>裁剪后 {path} 没有剩余的点：{output} 中没有点</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="344" />
+        <location filename="../core/ground/engine.py" line="345" />
         <location filename="../core/ground/tiled.py" line="283" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件已损坏（{detail}）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="416" />
+        <location filename="../core/ground/engine.py" line="417" />
         <location filename="../core/ground/tiled.py" line="183" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -2936,7 +2967,13 @@
         <translation>没有标志具有审核状态 {states}（{counts}）：请用审核面板审核标志，或选择其他状态</translation>
     </message>
     <message>
-        <location filename="../core/handover.py" line="478" />
+        <location filename="../core/handover.py" line="422" />
+        <source>Preparing the handover: sign {n} of {count}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>正在准备交付：第 {n} 个标志，共 {count} 个</translation>
+    </message>
+    <message>
+        <location filename="../core/handover.py" line="479" />
         <source>{n} of {total} signs handed over (review states {states}); left out: {left}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已交付 {n} / {total} 个标志（审核状态 {states}）；未包含：{left}</translation>
@@ -3074,7 +3111,7 @@
         <translation>{path} 中没有点位于裁剪区域内；{output} 为空</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="619" />
+        <location filename="../core/projection.py" line="620" />
         <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 个检测结果中有 {ok} 个在点云中找到了表面（{no_points} 个没有点，{no_surface} 个没有平面）</translation>
@@ -3091,6 +3128,12 @@
         <source>The maximum range must exceed {min} m, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>最大距离必须大于 {min} m，实际为 {value} m</translation>
+    </message>
+    <message>
+        <location filename="../core/projection.py" line="614" />
+        <source>Searching the detections' surfaces: {n} of {count}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>正在搜索检测的表面：{n} / {count}</translation>
     </message>
     <message>
         <location filename="../core/projection.py" line="402" />
@@ -3123,127 +3166,133 @@
         <translation>没有要投影的检测结果；候选为空</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="615" />
+        <location filename="../core/projection.py" line="616" />
         <source>{path} has no point inside the detections' frusta; no candidate found</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 在检测结果的视锥内没有点；未找到候选</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="142" />
+        <location filename="../core/refine.py" line="141" />
         <source>curved surface (a convex mirror?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>曲面（凸面镜？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="143" />
+        <location filename="../core/refine.py" line="142" />
         <source>part of a larger flat surface (a picture on a billboard or a wall?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>较大平面的一部分（广告牌或墙上的图案？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1033" />
+        <location filename="../core/refine.py" line="1028" />
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>从 {candidates} 个候选得到 {signs} 个标志（{from_images} 个仅由图像定位）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1793" />
+        <location filename="../core/refine.py" line="1786" />
         <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} 个标志中有 {coded} 个带有标志代码；{from_code} 个的类别取自代码，{dropped} 个代码因类别投票被舍弃（code_check）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1802" />
+        <location filename="../core/refine.py" line="1795" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>站点高度减去 {height} 米</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="426" />
+        <location filename="../core/refine.py" line="421" />
         <source>Detection {det_id} has the sign code {code}, which is not in the sign codes table {table}: give the codes table the classifier was run with</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测 {det_id} 的标志代码 {code} 不在标志代码表 {table} 中：请提供运行分类器时所用的代码表</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1010" />
+        <location filename="../core/refine.py" line="1005" />
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>合并半径必须为正数，实际为 {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1013" />
+        <location filename="../core/refine.py" line="1008" />
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有要精化的候选；标志图层为空</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1538" />
+        <location filename="../core/refine.py" line="1534" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>候选 {ids}：{reason}；位置取候选的中位数</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1733" />
+        <location filename="../core/refine.py" line="1726" />
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{width:.2f} x {height:.2f} 米的面板对 {sign_class} 标志来说太大（广告牌？）</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1738" />
+        <location filename="../core/refine.py" line="1731" />
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：只在一张全景图中出现，得分为 {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="527" />
+        <location filename="../core/refine.py" line="522" />
         <source>too few points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="530" />
+        <location filename="../core/refine.py" line="525" />
         <source>too few points in the boxes</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>框内的点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="536" />
+        <location filename="../core/refine.py" line="531" />
         <source>no near-vertical plane</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有近似竖直的平面</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="540" />
+        <location filename="../core/refine.py" line="535" />
         <source>too few planar points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>平面点太少</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1532" />
+        <location filename="../core/refine.py" line="1468" />
+        <source>Refining the signs: {n} of {count} candidate groups</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>正在精化标志：候选组 {n} / {count}</translation>
+    </message>
+    <message>
+        <location filename="../core/refine.py" line="1528" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有点云</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1535" />
+        <location filename="../core/refine.py" line="1531" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：{reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1744" />
+        <location filename="../core/refine.py" line="1737" />
         <source>Candidates {ids} dropped: seen in one panorama only ({image}, {range:.1f} m away), not in the {missed} panoramas nearer to its face</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已丢弃候选 {ids}：只在一张全景图中出现（{image}，相距 {range:.1f} m），距其牌面更近的 {missed} 张全景图中均未出现</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1803" />
+        <location filename="../core/refine.py" line="1796" />
         <source>the lowest points below the sign</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志下方的最低点</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1807" />
+        <location filename="../core/refine.py" line="1800" />
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 个标志在 {radius} 米内没有地面点（类别 2）：其高度从{source}起算</translation>
@@ -3666,6 +3715,12 @@
         <translation>{layer}：全景站点 {station}，字段 {field}：应为有限数字，实际为 '{value}'；应为“导入轨迹”的输出</translation>
     </message>
     <message>
+        <location filename="../core/viewclass.py" line="75" />
+        <source>Looking for the cloud's signs in the panoramas: sign {n} of {count}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>正在全景图中查找点云中的标志：第 {n} 个，共 {count} 个</translation>
+    </message>
+    <message>
         <location filename="../dependencies.py" line="72" />
         <source>The installed shapely is a wheel with its own copy of GEOS, which clashes with QGIS's GEOS {geos} on Linux and crashes QGIS. Install shapely built against the system GEOS: sudo apt install libgeos-dev &amp;&amp; python3 -m pip install --user --break-system-packages --force-reinstall --no-deps --no-binary shapely "shapely&gt;=2"</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -3812,27 +3867,27 @@
         <translation>道路标志清查</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="279" />
+        <location filename="../algorithms/base.py" line="281" />
         <source>Cancelled: nothing was written.</source>
         <translation>已取消：未写入任何内容。</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="285" />
+        <location filename="../algorithms/base.py" line="287" />
         <source>Out of memory: nothing was written. Crop the point cloud (Ground filter with a crop layer) or process the drive in parts.</source>
         <translation>内存不足：未写入任何内容。请裁剪点云（使用带裁剪图层的地面滤波），或分段处理行驶采集数据。</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="288" />
+        <location filename="../algorithms/base.py" line="290" />
         <source>Cannot read or write {}: {}. Nothing was written.</source>
         <translation>无法读取或写入 {}：{}。未写入任何内容。</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="291" />
+        <location filename="../algorithms/base.py" line="293" />
         <source>Unexpected error ({}: {}); nothing was written. The details are in the QGIS message log (Road sign inventory); please report them.</source>
         <translation>意外错误（{}：{}）；未写入任何内容。详细信息见 QGIS 消息日志（Road sign inventory）；请报告。</translation>
     </message>
     <message>
-        <location filename="../algorithms/base.py" line="296" />
+        <location filename="../algorithms/base.py" line="298" />
         <source>{} However, these partial outputs could not be removed: {}</source>
         <translation>{} 但是，以下部分输出无法删除：{}</translation>
     </message>

@@ -226,6 +226,7 @@ class CsfGrid:
         windows = list(tiles(lat.shape, self.tile_nodes, self.halo_nodes))
         for i, (core, ext) in enumerate(windows):
             progress.report(i / len(windows))
+            progress.step("Fitting the ground surface: tile {n} of {count}", n=i + 1, count=len(windows))
             if not self.rep_du.has_pages(core) or not (~np.isnan(self.rep_du.window(core))).any():
                 continue
             pts = self._tile_points(ext)

@@ -216,6 +216,7 @@ class PointSpool:
         h = self.header
         for k in range(self.n_chunks):
             progress.check()
+            progress.step("Classifying and writing the points: part {n} of {count}", n=k + 1, count=self.n_chunks)
             rows = self.spool.read(self.KIND, k)
             self.spool.discard(self.KIND, k)
             yield laspy.ScaleAwarePointRecord(rows, h.point_format, h.scales, h.offsets)

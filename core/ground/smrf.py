@@ -173,6 +173,7 @@ class SmrfGrid:
         windows = list(tiles(shape, self.tile_cells, self.halo_cells))
         for i, (core, ext) in enumerate(windows):
             progress.report(i / len(windows))
+            progress.step("Fitting the ground surface: tile {n} of {count}", n=i + 1, count=len(windows))
             if not np.isfinite(self.zmin[core]).any():
                 continue
             zpro, slope = smrf_surface(self.zmin[ext], self.params,

@@ -857,3 +857,13 @@ def test_a_section_flanked_on_two_sides_is_a_piece_of_a_row_not_a_pole():
     assert len(sections(left)) == 1 and len(sections(right)) == 1
     assert sections(left, right) == []
     assert len(sections(far_left, far_right)) == 1
+
+
+def test_the_search_says_which_window_it_is_on(tmp_path):
+    path = build_cloud(tmp_path / "steps.las")
+    steps = []
+    CS.find_signs_in_cloud(path, built_track(), progress=Progress(on_step=steps.append))
+    windows = [s for s in steps if s.template.startswith("Searching the drive")]
+    assert any(s == "Reading steps.las: {:.1f} of {:.1f} million points".format(
+        s.fields["done"], s.fields["total"]) for s in steps)
+    assert windows and windows[-1].fields["n"] == windows[-1].fields["count"]

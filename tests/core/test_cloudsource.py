@@ -425,3 +425,19 @@ def test_a_pass_lets_go_of_its_area_once_the_reads_are_planned(street):
     assert sys.getrefcount(area) == held
     rest = sum(len(i) for i, _ in chunks)
     assert len(index) + rest == street["n"]     # the area still chose the tiles: all of them
+
+
+def test_a_read_says_how_far_it_is_in_each_tile(street):
+    """One step a chunk: the tile read and the millions of points read of those to read."""
+    from roadsigns.core.errors import Progress
+
+    steps = []
+    n = sum(len(chunk) for _, chunk in cs.open_cloud(street["folder"]).iter_indexed_chunks(
+        chunk_points=4000, progress=Progress(on_step=steps.append)))
+    assert len(steps) >= len(street["tiles"])
+    assert {s.fields["name"] for s in steps} == {os.path.basename(t) for t in street["tiles"]}
+    done = [s.fields["done"] for s in steps]
+    assert done == sorted(done) and done[-1] * 1e6 == pytest.approx(n)
+    assert all(s.fields["total"] * 1e6 == pytest.approx(street["n"]) for s in steps)
+    assert steps[-1] == "Reading {}: {:.1f} of {:.1f} million points".format(
+        os.path.basename(street["tiles"][-1]), n / 1e6, street["n"] / 1e6)

@@ -742,3 +742,16 @@ def test_a_channels_last_model_with_other_than_three_channels_is_refused(tmp_pat
     onnx.save(model, str(tmp_path / "four.onnx"))
     with pytest.raises(InputError, match=r"uint8 \[batch, height, width, 3\]"):
         Detector(str(tmp_path / "four.onnx"), threads=1)
+
+
+def test_detect_drive_says_which_panorama_it_is_on(tmp_path):
+    """One step a panorama, in order, the unreadable one too: the Processing dialog's
+    progress text."""
+    from roadsigns.core.errors import Progress
+
+    paths = _grey_panoramas(tmp_path, 3, corrupt=(1,))
+    steps = []
+    det.detect_drive(MeanGreyDetector(), paths, ViewSet.ring(2, 0.0, 90.0, 32), 0.0,
+                     progress=Progress(on_step=steps.append))
+    assert steps == ["Detecting signs: panorama {} of 3 ({})".format(k + 1, os.path.basename(p))
+                     for k, p in enumerate(paths)]

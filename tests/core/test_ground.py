@@ -1012,3 +1012,19 @@ def test_files_cut_short_are_refused_before_pdal(tmp_path):
                 f.write(data[:keep])
             with pytest.raises(InputError, match="truncated or corrupt"):
                 ground_pdal.check_complete(cut, header)
+
+
+@pytest.mark.parametrize("method", ["csf", "smrf"])
+def test_the_built_in_engine_says_which_pass_it_is_in(street_no_crs, tmp_path, method):
+    """Reading, fitting the ground surface tile by tile, then classifying and writing."""
+    src, _ = street_no_crs
+    steps = []
+    ground.run_ground_filter(src, str(tmp_path / "g.laz"), method, "builtin", crs_wkt="EPSG:25833",
+                             chunk_points=20_000, progress=Progress(on_step=steps.append))
+    kinds = [s.template.split(":")[0] for s in steps]
+    order = [k for i, k in enumerate(kinds) if i == 0 or kinds[i - 1] != k]
+    assert order == ["Reading {name}", "Fitting the ground surface", "Classifying and writing the points"]
+    fitting = [s for s in steps if s.template.startswith("Fitting")]
+    writing = [s for s in steps if s.template.startswith("Classifying")]
+    assert fitting[-1].fields["n"] == fitting[-1].fields["count"]
+    assert writing[-1].fields["n"] == writing[-1].fields["count"] >= 2

@@ -371,3 +371,16 @@ def test_the_curvature_is_the_flattest_the_points_allow():
     assert min(flat) >= limit
     curved = [P.convex_radius_m(_disc_points(rng, 0.3, 60, 0.012, 1.0), toward_viewer) for _ in range(300)]
     assert max(curved) < limit
+
+
+def test_the_projection_says_how_many_detections_it_has_searched(detections, las_path):
+    """The steps: the cloud read (its file), then the detections searched block by block, up
+    to all of them."""
+    steps = []
+    P.project_detections(detections, las_path, max_range_m=30.0, progress=Progress(on_step=steps.append))
+    reading = [s for s in steps if s.template.startswith("Reading")]
+    searching = [s for s in steps if s.template.startswith("Searching the detections")]
+    assert reading and all(s.fields["name"] == "cloud.las" for s in reading)
+    assert steps.index(reading[-1]) < steps.index(searching[0])
+    assert [s.fields["n"] for s in searching] == sorted(s.fields["n"] for s in searching)
+    assert searching[-1] == "Searching the detections' surfaces: {0} of {0}".format(len(detections))

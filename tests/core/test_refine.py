@@ -1134,3 +1134,14 @@ def test_nearer_stations_that_missed_are_in_front_nearer_and_below_the_elevation
     missed, seen_range_m = R.nearer_stations_that_missed(place, [image], stations, R.RefineParams())
     assert seen_range_m == pytest.approx(math.hypot(centre[0] - 5.0 * seen_from, centre[1]))
     assert missed == expected
+
+
+def test_the_refinement_says_how_many_groups_it_has_refined(scene, candidates, tmp_path):
+    las = str(tmp_path / "cloud.las")
+    signscene.write_las(scene, las)
+    steps = []
+    R.refine_signs(candidates, las, block_m=20.0, progress=Progress(on_step=steps.append))
+    refining = [s for s in steps if s.template.startswith("Refining the signs")]
+    assert any(s.template.startswith("Reading") for s in steps)
+    assert len(refining) >= 2 and refining[-1].fields["n"] == refining[-1].fields["count"]
+    assert [s.fields["n"] for s in refining] == sorted(s.fields["n"] for s in refining)

@@ -212,3 +212,17 @@ def test_stations_between_ones_within_the_spacing_are_skipped(qgis_process, stat
     assert spaced == [order[0], order[2]]
     assert run.json["results"]["SKIPPED_IMAGES"] == 1   # the last station, kept, cannot be read
     assert "of the 4 panoramas" in run.text
+
+
+def test_the_current_panorama_is_the_progress_text(qgis_process, stations, tmp_path):
+    """A long detection says which panorama it is on (the dialog's progress text, which
+    qgis_process prints without --json); the same kind of step at most every few seconds,
+    so the panoramas of this short run after the first are not shown."""
+    model = make_model(tmp_path / "m.onnx", yolov8_centre_box(), meta={"names": NAMES})
+    run = qgis_process("run", ALG, "--", f"STATIONS={stations}", f"MODEL={model}", "RESCUE_CONFIDENCE=1.0",
+                       f"OUTPUT={tmp_path / 'detections.gpkg'}")
+    assert run.returncode == 0, run.text
+    steps = [line for line in run.stdout.splitlines() if line.startswith("Detecting signs: panorama")]
+    assert steps[0] == "Detecting signs: panorama 1 of 4 (pano_0000.jpg)"
+    assert len(steps) < 4
+    assert run.stdout.index(steps[0]) < run.stdout.index("detections in 3 panoramas (1 skipped)")
