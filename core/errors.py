@@ -124,7 +124,7 @@ class Progress:
 
 
 #: Seconds between two steps of the same kind shown by a :class:`StepThrottle`.
-STEP_INTERVAL_S = 5.0
+STEP_INTERVAL_S = 10.0
 
 
 class StepThrottle:
