@@ -2722,13 +2722,6 @@
         <translation>El CSF integrado necesita el paquete de Python cloth-simulation-filter (módulo CSF): {detail}</translation>
     </message>
     <message>
-        <location filename="../core/ground/csf.py" line="229" />
-        <location filename="../core/ground/smrf.py" line="176" />
-        <source>Fitting the ground surface: tile {n} of {count}</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>Ajustando la superficie del terreno: tesela {n} de {count}</translation>
-    </message>
-    <message>
         <location filename="../core/ground/engine.py" line="81" />
         <source>Unknown return type {kinds} in '{returns}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -2834,6 +2827,12 @@
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>PDAL falló; se usó el motor integrado en su lugar: {error}</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/lattice.py" line="202" />
+        <source>Fitting the ground surface: tile {n} of {count}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Ajustando la superficie del terreno: tesela {n} de {count}</translation>
     </message>
     <message>
         <location filename="../core/ground/lattice.py" line="60" />

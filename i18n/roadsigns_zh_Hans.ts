@@ -2722,13 +2722,6 @@
         <translation>内置 CSF 需要 Python 包 cloth-simulation-filter（模块 CSF）：{detail}</translation>
     </message>
     <message>
-        <location filename="../core/ground/csf.py" line="229" />
-        <location filename="../core/ground/smrf.py" line="176" />
-        <source>Fitting the ground surface: tile {n} of {count}</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>正在拟合地面：第 {n} 块，共 {count} 块</translation>
-    </message>
-    <message>
         <location filename="../core/ground/engine.py" line="81" />
         <source>Unknown return type {kinds} in '{returns}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -2834,6 +2827,12 @@
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>PDAL 运行失败，已改用内置引擎：{error}</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/lattice.py" line="202" />
+        <source>Fitting the ground surface: tile {n} of {count}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>正在拟合地面：第 {n} 块，共 {count} 块</translation>
     </message>
     <message>
         <location filename="../core/ground/lattice.py" line="60" />

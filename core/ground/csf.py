@@ -23,7 +23,7 @@ from typing import Any, Callable, Iterator, List, Optional
 import numpy as np
 
 from ..errors import SILENT, InputError, Progress
-from .lattice import MAX_PAGED_CELLS, BoundsXY, Lattice, PagedArray, Window, finished, group_first, tiles
+from .lattice import MAX_PAGED_CELLS, BoundsXY, Lattice, PagedArray, Window, finished, fitting_tiles, group_first
 
 #: CSF tiles (core, buffer) in metres. The cloth is a global simulation: on slopes it
 #: hangs off the ground more the larger the area (smoothing fixes most), so tiles are
@@ -223,10 +223,7 @@ class CsfGrid:
     def finish(self, progress: Progress = SILENT) -> None:
         lat = self.lattice
         self.cloth = cloth_all = PagedArray(lat.shape, np.float64, np.nan)
-        windows = list(tiles(lat.shape, self.tile_nodes, self.halo_nodes))
-        for i, (core, ext) in enumerate(windows):
-            progress.report(i / len(windows))
-            progress.step("Fitting the ground surface: tile {n} of {count}", n=i + 1, count=len(windows))
+        for core, ext in fitting_tiles(lat.shape, self.tile_nodes, self.halo_nodes, progress):
             if not self.rep_du.has_pages(core) or not (~np.isnan(self.rep_du.window(core))).any():
                 continue
             pts = self._tile_points(ext)

@@ -192,6 +192,17 @@ def tiles(shape: Tuple[int, int], core: int, halo: int) -> Iterator[Tuple[Window
             yield (slice(r0, r1), slice(c0, c1)), (slice(er0, er1), slice(ec0, ec1))
 
 
+def fitting_tiles(shape: Tuple[int, int], core: int, halo: int,
+                  progress: Progress = SILENT) -> Iterator[Tuple[Window, Window]]:
+    """:func:`tiles` for the grid stage of a ground filter (``finish``), with the progress and
+    the current step reported before each tile."""
+    windows = list(tiles(shape, core, halo))
+    for i, pair in enumerate(windows):
+        progress.report(i / len(windows))
+        progress.step("Fitting the ground surface: tile {n} of {count}", n=i + 1, count=len(windows))
+        yield pair
+
+
 def inner_window(core: Window, ext: Window) -> Window:
     """``core`` in the coordinates of an array cut to ``ext``."""
     return (slice(core[0].start - ext[0].start, core[0].stop - ext[0].start),

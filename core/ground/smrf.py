@@ -21,7 +21,7 @@ from scipy import ndimage
 from scipy.spatial import cKDTree
 
 from ..errors import SILENT, Progress
-from .lattice import BoundsXY, Lattice, finished, group_first, inner_window, tiles
+from .lattice import BoundsXY, Lattice, finished, fitting_tiles, group_first, inner_window
 
 #: SMRF tile size (core) in metres; the buffer follows from the window.
 SMRF_TILE_M = 1024.0
@@ -170,10 +170,7 @@ class SmrfGrid:
         shape = (int(self.zmin.shape[0]), int(self.zmin.shape[1]))
         self.zpro = zpro_all = np.full(shape, np.nan)
         self.slope = slope_all = np.full(shape, np.nan, dtype=np.float32)
-        windows = list(tiles(shape, self.tile_cells, self.halo_cells))
-        for i, (core, ext) in enumerate(windows):
-            progress.report(i / len(windows))
-            progress.step("Fitting the ground surface: tile {n} of {count}", n=i + 1, count=len(windows))
+        for core, ext in fitting_tiles(shape, self.tile_cells, self.halo_cells, progress):
             if not np.isfinite(self.zmin[core]).any():
                 continue
             zpro, slope = smrf_surface(self.zmin[ext], self.params,
