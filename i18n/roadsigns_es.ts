@@ -117,7 +117,7 @@
         <translation>Ejecuta un detector de señales ONNX en cada panorama; un rayo por señal detectada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="253" />
+        <location filename="../algorithms/detectsigns.py" line="254" />
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
@@ -192,62 +192,62 @@
         <translation>Mirar también hacia arriba (señales elevadas y de pórtico)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="221" />
+        <location filename="../algorithms/detectsigns.py" line="222" />
         <source>CPU threads (0: all)</source>
         <translation>Hilos de CPU (0: todos)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="221" />
+        <location filename="../algorithms/detectsigns.py" line="222" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>Hilos que onnxruntime puede usar en la CPU; 0 le permite usar todos los núcleos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="227" />
+        <location filename="../algorithms/detectsigns.py" line="228" />
         <source>Detections</source>
         <translation>Detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="231" />
+        <location filename="../algorithms/detectsigns.py" line="232" />
         <source>Number of detections</source>
         <translation>Número de detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="232" />
+        <location filename="../algorithms/detectsigns.py" line="233" />
         <source>Panoramas skipped</source>
         <translation>Panoramas omitidos</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="246" />
+        <location filename="../algorithms/detectsigns.py" line="247" />
         <source>ONNX model not found: {}</source>
         <translation>No se encontró el modelo ONNX: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="265" />
+        <location filename="../algorithms/detectsigns.py" line="266" />
         <source>{} panoramas, {} views each</source>
         <translation>{} panoramas, {} vistas cada uno</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="301" />
+        <location filename="../algorithms/detectsigns.py" line="302" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>Se omitieron {} panorama(s) que no se pudieron leer.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="317" />
+        <location filename="../algorithms/detectsigns.py" line="318" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} detecciones en {} panoramas ({} omitidos).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="309" />
+        <location filename="../algorithms/detectsigns.py" line="310" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>No se detectó ninguna señal: la capa de detecciones está vacía.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="227" />
+        <location filename="../algorithms/detectsigns.py" line="228" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>Capa LineStringZ, un rayo por detección, con det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views y los campos de pose de la estación.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="225" />
+        <location filename="../algorithms/detectsigns.py" line="226" />
         <source>in a crop around each detection, voted later across the views of each sign by Refine and merge signs</source>
         <translation>en un recorte alrededor de cada detección; «Refinar y fusionar señales» vota después entre las vistas de cada señal</translation>
     </message>
@@ -262,7 +262,7 @@
         <translation>Segunda mirada desde la confianza</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="280" />
+        <location filename="../algorithms/detectsigns.py" line="281" />
         <source>Second look: boxes scored from {} to {} are kept where the sign-code classifier reads a code.</source>
         <translation>Segunda mirada: los recuadros puntuados de {} a {} se conservan donde el clasificador de códigos de señal lee un código.</translation>
     </message>
@@ -272,7 +272,7 @@
         <translation>Añade dos vistas de 53° justo delante y detrás, con 1,5 veces los píxeles por grado de las vistas del horizonte (la densidad propia de un panorama de 4096 px), para las señales lejanas a lo largo de la vía. Las señales reales necesitan esos píxeles: en fotografías reales de calles, a la densidad de las vistas del horizonte, el detector encontró 0,82 de las señales (GTSDB 500-599) y 0,54 de 376 señales reales reservadas pegadas como señales lejanas; con estas vistas, 0,93 y 0,69, con una precisión que varía menos de 0,01. En panoramas generados reservados: 0,906 de las señales por panorama en lugar de 0,879. Cuestan 1,24 veces el tiempo de detección. Activado por defecto; desactívelo solo por velocidad en recorridos con panoramas muy próximos (cada señal se ve entonces desde muchas estaciones).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="321" />
+        <location filename="../algorithms/detectsigns.py" line="322" />
         <source>Sign codes read in {} of the {} detections (the others: other, or a sign whose code the table lacks).</source>
         <translation>Códigos de señal leídos en {} de las {} detecciones (las demás: other, o una señal cuyo código no está en la tabla).</translation>
     </message>
@@ -292,17 +292,17 @@
         <translation>Los recuadros que el detector puntúa desde este valor hasta la confianza mínima reciben una segunda mirada: se conserva uno cuando el clasificador de códigos de señal lee en él una clase de señales con una probabilidad de al menos {score} (las probabilidades de los códigos de esa clase sumadas: un límite de velocidad cuyas cifras no son seguras sigue siendo una señal de prohibición), su recuadro mide al menos {px} px en su lado más corto (por debajo de {small_px} px, solo con una puntuación del detector de al menos {small_score}) y al menos un {share:.0%} de él son colores de señal (rojo, azul o amarillo saturados); entonces toma esa clase y conserva su propia puntuación. En fotografías reales de calles (GTSDB 500-599), con la confianza mínima por defecto, encuentra 0,958 de las señales con una precisión de 0,971, frente a 0,803 con 0,966 sin ella, por menos de un 5 % del tiempo de detección. Necesita que se lean los códigos de señal; un valor igual o superior a la confianza mínima la desactiva.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="173" />
+        <location filename="../algorithms/detectsigns.py" line="174" />
         <source>Look again, closer, at small boxes scored under the minimum confidence</source>
         <translation>Volver a mirar, más de cerca, las cajas pequeñas puntuadas por debajo de la confianza mínima</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="173" />
+        <location filename="../algorithms/detectsigns.py" line="174" />
         <source>A box of at most {px} px that the detector scores from {score} up to the minimum confidence is cut again from the panorama at a higher pixel density (the box {box_px} px across) and detected once more; it is kept when the detector then scores it at the minimum confidence or more, with that score, class and box. All of a panorama's such boxes go through the detector together, in one extra run. It finds far signs, 15-25 px across: on 376 held-out real signs pasted into street photographs the signs found rose from 0.79 to 0.87 (those 14-20 px high from 0.34 to 0.59) at a precision of 0.96; on real street photographs (GTSDB 500-599) the recall stayed at 0.958 and the precision went from 0.971 to 0.958. It costs 1.05-1.09 times the detection time. On by default.</source>
         <translation>Una caja de {px} px como máximo que el detector puntúa desde {score} hasta la confianza mínima se recorta de nuevo del panorama con una densidad de píxeles mayor (la caja mide {box_px} px) y se detecta otra vez; se conserva cuando el detector la puntúa entonces con la confianza mínima o más, con esa puntuación, clase y caja. Todas esas cajas de un panorama pasan juntas por el detector, en una sola ejecución adicional. Encuentra señales lejanas, de 15-25 px: en 376 señales reales reservadas, pegadas en fotografías de calles, las señales encontradas subieron de 0,79 a 0,87 (las de 14-20 px de alto, de 0,34 a 0,59) con una precisión de 0,96; en fotografías reales de calles (GTSDB 500-599) la exhaustividad se mantuvo en 0,958 y la precisión pasó de 0,971 a 0,958. Cuesta entre 1,05 y 1,09 veces el tiempo de detección. Activado por defecto.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="293" />
+        <location filename="../algorithms/detectsigns.py" line="294" />
         <source>Zoomed look: boxes of at most {} px scored from {} to {} are detected again at a higher pixel density.</source>
         <translation>Mirada de cerca: las cajas de {} px como máximo puntuadas entre {} y {} se detectan de nuevo con una densidad de píxeles mayor.</translation>
     </message>
@@ -327,39 +327,39 @@
         <translation>Una banda de {width} × {height} px</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="150" />
-        <source>How many views of 80° across the horizon ring has. 8 views overlap by 35°. 6 views overlap by 20° and are turned by 30°, so that their seams ahead and behind fall inside the fore-and-aft views: the detection takes 0.8-0.87 times the time. In single panoramas of five held-out test streets, 6 views found 0.946 of the signs at a precision of 0.988, against 0.948 at 0.982 with 8: they lose a few signs 14-20 px high and a few very close ones that no longer fit whole into one view. Through the whole chain, on three held-out streets with a panorama every 5 m, both rings found all 137 signs, with no false sign and positions within 3 mm of each other in median; on the first 100 m of a test drive with a panorama every 1.2 m, the ring of 6 added one false sign (seen in one panorama and scored just over the minimum confidence, flagged for review) to the 6 true ones. The third choice sees the horizon as one equirectangular band of 3264 × 448 px (8.5 px a degree, ±26° of elevation), which the detector runs on whole: it needs a model whose input size is free, as the bundled detector's is. In single panoramas of four held-out test streets it found 622 of 652 signs with 11 false boxes, against 621 with 15 for the ring of 8, in 0.79 times the processor time; through the whole chain on a held-out street it found all 45 signs, as the ring does. 8 by default; 6 trades a little accuracy for speed.</source>
-        <translation>Cuántas vistas de 80° de ancho tiene el anillo del horizonte. 8 vistas se solapan 35°. 6 vistas se solapan 20° y están giradas 30°, de modo que sus uniones delante y detrás caen dentro de las vistas hacia delante y hacia atrás: la detección tarda 0,8-0,87 veces el tiempo. En panoramas sueltos de cinco calles de prueba reservadas, 6 vistas encontraron 0,946 de las señales con una precisión de 0,988, frente a 0,948 con 0,982 con 8: pierden algunas señales de 14-20 px de alto y algunas muy cercanas que ya no caben enteras en una vista. En la cadena completa, en tres calles reservadas con un panorama cada 5 m, ambos anillos encontraron las 137 señales, sin ninguna falsa y con posiciones a menos de 3 mm entre sí en la mediana; en los primeros 100 m de un recorrido de prueba con un panorama cada 1,2 m, el anillo de 6 añadió una señal falsa (vista en un solo panorama y puntuada justo por encima de la confianza mínima, marcada para revisión) a las 6 verdaderas. La tercera opción ve el horizonte como una sola banda equirrectangular de 3264 × 448 px (8,5 px por grado, ±26° de elevación), que el detector procesa entera: necesita un modelo cuyo tamaño de entrada sea libre, como el del detector incluido. En panoramas sueltos de cuatro calles de prueba reservadas encontró 622 de 652 señales con 11 cajas falsas, frente a 621 con 15 del anillo de 8, en 0,79 veces el tiempo de procesador; en toda la cadena, en una calle reservada, encontró las 45 señales, como el anillo. 8 por defecto; 6 cambia un poco de exactitud por velocidad.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="187" />
+        <location filename="../algorithms/detectsigns.py" line="188" />
         <source>Look again, stretched across, at tall boxes of signs seen edge-on</source>
         <translation>Volver a mirar, estiradas a lo ancho, las cajas altas de señales vistas de canto</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="287" />
+        <location filename="../algorithms/detectsigns.py" line="288" />
         <source>Edge-on look: boxes at least {} times as tall as wide scored from {} to {} are detected again stretched {} times across.</source>
         <translation>Mirada de canto: las cajas al menos {} veces más altas que anchas puntuadas de {} a {} se detectan de nuevo estiradas {} veces a lo ancho.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="187" />
+        <location filename="../algorithms/detectsigns.py" line="188" />
         <source>A sign passed close by is seen far off its face's normal, and the view squeezes it to a sliver that the detector scores low. A box at least {ratio} times as tall as wide, of at most {px} px, that the detector scores from {score} up to the minimum confidence is cut again from the panorama (its height {box_px} px) and stretched {stretch} times across, so that the sign's face is about as wide as tall again, and detected once more; it is kept when the detector then scores it at the minimum confidence or more. Its tiles go into the zoomed look's detector runs, and a box both looks take keeps the higher score. On five held-out generated streets it found 701 of 734 signs in single panoramas, against 697 without it (signs seen more than 70° off their face's normal: 27 of 45 against 23), with one false box fewer, in 1.02 to 1.03 times the processor time; real signs of street photographs squeezed across to 0.3 of their width are scored 0.5 or more in 44 of 50 cases stretched, against 11 as they are. On the real street photographs themselves it changed nothing. On by default.</source>
         <translation>Una señal junto a la que se pasa muy cerca se ve muy lejos de la normal de su cara, y la vista la comprime en una franja estrecha a la que el detector da una puntuación baja. Una caja al menos {ratio} veces más alta que ancha, de {px} px como máximo, que el detector puntúa desde {score} hasta la confianza mínima se recorta de nuevo de la panorámica (su altura a {box_px} px), se estira {stretch} veces a lo ancho, de modo que la cara de la señal vuelve a ser casi tan ancha como alta, y se detecta una vez más; se conserva cuando el detector la puntúa entonces con la confianza mínima o más. Sus recortes van en las mismas ejecuciones del detector que los de la mirada ampliada, y una caja que toman ambas miradas conserva la puntuación más alta. En cinco calles generadas reservadas encontró 701 de 734 señales en panorámicas sueltas, frente a 697 sin ella (señales vistas a más de 70° de la normal de su cara: 27 de 45 frente a 23), con una caja falsa menos, en 1,02 a 1,03 veces el tiempo de procesador; señales reales de fotografías de calle comprimidas a lo ancho a 0,3 de su anchura se puntúan con 0,5 o más en 44 de 50 casos estiradas, frente a 11 tal como están. En las propias fotografías de calle reales no cambió nada. Activada por defecto.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="206" />
+        <location filename="../algorithms/detectsigns.py" line="207" />
         <source>Detect in a panorama at least every (m)</source>
         <translation>Detectar en un panorama al menos cada (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="206" />
+        <location filename="../algorithms/detectsigns.py" line="207" />
         <source>Detects in as few panoramas as leave no more than this distance between one panorama detected in and the next; the ones between are skipped (not read, no detections). The first and the last panorama are always detected in, and a drive whose panoramas stand this far apart or more keeps every one. A sign stays in view over many stations, so skipping saves detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. On two held-out streets with a panorama every 1.25 m, one every 5 m found the same 87 signs as one every 2.5 m, in 0.55 times the detection time; the median position error went from 11 to 13 mm, and one sign, read in 3 of its 7 views instead of 13 of 19, was left without a code. 0 detects in every panorama.</source>
         <translation>Detecta en tan pocos panoramas como permitan que entre un panorama detectado y el siguiente no haya más que esta distancia; los intermedios se omiten (no se leen, sin detecciones). El primer y el último panorama se detectan siempre, y un recorrido cuyos panoramas distan esto o más los conserva todos. Una señal permanece visible desde muchas estaciones, así que omitir ahorra tiempo de detección en proporción, pero cada señal se ve desde menos estaciones: menos rayos para situarla, y una señal visible solo desde unas pocas estaciones (pequeña, u oculta tras árboles o vehículos) puede perderse. Medido en dos calles de prueba reservadas con un panorama cada 5 m: todos los panoramas encontraron las 46 y 45 señales; cada 10 m (uno de cada dos) se perdieron 2 de cada una, cada 15 m 11 de 46. En dos calles reservadas con un panorama cada 1,25 m, uno cada 5 m encontró las mismas 87 señales que uno cada 2,5 m, en 0,55 veces el tiempo de detección; la mediana del error de posición pasó de 11 a 13 mm, y una señal, leída en 3 de sus 7 vistas en lugar de 13 de 19, quedó sin código. 0 detecta en todos los panoramas.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="271" />
+        <location filename="../algorithms/detectsigns.py" line="272" />
         <source>Detecting in {} of the {} panoramas: one at least every {} m of the drive, the ones between skipped.</source>
         <translation>Detectando en {} de los {} panoramas: uno al menos cada {} m del recorrido, los intermedios omitidos.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="150" />
+        <source>How many views of 80° across the horizon ring has. 8 views overlap by 35°. 6 views overlap by 20° and are turned by 30°, so that their seams ahead and behind fall inside the fore-and-aft views: the detection takes 0.8-0.87 times the time. In single panoramas of five held-out test streets, 6 views found 0.946 of the signs at a precision of 0.988, against 0.948 at 0.982 with 8: they lose a few signs 14-20 px high and a few very close ones that no longer fit whole into one view. Through the whole chain, on three held-out streets with a panorama every 5 m, both rings found all 137 signs, with no false sign and positions within 3 mm of each other in median; on the first 100 m of a test drive with a panorama every 1.2 m, the ring of 6 added one false sign (seen in one panorama and scored just over the minimum confidence, flagged for review) to the 6 true ones. The third choice sees the horizon as one equirectangular band of 3264 × 448 px (8.5 px a degree, ±26° of elevation), which the detector runs on whole: it needs a model whose input size is free, as the bundled detector's is. In single panoramas of fifteen held-out test streets it found 2,632 of 2,778 signs at a precision of 0.976, against 2,638 at 0.968 for the ring of 8, in 0.81 times the processor time; through the whole chain on fourteen held-out streets it found all 632 signs, as the ring does, but with one false sign (a logo printed on a billboard) and three sign codes fewer. 8 by default; 6 and the band trade a little accuracy for speed.</source>
+        <translation>Cuántas vistas de 80° de ancho tiene el anillo del horizonte. 8 vistas se solapan 35°. 6 vistas se solapan 20° y están giradas 30°, de modo que sus uniones delante y detrás caen dentro de las vistas hacia delante y hacia atrás: la detección tarda 0,8-0,87 veces el tiempo. En panoramas sueltos de cinco calles de prueba reservadas, 6 vistas encontraron 0,946 de las señales con una precisión de 0,988, frente a 0,948 con 0,982 con 8: pierden algunas señales de 14-20 px de alto y algunas muy cercanas que ya no caben enteras en una vista. En la cadena completa, en tres calles reservadas con un panorama cada 5 m, ambos anillos encontraron las 137 señales, sin ninguna falsa y con posiciones a menos de 3 mm entre sí en la mediana; en los primeros 100 m de un recorrido de prueba con un panorama cada 1,2 m, el anillo de 6 añadió una señal falsa (vista en un solo panorama y puntuada justo por encima de la confianza mínima, marcada para revisión) a las 6 verdaderas. La tercera opción ve el horizonte como una sola banda equirrectangular de 3264 × 448 px (8,5 px por grado, ±26° de elevación), que el detector procesa entera: necesita un modelo cuyo tamaño de entrada sea libre, como el del detector incluido. En panoramas sueltos de quince calles de prueba reservadas encontró 2632 de 2778 señales con una precisión de 0,976, frente a 2638 con 0,968 del anillo de 8, en 0,81 veces el tiempo de procesador; en toda la cadena, en catorce calles reservadas, encontró las 632 señales, como el anillo, pero con una señal falsa (un logotipo impreso en una valla publicitaria) y tres códigos de señal menos. 8 por defecto; 6 y la banda cambian un poco de exactitud por velocidad.</translation>
     </message>
 </context>
 <context>

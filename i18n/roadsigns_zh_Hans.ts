@@ -117,7 +117,7 @@
         <translation>在每张全景图上运行 ONNX 标志检测器；每个检测到的标志生成一条射线。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="253" />
+        <location filename="../algorithms/detectsigns.py" line="254" />
         <source>Panorama stations</source>
         <translation>全景站点</translation>
     </message>
@@ -192,62 +192,62 @@
         <translation>同时向上看（悬挂式和门架式标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="221" />
+        <location filename="../algorithms/detectsigns.py" line="222" />
         <source>CPU threads (0: all)</source>
         <translation>CPU 线程数（0：全部）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="221" />
+        <location filename="../algorithms/detectsigns.py" line="222" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>onnxruntime 在 CPU 上可使用的线程数；0 表示使用所有核心。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="227" />
+        <location filename="../algorithms/detectsigns.py" line="228" />
         <source>Detections</source>
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="231" />
+        <location filename="../algorithms/detectsigns.py" line="232" />
         <source>Number of detections</source>
         <translation>检测数量</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="232" />
+        <location filename="../algorithms/detectsigns.py" line="233" />
         <source>Panoramas skipped</source>
         <translation>跳过的全景图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="246" />
+        <location filename="../algorithms/detectsigns.py" line="247" />
         <source>ONNX model not found: {}</source>
         <translation>未找到 ONNX 模型：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="265" />
+        <location filename="../algorithms/detectsigns.py" line="266" />
         <source>{} panoramas, {} views each</source>
         <translation>{} 张全景图，每张 {} 个视图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="301" />
+        <location filename="../algorithms/detectsigns.py" line="302" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>跳过了 {} 张无法读取的全景图。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="317" />
+        <location filename="../algorithms/detectsigns.py" line="318" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} 个检测，来自 {} 张全景图（跳过 {} 张）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="309" />
+        <location filename="../algorithms/detectsigns.py" line="310" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>未检测到任何标志：检测图层为空。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="227" />
+        <location filename="../algorithms/detectsigns.py" line="228" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>LineStringZ 图层，每个检测一条射线，包含字段 det_id、station_id、image、class、score、code、code_score、u0、v0、u1、v1、n_views 以及站点的位姿字段。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="225" />
+        <location filename="../algorithms/detectsigns.py" line="226" />
         <source>in a crop around each detection, voted later across the views of each sign by Refine and merge signs</source>
         <translation>在每个检测结果周围的裁剪图中读取，之后由“精化与合并标志”在每个标志的各视图间投票</translation>
     </message>
@@ -262,7 +262,7 @@
         <translation>二次检查起始置信度</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="280" />
+        <location filename="../algorithms/detectsigns.py" line="281" />
         <source>Second look: boxes scored from {} to {} are kept where the sign-code classifier reads a code.</source>
         <translation>二次检查：评分在 {} 到 {} 之间、且标志代码分类器读出代码的框被保留。</translation>
     </message>
@@ -272,7 +272,7 @@
         <translation>在正前方和正后方各添加一个 53° 的视图，其每度像素数为地平线视图的 1.5 倍（即 4096 px 全景图自身的密度），用于沿道路远处的标志。真实标志需要这些像素：在真实街道照片上，按地平线视图的密度，检测器找到了 0.82 的标志（GTSDB 500-599）和作为远处标志粘贴的 376 个保留真实标志中的 0.54；加上这些视图后为 0.93 和 0.69，精度变化不超过 0.01。在保留的生成全景图上：每幅全景图找到 0.906 的标志，而不是 0.879。其代价是 1.24 倍的检测时间。默认开启；仅在全景站点很密的行驶采集中为了速度而关闭（此时每个标志都会从许多全景站点被看到）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="321" />
+        <location filename="../algorithms/detectsigns.py" line="322" />
         <source>Sign codes read in {} of the {} detections (the others: other, or a sign whose code the table lacks).</source>
         <translation>{} 个检测读出了标志代码（共 {} 个检测；其余为 other，或代码表中没有其代码的标志）。</translation>
     </message>
@@ -292,17 +292,17 @@
         <translation>检测器评分介于此值与最低置信度之间的框会接受二次检查：当标志代码分类器以至少 {score} 的概率在框中读出一类标志（该类别各代码的概率之和：数字不确定的限速标志仍是禁令标志）、框的短边至少 {px} 像素（短于 {small_px} 像素时，检测器评分须至少为 {small_score}）且至少 {share:.0%} 的像素为标志颜色（饱和的红、蓝或黄色）时，该框被保留；它随后采用该类别并保留自身的评分。在真实街道照片（GTSDB 500-599）上，使用默认的最低置信度时，它找到 0.958 的标志，精确率为 0.971；不使用时为 0.803，精确率为 0.966。代价不到检测时间的 5 %。需要读取标志代码；取值等于或高于最低置信度时关闭此功能。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="173" />
+        <location filename="../algorithms/detectsigns.py" line="174" />
         <source>Look again, closer, at small boxes scored under the minimum confidence</source>
         <translation>对低于最低置信度的小框放大再看一次</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="173" />
+        <location filename="../algorithms/detectsigns.py" line="174" />
         <source>A box of at most {px} px that the detector scores from {score} up to the minimum confidence is cut again from the panorama at a higher pixel density (the box {box_px} px across) and detected once more; it is kept when the detector then scores it at the minimum confidence or more, with that score, class and box. All of a panorama's such boxes go through the detector together, in one extra run. It finds far signs, 15-25 px across: on 376 held-out real signs pasted into street photographs the signs found rose from 0.79 to 0.87 (those 14-20 px high from 0.34 to 0.59) at a precision of 0.96; on real street photographs (GTSDB 500-599) the recall stayed at 0.958 and the precision went from 0.971 to 0.958. It costs 1.05-1.09 times the detection time. On by default.</source>
         <translation>检测器评分在 {score} 到最低置信度之间、且不超过 {px} px 的框，会以更高的像素密度从全景图中重新裁切（框宽 {box_px} px）并再次检测；若检测器此时的评分达到最低置信度或更高，则保留该框，并采用这次的评分、类别和框。一幅全景图中所有这样的框会一起送入检测器，只需额外运行一次。它能找到 15-25 px 的远处标志：在粘贴到街景照片中的 376 个预留真实标志上，检出率从 0.79 提高到 0.87（高 14-20 px 的从 0.34 提高到 0.59），精度为 0.96；在真实街景照片（GTSDB 500-599）上，召回率保持 0.958，精度从 0.971 变为 0.958。检测时间约为原来的 1.05-1.09 倍。默认开启。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="293" />
+        <location filename="../algorithms/detectsigns.py" line="294" />
         <source>Zoomed look: boxes of at most {} px scored from {} to {} are detected again at a higher pixel density.</source>
         <translation>放大再看：不超过 {} px、评分在 {} 到 {} 之间的框会以更高的像素密度再次检测。</translation>
     </message>
@@ -327,39 +327,39 @@
         <translation>一条 {width} × {height} 像素的条带</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="150" />
-        <source>How many views of 80° across the horizon ring has. 8 views overlap by 35°. 6 views overlap by 20° and are turned by 30°, so that their seams ahead and behind fall inside the fore-and-aft views: the detection takes 0.8-0.87 times the time. In single panoramas of five held-out test streets, 6 views found 0.946 of the signs at a precision of 0.988, against 0.948 at 0.982 with 8: they lose a few signs 14-20 px high and a few very close ones that no longer fit whole into one view. Through the whole chain, on three held-out streets with a panorama every 5 m, both rings found all 137 signs, with no false sign and positions within 3 mm of each other in median; on the first 100 m of a test drive with a panorama every 1.2 m, the ring of 6 added one false sign (seen in one panorama and scored just over the minimum confidence, flagged for review) to the 6 true ones. The third choice sees the horizon as one equirectangular band of 3264 × 448 px (8.5 px a degree, ±26° of elevation), which the detector runs on whole: it needs a model whose input size is free, as the bundled detector's is. In single panoramas of four held-out test streets it found 622 of 652 signs with 11 false boxes, against 621 with 15 for the ring of 8, in 0.79 times the processor time; through the whole chain on a held-out street it found all 45 signs, as the ring does. 8 by default; 6 trades a little accuracy for speed.</source>
-        <translation>地平线环包含多少个宽 80° 的视图。8 个视图相互重叠 35°。6 个视图相互重叠 20°，并旋转 30°，使前后方向的接缝落在前后视图之内：检测时间为 0.8-0.87 倍。在五条留出测试街道的单张全景中，6 个视图找到 0.946 的标志，精度 0.988；8 个视图为 0.948，精度 0.982：6 个视图会漏掉少数高 14-20 像素的标志和少数很近、已无法完整落入一个视图的标志。在整条处理链中，在三条每 5 米一张全景的留出街道上，两种环都找到了全部 137 个标志，没有误报，位置中位数相差不到 3 毫米；在一段每 1.2 米一张全景的测试行驶的前 100 米，6 个视图的环在 6 个真实标志之外多出一个误报（只在一张全景中看到，得分刚超过最低置信度，已标记待复核）。第三个选项把地平线视为一条 3264 × 448 像素的等距柱状条带（每度 8.5 像素，仰角 ±26°），检测器整条处理：它需要输入尺寸不固定的模型，随附的检测器即是如此。在四条留出测试街道的单张全景中，它在 652 个标志中找到 622 个，误报框 11 个；8 个视图的环找到 621 个，误报框 15 个，而处理器时间为 0.79 倍；在整条处理链中，在一条留出街道上，它与环一样找到了全部 45 个标志。默认为 8；6 以少许精度换取速度。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="187" />
+        <location filename="../algorithms/detectsigns.py" line="188" />
         <source>Look again, stretched across, at tall boxes of signs seen edge-on</source>
         <translation>对侧面看到的标志的高框横向拉伸后再看一次</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="287" />
+        <location filename="../algorithms/detectsigns.py" line="288" />
         <source>Edge-on look: boxes at least {} times as tall as wide scored from {} to {} are detected again stretched {} times across.</source>
         <translation>侧面查看：高度至少为宽度 {} 倍、得分在 {} 到 {} 之间的框横向拉伸 {} 倍后再检测一次。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="187" />
+        <location filename="../algorithms/detectsigns.py" line="188" />
         <source>A sign passed close by is seen far off its face's normal, and the view squeezes it to a sliver that the detector scores low. A box at least {ratio} times as tall as wide, of at most {px} px, that the detector scores from {score} up to the minimum confidence is cut again from the panorama (its height {box_px} px) and stretched {stretch} times across, so that the sign's face is about as wide as tall again, and detected once more; it is kept when the detector then scores it at the minimum confidence or more. Its tiles go into the zoomed look's detector runs, and a box both looks take keeps the higher score. On five held-out generated streets it found 701 of 734 signs in single panoramas, against 697 without it (signs seen more than 70° off their face's normal: 27 of 45 against 23), with one false box fewer, in 1.02 to 1.03 times the processor time; real signs of street photographs squeezed across to 0.3 of their width are scored 0.5 or more in 44 of 50 cases stretched, against 11 as they are. On the real street photographs themselves it changed nothing. On by default.</source>
         <translation>车辆从近处经过的标志，其视线远离标志面的法线，视图将其压缩成一条窄条，检测器给出的得分很低。高度至少为宽度 {ratio} 倍、最长边不超过 {px} px、检测器得分在 {score} 到最低置信度之间的框，会从全景图中重新裁切（其高度为 {box_px} px），并横向拉伸 {stretch} 倍，使标志面重新接近宽高相等，然后再检测一次；如果检测器此时的得分达到最低置信度或更高，则保留该框。其切片与放大查看的切片放入同一次检测器运行中，两种查看都选中的框保留较高的得分。在五条留出的生成街道上，单张全景图中找到了 734 个标志中的 701 个，不使用时为 697 个（偏离标志面法线超过 70° 的标志：45 个中找到 27 个，不使用时为 23 个），误检框少一个，处理器时间为 1.02 至 1.03 倍；真实街道照片中的标志横向压缩到其宽度的 0.3 后，拉伸后 50 个中有 44 个得分达到 0.5 或以上，未拉伸时为 11 个。在真实街道照片本身上没有任何变化。默认开启。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="206" />
+        <location filename="../algorithms/detectsigns.py" line="207" />
         <source>Detect in a panorama at least every (m)</source>
         <translation>至少每隔多少米在一幅全景图中检测（米）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="206" />
+        <location filename="../algorithms/detectsigns.py" line="207" />
         <source>Detects in as few panoramas as leave no more than this distance between one panorama detected in and the next; the ones between are skipped (not read, no detections). The first and the last panorama are always detected in, and a drive whose panoramas stand this far apart or more keeps every one. A sign stays in view over many stations, so skipping saves detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. On two held-out streets with a panorama every 1.25 m, one every 5 m found the same 87 signs as one every 2.5 m, in 0.55 times the detection time; the median position error went from 11 to 13 mm, and one sign, read in 3 of its 7 views instead of 13 of 19, was left without a code. 0 detects in every panorama.</source>
         <translation>只在尽可能少的全景图中检测，使相邻两幅被检测的全景图之间的距离不超过此值；其间的全景图被跳过（不读取，无检测结果）。第一幅和最后一幅全景图总会被检测；若全景图之间的间距已达到或超过此值，则全部保留。一个标志在许多测站中都可见，因此跳过可按比例节省检测时间，但每个标志被看到的测站会减少：用于定位的射线更少，仅在少数测站可见的标志（较小，或被树木、车辆遮挡）可能被漏检。在两条留出的测试街道上（每 5 米一幅全景图）测得：使用全部全景图可找到全部 46 和 45 个标志；每 10 米（隔一幅）各漏检 2 个，每 15 米漏检 46 个中的 11 个。在两条每 1.25 米一幅全景图的留出街道上，每 5 米检测一幅与每 2.5 米检测一幅找到的是同样的 87 个标志，检测时间为其 0.55 倍；位置误差中位数从 11 毫米增至 13 毫米，另有一个标志因只在其 7 个视图中的 3 个被读出（而非 19 个中的 13 个）而没有代码。0 表示在每幅全景图中检测。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="271" />
+        <location filename="../algorithms/detectsigns.py" line="272" />
         <source>Detecting in {} of the {} panoramas: one at least every {} m of the drive, the ones between skipped.</source>
         <translation>正在 {} 幅全景图中检测（共 {} 幅）：沿行驶路线至少每 {} 米一幅，其间的跳过。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="150" />
+        <source>How many views of 80° across the horizon ring has. 8 views overlap by 35°. 6 views overlap by 20° and are turned by 30°, so that their seams ahead and behind fall inside the fore-and-aft views: the detection takes 0.8-0.87 times the time. In single panoramas of five held-out test streets, 6 views found 0.946 of the signs at a precision of 0.988, against 0.948 at 0.982 with 8: they lose a few signs 14-20 px high and a few very close ones that no longer fit whole into one view. Through the whole chain, on three held-out streets with a panorama every 5 m, both rings found all 137 signs, with no false sign and positions within 3 mm of each other in median; on the first 100 m of a test drive with a panorama every 1.2 m, the ring of 6 added one false sign (seen in one panorama and scored just over the minimum confidence, flagged for review) to the 6 true ones. The third choice sees the horizon as one equirectangular band of 3264 × 448 px (8.5 px a degree, ±26° of elevation), which the detector runs on whole: it needs a model whose input size is free, as the bundled detector's is. In single panoramas of fifteen held-out test streets it found 2,632 of 2,778 signs at a precision of 0.976, against 2,638 at 0.968 for the ring of 8, in 0.81 times the processor time; through the whole chain on fourteen held-out streets it found all 632 signs, as the ring does, but with one false sign (a logo printed on a billboard) and three sign codes fewer. 8 by default; 6 and the band trade a little accuracy for speed.</source>
+        <translation>地平线环包含多少个宽 80° 的视图。8 个视图相互重叠 35°。6 个视图相互重叠 20°，并旋转 30°，使前后方向的接缝落在前后视图之内：检测时间为 0.8-0.87 倍。在五条留出测试街道的单张全景中，6 个视图找到 0.946 的标志，精度 0.988；8 个视图为 0.948，精度 0.982：6 个视图会漏掉少数高 14-20 像素的标志和少数很近、已无法完整落入一个视图的标志。在整条处理链中，在三条每 5 米一张全景的留出街道上，两种环都找到了全部 137 个标志，没有误报，位置中位数相差不到 3 毫米；在一段每 1.2 米一张全景的测试行驶的前 100 米，6 个视图的环在 6 个真实标志之外多出一个误报（只在一张全景中看到，得分刚超过最低置信度，已标记待复核）。第三个选项把地平线视为一条 3264 × 448 像素的等距柱状条带（每度 8.5 像素，仰角 ±26°），检测器整条处理：它需要输入尺寸不固定的模型，随附的检测器即是如此。在十五条留出测试街道的单张全景中，它在 2,778 个标志中找到 2,632 个，精度 0.976；8 个视图的环找到 2,638 个，精度 0.968，而处理器时间为 0.81 倍；在整条处理链中，在十四条留出街道上，它与环一样找到了全部 632 个标志，但多了一个误报（印在广告牌上的标志图案），少读出三个标志代码。默认为 8；6 和条带以少许精度换取速度。</translation>
     </message>
 </context>
 <context>
