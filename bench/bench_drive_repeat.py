@@ -47,7 +47,7 @@ REPO = os.path.dirname(HERE)
 sys.path.insert(0, REPO)
 
 DEFAULT_DRIVE = os.path.join(HERE, "out", "drive-drive1k-4")
-STAGES = ("findsignsincloud", "projectdetections", "refinesigns", "detectsigns")
+STAGES = ("findsignsincloud", "projectdetections", "refinesigns", "detectsigns", "groundfilter")
 #: LAS public header: X offset, max X, min X (little-endian doubles, LAS 1.0-1.4).
 LAS_X_OFFSET_AT, LAS_MAX_X_AT, LAS_MIN_X_AT = 155, 179, 187
 #: Fields holding eastings (moved with the geometry) and ids (renumbered per copy).
@@ -181,6 +181,10 @@ def stage_args(stage: str, folder: str) -> list:
                         "OUTPUT=" + os.path.join(out, "signs.gpkg")],
         "detectsigns": ["STATIONS=" + os.path.join(folder, "stations.gpkg"),
                         "OUTPUT=" + os.path.join(out, "detections.gpkg")],
+        # cropped 25 m around the stations as the shipped model crops; the copies are of the
+        # ground-classified cloud, so its classes are made anew, as on a raw cloud
+        "groundfilter": ["INPUT=" + cloud, "CROP=" + os.path.join(folder, "stations.gpkg"), "CROP_BUFFER=25",
+                         "RESET_CLASSES=true", "OUTPUT=" + os.path.join(out, "ground.laz")],
     }[stage]
 
 
