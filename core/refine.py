@@ -351,28 +351,29 @@ def vote_class(cand: ProjectionResult, rows: Rows) -> Tuple[str, float]:
     return winner, float(1.0 - np.prod(1.0 - np.clip(s, 0.0, 1.0)))
 
 
+def _per_view(det: Detections, rows: Rows, of_box: Callable[[np.ndarray, int, int], float]) -> np.ndarray:
+    """``of_box(box, panorama width, panorama height)`` for each view ``rows``."""
+    return np.array([of_box(det.box_px[k], int(det.pano_size_px[k, 0]), int(det.pano_size_px[k, 1]))
+                     for k in rows], float)
+
+
 def crop_side_px(det: Detections, rows: Rows) -> np.ndarray:
     """Side (pixels) of the crop :func:`.signcodes.cut_crop` cuts for each view's box: the
     box's larger angular side with the default margin, at the panorama's density, clamped to
     8..256 px (the classifier's own margin scales every view of a sign alike)."""
-    return np.array([crop_view(det.box_px[k], int(det.pano_size_px[k, 0]),
-                               int(det.pano_size_px[k, 1]), DEFAULT_CROP_MARGIN)[0].width_px
-                     for k in rows], float)
+    return _per_view(det, rows, lambda box, W, H: crop_view(box, W, H, DEFAULT_CROP_MARGIN)[0].width_px)
 
 
 def box_aspect(det: Detections, rows: Rows) -> np.ndarray:
     """Each view's :func:`.signcodes.box_aspect`: 1 for a sign seen face on, small for one
     seen edge-on."""
-    return np.array([signcodes.box_aspect(det.box_px[k], int(det.pano_size_px[k, 0]), int(det.pano_size_px[k, 1]))
-                     for k in rows], float)
+    return _per_view(det, rows, signcodes.box_aspect)
 
 
 def legible_side_px(det: Detections, rows: Rows) -> np.ndarray:
     """Each view's :func:`.signcodes.legible_side_px`: its crop's side (:func:`crop_side_px`)
-    x its box's aspect (:func:`box_aspect`)."""
-    return np.array([signcodes.legible_side_px(det.box_px[k], int(det.pano_size_px[k, 0]),
-                                               int(det.pano_size_px[k, 1]), DEFAULT_CROP_MARGIN)
-                     for k in rows], float)
+    x its box's aspect (:func:`box_aspect`), the vote's weight per pixel of score."""
+    return _per_view(det, rows, signcodes.legible_side_px)
 
 
 def class_support(cand: ProjectionResult, rows: Rows, klass: str) -> float:
@@ -1695,7 +1696,8 @@ def nearer_stations_that_missed(place: Placement, images: Sequence[str], station
     overhead is above the horizon views). The sign is then bigger and nearer the horizon
     there than where it was seen.
     """
-    seen = np.array([image in images for image in stations.images], bool)
+    seen_images = set(images)
+    seen = np.array([image in seen_images for image in stations.images], bool)
     to_station = stations.centre_world - place.centre
     range_m = np.hypot(to_station[:, 0], to_station[:, 1])
     if not seen.any():

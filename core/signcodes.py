@@ -435,20 +435,26 @@ def crop_view(box_px, width_px: int, height_px: int, margin: float = DEFAULT_CRO
     return square_view(yaw_deg, pitch_deg, max(box_w_deg, box_h_deg), width_px, margin, max_side_px)
 
 
-def box_aspect(box_px, width_px: int, height_px: int) -> float:
-    """A panorama box's smaller angular side over its larger (0..1; :func:`box_angles_deg`):
-    1 for a sign seen face on, small for one seen edge-on."""
-    _, _, box_w_deg, box_h_deg = box_angles_deg(box_px, width_px, height_px)
+def _aspect(box_w_deg: float, box_h_deg: float) -> float:
     larger = max(box_w_deg, box_h_deg)
     return min(box_w_deg, box_h_deg) / larger if larger > 0 else 0.0
 
 
+def box_aspect(box_px, width_px: int, height_px: int) -> float:
+    """A panorama box's smaller angular side over its larger (0..1; :func:`box_angles_deg`):
+    1 for a sign seen face on, small for one seen edge-on."""
+    return _aspect(*box_angles_deg(box_px, width_px, height_px)[2:])
+
+
 def legible_side_px(box_px, width_px: int, height_px: int, margin: float = DEFAULT_CROP_MARGIN) -> float:
     """The pixels the classifier gets across a box's sign at its narrower side: the side of
-    the crop :func:`crop_view` cuts x :func:`box_aspect`. A sign seen face on keeps its crop
-    side; one passed close by at a steep angle, boxed tall and narrow, is read from a crop
-    squeezed across, and weighs that much less in the code vote."""
-    return crop_view(box_px, width_px, height_px, margin)[0].width_px * box_aspect(box_px, width_px, height_px)
+    the crop :func:`crop_view` cuts x :func:`box_aspect` (the box's angles measured once). A
+    sign seen face on keeps its crop side; one passed close by at a steep angle, boxed tall
+    and narrow, is read from a crop squeezed across, and weighs that much less in the code
+    vote."""
+    yaw_deg, pitch_deg, box_w_deg, box_h_deg = box_angles_deg(box_px, width_px, height_px)
+    view, _ = square_view(yaw_deg, pitch_deg, max(box_w_deg, box_h_deg), width_px, margin)
+    return view.width_px * _aspect(box_w_deg, box_h_deg)
 
 
 def view_box_crop_view(view: PerspectiveView, box_xyxy, width_px: int, margin: float = DEFAULT_CROP_MARGIN,
