@@ -2716,120 +2716,128 @@
         <translation>{what} {index}: sin posición (x, y, z)</translation>
     </message>
     <message>
-        <location filename="../core/ground/csf.py" line="108" />
+        <location filename="../core/ground/blocks.py" line="301" />
+        <source>Classifying the ground block by block: block {n} of {count}</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Clasificando el terreno bloque a bloque: bloque {n} de {count}</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/csf.py" line="123" />
         <source>The built-in CSF needs the Python package cloth-simulation-filter (module CSF): {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El CSF integrado necesita el paquete de Python cloth-simulation-filter (módulo CSF): {detail}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="81" />
+        <location filename="../core/ground/engine.py" line="86" />
         <source>Unknown return type {kinds} in '{returns}'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tipo de retorno desconocido {kinds} en '{returns}'</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="336" />
+        <location filename="../core/ground/engine.py" line="351" />
         <source>Not enough free disk space in {folder} to keep the points between the two passes: the cloud is read twice</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay espacio libre suficiente en el disco en {folder} para guardar los puntos entre las dos pasadas: la nube se lee dos veces</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="380" />
+        <location filename="../core/ground/engine.py" line="425" />
         <location filename="../core/pointcloud.py" line="274" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la salida debe terminar en .las o .laz</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="392" />
-        <location filename="../core/ground/tiled.py" line="150" />
+        <location filename="../core/ground/engine.py" line="437" />
+        <location filename="../core/ground/tiled.py" line="153" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SRC de la nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="465" />
+        <location filename="../core/ground/engine.py" line="510" />
         <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró PDAL: se usa el motor integrado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="515" />
+        <location filename="../core/ground/engine.py" line="560" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay polígonos de recorte: se ignora el búfer de recorte</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="219" />
+        <location filename="../core/ground/engine.py" line="224" />
         <source>Classifying and writing the points: part {n} of {count}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Clasificando y escribiendo los puntos: parte {n} de {count}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="349" />
+        <location filename="../core/ground/engine.py" line="364" />
+        <location filename="../core/ground/engine.py" line="391" />
         <source>No point of {path} has the returns '{returns}': nothing was classified</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} tiene los retornos '{returns}': no se clasificó nada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="386" />
+        <location filename="../core/ground/engine.py" line="431" />
         <source>The output {path} must not be the input file</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La salida {path} no puede ser el archivo de entrada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="394" />
-        <location filename="../core/ground/tiled.py" line="152" />
+        <location filename="../core/ground/engine.py" line="439" />
+        <location filename="../core/ground/tiled.py" line="155" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene sistema de referencia de coordenadas: indique el SRC de la nube (nunca se adivina)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="452" />
+        <location filename="../core/ground/engine.py" line="497" />
         <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: el motor integrado, más rápido que PDAL en las mediciones para {method} (y procesa la nube en flujo continuo con memoria acotada)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="457" />
+        <location filename="../core/ground/engine.py" line="502" />
         <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, porque el {method} integrado necesita el paquete de Python cloth-simulation-filter, que no está instalado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="463" />
+        <location filename="../core/ground/engine.py" line="508" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se pidió PDAL, pero no se encontró ni el módulo de Python pdal ni un ejecutable pdal (PATH, carpeta bin de QGIS)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="467" />
+        <location filename="../core/ground/engine.py" line="512" />
         <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, más rápido que el motor integrado en las mediciones para {method}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="502" />
+        <location filename="../core/ground/engine.py" line="547" />
         <source>No point of {path} is left after the crop: {output} has no points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No queda ningún punto de {path} tras el recorte: {output} no tiene puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="345" />
-        <location filename="../core/ground/tiled.py" line="283" />
+        <location filename="../core/ground/engine.py" line="388" />
+        <location filename="../core/ground/engine.py" line="360" />
+        <location filename="../core/ground/tiled.py" line="286" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo está dañado ({detail})</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="417" />
-        <location filename="../core/ground/tiled.py" line="183" />
+        <location filename="../core/ground/engine.py" line="462" />
+        <location filename="../core/ground/tiled.py" line="186" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>PDAL falló; se usó el motor integrado en su lugar: {error}</translation>
     </message>
     <message>
-        <location filename="../core/ground/lattice.py" line="202" />
+        <location filename="../core/ground/lattice.py" line="209" />
         <source>Fitting the ground surface: tile {n} of {count}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ajustando la superficie del terreno: tesela {n} de {count}</translation>
@@ -2888,37 +2896,37 @@
         <translation>No se puede leer {path}: el archivo está truncado o dañado ({detail})</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="216" />
+        <location filename="../core/ground/tiled.py" line="219" />
         <source>{n} tiles written to {folder}, listed in {vpc}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} teselas escritas en {folder}, enumeradas en {vpc}</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="142" />
+        <location filename="../core/ground/tiled.py" line="145" />
         <source>The virtual point cloud's name {name} must be a file name ending in .vpc</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El nombre de la nube de puntos virtual {name} debe ser un nombre de archivo terminado en .vpc</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="114" />
+        <location filename="../core/ground/tiled.py" line="117" />
         <source>The output folder {folder} holds the input tile {tile}: choose another folder (the output folder is replaced as a whole)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La carpeta de salida {folder} contiene la tesela de entrada {tile}: elija otra carpeta (la carpeta de salida se reemplaza por completo)</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="117" />
+        <location filename="../core/ground/tiled.py" line="120" />
         <source>Two tiles of {path} have the same file name, {name} ({first} and {second}): the output tiles are named as the input tiles, so their names must differ</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Dos teselas de {path} tienen el mismo nombre de archivo, {name} ({first} y {second}): las teselas de salida se nombran como las de entrada, por lo que sus nombres deben ser distintos</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="213" />
+        <location filename="../core/ground/tiled.py" line="216" />
         <source>No point of {path} is left after the crop: {output} lists no tile</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No queda ningún punto de {path} tras el recorte: {output} no enumera ninguna tesela</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="202" />
+        <location filename="../core/ground/tiled.py" line="205" />
         <source>No point of the tile {tile} lies inside the crop area: no output tile for it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de la tesela {tile} está dentro del área de recorte: no hay tesela de salida para ella</translation>
@@ -3183,115 +3191,115 @@
         <translation>parte de una superficie plana mayor (¿una imagen en una valla publicitaria o una pared?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1028" />
+        <location filename="../core/refine.py" line="1029" />
         <source>{signs} signs from {candidates} candidates ({from_images} placed from the images alone)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{signs} señales a partir de {candidates} candidatos ({from_images} situadas solo a partir de las imágenes)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1786" />
+        <location filename="../core/refine.py" line="1788" />
         <source>{coded} of {signs} signs have a sign code; {from_code} took their class from the code, {dropped} codes were dropped for the class vote (code_check)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{coded} de {signs} señales tienen código de señal; {from_code} tomaron su clase del código, {dropped} códigos se descartaron por la votación de clase (code_check)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1795" />
+        <location filename="../core/refine.py" line="1797" />
         <source>the stations' height minus {height} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>la altura de las estaciones menos {height} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="421" />
+        <location filename="../core/refine.py" line="422" />
         <source>Detection {det_id} has the sign code {code}, which is not in the sign codes table {table}: give the codes table the classifier was run with</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La detección {det_id} tiene el código de señal {code}, que no está en la tabla de códigos de señal {table}: indique la tabla de códigos con la que se ejecutó el clasificador</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1005" />
+        <location filename="../core/refine.py" line="1006" />
         <source>The merge radius must be positive, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El radio de fusión debe ser positivo; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1008" />
+        <location filename="../core/refine.py" line="1009" />
         <source>No candidates to refine; the sign layer is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay candidatos que refinar; la capa de señales está vacía</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1534" />
+        <location filename="../core/refine.py" line="1535" />
         <source>Candidates {ids}: {reason}; placed at the candidates' median</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids}: {reason}; situados en la mediana de los candidatos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1726" />
+        <location filename="../core/refine.py" line="1728" />
         <source>Candidates {ids} dropped: a {width:.2f} x {height:.2f} m panel is too large for a {sign_class} sign (a billboard?)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: un panel de {width:.2f} x {height:.2f} m es demasiado grande para una señal {sign_class} (¿una valla publicitaria?)</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1731" />
+        <location filename="../core/refine.py" line="1733" />
         <source>Candidates {ids} dropped: seen in one panorama only, with a score of {score:.2f}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: vistos en una sola panorámica, con una puntuación de {score:.2f}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="522" />
+        <location filename="../core/refine.py" line="523" />
         <source>too few points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="525" />
+        <location filename="../core/refine.py" line="526" />
         <source>too few points in the boxes</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos en los recuadros</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="531" />
+        <location filename="../core/refine.py" line="532" />
         <source>no near-vertical plane</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>ningún plano casi vertical</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="535" />
+        <location filename="../core/refine.py" line="536" />
         <source>too few planar points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>muy pocos puntos planos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1468" />
+        <location filename="../core/refine.py" line="1469" />
         <source>Refining the signs: {n} of {count} candidate groups</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Refinando las señales: {n} de {count} grupos de candidatos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1528" />
+        <location filename="../core/refine.py" line="1529" />
         <source>no point cloud</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>sin nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1531" />
+        <location filename="../core/refine.py" line="1532" />
         <source>Candidates {ids} dropped: {reason}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: {reason}</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1737" />
+        <location filename="../core/refine.py" line="1739" />
         <source>Candidates {ids} dropped: seen in one panorama only ({image}, {range:.1f} m away), not in the {missed} panoramas nearer to its face</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Candidatos {ids} descartados: vistos en un solo panorama ({image}, a {range:.1f} m), no en los {missed} panoramas más cercanos a su cara</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1796" />
+        <location filename="../core/refine.py" line="1798" />
         <source>the lowest points below the sign</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>los puntos más bajos bajo la señal</translation>
     </message>
     <message>
-        <location filename="../core/refine.py" line="1800" />
+        <location filename="../core/refine.py" line="1802" />
         <source>{count} sign(s) have no ground points (class 2) within {radius} m: their height is measured from {source}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} señal(es) no tienen puntos de suelo (clase 2) a menos de {radius} m: su altura se mide desde {source}</translation>

@@ -23,7 +23,17 @@ from typing import Any, Callable, Iterator, List, Optional
 import numpy as np
 
 from ..errors import SILENT, InputError, Progress
-from .lattice import MAX_PAGED_CELLS, BoundsXY, Lattice, PagedArray, Window, finished, fitting_tiles, group_first
+from .lattice import (
+    MAX_PAGED_CELLS,
+    BoundsXY,
+    Lattice,
+    PagedArray,
+    Window,
+    finished,
+    fitting_tiles,
+    group_first,
+    windows_meet,
+)
 
 #: CSF tiles (core, buffer) in metres. The cloth is a global simulation: on slopes it
 #: hangs off the ground more the larger the area (smoothing fixes most), so tiles are
@@ -58,6 +68,7 @@ def _native_stdout_silenced() -> Iterator[None]:
     ``qgis_process --json`` owns)."""
     try:
         sys.stdout.flush()
+        _flush_c_streams()
         saved = os.dup(1)
     except (OSError, ValueError, AttributeError):
         yield
@@ -67,9 +78,22 @@ def _native_stdout_silenced() -> Iterator[None]:
         os.dup2(devnull, 1)
         yield
     finally:
+        _flush_c_streams()  # the library's buffered output goes to devnull, not to our stdout
         os.dup2(saved, 1)
         os.close(saved)
         os.close(devnull)
+
+
+def _flush_c_streams() -> None:
+    """Flush the C library's output streams (``fflush(NULL)``): what the host application
+    (``qgis_process`` printing the progress text) has buffered is written before stdout is
+    redirected, and not lost to devnull with the library's output."""
+    import ctypes
+
+    try:
+        ctypes.CDLL(None).fflush(None)
+    except (OSError, AttributeError):  # no C library to flush through (not POSIX)
+        pass
 
 
 _OMP_SET_NUM_THREADS: List[Optional[Callable[[int], Any]]] = []  # [function or None], looked up once
@@ -139,6 +163,55 @@ def run_csf_cloth(xyz: np.ndarray, params: CsfParams) -> np.ndarray:
     return np.asarray(cloth, dtype=np.float64).reshape(-1, 3)
 
 
+#: A chunk's nearest point to a cloth node (:func:`node_candidates`): the node (flat index
+#: ``row * nx + col`` on its lattice), the point's offset from it (steps) and its height above
+#: the grid's ``z_ref`` (metres).
+NODE_CANDIDATE_DTYPE = np.dtype([("node", "i8"), ("du", "f4"), ("dv", "f4"), ("z", "f4")])
+
+
+def node_candidates(lattice: Lattice, x: np.ndarray, y: np.ndarray, z: np.ndarray, z_ref: float) -> np.ndarray:
+    """The nearest of the points ``(x, y, z)`` to each cloth node of ``lattice`` they round to
+    (the first of equally near ones), as :data:`NODE_CANDIDATE_DTYPE` rows in node order;
+    :class:`~.lattice.OutsideGridError` when a point rounds to no node of the lattice.
+    Needs the lattice only, so chunks can be reduced in parallel and merged later
+    (:meth:`CsfGrid.merge`)."""
+    if len(x) == 0:
+        return np.zeros(0, NODE_CANDIDATE_DTYPE)
+    u, v = lattice.local(x, y)
+    col = np.floor(u + 0.5).astype(np.int64)
+    row = np.floor(v + 0.5).astype(np.int64)
+    lattice.check(col, row)
+    du = (u - col).astype(np.float32)
+    dv = (v - row).astype(np.float32)
+    del u, v
+    d2 = du * du
+    d2 += dv * dv
+    flat = row * lattice.nx
+    flat += col
+    del col, row
+    pick = nearest_per_node(flat, d2)
+    out = np.empty(len(pick), NODE_CANDIDATE_DTYPE)
+    out["node"], out["du"], out["dv"] = flat[pick], du[pick], dv[pick]
+    out["z"] = (np.asarray(z, dtype=np.float64)[pick] - z_ref).astype(np.float32)
+    return out
+
+
+def nearest_per_node(flat: np.ndarray, d2: np.ndarray) -> np.ndarray:
+    """:func:`~.lattice.group_first` of ``(flat, d2)``: a node's nearest point is among its
+    points within ``NEAR_NODE_STEPS`` when it has any (a few per cent of a dense cloud), so
+    those are sorted first, and only the points of the nodes without one after them."""
+    near = np.flatnonzero(d2 < NEAR_NODE_STEPS * NEAR_NODE_STEPS)
+    if len(near) * 4 > len(d2):
+        return group_first(flat, d2)
+    pick = near[group_first(flat[near], d2[near])]
+    covered = flat[pick]  # sorted: group_first answers in the order of the sorted keys
+    at = np.minimum(np.searchsorted(covered, flat), len(covered) - 1)
+    rest = np.flatnonzero(covered[at] != flat) if len(covered) else np.arange(len(flat))
+    if len(rest):
+        pick = np.concatenate([pick, rest[group_first(flat[rest], d2[rest])]])
+    return pick
+
+
 class CsfGrid:
     """CSF in three steps, exact to the reference library on the tile's points.
 
@@ -167,44 +240,32 @@ class CsfGrid:
         self.tiles_run = 0
 
     def accumulate(self, x: np.ndarray, y: np.ndarray, z: np.ndarray) -> None:
-        if len(x) == 0:
+        self.merge(node_candidates(self.lattice, x, y, z, self.z_ref))
+
+    def merge(self, candidates: np.ndarray) -> None:
+        """Take the nearest points per node of one or more chunks (:func:`node_candidates` on
+        this lattice and ``z_ref``, in reading order): a node keeps the nearest of the point
+        it had and the candidates, the earliest of equally near ones (so chunks merged in
+        reading order give the first nearest point, as the reference CSF)."""
+        if not len(candidates):
             return
-        u, v = self.lattice.local(x, y)
-        col = np.floor(u + 0.5).astype(np.int64)
-        row = np.floor(v + 0.5).astype(np.int64)
-        self.lattice.check(col, row)
-        du = (u - col).astype(np.float32)
-        dv = (v - row).astype(np.float32)
-        del u, v
+        du, dv = candidates["du"], candidates["dv"]
         d2 = du * du
         d2 += dv * dv
-        flat = row * self.lattice.nx
-        flat += col
-        del col, row
-        pick = self._nearest_per_node(flat, d2)
-        rows, cols = np.divmod(flat[pick], self.lattice.nx)
+        # several chunks' candidates at once: the first nearest of each node's, in their order
+        pick = group_first(candidates["node"], d2)
+        if len(pick) < len(candidates):
+            candidates, d2 = candidates[np.sort(pick)], d2[np.sort(pick)]
+        rows, cols = np.divmod(candidates["node"], self.lattice.nx)
         old_du = self.rep_du.get(rows, cols)
         old_dv = self.rep_dv.get(rows, cols)
-        better = np.isnan(old_du) | (d2[pick] < old_du * old_du + old_dv * old_dv)
-        rows, cols, pick = rows[better], cols[better], pick[better]
-        self.rep_du.set(rows, cols, du[pick])
-        self.rep_dv.set(rows, cols, dv[pick])
-        self.rep_z.set(rows, cols, (np.asarray(z, dtype=np.float64)[pick] - self.z_ref).astype(np.float32))
+        better = np.isnan(old_du) | (d2 < old_du * old_du + old_dv * old_dv)
+        rows, cols, kept = rows[better], cols[better], candidates[better]
+        self.rep_du.set(rows, cols, kept["du"])
+        self.rep_dv.set(rows, cols, kept["dv"])
+        self.rep_z.set(rows, cols, kept["z"])
 
-    def _nearest_per_node(self, flat: np.ndarray, d2: np.ndarray) -> np.ndarray:
-        """:func:`group_first` of ``(flat, d2)``: a node's nearest point is among its points
-        within ``NEAR_NODE_STEPS`` when it has any (a few per cent of a dense cloud), so
-        those are sorted first, and only the points of the nodes without one after them."""
-        near = np.flatnonzero(d2 < NEAR_NODE_STEPS * NEAR_NODE_STEPS)
-        if len(near) * 4 > len(d2):
-            return group_first(flat, d2)
-        pick = near[group_first(flat[near], d2[near])]
-        covered = flat[pick]  # sorted: group_first answers in the order of the sorted keys
-        at = np.minimum(np.searchsorted(covered, flat), len(covered) - 1)
-        rest = np.flatnonzero(covered[at] != flat) if len(covered) else np.arange(len(flat))
-        if len(rest):
-            pick = np.concatenate([pick, rest[group_first(flat[rest], d2[rest])]])
-        return pick
+    _nearest_per_node = staticmethod(nearest_per_node)
 
     def _tile_points(self, ext: Window) -> np.ndarray:
         du = self.rep_du.window(ext)
@@ -220,10 +281,12 @@ class CsfGrid:
         nearest = int(np.argmin((xs - sx) ** 2 + (ys - sy) ** 2))
         return np.column_stack([np.r_[xs, sx], np.r_[ys, sy], np.r_[zs, zs[nearest]]])
 
-    def finish(self, progress: Progress = SILENT) -> None:
+    def finish(self, progress: Progress = SILENT, only: Optional[Window] = None) -> None:
         lat = self.lattice
         self.cloth = cloth_all = PagedArray(lat.shape, np.float64, np.nan)
         for core, ext in fitting_tiles(lat.shape, self.tile_nodes, self.halo_nodes, progress):
+            if only is not None and not windows_meet(core, only):
+                continue
             if not self.rep_du.has_pages(core) or not (~np.isnan(self.rep_du.window(core))).any():
                 continue
             pts = self._tile_points(ext)

@@ -17,6 +17,11 @@ Conventions:
   :data:`CHUNK_THREADS`; the grid takes them and the writer writes them in reading order,
   so the output is the same with any number of threads. The output goes through
   :class:`~..pointcloud.CloudWriter` (a temporary file moved into place on success).
+* A cloud wider or longer than a block (``block_m``, :data:`~.lattice.BLOCK_M`: a drive) goes
+  block by block instead (:mod:`.blocks`): read once into a spool cut by block, then each
+  block's grid over the block and its halo, so that no grid holds the drive; the classes are
+  those of one grid, the output's points grouped by block. ``block_m=None``: one grid over
+  the whole cloud, the points in their order.
 * Ground is class 2 (:data:`~..pointcloud.GROUND_CLASS`); only the ``returns`` of the
   parameters are classified, the other points keep their class.
 * Log messages are :class:`~..errors.Message` templates, reported through ``progress``.
@@ -47,7 +52,7 @@ from ..pointcloud import (
     output_header,
 )
 from .csf import CSF_BUFFER_M, CSF_TILE_M, CsfGrid, CsfParams, csf_available
-from .lattice import BoundsXY, GroundGrid, OutsideGridError
+from .lattice import BLOCK_M, BoundsXY, GroundGrid, OutsideGridError
 from .params import AUTO_ENGINES, Params, engine_name, method_name, method_params
 from .pdal import PdalError, PdalRunner, find_pdal_runner, run_pdal_engine
 from .smrf import SMRF_TILE_M, SmrfGrid
@@ -299,12 +304,25 @@ def two_passes(read: Callable[[Progress, bool], Iterable[ChunkSource]], grid: Gr
 def _builtin_engine(source: CloudSource, output_path: str, params: Params,
                     region: Optional[CropRegion], header: Any, out_crs_wkt: Optional[str],
                     reset_classes: bool, chunk_points: int, tile_size_m: Optional[float],
-                    tile_buffer_m: Optional[float], progress: Progress) -> Tuple[int, int, List[str]]:
+                    tile_buffer_m: Optional[float], block_m: Optional[float],
+                    progress: Progress) -> Tuple[int, int, List[str]]:
     warnings: List[str] = []
     bounds = grid_bounds(source.bounds_xy, region)
     area = None if region is None else region.geometry
+    out_header = output_header(header, out_crs_wkt)
+    spool_folder = os.path.dirname(output_path)
+    has_work = bounds is not None and source.point_count > 0
+    room = has_work and room_to_spool(source.point_count, header.point_format.size, spool_folder)
+    plan = None
+    if room and block_m and bounds is not None:
+        from .blocks import BlockPlan
+
+        plan = BlockPlan(params, bounds, block_m, tile_size_m, tile_buffer_m)
+        if plan.n_blocks > 1 and max(bounds[2] - bounds[0], bounds[3] - bounds[1]) > block_m:
+            return _builtin_blocks(source, output_path, out_header, plan, params, region, reset_classes,
+                                   chunk_points, progress)
     grid: Optional[GroundGrid] = None
-    if bounds is not None and source.point_count > 0:
+    if has_work and bounds is not None:
         grid = make_grid(params, bounds, float(source.bounds[2]), tile_size_m, tile_buffer_m)
 
     # the crop of each chunk by its first point's cloud index, when the cloud is read a second
@@ -329,9 +347,6 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
             masks[key] = np.packbits(region.mask(chunk.x, chunk.y))
         return chunk[np.unpackbits(masks[key], count=len(chunk)).astype(bool)]
 
-    out_header = output_header(header, out_crs_wkt)
-    spool_folder = os.path.dirname(output_path)
-    room = grid is not None and room_to_spool(source.point_count, header.point_format.size, spool_folder)
     if grid is not None and not room:
         progress.info("Not enough free disk space in {folder} to keep the points between the two passes: "
                       "the cloud is read twice", folder=spool_folder)
@@ -351,6 +366,33 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
     return n_out, n_ground, warnings
 
 
+def _builtin_blocks(source: CloudSource, output_path: str, out_header: Any, plan: Any, params: Params,
+                    region: Optional[CropRegion], reset_classes: bool, chunk_points: int,
+                    progress: Progress) -> Tuple[int, int, List[str]]:
+    """:func:`_builtin_engine` block by block (:mod:`.blocks`): a cloud larger than a block."""
+    from .blocks import classify_by_blocks
+
+    area = None if region is None else region.geometry
+
+    def read(reading: Progress) -> Iterator[Any]:
+        for _, chunk in source.iter_indexed_chunks(chunk_points, reading, area=area):
+            yield chunk
+
+    warnings: List[str] = []
+    with CloudWriter(output_path, out_header) as writer:
+        try:
+            n_eligible, n_ground = classify_by_blocks(
+                read, plan, params, float(source.bounds[2]), reset_classes, writer, os.path.dirname(output_path),
+                chunk_points, region, progress)
+        except OutsideGridError as e:
+            raise InputError("Cannot read {path}: the file is corrupt ({detail})", path=source.path, detail=str(e))
+        n_out = writer.point_count
+    if n_out and not n_eligible:
+        warnings.append(Message("No point of {path} has the returns '{returns}': nothing was "
+                                "classified", path=source.path, returns=params.returns))
+    return n_out, n_ground, warnings
+
+
 # --------------------------------------------------------------------------------------
 # Entry points
 # --------------------------------------------------------------------------------------
@@ -362,6 +404,7 @@ def classify_ground(input_path: Union[str, CloudSource], output_path: str, metho
                     chunk_points: int = DEFAULT_CHUNK_POINTS,
                     tile_size_m: Optional[float] = None,
                     tile_buffer_m: Optional[float] = None,
+                    block_m: Optional[float] = BLOCK_M,
                     progress: Progress = SILENT) -> GroundResult:
     """Crop the cloud ``input_path`` (a LAS/LAZ file, a folder of tiles or a ``.vpc``) to
     ``region`` and write it to ``output_path`` with ground as class 2, by ``engine``
@@ -370,7 +413,9 @@ def classify_ground(input_path: Union[str, CloudSource], output_path: str, metho
     ``crs_wkt`` replaces the file's CRS; without it the file must have one (an error
     otherwise: a CRS is never guessed). Which engine runs: :func:`pdal_runner_for`. When
     PDAL runs under "auto" and fails, the failure is a warning and the built-in engine runs
-    (if it can run the method); under "pdal" its :class:`PdalError` is raised.
+    (if it can run the method); under "pdal" its :class:`PdalError` is raised. The built-in
+    engine works a cloud larger than ``block_m`` metres block by block (:mod:`.blocks`; None:
+    one grid over the whole cloud).
     """
     output_path = os.path.abspath(os.fspath(output_path))
     method = method_name(method)
@@ -419,7 +464,7 @@ def classify_ground(input_path: Union[str, CloudSource], output_path: str, metho
 
     n_out, n_ground, warnings = _builtin_engine(
         source, output_path, params, region, header, crs_wkt, reset_classes,
-        chunk_points, tile_size_m, tile_buffer_m, progress)
+        chunk_points, tile_size_m, tile_buffer_m, block_m, progress)
     result.n_output, result.n_ground, result.engine = n_out, n_ground, "builtin"
     for w in warnings:
         result.warnings.append(w)
@@ -520,7 +565,7 @@ def run_ground_filter(input_path: Union[str, CloudSource], output_path: str, met
                       crop_polygons: Optional[Iterable[Any]] = None, crop_buffer_m: float = 0.0,
                       crs_wkt: Optional[str] = None, reset_classes: bool = False,
                       pdal_executable: Optional[str] = None, params: Optional[Params] = None,
-                      chunk_points: int = DEFAULT_CHUNK_POINTS,
+                      chunk_points: int = DEFAULT_CHUNK_POINTS, block_m: Optional[float] = BLOCK_M,
                       progress: Progress = SILENT) -> GroundResult:
     """The ``roadsigns:groundfilter`` algorithm: crop by polygons (shapely, WKB or WKT in
     the cloud's CRS) grown by ``crop_buffer_m``, then classify ground.
@@ -533,4 +578,4 @@ def run_ground_filter(input_path: Union[str, CloudSource], output_path: str, met
     return classify_ground(input_path, output_path, method=method, engine=engine,
                            params=params, region=region, crs_wkt=crs_wkt,
                            reset_classes=reset_classes, pdal_executable=pdal_executable,
-                           chunk_points=chunk_points, progress=progress)
+                           chunk_points=chunk_points, block_m=block_m, progress=progress)

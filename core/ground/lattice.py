@@ -80,6 +80,13 @@ class Lattice:
             raise OutsideGridError("points outside the bounds in the file header")
 
 
+#: Side of a block of the built-in engine run block by block (metres; :mod:`.blocks`, the
+#: engine's ``block_m``): the ground surface of one block and its halo is held at a time.
+#: Large enough that a block's grid reaches its eight neighbours only (CSF: a 32 m square and
+#: a buffer; SMRF: a halo of about 50 m at the defaults), small enough that a drive's grid is
+#: cut into many: at CSF's 1 m cloth, a 512 m block of a 50 m corridor is a few MB of grid.
+BLOCK_M = 512.0
+
 #: Side of a :class:`PagedArray`'s pages (cells).
 PAGE_CELLS = 64
 #: The most cells a lattice of :class:`PagedArray` may span (its page table: 4 bytes a page,
@@ -203,6 +210,20 @@ def fitting_tiles(shape: Tuple[int, int], core: int, halo: int,
         yield pair
 
 
+def on_lattice(lattice: Lattice, x: np.ndarray, y: np.ndarray, nodes: bool) -> np.ndarray:
+    """Which points fall on ``lattice``: at a node (CSF, nearest node) or in a cell (SMRF)."""
+    u, v = lattice.local(x, y)
+    shift = 0.5 if nodes else 0.0
+    col, row = np.floor(u + shift), np.floor(v + shift)
+    return (col >= 0) & (col < lattice.nx) & (row >= 0) & (row < lattice.ny)
+
+
+def windows_meet(a: Window, b: Window) -> bool:
+    """Whether two windows of a grid share a cell."""
+    return (a[0].start < b[0].stop and b[0].start < a[0].stop
+            and a[1].start < b[1].stop and b[1].start < a[1].stop)
+
+
 def inner_window(core: Window, ext: Window) -> Window:
     """``core`` in the coordinates of an array cut to ``ext``."""
     return (slice(core[0].start - ext[0].start, core[0].stop - ext[0].start),
@@ -241,8 +262,13 @@ class GroundGrid(Protocol):
     def accumulate(self, x: np.ndarray, y: np.ndarray, z: np.ndarray) -> None:
         """Take a chunk of points (pass 1)."""
 
-    def finish(self, progress: Progress = SILENT) -> None:
-        """Compute the ground surface, tile by tile."""
+    def merge(self, candidates: np.ndarray) -> None:
+        """Take what :meth:`accumulate` keeps of a chunk, found on this grid's lattice
+        beforehand (pass 1 in parallel, :mod:`.blocks`)."""
+
+    def finish(self, progress: Progress = SILENT, only: Optional[Window] = None) -> None:
+        """Compute the ground surface, tile by tile (only the tiles that meet the window
+        ``only`` when given: the cells the points to classify need)."""
 
     def classify(self, x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.ndarray:
         """Ground mask of a chunk of points (pass 2)."""

@@ -21,7 +21,7 @@ from scipy import ndimage
 from scipy.spatial import cKDTree
 
 from ..errors import SILENT, Progress
-from .lattice import BoundsXY, Lattice, finished, fitting_tiles, group_first, inner_window
+from .lattice import BoundsXY, Lattice, Window, finished, fitting_tiles, group_first, inner_window, windows_meet
 
 #: SMRF tile size (core) in metres; the buffer follows from the window.
 SMRF_TILE_M = 1024.0
@@ -138,6 +138,29 @@ def smrf_surface(zmin: np.ndarray, params: SmrfParams,
     return zpro, slope
 
 
+#: A chunk's lowest point in a cell (:func:`cell_candidates`): the cell (flat index
+#: ``row * nx + col`` on its lattice) and the point's height (metres).
+CELL_CANDIDATE_DTYPE = np.dtype([("cell", "i8"), ("z", "f8")])
+
+
+def cell_candidates(lattice: Lattice, x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.ndarray:
+    """The lowest height of the points ``(x, y, z)`` in each cell of ``lattice`` they fall in, as
+    :data:`CELL_CANDIDATE_DTYPE` rows; :class:`~.lattice.OutsideGridError` when a point falls
+    in no cell. Needs the lattice only (:meth:`SmrfGrid.merge` takes them)."""
+    if len(x) == 0:
+        return np.zeros(0, CELL_CANDIDATE_DTYPE)
+    u, v = lattice.local(x, y)
+    col = np.floor(u).astype(np.int64)
+    row = np.floor(v).astype(np.int64)
+    lattice.check(col, row)
+    flat = row * lattice.nx + col
+    zs = np.asarray(z, dtype=np.float64)
+    pick = group_first(flat, zs)
+    out = np.empty(len(pick), CELL_CANDIDATE_DTYPE)
+    out["cell"], out["z"] = flat[pick], zs[pick]
+    return out
+
+
 class SmrfGrid:
     """SMRF in three steps: ``accumulate`` (lowest point per cell, streaming), ``finish``
     (the grid stage, tile by tile), ``classify`` (points against ZIpro)."""
@@ -153,25 +176,21 @@ class SmrfGrid:
         self.slope: Optional[np.ndarray] = None
 
     def accumulate(self, x: np.ndarray, y: np.ndarray, z: np.ndarray) -> None:
-        if len(x) == 0:
-            return
-        u, v = self.lattice.local(x, y)
-        col = np.floor(u).astype(np.int64)
-        row = np.floor(v).astype(np.int64)
-        self.lattice.check(col, row)
-        flat = row * self.lattice.nx + col
-        zs = np.asarray(z, dtype=np.float64)
-        pick = group_first(flat, zs)
-        cells = flat[pick]
-        current = self.zmin.ravel()
-        current[cells] = np.minimum(current[cells], zs[pick])
+        self.merge(cell_candidates(self.lattice, x, y, z))
 
-    def finish(self, progress: Progress = SILENT) -> None:
+    def merge(self, candidates: np.ndarray) -> None:
+        """Take the lowest points per cell of one or more chunks (:func:`cell_candidates` on
+        this lattice)."""
+        if not len(candidates):
+            return
+        np.minimum.at(self.zmin.ravel(), candidates["cell"], candidates["z"])
+
+    def finish(self, progress: Progress = SILENT, only: Optional[Window] = None) -> None:
         shape = (int(self.zmin.shape[0]), int(self.zmin.shape[1]))
         self.zpro = zpro_all = np.full(shape, np.nan)
         self.slope = slope_all = np.full(shape, np.nan, dtype=np.float32)
         for core, ext in fitting_tiles(shape, self.tile_cells, self.halo_cells, progress):
-            if not np.isfinite(self.zmin[core]).any():
+            if (only is not None and not windows_meet(core, only)) or not np.isfinite(self.zmin[core]).any():
                 continue
             zpro, slope = smrf_surface(self.zmin[ext], self.params,
                                        (ext[0].start, ext[1].start))

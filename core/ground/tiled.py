@@ -54,13 +54,13 @@ from .engine import (
     room_to_spool,
     two_passes,
 )
-from .lattice import Lattice, OutsideGridError
+from .lattice import Lattice, OutsideGridError, on_lattice
 from .params import Params, engine_name, method_name, method_params
 from .pdal import PdalError
 from .smrf import SmrfGrid
 
 #: Spooled halo points: world coordinates only (the grids need nothing else).
-_HALO_DTYPE = np.dtype([("x", "f8"), ("y", "f8"), ("z", "f8")])
+HALO_DTYPE = np.dtype([("x", "f8"), ("y", "f8"), ("z", "f8")])
 
 
 def halo_m(params: Params, tile_buffer_m: Optional[float] = None) -> float:
@@ -75,10 +75,11 @@ def halo_m(params: Params, tile_buffer_m: Optional[float] = None) -> float:
 
 
 def tile_grid(params: Params, cloud_bounds: BBoxXY, tile_box: BBoxXY,
-              tile_buffer_m: Optional[float] = None) -> Optional[BBoxXY]:
+              tile_buffer_m: Optional[float] = None, tile_size_m: Optional[float] = None) -> Optional[BBoxXY]:
     """The bounds to build tile ``tile_box``'s grid over (:func:`.engine.make_grid`), for a
-    cloud whose whole-cloud grid covers ``cloud_bounds`` (the cloud's bounds within the crop);
-    None when the tile is outside them. See the module doc."""
+    cloud whose whole-cloud grid covers ``cloud_bounds`` (the cloud's bounds within the crop)
+    with CSF squares of ``tile_size_m`` and buffers of ``tile_buffer_m`` (default: the
+    method's); None when the tile is outside them. See the module doc."""
     x0, y0, x1, y1 = cloud_bounds
     box = (max(tile_box[0], x0), max(tile_box[1], y0), min(tile_box[2], x1), min(tile_box[3], y1))
     if box[0] > box[2] or box[1] > box[3]:
@@ -87,8 +88,10 @@ def tile_grid(params: Params, cloud_bounds: BBoxXY, tile_box: BBoxXY,
         h = halo_m(params)
         return (max(box[0] - h, x0), max(box[1] - h, y0), min(box[2] + h, x1), min(box[3] + h, y1))
     whole = Lattice.covering(cloud_bounds, params.resolution)
-    probe: Any = CsfGrid((0.0, 0.0, 1.0, 1.0), 0.0, params,
-                         **({} if tile_buffer_m is None else {"tile_buffer_m": tile_buffer_m}))
+    sizes = {} if tile_buffer_m is None else {"tile_buffer_m": tile_buffer_m}
+    if tile_size_m:
+        sizes["tile_size_m"] = tile_size_m
+    probe: Any = CsfGrid((0.0, 0.0, 1.0, 1.0), 0.0, params, **sizes)
     core, reach = probe.tile_nodes, -(-probe.halo_nodes // probe.tile_nodes)  # squares of buffer
     step = whole.step
 
@@ -245,7 +248,7 @@ def _spool_halos(source: CloudSource, work: List[int], grown: Dict[int, BBoxXY],
     for _, t, pts in source.points_near_tiles(boxes, chunk_points, progress):
         _, x, y, z = eligible_xyz(cropped(pts, region), params)
         if len(x):
-            rows = np.zeros(len(x), _HALO_DTYPE)
+            rows = np.zeros(len(x), HALO_DTYPE)
             rows["x"], rows["y"], rows["z"] = x, y, z
             path = spools.setdefault(t, os.path.join(folder, f"halo_{t}.bin"))
             with open(path, "ab") as f:
@@ -270,8 +273,8 @@ def _classify_tile(source: CloudSource, k: int, bounds: BBoxXY, spool_path: Opti
 
     def add_halo(grid: Any) -> None:
         if spool_path is not None:
-            halo = np.fromfile(spool_path, dtype=_HALO_DTYPE)
-            on = _on_grid(grid, halo["x"], halo["y"], isinstance(params, CsfParams))
+            halo = np.fromfile(spool_path, dtype=HALO_DTYPE)
+            on = on_lattice(grid.lattice, halo["x"], halo["y"], isinstance(params, CsfParams))
             grid.accumulate(halo["x"][on], halo["y"][on], halo["z"][on])
 
     writer = CloudWriter(path, header)
@@ -290,15 +293,6 @@ def _classify_tile(source: CloudSource, k: int, bounds: BBoxXY, spool_path: Opti
     else:
         writer.abort()
     return n_out, n_ground
-
-
-def _on_grid(grid: Any, x: np.ndarray, y: np.ndarray, nodes: bool) -> np.ndarray:
-    """Which points fall on ``grid``'s lattice: at a node (CSF, nearest node) or in a cell."""
-    lat: Lattice = grid.lattice
-    u, v = lat.local(x, y)
-    shift = 0.5 if nodes else 0.0
-    col, row = np.floor(u + shift), np.floor(v + shift)
-    return (col >= 0) & (col < lat.nx) & (row >= 0) & (row < lat.ny)
 
 
 def _tile_chunks(source: CloudSource, tile: Tile, chunk_points: int, progress: Progress) -> Iterable[Any]:

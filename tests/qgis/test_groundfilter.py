@@ -63,6 +63,19 @@ def test_ground_agrees_with_truth(qgis_process, road, tmp_path, method):
     assert results["GROUND_POINTS"] == int(np.sum(cls == 2))
 
 
+def test_every_step_is_printed_through_qgis_process(qgis_process, road, tmp_path):
+    """The steps reach qgis_process's output (printed without --json), the ground surface's
+    too: it is fitted while the CSF library's own output is sent to devnull, and what
+    qgis_process had buffered before is written first, not lost with it."""
+    path, _ = road
+    run = qgis_process("run", ALG, "--", f"INPUT={path}", "ENGINE=2", f"OUTPUT={tmp_path / 'g.laz'}")
+    assert run.returncode == 0, run.text
+    steps = [line.lstrip(".0123456789") for line in run.stdout.splitlines()]
+    assert any(s.startswith("Reading road.laz: ") for s in steps), run.stdout
+    assert any(s.startswith("Fitting the ground surface: tile 1 of ") for s in steps), run.stdout
+    assert any(s.startswith("Classifying and writing the points: part 1 of ") for s in steps), run.stdout
+
+
 @pytest.fixture
 def no_pdal(qgis_process, tmp_path_factory, monkeypatch):
     """The shared qgis_process as a QGIS without PDAL (bindings hidden, no executable)."""
