@@ -11,6 +11,9 @@ PDAL run with the built-in run of the same method and crop, and the time ratio P
 built-in. Parameters are the algorithm's defaults (threshold 0.2 m, 0.5 m cells), classes
 reset, as a user of ``roadsigns:groundfilter`` gets them.
 
+The built-in engine works a cloud larger than a block (512 m) block by block; ``--block-m 0``
+runs it with one grid over the whole cloud, as before 3 December.
+
 PDAL: ``--pdal-executable`` (default ``../shared/tools/pdal-2.9.2/bin/pdal``, else
 ROADSIGNS_PDAL_EXECUTABLE, else PATH or QGIS's bin folder) and the ``pdal`` module of this
 Python (``make setup`` installs the bindings from ``../shared/tools/pdal-2.9.2``); an engine
@@ -145,7 +148,8 @@ def stage_ground(spec: dict) -> dict:
         spec["src"], spec["dst"], method=spec["method"],
         engine="builtin" if spec["engine"] == "builtin" else "pdal", params=params,
         crop_polygons=crop, reset_classes=True, chunk_points=spec["chunk_points"],
-        pdal_executable=spec["pdal_executable"] if spec["engine"] == "pdal-cli" else None)
+        pdal_executable=spec["pdal_executable"] if spec["engine"] == "pdal-cli" else None,
+        **({} if spec.get("block_m", -1) < 0 else {"block_m": spec["block_m"] or None}))
     seconds = time.perf_counter() - t0
     if res.engine != spec["engine"]:
         raise SystemExit(f"asked for {spec['engine']}, {res.engine} ran")
@@ -162,7 +166,8 @@ def _run_stage(args: list) -> dict:
 
 
 def _points(path: str):
-    """The stored X, Y, Z and the classification of a LAS/LAZ file, read in chunks."""
+    """The stored X, Y, Z and the classification of a LAS/LAZ file, read in chunks, in the
+    order of their coordinates."""
     import laspy
     import numpy as np
 
@@ -170,7 +175,9 @@ def _points(path: str):
     with laspy.open(path, laz_backend=laspy.LazBackend.detect_available()) as reader:
         for chunk in reader.chunk_iterator(1_000_000):
             parts.append(np.column_stack([chunk.X, chunk.Y, chunk.Z, chunk.classification]))
-    return np.concatenate(parts) if parts else np.zeros((0, 4), np.int64)
+    points = np.concatenate(parts) if parts else np.zeros((0, 4), np.int64)
+    # sorted by X, Y, Z: the built-in engine writes a cloud larger than a block block by block
+    return points[np.lexsort((points[:, 2], points[:, 1], points[:, 0]))]
 
 
 def _pdal_executable(given):
@@ -222,6 +229,8 @@ def main(argv=None) -> int:
     p.add_argument("--pdal-executable", help="the pdal application (default: ../shared/tools/pdal-2.9.2)")
     p.add_argument("--no-baseline", action="store_true", help="skip the plain laspy copy")
     p.add_argument("--chunk-points", type=int, default=1_000_000)
+    p.add_argument("--block-m", type=float, default=-1.0,
+                   help="the built-in engine's block side (m); 0: one grid over the whole cloud; default: the engine's")
     p.add_argument("--out-dir", default=os.path.join(HERE, "out"))
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--keep", action="store_true", help="keep the generated/output files")
@@ -276,10 +285,11 @@ def main(argv=None) -> int:
                 spec = {"src": src, "dst": dst, "method": method, "engine": engine, "crop": crop,
                         "corridor_m": args.corridor_m, "trajectory": args.trajectory or "",
                         "threshold": args.threshold, "cell": args.cell,
-                        "chunk_points": args.chunk_points, "pdal_executable": executable}
+                        "chunk_points": args.chunk_points, "pdal_executable": executable,
+                        "block_m": args.block_m}
                 r = _run_stage(["ground", json.dumps(spec)])
                 r.update(method=method, crop=crop, engine=engine)
-                points = _points(dst)
+                points = _points(dst) if len(engines) > 1 else None   # compared with PDAL's only
                 if engine == "builtin":
                     reference = (r, points)
                 elif reference is not None:

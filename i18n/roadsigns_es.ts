@@ -1122,224 +1122,224 @@
         <translation>Recorta una nube LAS/LAZ y clasifica el suelo (clase 2) con CSF o SMRF, mediante PDAL o el motor integrado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="95" />
+        <location filename="../algorithms/groundfilter.py" line="97" />
         <source>Point cloud (LAS/LAZ)</source>
         <translation>Nube de puntos (LAS/LAZ)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="95" />
+        <location filename="../algorithms/groundfilter.py" line="97" />
         <source>The mobile-mapping cloud, LAS 1.2-1.4 or LAZ, any size (it is read in chunks).</source>
         <translation>La nube de cartografía móvil, LAS 1.2-1.4 o LAZ, de cualquier tamaño (se lee por bloques).</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="98" />
+        <location filename="../algorithms/groundfilter.py" line="100" />
         <source>Crop layer (optional)</source>
         <translation>Capa de recorte (opcional)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="98" />
+        <location filename="../algorithms/groundfilter.py" line="100" />
         <source>Keep only points inside these polygons, or within the crop buffer of these points or lines (e.g. the panorama stations). Empty keeps the whole cloud.</source>
         <translation>Conserva solo los puntos dentro de estos polígonos, o dentro del búfer de recorte de estos puntos o líneas (p. ej. las estaciones de panorama). Vacío conserva la nube entera.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="102" />
+        <location filename="../algorithms/groundfilter.py" line="104" />
         <source>Crop buffer (m)</source>
         <translation>Búfer de recorte (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="102" />
+        <location filename="../algorithms/groundfilter.py" line="104" />
         <source>Grow the crop geometries by this many metres; needed (&gt; 0) for a point or line layer.</source>
         <translation>Amplía las geometrías de recorte en estos metros; necesario (&gt; 0) para una capa de puntos o de líneas.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="106" />
+        <location filename="../algorithms/groundfilter.py" line="108" />
         <source>Ground method</source>
         <translation>Método de suelo</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="106" />
+        <location filename="../algorithms/groundfilter.py" line="108" />
         <source>CSF (cloth simulation)</source>
         <translation>CSF (simulación de tela)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="106" />
+        <location filename="../algorithms/groundfilter.py" line="108" />
         <source>SMRF (simple morphological filter)</source>
         <translation>SMRF (filtro morfológico simple)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="106" />
+        <location filename="../algorithms/groundfilter.py" line="108" />
         <source>CSF suits roads and gentle terrain; SMRF suits steeper or rougher terrain.</source>
         <translation>CSF es adecuado para calles y terreno suave; SMRF, para terreno más empinado o accidentado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="110" />
+        <location filename="../algorithms/groundfilter.py" line="112" />
         <source>Engine</source>
         <translation>Motor</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="110" />
+        <location filename="../algorithms/groundfilter.py" line="112" />
         <source>PDAL</source>
         <translation>PDAL</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="110" />
+        <location filename="../algorithms/groundfilter.py" line="112" />
         <source>Built-in</source>
         <translation>Integrado</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="117" />
+        <location filename="../algorithms/groundfilter.py" line="119" />
         <source>Ground distance threshold (m)</source>
         <translation>Umbral de distancia al suelo (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="117" />
+        <location filename="../algorithms/groundfilter.py" line="119" />
         <source>Points within this height of the ground surface are ground (PDAL's threshold option). PDAL's default is 0.5 m; 0.2 m suits dense mobile-mapping clouds, where it keeps the lowest parts of cars, walls and street furniture off the ground class.</source>
         <translation>Los puntos a menos de esta altura de la superficie del suelo son suelo (opción threshold de PDAL). El valor por defecto de PDAL es 0,5 m; 0,2 m es adecuado para nubes densas de cartografía móvil, en las que deja fuera de la clase suelo las partes más bajas de coches, muros y mobiliario urbano.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="123" />
+        <location filename="../algorithms/groundfilter.py" line="125" />
         <source>Cloth resolution / cell size (m)</source>
         <translation>Resolución de la tela / tamaño de celda (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="123" />
+        <location filename="../algorithms/groundfilter.py" line="125" />
         <source>CSF's cloth resolution or SMRF's cell size, in metres (PDAL's default: 1 m).</source>
         <translation>Resolución de la tela de CSF o tamaño de celda de SMRF, en metros (valor por defecto de PDAL: 1 m).</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="127" />
+        <location filename="../algorithms/groundfilter.py" line="129" />
         <source>Cloud CRS (when the file has none)</source>
         <translation>SRC de la nube (si el archivo no tiene)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="127" />
+        <location filename="../algorithms/groundfilter.py" line="129" />
         <source>The cloud's CRS if the file does not record one; a CRS in the file is replaced by it. The CRS is never guessed.</source>
         <translation>El SRC de la nube si el archivo no registra ninguno; un SRC presente en el archivo se sustituye por este. El SRC nunca se adivina.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="131" />
+        <location filename="../algorithms/groundfilter.py" line="133" />
         <source>Reset existing classes</source>
         <translation>Restablecer las clases existentes</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="131" />
+        <location filename="../algorithms/groundfilter.py" line="133" />
         <source>Set every non-ground point to class 1 (unclassified) instead of keeping its class.</source>
         <translation>Asigna la clase 1 (sin clasificar) a todos los puntos que no son suelo en lugar de conservar su clase.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="139" />
+        <location filename="../algorithms/groundfilter.py" line="141" />
         <source>Ground-classified cloud</source>
         <translation>Nube con suelo clasificado</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="139" />
+        <location filename="../algorithms/groundfilter.py" line="141" />
         <source>LAZ (*.laz);;LAS (*.las)</source>
         <translation>LAZ (*.laz);;LAS (*.las)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="146" />
+        <location filename="../algorithms/groundfilter.py" line="148" />
         <source>Engine that ran</source>
         <translation>Motor utilizado</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="147" />
+        <location filename="../algorithms/groundfilter.py" line="149" />
         <source>Points read</source>
         <translation>Puntos leídos</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="148" />
+        <location filename="../algorithms/groundfilter.py" line="150" />
         <source>Points written</source>
         <translation>Puntos escritos</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="149" />
+        <location filename="../algorithms/groundfilter.py" line="151" />
         <source>Ground points</source>
         <translation>Puntos de suelo</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="159" />
+        <location filename="../algorithms/groundfilter.py" line="161" />
         <source>The crop layer holds points or lines: give a crop buffer in metres (&gt; 0) to make a corridor around them</source>
         <translation>La capa de recorte contiene puntos o líneas: indique un búfer de recorte en metros (&gt; 0) para formar un corredor a su alrededor</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="164" />
+        <location filename="../algorithms/groundfilter.py" line="166" />
         <source>Reprojecting the crop layer from {} to {}</source>
         <translation>Reproyectando la capa de recorte de {} a {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="266" />
+        <location filename="../algorithms/groundfilter.py" line="268" />
         <source>Engine: {}; method: {}; {} points read, {} written, {} ground</source>
         <translation>Motor: {}; método: {}; {} puntos leídos, {} escritos, {} de suelo</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="170" />
+        <location filename="../algorithms/groundfilter.py" line="172" />
         <source>Cancelled: nothing was written.</source>
         <translation>Cancelado: no se escribió nada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="179" />
+        <location filename="../algorithms/groundfilter.py" line="181" />
         <source>The crop layer {} has no feature: nothing to crop by. Leave the crop layer empty to process the whole cloud</source>
         <translation>La capa de recorte {} no tiene entidades: no hay nada con qué recortar. Deje vacía la capa de recorte para procesar toda la nube</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="183" />
+        <location filename="../algorithms/groundfilter.py" line="185" />
         <source>The crop layer {} has no geometry (its {} features are empty): nothing to crop by</source>
         <translation>La capa de recorte {} no tiene geometría (sus {} entidades están vacías): no hay nada con qué recortar</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="198" />
+        <location filename="../algorithms/groundfilter.py" line="200" />
         <source>The crop area (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}) does not overlap the point cloud {} (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}): nothing would be kept</source>
         <translation>El área de recorte (x {:.1f} a {:.1f}, y {:.1f} a {:.1f}) no se superpone con la nube de puntos {} (x {:.1f} a {:.1f}, y {:.1f} a {:.1f}): no se conservaría nada</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="211" />
+        <location filename="../algorithms/groundfilter.py" line="213" />
         <source>PDAL said: {}</source>
         <translation>PDAL dijo: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="212" />
+        <location filename="../algorithms/groundfilter.py" line="214" />
         <source>PDAL failed: {}</source>
         <translation>PDAL falló: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="233" />
+        <location filename="../algorithms/groundfilter.py" line="235" />
         <source>The output {} must not be the input file</source>
         <translation>La salida {} no debe ser el archivo de entrada</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="135" />
+        <location filename="../algorithms/groundfilter.py" line="137" />
         <source>Write one tile per input tile</source>
         <translation>Escribir una tesela por cada tesela de entrada</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="255" />
+        <location filename="../algorithms/groundfilter.py" line="257" />
         <source>Writing one tile per input tile to the folder {}, listed in {}</source>
         <translation>Escribiendo una tesela por cada tesela de entrada en la carpeta {}, enumeradas en {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="110" />
+        <location filename="../algorithms/groundfilter.py" line="112" />
         <source>Auto (the faster engine: built-in)</source>
         <translation>Automático (el motor más rápido: el integrado)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="110" />
+        <location filename="../algorithms/groundfilter.py" line="112" />
         <source>Auto: the engine measured faster for the method, today the built-in engine for both (PDAL when the built-in CSF's package is missing). PDAL: its Python bindings or the pdal executable that QGIS has; an error when there is neither.</source>
         <translation>Automático: el motor que resultó más rápido en las mediciones para el método; hoy, el motor integrado para ambos (PDAL cuando falta el paquete del CSF integrado). PDAL: sus enlaces de Python o el ejecutable pdal que tenga QGIS; un error si no hay ninguno de los dos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="135" />
+        <location filename="../algorithms/groundfilter.py" line="137" />
         <source>Write each input tile to its own file (same name, same header) in a folder named after the output, with a virtual point cloud (.vpc) listing them, instead of one file.</source>
         <translation>Escribe cada tesela de entrada en su propio archivo (mismo nombre, misma cabecera) dentro de una carpeta que lleva el nombre de la salida, con una nube de puntos virtual (.vpc) que las enumera, en lugar de un solo archivo.</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="64" />
-        <source>Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless &lt;i&gt;Reset existing classes&lt;/i&gt; is checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are written unchanged.&lt;br&gt;&lt;br&gt;&lt;b&gt;Crop&lt;/b&gt;: polygons (grown by the crop buffer), or points and lines such as the panorama stations or detection rays, buffered into a corridor. The crop layer is reprojected to the cloud's CRS.&lt;br&gt;&lt;br&gt;&lt;b&gt;Engine&lt;/b&gt;: PDAL runs filters.csf / filters.smrf through its Python bindings or the &lt;i&gt;pdal&lt;/i&gt; executable (on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign inventory), holding the cloud in memory (about 150 bytes a point); the built-in engine runs the same filters in Python, streaming the cloud, so clouds larger than memory work (between its two passes it keeps the points uncompressed on disk beside the output, about 30 bytes a point, so a LAZ is decompressed once). &lt;b&gt;Auto picks the built-in engine&lt;/b&gt; for both methods: measured against PDAL 2.9.2 on two cores it was as fast for CSF on 8 M points (within 10 %) and 1.6 times faster on 38 M, and 1.4 to 1.7 times faster for SMRF, in about 300 MB where PDAL took 5.6 GB for 38 M points (bench/README.md). Auto uses PDAL only when the built-in CSF's Python package (cloth-simulation-filter) is missing; the log says which engine ran and why.&lt;br&gt;&lt;br&gt;&lt;b&gt;Tiles&lt;/b&gt;: the input may be one LAS/LAZ file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc); PDAL takes the tiles one by one, each with its neighbours' points around it. They are written to one file, or, with &lt;i&gt;Write one tile per input tile&lt;/i&gt;, each to a file of its own name in a folder named after the output (out/ground.laz gives the folder out/ground), with a virtual point cloud listing them (out/ground/ground.vpc, the output to give the next stages). Each tile is classified with its neighbours' points around it, so the classes at tile edges are those of a run on the whole cloud.</source>
-        <translation>Lee la nube LAS/LAZ por bloques, conserva los puntos dentro del área de recorte y clasifica los puntos de suelo como clase 2 con el filtro de simulación de tela (CSF, Zhang et al. 2016) o el filtro morfológico simple (SMRF, Pingel et al. 2013), con los parámetros de PDAL (valores por defecto ajustados para nubes densas de cartografía móvil: umbral de 0,2 m, celdas de 0,5 m; los de PDAL son 0,5 m y 1 m). Las demás clases se conservan salvo que se marque &lt;i&gt;Restablecer las clases existentes&lt;/i&gt;. Todas las dimensiones, los bytes extra, los VLR, las escalas y desplazamientos y el SRC se escriben sin cambios.&lt;br&gt;&lt;br&gt;&lt;b&gt;Recorte&lt;/b&gt;: polígonos (ampliados con el búfer de recorte), o puntos y líneas como las estaciones de panorama o los rayos de detección, convertidos en un corredor mediante un búfer. La capa de recorte se reproyecta al SRC de la nube.&lt;br&gt;&lt;br&gt;&lt;b&gt;Motor&lt;/b&gt;: PDAL ejecuta filters.csf / filters.smrf mediante sus enlaces de Python o el ejecutable &lt;i&gt;pdal&lt;/i&gt; (en el PATH, en la carpeta bin de QGIS o configurado en Procesos ▸ Opciones ▸ Proveedores ▸ Road sign inventory), manteniendo la nube en memoria (unos 150 bytes por punto); el motor integrado ejecuta los mismos filtros en Python, procesando la nube en flujo continuo, por lo que funciona con nubes más grandes que la memoria (entre sus dos pasadas guarda los puntos sin comprimir en el disco junto a la salida, unos 30 bytes por punto, de modo que un LAZ se descomprime una sola vez). &lt;b&gt;Automático elige el motor integrado&lt;/b&gt; para ambos métodos: medido frente a PDAL 2.9.2 con dos núcleos, fue igual de rápido para CSF con 8 M de puntos (con una diferencia inferior al 10 %) y 1,6 veces más rápido con 38 M, y de 1,4 a 1,7 veces más rápido para SMRF, con unos 300 MB, mientras que PDAL ocupó 5,6 GB para 38 M de puntos (bench/README.md). Automático usa PDAL solo cuando falta el paquete de Python del CSF integrado (cloth-simulation-filter); el registro indica qué motor se ejecutó y por qué.&lt;br&gt;&lt;br&gt;&lt;b&gt;Teselas&lt;/b&gt;: la entrada puede ser un archivo LAS/LAZ, una carpeta de teselas LAS/LAZ o una nube de puntos virtual (.vpc); PDAL toma las teselas una a una, cada una con los puntos de sus vecinas a su alrededor. Se escriben en un solo archivo o, con &lt;i&gt;Escribir una tesela por cada tesela de entrada&lt;/i&gt;, cada una en un archivo con su propio nombre dentro de una carpeta que lleva el nombre de la salida (out/ground.laz da la carpeta out/ground), con una nube de puntos virtual que las enumera (out/ground/ground.vpc, la salida que se da a las etapas siguientes). Cada tesela se clasifica con los puntos de sus vecinas a su alrededor, de modo que las clases en los bordes de las teselas son las de una ejecución sobre la nube entera.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/groundfilter.py" line="139" />
+        <location filename="../algorithms/groundfilter.py" line="141" />
         <source>The cropped cloud with ground as class 2; LAZ or LAS by the file extension. LAS is about eight times larger (about 30 bytes a point) but needs no compression here nor decompression in the stages that read it next: on a 1 km drive of 38 M points the whole chain ran in 0.84 times the time with a LAS ground cloud. With one tile per input tile: the folder of this name without its extension gets the tiles and &lt;name&gt;.vpc, which is then this output.</source>
         <translation>La nube recortada con el suelo como clase 2; LAZ o LAS según la extensión del archivo. LAS ocupa unas ocho veces más (unos 30 bytes por punto), pero no necesita compresión aquí ni descompresión en las etapas que la leen después: en un recorrido de 1 km con 38 M de puntos, la cadena completa tardó 0,84 veces el tiempo con una nube de suelo LAS. Con una tesela por tesela de entrada: la carpeta con este nombre sin su extensión recibe las teselas y &lt;name&gt;.vpc, que es entonces esta salida.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="64" />
+        <source>Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless &lt;i&gt;Reset existing classes&lt;/i&gt; is checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are written unchanged.&lt;br&gt;&lt;br&gt;&lt;b&gt;Crop&lt;/b&gt;: polygons (grown by the crop buffer), or points and lines such as the panorama stations or detection rays, buffered into a corridor. The crop layer is reprojected to the cloud's CRS.&lt;br&gt;&lt;br&gt;&lt;b&gt;Engine&lt;/b&gt;: PDAL runs filters.csf / filters.smrf through its Python bindings or the &lt;i&gt;pdal&lt;/i&gt; executable (on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign inventory), holding the cloud in memory (about 150 bytes a point); the built-in engine runs the same filters in Python, streaming the cloud, so clouds larger than memory work (between its two passes it keeps the points uncompressed on disk beside the output, about 30 bytes a point, so a LAZ is decompressed once). A cloud wider or longer than 512 m (a drive) is classified block by block, the ground surface of one block at a time, so the memory does not grow with the drive; its points are then written grouped by block. &lt;b&gt;Auto picks the built-in engine&lt;/b&gt; for both methods: measured against PDAL 2.9.2 on two cores it was as fast for CSF on 8 M points (within 10 %) and 1.6 times faster on 38 M, and 1.4 to 1.7 times faster for SMRF, in about 300 MB where PDAL took 5.6 GB for 38 M points (bench/README.md). Auto uses PDAL only when the built-in CSF's Python package (cloth-simulation-filter) is missing; the log says which engine ran and why.&lt;br&gt;&lt;br&gt;&lt;b&gt;Tiles&lt;/b&gt;: the input may be one LAS/LAZ file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc); PDAL takes the tiles one by one, each with its neighbours' points around it. They are written to one file, or, with &lt;i&gt;Write one tile per input tile&lt;/i&gt;, each to a file of its own name in a folder named after the output (out/ground.laz gives the folder out/ground), with a virtual point cloud listing them (out/ground/ground.vpc, the output to give the next stages). Each tile is classified with its neighbours' points around it, so the classes at tile edges are those of a run on the whole cloud.</source>
+        <translation>Lee la nube LAS/LAZ por bloques, conserva los puntos dentro del área de recorte y clasifica los puntos de suelo como clase 2 con el filtro de simulación de tela (CSF, Zhang et al. 2016) o el filtro morfológico simple (SMRF, Pingel et al. 2013), con los parámetros de PDAL (valores por defecto ajustados para nubes densas de cartografía móvil: umbral de 0,2 m, celdas de 0,5 m; los de PDAL son 0,5 m y 1 m). Las demás clases se conservan salvo que se marque &lt;i&gt;Restablecer las clases existentes&lt;/i&gt;. Todas las dimensiones, los bytes extra, los VLR, las escalas y desplazamientos y el SRC se escriben sin cambios.&lt;br&gt;&lt;br&gt;&lt;b&gt;Recorte&lt;/b&gt;: polígonos (ampliados con el búfer de recorte), o puntos y líneas como las estaciones de panorama o los rayos de detección, convertidos en un corredor mediante un búfer. La capa de recorte se reproyecta al SRC de la nube.&lt;br&gt;&lt;br&gt;&lt;b&gt;Motor&lt;/b&gt;: PDAL ejecuta filters.csf / filters.smrf mediante sus enlaces de Python o el ejecutable &lt;i&gt;pdal&lt;/i&gt; (en el PATH, en la carpeta bin de QGIS o configurado en Procesos ▸ Opciones ▸ Proveedores ▸ Road sign inventory), manteniendo la nube en memoria (unos 150 bytes por punto); el motor integrado ejecuta los mismos filtros en Python, procesando la nube en flujo continuo, por lo que funciona con nubes más grandes que la memoria (entre sus dos pasadas guarda los puntos sin comprimir en el disco junto a la salida, unos 30 bytes por punto, de modo que un LAZ se descomprime una sola vez). Una nube de más de 512 m de ancho o de largo (un recorrido) se clasifica bloque a bloque, con la superficie del terreno de un solo bloque a la vez, de modo que la memoria no crece con el recorrido; sus puntos se escriben entonces agrupados por bloque. &lt;b&gt;Automático elige el motor integrado&lt;/b&gt; para ambos métodos: medido frente a PDAL 2.9.2 con dos núcleos, fue igual de rápido para CSF con 8 M de puntos (con una diferencia inferior al 10 %) y 1,6 veces más rápido con 38 M, y de 1,4 a 1,7 veces más rápido para SMRF, con unos 300 MB, mientras que PDAL ocupó 5,6 GB para 38 M de puntos (bench/README.md). Automático usa PDAL solo cuando falta el paquete de Python del CSF integrado (cloth-simulation-filter); el registro indica qué motor se ejecutó y por qué.&lt;br&gt;&lt;br&gt;&lt;b&gt;Teselas&lt;/b&gt;: la entrada puede ser un archivo LAS/LAZ, una carpeta de teselas LAS/LAZ o una nube de puntos virtual (.vpc); PDAL toma las teselas una a una, cada una con los puntos de sus vecinas a su alrededor. Se escriben en un solo archivo o, con &lt;i&gt;Escribir una tesela por cada tesela de entrada&lt;/i&gt;, cada una en un archivo con su propio nombre dentro de una carpeta que lleva el nombre de la salida (out/ground.laz da la carpeta out/ground), con una nube de puntos virtual que las enumera (out/ground/ground.vpc, la salida que se da a las etapas siguientes). Cada tesela se clasifica con los puntos de sus vecinas a su alrededor, de modo que las clases en los bordes de las teselas son las de una ejecución sobre la nube entera.</translation>
     </message>
 </context>
 <context>
@@ -2716,13 +2716,13 @@
         <translation>{what} {index}: sin posición (x, y, z)</translation>
     </message>
     <message>
-        <location filename="../core/ground/blocks.py" line="301" />
+        <location filename="../core/ground/blocks.py" line="296" />
         <source>Classifying the ground block by block: block {n} of {count}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Clasificando el terreno bloque a bloque: bloque {n} de {count}</translation>
     </message>
     <message>
-        <location filename="../core/ground/csf.py" line="123" />
+        <location filename="../core/ground/csf.py" line="132" />
         <source>The built-in CSF needs the Python package cloth-simulation-filter (module CSF): {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El CSF integrado necesita el paquete de Python cloth-simulation-filter (módulo CSF): {detail}</translation>

@@ -1122,224 +1122,224 @@
         <translation>裁剪 LAS/LAZ 点云，并使用 CSF 或 SMRF（PDAL 或内置引擎）将地面分类为类别 2。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="95" />
+        <location filename="../algorithms/groundfilter.py" line="97" />
         <source>Point cloud (LAS/LAZ)</source>
         <translation>点云（LAS/LAZ）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="95" />
+        <location filename="../algorithms/groundfilter.py" line="97" />
         <source>The mobile-mapping cloud, LAS 1.2-1.4 or LAZ, any size (it is read in chunks).</source>
         <translation>移动测量点云，LAS 1.2-1.4 或 LAZ，大小不限（分块读取）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="98" />
+        <location filename="../algorithms/groundfilter.py" line="100" />
         <source>Crop layer (optional)</source>
         <translation>裁剪图层（可选）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="98" />
+        <location filename="../algorithms/groundfilter.py" line="100" />
         <source>Keep only points inside these polygons, or within the crop buffer of these points or lines (e.g. the panorama stations). Empty keeps the whole cloud.</source>
         <translation>仅保留这些多边形内的点，或这些点或线（例如全景站点）的裁剪缓冲距离内的点。留空则保留整个点云。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="102" />
+        <location filename="../algorithms/groundfilter.py" line="104" />
         <source>Crop buffer (m)</source>
         <translation>裁剪缓冲距离 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="102" />
+        <location filename="../algorithms/groundfilter.py" line="104" />
         <source>Grow the crop geometries by this many metres; needed (&gt; 0) for a point or line layer.</source>
         <translation>将裁剪几何外扩的米数；点或线图层必须大于 0。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="106" />
+        <location filename="../algorithms/groundfilter.py" line="108" />
         <source>Ground method</source>
         <translation>地面分类方法</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="106" />
+        <location filename="../algorithms/groundfilter.py" line="108" />
         <source>CSF (cloth simulation)</source>
         <translation>CSF（布料模拟）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="106" />
+        <location filename="../algorithms/groundfilter.py" line="108" />
         <source>SMRF (simple morphological filter)</source>
         <translation>SMRF（简单形态学滤波）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="106" />
+        <location filename="../algorithms/groundfilter.py" line="108" />
         <source>CSF suits roads and gentle terrain; SMRF suits steeper or rougher terrain.</source>
         <translation>CSF 适用于道路和平缓地形；SMRF 适用于较陡或较崎岖的地形。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="110" />
+        <location filename="../algorithms/groundfilter.py" line="112" />
         <source>Engine</source>
         <translation>引擎</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="110" />
+        <location filename="../algorithms/groundfilter.py" line="112" />
         <source>PDAL</source>
         <translation>PDAL</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="110" />
+        <location filename="../algorithms/groundfilter.py" line="112" />
         <source>Built-in</source>
         <translation>内置</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="117" />
+        <location filename="../algorithms/groundfilter.py" line="119" />
         <source>Ground distance threshold (m)</source>
         <translation>地面距离阈值 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="117" />
+        <location filename="../algorithms/groundfilter.py" line="119" />
         <source>Points within this height of the ground surface are ground (PDAL's threshold option). PDAL's default is 0.5 m; 0.2 m suits dense mobile-mapping clouds, where it keeps the lowest parts of cars, walls and street furniture off the ground class.</source>
         <translation>距地面表面在此高度以内的点被视为地面（PDAL 的 threshold 选项）。PDAL 的默认值为 0.5 m；0.2 m 适用于密集的移动测量点云，可避免汽车、墙体和街道设施的最低部分被归入地面类别。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="123" />
+        <location filename="../algorithms/groundfilter.py" line="125" />
         <source>Cloth resolution / cell size (m)</source>
         <translation>布料分辨率 / 格网大小 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="123" />
+        <location filename="../algorithms/groundfilter.py" line="125" />
         <source>CSF's cloth resolution or SMRF's cell size, in metres (PDAL's default: 1 m).</source>
         <translation>CSF 的布料分辨率或 SMRF 的格网大小，单位为米（PDAL 默认值：1 m）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="127" />
+        <location filename="../algorithms/groundfilter.py" line="129" />
         <source>Cloud CRS (when the file has none)</source>
         <translation>点云坐标参考系（文件中没有时）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="127" />
+        <location filename="../algorithms/groundfilter.py" line="129" />
         <source>The cloud's CRS if the file does not record one; a CRS in the file is replaced by it. The CRS is never guessed.</source>
         <translation>当文件未记录坐标参考系时使用的点云坐标参考系；文件中已有的坐标参考系将被其替换。从不猜测坐标参考系。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="131" />
+        <location filename="../algorithms/groundfilter.py" line="133" />
         <source>Reset existing classes</source>
         <translation>重置现有类别</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="131" />
+        <location filename="../algorithms/groundfilter.py" line="133" />
         <source>Set every non-ground point to class 1 (unclassified) instead of keeping its class.</source>
         <translation>将所有非地面点设为类别 1（未分类），而不保留其原有类别。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="139" />
+        <location filename="../algorithms/groundfilter.py" line="141" />
         <source>Ground-classified cloud</source>
         <translation>已地面分类的点云</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="139" />
+        <location filename="../algorithms/groundfilter.py" line="141" />
         <source>LAZ (*.laz);;LAS (*.las)</source>
         <translation>LAZ (*.laz);;LAS (*.las)</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="146" />
+        <location filename="../algorithms/groundfilter.py" line="148" />
         <source>Engine that ran</source>
         <translation>实际运行的引擎</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="147" />
+        <location filename="../algorithms/groundfilter.py" line="149" />
         <source>Points read</source>
         <translation>读取的点数</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="148" />
+        <location filename="../algorithms/groundfilter.py" line="150" />
         <source>Points written</source>
         <translation>写入的点数</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="149" />
+        <location filename="../algorithms/groundfilter.py" line="151" />
         <source>Ground points</source>
         <translation>地面点数</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="159" />
+        <location filename="../algorithms/groundfilter.py" line="161" />
         <source>The crop layer holds points or lines: give a crop buffer in metres (&gt; 0) to make a corridor around them</source>
         <translation>裁剪图层包含点或线：请给出以米为单位的裁剪缓冲距离（&gt; 0），以便在其周围形成走廊</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="164" />
+        <location filename="../algorithms/groundfilter.py" line="166" />
         <source>Reprojecting the crop layer from {} to {}</source>
         <translation>正在将裁剪图层从 {} 重投影到 {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="266" />
+        <location filename="../algorithms/groundfilter.py" line="268" />
         <source>Engine: {}; method: {}; {} points read, {} written, {} ground</source>
         <translation>引擎：{}；方法：{}；读取 {} 个点，写入 {} 个，地面点 {} 个</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="170" />
+        <location filename="../algorithms/groundfilter.py" line="172" />
         <source>Cancelled: nothing was written.</source>
         <translation>已取消：未写入任何内容。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="179" />
+        <location filename="../algorithms/groundfilter.py" line="181" />
         <source>The crop layer {} has no feature: nothing to crop by. Leave the crop layer empty to process the whole cloud</source>
         <translation>裁剪图层 {} 没有要素：无可用于裁剪的内容。若要处理整个点云，请将裁剪图层留空</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="183" />
+        <location filename="../algorithms/groundfilter.py" line="185" />
         <source>The crop layer {} has no geometry (its {} features are empty): nothing to crop by</source>
         <translation>裁剪图层 {} 没有几何（其 {} 个要素均为空）：无可用于裁剪的内容</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="198" />
+        <location filename="../algorithms/groundfilter.py" line="200" />
         <source>The crop area (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}) does not overlap the point cloud {} (x {:.1f} to {:.1f}, y {:.1f} to {:.1f}): nothing would be kept</source>
         <translation>裁剪区域（x {:.1f} 至 {:.1f}，y {:.1f} 至 {:.1f}）与点云 {}（x {:.1f} 至 {:.1f}，y {:.1f} 至 {:.1f}）不重叠：不会保留任何点</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="211" />
+        <location filename="../algorithms/groundfilter.py" line="213" />
         <source>PDAL said: {}</source>
         <translation>PDAL 输出：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="212" />
+        <location filename="../algorithms/groundfilter.py" line="214" />
         <source>PDAL failed: {}</source>
         <translation>PDAL 失败：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="233" />
+        <location filename="../algorithms/groundfilter.py" line="235" />
         <source>The output {} must not be the input file</source>
         <translation>输出 {} 不能是输入文件</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="135" />
+        <location filename="../algorithms/groundfilter.py" line="137" />
         <source>Write one tile per input tile</source>
         <translation>每个输入分块写出一个分块</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="255" />
+        <location filename="../algorithms/groundfilter.py" line="257" />
         <source>Writing one tile per input tile to the folder {}, listed in {}</source>
         <translation>正在为每个输入分块写出一个分块到文件夹 {}，并列于 {} 中</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="110" />
+        <location filename="../algorithms/groundfilter.py" line="112" />
         <source>Auto (the faster engine: built-in)</source>
         <translation>自动（更快的引擎：内置引擎）</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="110" />
+        <location filename="../algorithms/groundfilter.py" line="112" />
         <source>Auto: the engine measured faster for the method, today the built-in engine for both (PDAL when the built-in CSF's package is missing). PDAL: its Python bindings or the pdal executable that QGIS has; an error when there is neither.</source>
         <translation>自动：针对所选方法实测更快的引擎，目前两种方法均为内置引擎（缺少内置 CSF 所需的包时使用 PDAL）。PDAL：使用 QGIS 带有的 Python 绑定或 pdal 可执行文件；两者都没有时报错。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="135" />
+        <location filename="../algorithms/groundfilter.py" line="137" />
         <source>Write each input tile to its own file (same name, same header) in a folder named after the output, with a virtual point cloud (.vpc) listing them, instead of one file.</source>
         <translation>将每个输入分块写入各自的文件（同名、同文件头），放在以输出命名的文件夹中，并附带列出它们的虚拟点云（.vpc），而不是写成一个文件。</translation>
     </message>
     <message>
-        <location filename="../algorithms/groundfilter.py" line="64" />
-        <source>Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless &lt;i&gt;Reset existing classes&lt;/i&gt; is checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are written unchanged.&lt;br&gt;&lt;br&gt;&lt;b&gt;Crop&lt;/b&gt;: polygons (grown by the crop buffer), or points and lines such as the panorama stations or detection rays, buffered into a corridor. The crop layer is reprojected to the cloud's CRS.&lt;br&gt;&lt;br&gt;&lt;b&gt;Engine&lt;/b&gt;: PDAL runs filters.csf / filters.smrf through its Python bindings or the &lt;i&gt;pdal&lt;/i&gt; executable (on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign inventory), holding the cloud in memory (about 150 bytes a point); the built-in engine runs the same filters in Python, streaming the cloud, so clouds larger than memory work (between its two passes it keeps the points uncompressed on disk beside the output, about 30 bytes a point, so a LAZ is decompressed once). &lt;b&gt;Auto picks the built-in engine&lt;/b&gt; for both methods: measured against PDAL 2.9.2 on two cores it was as fast for CSF on 8 M points (within 10 %) and 1.6 times faster on 38 M, and 1.4 to 1.7 times faster for SMRF, in about 300 MB where PDAL took 5.6 GB for 38 M points (bench/README.md). Auto uses PDAL only when the built-in CSF's Python package (cloth-simulation-filter) is missing; the log says which engine ran and why.&lt;br&gt;&lt;br&gt;&lt;b&gt;Tiles&lt;/b&gt;: the input may be one LAS/LAZ file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc); PDAL takes the tiles one by one, each with its neighbours' points around it. They are written to one file, or, with &lt;i&gt;Write one tile per input tile&lt;/i&gt;, each to a file of its own name in a folder named after the output (out/ground.laz gives the folder out/ground), with a virtual point cloud listing them (out/ground/ground.vpc, the output to give the next stages). Each tile is classified with its neighbours' points around it, so the classes at tile edges are those of a run on the whole cloud.</source>
-        <translation>分块读取 LAS/LAZ 点云，保留裁剪范围内的点，并使用布料模拟滤波（CSF，Zhang 等，2016）或简单形态学滤波（SMRF，Pingel 等，2013）将地面点分类为类别 2，参数与 PDAL 相同（默认值针对密集的移动测量点云调整：阈值 0.2 m，格网 0.5 m；PDAL 自身的默认值为 0.5 m 和 1 m）。除非勾选&lt;i&gt;重置现有类别&lt;/i&gt;，其他类别将被保留。所有维度、额外字节、VLR、缩放与偏移以及坐标参考系均原样写出。&lt;br&gt;&lt;br&gt;&lt;b&gt;裁剪&lt;/b&gt;：多边形（按裁剪缓冲距离外扩），或点和线（例如全景站点或检测射线），缓冲为走廊。裁剪图层会被重投影到点云的坐标参考系。&lt;br&gt;&lt;br&gt;&lt;b&gt;引擎&lt;/b&gt;：PDAL 通过其 Python 绑定或 &lt;i&gt;pdal&lt;/i&gt; 可执行文件（位于 PATH、QGIS 的 bin 文件夹中，或在 处理 ▸ 选项 ▸ 提供者 ▸ Road sign inventory 中设置）运行 filters.csf / filters.smrf，并将整个点云保存在内存中（每个点约 150 字节）；内置引擎在 Python 中以流式方式读取点云并运行相同的滤波器，因此可以处理大于内存的点云（在两遍处理之间，它将未压缩的点保存在输出旁边的磁盘上，每个点约 30 字节，因此 LAZ 只需解压一次）。&lt;b&gt;“自动”对两种方法均选择内置引擎&lt;/b&gt;：在双核上与 PDAL 2.9.2 对比实测，CSF 在 8 M 个点上速度相当（相差不到 10 %），在 38 M 个点上快 1.6 倍；SMRF 快 1.4 至 1.7 倍；内存占用约 300 MB，而 PDAL 处理 38 M 个点时占用 5.6 GB（bench/README.md）。仅当缺少内置 CSF 的 Python 包（cloth-simulation-filter）时，“自动”才使用 PDAL；日志会说明运行了哪个引擎及原因。&lt;br&gt;&lt;br&gt;&lt;b&gt;分块&lt;/b&gt;：输入可以是单个 LAS/LAZ 文件、LAS/LAZ 分块文件夹或虚拟点云（.vpc）；PDAL 逐个处理分块，每个分块都带上其周围相邻分块的点。分块写入一个文件，或在勾选&lt;i&gt;每个输入分块写出一个分块&lt;/i&gt;时，各自写入以输出命名的文件夹中与原名相同的文件（out/ground.laz 对应文件夹 out/ground），并附带列出这些分块的虚拟点云（out/ground/ground.vpc，即交给后续步骤的输出）。每个分块在分类时会带上其周围相邻分块的点，因此分块边缘的类别与对整个点云运行所得的相同。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/groundfilter.py" line="139" />
+        <location filename="../algorithms/groundfilter.py" line="141" />
         <source>The cropped cloud with ground as class 2; LAZ or LAS by the file extension. LAS is about eight times larger (about 30 bytes a point) but needs no compression here nor decompression in the stages that read it next: on a 1 km drive of 38 M points the whole chain ran in 0.84 times the time with a LAS ground cloud. With one tile per input tile: the folder of this name without its extension gets the tiles and &lt;name&gt;.vpc, which is then this output.</source>
         <translation>裁剪后的点云，地面为第 2 类；按文件扩展名为 LAZ 或 LAS。LAS 大约大八倍（每点约 30 字节），但这里无需压缩，后续读取它的步骤也无需解压：在一段 1 公里、3800 万点的行驶数据上，使用 LAS 地面点云时整个处理链的用时为 0.84 倍。每个输入瓦片输出一个瓦片时：以此名称（去掉扩展名）命名的文件夹接收这些瓦片和 &lt;name&gt;.vpc，后者即为此输出。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/groundfilter.py" line="64" />
+        <source>Reads the LAS/LAZ cloud in chunks, keeps the points inside the crop area and classifies ground points as class 2 with the cloth simulation filter (CSF, Zhang et al. 2016) or the simple morphological filter (SMRF, Pingel et al. 2013), with PDAL's parameters (defaults tuned for dense mobile-mapping clouds: 0.2 m threshold, 0.5 m cells; PDAL's own are 0.5 m and 1 m). Other classes are kept unless &lt;i&gt;Reset existing classes&lt;/i&gt; is checked. Every dimension, extra bytes, VLRs, scales and offsets and the CRS are written unchanged.&lt;br&gt;&lt;br&gt;&lt;b&gt;Crop&lt;/b&gt;: polygons (grown by the crop buffer), or points and lines such as the panorama stations or detection rays, buffered into a corridor. The crop layer is reprojected to the cloud's CRS.&lt;br&gt;&lt;br&gt;&lt;b&gt;Engine&lt;/b&gt;: PDAL runs filters.csf / filters.smrf through its Python bindings or the &lt;i&gt;pdal&lt;/i&gt; executable (on PATH, in QGIS's bin folder, or set in Processing ▸ Options ▸ Providers ▸ Road sign inventory), holding the cloud in memory (about 150 bytes a point); the built-in engine runs the same filters in Python, streaming the cloud, so clouds larger than memory work (between its two passes it keeps the points uncompressed on disk beside the output, about 30 bytes a point, so a LAZ is decompressed once). A cloud wider or longer than 512 m (a drive) is classified block by block, the ground surface of one block at a time, so the memory does not grow with the drive; its points are then written grouped by block. &lt;b&gt;Auto picks the built-in engine&lt;/b&gt; for both methods: measured against PDAL 2.9.2 on two cores it was as fast for CSF on 8 M points (within 10 %) and 1.6 times faster on 38 M, and 1.4 to 1.7 times faster for SMRF, in about 300 MB where PDAL took 5.6 GB for 38 M points (bench/README.md). Auto uses PDAL only when the built-in CSF's Python package (cloth-simulation-filter) is missing; the log says which engine ran and why.&lt;br&gt;&lt;br&gt;&lt;b&gt;Tiles&lt;/b&gt;: the input may be one LAS/LAZ file, a folder of LAS/LAZ tiles or a virtual point cloud (.vpc); PDAL takes the tiles one by one, each with its neighbours' points around it. They are written to one file, or, with &lt;i&gt;Write one tile per input tile&lt;/i&gt;, each to a file of its own name in a folder named after the output (out/ground.laz gives the folder out/ground), with a virtual point cloud listing them (out/ground/ground.vpc, the output to give the next stages). Each tile is classified with its neighbours' points around it, so the classes at tile edges are those of a run on the whole cloud.</source>
+        <translation>分块读取 LAS/LAZ 点云，保留裁剪范围内的点，并使用布料模拟滤波（CSF，Zhang 等，2016）或简单形态学滤波（SMRF，Pingel 等，2013）将地面点分类为类别 2，参数与 PDAL 相同（默认值针对密集的移动测量点云调整：阈值 0.2 m，格网 0.5 m；PDAL 自身的默认值为 0.5 m 和 1 m）。除非勾选&lt;i&gt;重置现有类别&lt;/i&gt;，其他类别将被保留。所有维度、额外字节、VLR、缩放与偏移以及坐标参考系均原样写出。&lt;br&gt;&lt;br&gt;&lt;b&gt;裁剪&lt;/b&gt;：多边形（按裁剪缓冲距离外扩），或点和线（例如全景站点或检测射线），缓冲为走廊。裁剪图层会被重投影到点云的坐标参考系。&lt;br&gt;&lt;br&gt;&lt;b&gt;引擎&lt;/b&gt;：PDAL 通过其 Python 绑定或 &lt;i&gt;pdal&lt;/i&gt; 可执行文件（位于 PATH、QGIS 的 bin 文件夹中，或在 处理 ▸ 选项 ▸ 提供者 ▸ Road sign inventory 中设置）运行 filters.csf / filters.smrf，并将整个点云保存在内存中（每个点约 150 字节）；内置引擎在 Python 中以流式方式读取点云并运行相同的滤波器，因此可以处理大于内存的点云（在两遍处理之间，它将未压缩的点保存在输出旁边的磁盘上，每个点约 30 字节，因此 LAZ 只需解压一次）。宽度或长度超过 512 m 的点云（一次行驶）按区块逐个分类，每次只保留一个区块的地面表面，因此内存不会随行驶距离增长；其点随后按区块分组写出。&lt;b&gt;“自动”对两种方法均选择内置引擎&lt;/b&gt;：在双核上与 PDAL 2.9.2 对比实测，CSF 在 8 M 个点上速度相当（相差不到 10 %），在 38 M 个点上快 1.6 倍；SMRF 快 1.4 至 1.7 倍；内存占用约 300 MB，而 PDAL 处理 38 M 个点时占用 5.6 GB（bench/README.md）。仅当缺少内置 CSF 的 Python 包（cloth-simulation-filter）时，“自动”才使用 PDAL；日志会说明运行了哪个引擎及原因。&lt;br&gt;&lt;br&gt;&lt;b&gt;分块&lt;/b&gt;：输入可以是单个 LAS/LAZ 文件、LAS/LAZ 分块文件夹或虚拟点云（.vpc）；PDAL 逐个处理分块，每个分块都带上其周围相邻分块的点。分块写入一个文件，或在勾选&lt;i&gt;每个输入分块写出一个分块&lt;/i&gt;时，各自写入以输出命名的文件夹中与原名相同的文件（out/ground.laz 对应文件夹 out/ground），并附带列出这些分块的虚拟点云（out/ground/ground.vpc，即交给后续步骤的输出）。每个分块在分类时会带上其周围相邻分块的点，因此分块边缘的类别与对整个点云运行所得的相同。</translation>
     </message>
 </context>
 <context>
@@ -2716,13 +2716,13 @@
         <translation>{what} {index}：没有位置（x, y, z）</translation>
     </message>
     <message>
-        <location filename="../core/ground/blocks.py" line="301" />
+        <location filename="../core/ground/blocks.py" line="296" />
         <source>Classifying the ground block by block: block {n} of {count}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>正在逐个区块分类地面：第 {n} 个区块，共 {count} 个</translation>
     </message>
     <message>
-        <location filename="../core/ground/csf.py" line="123" />
+        <location filename="../core/ground/csf.py" line="132" />
         <source>The built-in CSF needs the Python package cloth-simulation-filter (module CSF): {detail}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>内置 CSF 需要 Python 包 cloth-simulation-filter（模块 CSF）：{detail}</translation>

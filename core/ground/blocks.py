@@ -35,7 +35,7 @@ from ..pointcloud import CloudWriter, CropRegion
 from .csf import CSF_TILE_M, NODE_CANDIDATE_DTYPE, CsfGrid, CsfParams, node_candidates
 from .engine import CHUNK_THREADS, classified, cropped, make_grid, returns_mask
 from .lattice import BLOCK_M, MAX_PAGED_CELLS, BoundsXY, Lattice, OutsideGridError, Window, on_lattice
-from .params import Params
+from .params import Params, grid_step_m
 from .smrf import CELL_CANDIDATE_DTYPE, cell_candidates
 from .tiled import halo_m, tile_grid
 
@@ -49,11 +49,6 @@ CANDIDATE_POINTS = 262_144
 _POINTS, _REPS = "points", "candidates"
 
 BlockKey = Tuple[int, int]
-
-
-def grid_step_m(params: Params) -> float:
-    """The grid step of the method: CSF's cloth resolution or SMRF's cell (metres)."""
-    return params.resolution if isinstance(params, CsfParams) else params.cell
 
 
 def grid_reach_m(params: Params, tile_size_m: Optional[float] = None,

@@ -61,3 +61,8 @@ def method_params(method: str, params: Optional[Params] = None) -> Params:
         raise InputError("Parameters {params} do not belong to method {method}",
                          params=type(params).__name__, method=method)
     return params
+
+
+def grid_step_m(params: Params) -> float:
+    """The grid step of the method: CSF's cloth resolution or SMRF's cell (metres)."""
+    return params.resolution if isinstance(params, CsfParams) else params.cell

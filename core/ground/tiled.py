@@ -55,7 +55,7 @@ from .engine import (
     two_passes,
 )
 from .lattice import Lattice, OutsideGridError, on_lattice
-from .params import Params, engine_name, method_name, method_params
+from .params import Params, engine_name, grid_step_m, method_name, method_params
 from .pdal import PdalError
 from .smrf import SmrfGrid
 
@@ -242,7 +242,7 @@ def _spool_halos(source: CloudSource, work: List[int], grown: Dict[int, BBoxXY],
                  progress: Progress) -> Dict[int, str]:
     """Pass 0: the eligible points of each tile near another tile's grid (``grown``, a few
     cells more), appended to that tile's file in ``folder``; {tile number: file}."""
-    step = params.resolution if isinstance(params, CsfParams) else params.cell
+    step = grid_step_m(params)
     boxes = {k: grown_box(grown[k], 3.0 * step) for k in work}
     spools: Dict[int, str] = {}
     for _, t, pts in source.points_near_tiles(boxes, chunk_points, progress):
