@@ -54,7 +54,7 @@ from .engine import (
     room_to_spool,
     two_passes,
 )
-from .lattice import Lattice, OutsideGridError, on_lattice
+from .lattice import MAX_PAGED_CELLS, Lattice, OutsideGridError, on_lattice
 from .params import Params, engine_name, grid_step_m, method_name, method_params
 from .pdal import PdalError
 from .smrf import SmrfGrid
@@ -87,7 +87,7 @@ def tile_grid(params: Params, cloud_bounds: BBoxXY, tile_box: BBoxXY,
     if not isinstance(params, CsfParams):
         h = halo_m(params)
         return (max(box[0] - h, x0), max(box[1] - h, y0), min(box[2] + h, x1), min(box[3] + h, y1))
-    whole = Lattice.covering(cloud_bounds, params.resolution)
+    whole = Lattice.covering(cloud_bounds, params.resolution, max_cells=MAX_PAGED_CELLS)  # its numbers only
     sizes = {} if tile_buffer_m is None else {"tile_buffer_m": tile_buffer_m}
     if tile_size_m:
         sizes["tile_size_m"] = tile_size_m

@@ -224,3 +224,18 @@ def test_merging_many_chunks_at_once_is_merging_them_one_by_one():
             assert np.nanmax(one_by_one.rep_z.dense()) < 6.0     # the later twins, 7 m up, were not kept
         else:
             np.testing.assert_array_equal(at_once.zmin, one_by_one.zmin)
+
+
+def test_blocks_of_a_cloud_too_large_for_one_grid():
+    """A 9 km drive at the algorithm's 0.5 m cloth: one grid over its bounding box would need
+    more cells than one grid may have, a block's grid does not (nor a tile's)."""
+    params = ground.CsfParams(resolution=0.5, threshold=0.2)
+    whole = (500_000.0, 5_400_000.0, 508_100.0, 5_402_938.0)           # 8.1 km x 2.9 km: 95 M cells
+    with pytest.raises(InputError, match="grid cells"):
+        lattice.Lattice.covering(whole, 0.5)
+    plan = blocks.BlockPlan(params, whole)
+    key = plan.key_of_code(plan.keys_of(np.array([504_000.0]), np.array([5_401_000.0]))[0])
+    lat = plan.lattice(key)
+    assert lat is not None and lat.nx * lat.ny < 2_000 * 2_000
+    box = plan.box(key)
+    assert lat.x0 <= box[0] and lat.x0 + lat.nx * lat.step >= box[2]
