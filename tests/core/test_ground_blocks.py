@@ -7,8 +7,7 @@ import laspy
 import numpy as np
 import pytest
 import shapely
-from helpers import cloudgen
-from helpers.cloudtiles import split_into_tiles
+from helpers.cloudtiles import classes_by_point, hilly_street
 
 from roadsigns.core import cloudsource as cs
 from roadsigns.core import ground
@@ -22,20 +21,12 @@ SMALL_BLOCK_M = 40.0
 @pytest.fixture(scope="module")
 def hilly(tmp_path_factory):
     """A 120 m street on a 3 % slope: one LAZ, and the same as 25 m tiles."""
-    folder = tmp_path_factory.mktemp("hilly-blocks")
-    scene = cloudgen.road_scene(length_m=120.0, slope=0.03, density_per_m2=60.0, seed=4)
-    single = str(folder / "street.laz")
-    cloudgen.write_scene(single, scene)
-    tiles = split_into_tiles(single, str(folder / "tiles"), size_m=25.0)
-    return dict(single=single, folder=str(folder / "tiles"), tiles=tiles, scene=scene)
+    return hilly_street(tmp_path_factory.mktemp("hilly-blocks"))
 
 
 def by_point(path):
     """The points of ``path`` sorted by their coordinates (mm): ``(keys, classes)``."""
-    las = laspy.read(path)
-    keys = np.round(np.column_stack([las.x, las.y, las.z]) * 1000).astype(np.int64)
-    order = np.lexsort(keys.T[::-1])
-    return keys[order], np.asarray(las.classification)[order]
+    return classes_by_point([path])
 
 
 @pytest.mark.parametrize("method, params, crop", [

@@ -10,8 +10,8 @@ import laspy
 import numpy as np
 import pytest
 import shapely
-from helpers import cloudgen, realpdal
-from helpers.cloudtiles import split_into_tiles, write_vpc
+from helpers import realpdal
+from helpers.cloudtiles import classes_by_point, hilly_street, split_into_tiles, write_vpc
 
 from roadsigns.core import cloudsource as cs
 from roadsigns.core import ground
@@ -26,24 +26,7 @@ MIN_AGREEMENT = 0.999
 def hilly(tmp_path_factory):
     """A 120 m street on a 3 % slope, one LAZ, and the same split into 25 m tiles (whose
     edges do not fall on CSF's 32 m squares)."""
-    folder = tmp_path_factory.mktemp("hilly")
-    scene = cloudgen.road_scene(length_m=120.0, slope=0.03, density_per_m2=60.0, seed=4)
-    single = str(folder / "street.laz")
-    cloudgen.write_scene(single, scene)
-    tiles = split_into_tiles(single, str(folder / "tiles"), size_m=25.0)
-    return dict(single=single, folder=str(folder / "tiles"), tiles=tiles, scene=scene)
-
-
-def classes_by_point(paths):
-    """{(x, y, z) in mm: class} of the points of ``paths`` as sorted arrays."""
-    keys, classes = [], []
-    for p in paths:
-        las = laspy.read(p)
-        keys.append(np.round(np.column_stack([las.x, las.y, las.z]) * 1000).astype(np.int64))
-        classes.append(np.asarray(las.classification))
-    k, c = np.concatenate(keys), np.concatenate(classes)
-    order = np.lexsort(k.T[::-1])
-    return k[order], c[order]
+    return hilly_street(tmp_path_factory.mktemp("hilly"))
 
 
 def agreement(single_out, tile_outs):

@@ -57,3 +57,29 @@ def write_vpc(path, tiles, relative=True, **feature_extra):
     with open(path, "w") as f:
         json.dump({"type": "FeatureCollection", "features": features}, f)
     return path
+
+
+def hilly_street(folder):
+    """A 120 m street on a 3 % slope (60 points a m²): one LAZ in ``folder``, and the same split
+    into 25 m tiles (whose edges do not fall on CSF's 32 m squares) in ``folder/tiles``:
+    ``dict(single, folder, tiles, scene)``."""
+    from helpers import cloudgen
+
+    scene = cloudgen.road_scene(length_m=120.0, slope=0.03, density_per_m2=60.0, seed=4)
+    single = os.path.join(str(folder), "street.laz")
+    cloudgen.write_scene(single, scene)
+    tiles = split_into_tiles(single, os.path.join(str(folder), "tiles"), size_m=25.0)
+    return dict(single=single, folder=os.path.join(str(folder), "tiles"), tiles=tiles, scene=scene)
+
+
+def classes_by_point(paths):
+    """The points of the LAS/LAZ files ``paths`` in the order of their coordinates:
+    ``(keys, classes)``, keys the coordinates in mm (int64, ``(n, 3)``)."""
+    keys, classes = [], []
+    for p in paths:
+        las = laspy.read(p)
+        keys.append(np.round(np.column_stack([las.x, las.y, las.z]) * 1000).astype(np.int64))
+        classes.append(np.asarray(las.classification))
+    k, c = np.concatenate(keys), np.concatenate(classes)
+    order = np.lexsort(k.T[::-1])
+    return k[order], c[order]

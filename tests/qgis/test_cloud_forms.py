@@ -8,7 +8,7 @@ import shutil
 import laspy
 import numpy as np
 import pytest
-from helpers.cloudtiles import split_into_tiles, write_vpc
+from helpers.cloudtiles import classes_by_point, split_into_tiles, write_vpc
 from helpers.scenes import ground_and_oracle
 from osgeo import ogr
 
@@ -129,17 +129,8 @@ def test_ground_filter_writes_tiles_and_a_vpc_the_next_stage_reads(qgis_process,
     written = sorted(f for f in os.listdir(work / "ground_tiles") if f.endswith(".laz"))
     assert written and set(written) <= {os.path.basename(t) for t in forms["raw_tiles"]}
     # the classes of the tiles are those of the one file
-    def by_point(paths):
-        xyz, cls = [], []
-        for p in paths:
-            las = laspy.read(p)
-            xyz.append(np.round(np.column_stack([las.x, las.y, las.z]) * 1000).astype(np.int64))
-            cls.append(np.asarray(las.classification))
-        xyz, cls = np.concatenate(xyz), np.concatenate(cls)
-        order = np.lexsort(xyz.T[::-1])
-        return xyz[order], cls[order]
-    ka, ca = by_point([one])
-    kb, cb = by_point([str(work / "ground_tiles" / f) for f in written])
+    ka, ca = classes_by_point([one])
+    kb, cb = classes_by_point([str(work / "ground_tiles" / f) for f in written])
     np.testing.assert_array_equal(ka, kb)
     assert (ca == cb).mean() >= 0.999
     # the .vpc output is a cloud the projection takes
