@@ -265,7 +265,6 @@ class CsfGrid:
         self.rep_dv.set(rows, cols, kept["dv"])
         self.rep_z.set(rows, cols, kept["z"])
 
-    _nearest_per_node = staticmethod(nearest_per_node)
 
     def _tile_points(self, ext: Window) -> np.ndarray:
         du = self.rep_du.window(ext)

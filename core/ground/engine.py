@@ -33,7 +33,7 @@ import os
 import tempfile
 from dataclasses import dataclass, field
 from functools import partial
-from typing import Any, Callable, Dict, Iterable, Iterator, List, Optional, Tuple, Union
+from typing import TYPE_CHECKING, Any, Callable, Dict, Iterable, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -56,6 +56,9 @@ from .lattice import BLOCK_M, BoundsXY, GroundGrid, OutsideGridError
 from .params import AUTO_ENGINES, Params, engine_name, method_name, method_params
 from .pdal import PdalError, PdalRunner, find_pdal_runner, run_pdal_engine
 from .smrf import SMRF_TILE_M, SmrfGrid
+
+if TYPE_CHECKING:  # blocks imports this module
+    from .blocks import BlockPlan
 
 
 @dataclass
@@ -313,7 +316,6 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
     spool_folder = os.path.dirname(output_path)
     has_work = bounds is not None and source.point_count > 0
     room = has_work and room_to_spool(source.point_count, header.point_format.size, spool_folder)
-    plan = None
     if room and block_m and bounds is not None:
         from .blocks import BlockPlan
 
@@ -366,7 +368,7 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
     return n_out, n_ground, warnings
 
 
-def _builtin_blocks(source: CloudSource, output_path: str, out_header: Any, plan: Any, params: Params,
+def _builtin_blocks(source: CloudSource, output_path: str, out_header: Any, plan: "BlockPlan", params: Params,
                     region: Optional[CropRegion], reset_classes: bool, chunk_points: int,
                     progress: Progress) -> Tuple[int, int, List[str]]:
     """:func:`_builtin_engine` block by block (:mod:`.blocks`): a cloud larger than a block."""

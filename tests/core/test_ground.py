@@ -763,7 +763,7 @@ def test_csf_accumulate_near_points_first_picks_what_a_full_sort_picks():
     flat = row * lat.nx + col
     want = lattice.group_first(flat, d2)
     assert (d2 < csf.NEAR_NODE_STEPS ** 2).mean() < 0.25            # the near-first path is taken
-    got = grid._nearest_per_node(flat, d2)
+    got = csf.nearest_per_node(flat, d2)
     np.testing.assert_array_equal(np.sort(got), np.sort(want))
     whole = ground.CsfGrid((0, 0, 40, 20), 0.0, ground.CsfParams(), tile_size_m=1000)
     whole.accumulate(xy[:, 0], xy[:, 1], z)
