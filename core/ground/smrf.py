@@ -183,7 +183,12 @@ class SmrfGrid:
         this lattice)."""
         if not len(candidates):
             return
-        np.minimum.at(self.zmin.ravel(), candidates["cell"], candidates["z"])
+        cells, z = candidates["cell"], candidates["z"]
+        pick = group_first(cells, z)  # several chunks' candidates at once: the lowest of each cell's
+        if len(pick) < len(cells):
+            cells, z = cells[pick], z[pick]
+        current = self.zmin.ravel()
+        current[cells] = np.minimum(current[cells], z)
 
     def finish(self, progress: Progress = SILENT, only: Optional[Window] = None) -> None:
         shape = (int(self.zmin.shape[0]), int(self.zmin.shape[1]))

@@ -60,7 +60,7 @@ from .pdal import PdalError
 from .smrf import SmrfGrid
 
 #: Spooled halo points: world coordinates only (the grids need nothing else).
-HALO_DTYPE = np.dtype([("x", "f8"), ("y", "f8"), ("z", "f8")])
+_HALO_DTYPE = np.dtype([("x", "f8"), ("y", "f8"), ("z", "f8")])
 
 
 def halo_m(params: Params, tile_buffer_m: Optional[float] = None) -> float:
@@ -248,7 +248,7 @@ def _spool_halos(source: CloudSource, work: List[int], grown: Dict[int, BBoxXY],
     for _, t, pts in source.points_near_tiles(boxes, chunk_points, progress):
         _, x, y, z = eligible_xyz(cropped(pts, region), params)
         if len(x):
-            rows = np.zeros(len(x), HALO_DTYPE)
+            rows = np.zeros(len(x), _HALO_DTYPE)
             rows["x"], rows["y"], rows["z"] = x, y, z
             path = spools.setdefault(t, os.path.join(folder, f"halo_{t}.bin"))
             with open(path, "ab") as f:
@@ -273,7 +273,7 @@ def _classify_tile(source: CloudSource, k: int, bounds: BBoxXY, spool_path: Opti
 
     def add_halo(grid: Any) -> None:
         if spool_path is not None:
-            halo = np.fromfile(spool_path, dtype=HALO_DTYPE)
+            halo = np.fromfile(spool_path, dtype=_HALO_DTYPE)
             on = on_lattice(grid.lattice, halo["x"], halo["y"], isinstance(params, CsfParams))
             grid.accumulate(halo["x"][on], halo["y"][on], halo["z"][on])
 
