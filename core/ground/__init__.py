@@ -40,7 +40,8 @@ tiles, each with its halo), ``engine`` (the built-in engine on files, the engine
 the entry points) and ``tiled`` (one output tile per input tile).
 """
 from .csf import CSF_BUFFER_M, CSF_TILE_M, CsfGrid, CsfParams, run_csf_cloth
-from .engine import GroundResult, classify_ground, classify_ground_arrays, make_grid, returns_mask, run_ground_filter
+from .engine import GroundResult, classify_ground, classify_ground_arrays, run_ground_filter
+from .gridsteps import halo_m, make_grid, returns_mask
 from .lattice import Lattice
 from .params import AUTO_ENGINES, ENGINES, METHODS, Params, default_params, engine_name, method_name
 from .pdal import (
@@ -53,7 +54,7 @@ from .pdal import (
     run_pdal_pipeline,
 )
 from .smrf import SMRF_TILE_M, SmrfGrid, SmrfParams, smrf_surface
-from .tiled import classify_ground_tiles, halo_m, run_ground_filter_tiles
+from .tiled import classify_ground_tiles, run_ground_filter_tiles
 
 __all__ = [
     "AUTO_ENGINES", "CSF_BUFFER_M", "CSF_TILE_M", "ENGINES", "METHODS", "SMRF_TILE_M",

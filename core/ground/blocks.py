@@ -6,7 +6,7 @@ Conventions:
 * Blocks are squares of ``block_m`` metres (:data:`BLOCK_M`) on a grid whose origin is a
   multiple of ``block_m`` (world-aligned); a point belongs to the block whose half-open box
   ``[x0, x0 + block_m) x [y0, y0 + block_m)`` holds it.
-* A block's ground grid covers its box as a tile's does (:func:`.tiled.tile_grid`): whole
+* A block's ground grid covers its box as a tile's does (:func:`.gridsteps.tile_grid`): whole
   squares of the whole-cloud run's CSF tiling with their buffers, or SMRF's halo, so that
   its points get the classes a run over the whole cloud gives them.
 * Pass 1 reads the cloud once (cropped, in a pool of :data:`~.engine.CHUNK_THREADS`): each
@@ -33,11 +33,10 @@ from ..drivewindows import Spool, map_in_order
 from ..errors import SILENT, Progress
 from ..pointcloud import CloudWriter, CropRegion
 from .csf import CSF_TILE_M, NODE_CANDIDATE_DTYPE, CsfGrid, CsfParams, node_candidates
-from .engine import CHUNK_THREADS, classified, cropped, make_grid, returns_mask
+from .gridsteps import CHUNK_THREADS, classified, cropped, halo_m, make_grid, returns_mask, tile_grid
 from .lattice import BLOCK_M, MAX_PAGED_CELLS, BoundsXY, Lattice, OutsideGridError, Window, on_lattice
 from .params import Params, grid_step_m
 from .smrf import CELL_CANDIDATE_DTYPE, cell_candidates
-from .tiled import halo_m, tile_grid
 
 #: A block's points need the ground surface this many grid steps around the block (a point's
 #: cell corners, one node; the squares whose ring may fill such a node in, one more).
@@ -53,7 +52,7 @@ BlockKey = Tuple[int, int]
 
 def grid_reach_m(params: Params, tile_size_m: Optional[float] = None,
                  tile_buffer_m: Optional[float] = None) -> float:
-    """At most how far (metres) :func:`.tiled.tile_grid` reaches beyond the box it is given, grown
+    """At most how far (metres) :func:`.gridsteps.tile_grid` reaches beyond the box it is given, grown
     by :data:`NEEDED_STEPS`: for CSF, the square the box's edge falls in and the squares of its
     buffer; for SMRF, its halo; and the lattice's padding."""
     step = grid_step_m(params)
@@ -97,7 +96,7 @@ class BlockPlan:
         return (i * b, j * b, (i + 1) * b, (j + 1) * b)
 
     def grid_bounds(self, key: BlockKey) -> Optional[BBoxXY]:
-        """The bounds of block ``key``'s grid (:func:`.tiled.tile_grid`); None when the block is
+        """The bounds of block ``key``'s grid (:func:`.gridsteps.tile_grid`); None when the block is
         outside ``whole``."""
         if key not in self._grids:
             step = grid_step_m(self.params)   # the squares of the needed window are whole squares of the grid
@@ -120,7 +119,7 @@ class BlockPlan:
         return rows, cols
 
     def lattice(self, key: BlockKey) -> Optional[Lattice]:
-        """The lattice of block ``key``'s grid (as :func:`.engine.make_grid` builds it over
+        """The lattice of block ``key``'s grid (as :func:`.gridsteps.make_grid` builds it over
         :meth:`grid_bounds`); None when the block is outside ``whole``."""
         if key not in self._lattices:
             bounds = self.grid_bounds(key)

@@ -39,23 +39,21 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..cloudsource import CloudSource, conform, open_cloud
-from ..drivewindows import BLOCK_THREADS, Spool, map_in_order
+from ..drivewindows import Spool, map_in_order
 from ..errors import SILENT, InputError, Message, Progress
 from ..pointcloud import (
     DEFAULT_CHUNK_POINTS,
-    GROUND_CLASS,
     LAS_SUFFIXES,
-    UNCLASSIFIED_CLASS,
     CloudWriter,
     CropRegion,
     iter_chunks,
     output_header,
 )
-from .csf import CSF_BUFFER_M, CSF_TILE_M, CsfGrid, CsfParams, csf_available
+from .csf import csf_available
+from .gridsteps import CHUNK_THREADS, classified, cropped, eligible_xyz, make_grid
 from .lattice import BLOCK_M, BoundsXY, GroundGrid, OutsideGridError
 from .params import AUTO_ENGINES, Params, engine_name, method_name, method_params
 from .pdal import PdalError, PdalRunner, find_pdal_runner, run_pdal_engine
-from .smrf import SMRF_TILE_M, SmrfGrid
 
 if TYPE_CHECKING:  # blocks imports this module
     from .blocks import BlockPlan
@@ -73,44 +71,6 @@ class GroundResult:
     crs_wkt: Optional[str]
     warnings: List[str] = field(default_factory=list)
     pipeline_json: Optional[str] = None
-
-
-def returns_mask(return_number: ArrayLike, number_of_returns: ArrayLike,
-                 returns: str = "last,only") -> np.ndarray:
-    """Points of the given return types (PDAL's ``returns``: first, last, intermediate, only).
-
-    Points whose return numbers are 0 (not recorded) are always selected.
-    """
-    rn = np.asarray(return_number).astype(np.int16)
-    nr = np.asarray(number_of_returns).astype(np.int16)
-    kinds = {k.strip() for k in returns.split(",") if k.strip()}
-    unknown = kinds - {"first", "last", "intermediate", "only"}
-    if unknown:
-        raise InputError("Unknown return type {kinds} in '{returns}'",
-                         kinds=", ".join(sorted(unknown)), returns=returns)
-    selected = (rn == 0) | (nr == 0)
-    if "only" in kinds:
-        selected |= nr == 1
-    if "first" in kinds:
-        selected |= (rn == 1) & (nr > 1)
-    if "last" in kinds:
-        selected |= (rn == nr) & (nr > 1)
-    if "intermediate" in kinds:
-        selected |= (rn > 1) & (rn < nr)
-    return selected
-
-
-def make_grid(params: Params, bounds_xy: BoundsXY, z_ref: float,
-              tile_size_m: Optional[float] = None,
-              tile_buffer_m: Optional[float] = None) -> GroundGrid:
-    """The built-in grid of the method ``params`` belong to, over ``bounds_xy``; tiles of
-    ``tile_size_m`` (default per method) and, for CSF, a buffer of ``tile_buffer_m``."""
-    if isinstance(params, CsfParams):
-        return CsfGrid(bounds_xy, z_ref, params,
-                       tile_size_m=tile_size_m or CSF_TILE_M,
-                       tile_buffer_m=CSF_BUFFER_M if tile_buffer_m is None else tile_buffer_m)
-    # SMRF's buffer follows from its window (exact results across tiles)
-    return SmrfGrid(bounds_xy, params, tile_size_m=tile_size_m or SMRF_TILE_M)
 
 
 def classify_ground_arrays(xyz_world: ArrayLike, method: str = "csf", params: Optional[Params] = None,
@@ -134,17 +94,6 @@ def classify_ground_arrays(xyz_world: ArrayLike, method: str = "csf", params: Op
 # Built-in engine on files (two streaming passes)
 # --------------------------------------------------------------------------------------
 
-def _new_classes(classification: np.ndarray, eligible: np.ndarray, ground: np.ndarray,
-                 reset_classes: bool) -> np.ndarray:
-    cls = np.array(classification, dtype=np.uint8, copy=True)
-    if reset_classes:
-        cls[:] = UNCLASSIFIED_CLASS
-    else:
-        cls[eligible & ~ground & (cls == GROUND_CLASS)] = UNCLASSIFIED_CLASS
-    cls[ground] = GROUND_CLASS
-    return cls
-
-
 def grid_bounds(bounds_xy: BoundsXY, region: Optional[CropRegion]) -> Optional[BoundsXY]:
     """The part of ``bounds_xy`` a grid must cover: within the crop region's bounds; None when
     nothing is left."""
@@ -156,28 +105,6 @@ def grid_bounds(bounds_xy: BoundsXY, region: Optional[CropRegion]) -> Optional[B
     xmin, ymin, xmax, ymax = bounds_xy
     out = (max(xmin, rb[0]), max(ymin, rb[1]), min(xmax, rb[2]), min(ymax, rb[3]))
     return None if out[0] > out[2] or out[1] > out[3] else out
-
-
-def eligible_xyz(pts: Any, params: Params) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The returns the method classifies (a mask) and their coordinates ``x, y, z``
-    (contiguous float64 arrays; the chunk's own when every point is eligible)."""
-    eligible = returns_mask(pts.return_number, pts.number_of_returns, params.returns)
-    coords = (np.asarray(pts.x), np.asarray(pts.y), np.asarray(pts.z))
-    if eligible.all():
-        return (eligible, *coords)
-    x, y, z = (c[eligible] for c in coords)
-    return eligible, x, y, z
-
-
-def classified(pts: Any, grid: GroundGrid, params: Params, reset_classes: bool,
-               classify: bool = True) -> Tuple[Any, int]:
-    """``pts`` with their new classes (ground from ``grid``), and their number of ground points."""
-    eligible, x, y, z = eligible_xyz(pts, params)
-    ground = np.zeros(len(pts), dtype=bool)
-    if classify and len(x):
-        ground[eligible] = grid.classify(x, y, z)
-    pts.classification = _new_classes(pts.classification, eligible, ground, reset_classes)
-    return pts, int(ground.sum())
 
 
 #: Free disk space kept beyond a spool's size (bytes).
@@ -237,18 +164,9 @@ class PointSpool:
         self.spool.close()
 
 
-#: Chunks worked on at once by :func:`two_passes` (cropped and their returns taken in pass 1,
-#: classified in pass 2); the grid is filled and the output written in reading order.
-CHUNK_THREADS = BLOCK_THREADS
-
 #: What a ground filter's ``read`` yields: a chunk of laspy records, or a function without
 #: arguments that returns one (its crop, run in :func:`two_passes`' pool).
 ChunkSource = Union[Any, Callable[[], Any]]
-
-
-def cropped(chunk: Any, region: Optional[CropRegion]) -> Any:
-    """The points of ``chunk`` inside ``region`` (all of them without one)."""
-    return chunk if region is None else chunk[region.mask(chunk.x, chunk.y)]
 
 
 def two_passes(read: Callable[[Progress, bool], Iterable[ChunkSource]], grid: GroundGrid, params: Params,

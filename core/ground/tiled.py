@@ -40,71 +40,24 @@ from ..cloudsource import BBoxXY, CloudSource, Tile, grown_box, open_cloud, temp
 from ..errors import SILENT, InputError, Progress
 from ..outputs import StagedOutputs, remove
 from ..pointcloud import DEFAULT_CHUNK_POINTS, CloudWriter, CropRegion, output_header, read_header
-from .csf import CsfGrid, CsfParams
+from .csf import CsfParams
 from .engine import (
     ChunkSource,
     GroundResult,
     builtin_available,
     crop_region,
-    cropped,
-    eligible_xyz,
     grid_bounds,
-    make_grid,
     pdal_runner_for,
     room_to_spool,
     two_passes,
 )
-from .lattice import MAX_PAGED_CELLS, Lattice, OutsideGridError, on_lattice
+from .gridsteps import cropped, eligible_xyz, make_grid, tile_grid
+from .lattice import OutsideGridError, on_lattice
 from .params import Params, engine_name, grid_step_m, method_name, method_params
 from .pdal import PdalError
-from .smrf import SmrfGrid
 
 #: Spooled halo points: world coordinates only (the grids need nothing else).
 _HALO_DTYPE = np.dtype([("x", "f8"), ("y", "f8"), ("z", "f8")])
-
-
-def halo_m(params: Params, tile_buffer_m: Optional[float] = None) -> float:
-    """How far SMRF's grid reaches beyond the cells it classifies (its halo), or CSF's
-    buffer around a square of cloth, in metres."""
-    if isinstance(params, CsfParams):
-        grid: Any = CsfGrid((0.0, 0.0, 1.0, 1.0), 0.0, params,
-                            **({} if tile_buffer_m is None else {"tile_buffer_m": tile_buffer_m}))
-        return float(grid.halo_nodes * params.resolution)
-    grid = SmrfGrid((0.0, 0.0, 1.0, 1.0), params)
-    return float(grid.halo_cells * params.cell)
-
-
-def tile_grid(params: Params, cloud_bounds: BBoxXY, tile_box: BBoxXY,
-              tile_buffer_m: Optional[float] = None, tile_size_m: Optional[float] = None) -> Optional[BBoxXY]:
-    """The bounds to build tile ``tile_box``'s grid over (:func:`.engine.make_grid`), for a
-    cloud whose whole-cloud grid covers ``cloud_bounds`` (the cloud's bounds within the crop)
-    with CSF squares of ``tile_size_m`` and buffers of ``tile_buffer_m`` (default: the
-    method's); None when the tile is outside them. See the module doc."""
-    x0, y0, x1, y1 = cloud_bounds
-    box = (max(tile_box[0], x0), max(tile_box[1], y0), min(tile_box[2], x1), min(tile_box[3], y1))
-    if box[0] > box[2] or box[1] > box[3]:
-        return None
-    if not isinstance(params, CsfParams):
-        h = halo_m(params)
-        return (max(box[0] - h, x0), max(box[1] - h, y0), min(box[2] + h, x1), min(box[3] + h, y1))
-    whole = Lattice.covering(cloud_bounds, params.resolution, max_cells=MAX_PAGED_CELLS)  # its numbers only
-    sizes = {} if tile_buffer_m is None else {"tile_buffer_m": tile_buffer_m}
-    if tile_size_m:
-        sizes["tile_size_m"] = tile_size_m
-    probe: Any = CsfGrid((0.0, 0.0, 1.0, 1.0), 0.0, params, **sizes)
-    core, reach = probe.tile_nodes, -(-probe.halo_nodes // probe.tile_nodes)  # squares of buffer
-    step = whole.step
-
-    def span(lo: float, hi: float, origin: float, n: int) -> Tuple[int, int]:
-        first = min(max(int(np.floor((lo - origin) / step + 0.5)), 0), n - 1)
-        last = min(max(int(np.floor((hi - origin) / step + 0.5)), 0), n - 1)
-        return max(0, (first // core - reach) * core), min(n, (last // core + 1 + reach) * core)
-
-    c0, c1 = span(box[0], box[2], whole.x0, whole.nx)
-    r0, r1 = span(box[1], box[3], whole.y0, whole.ny)
-    # bounds that Lattice.covering (2 nodes of padding) turns into exactly these nodes
-    return (whole.x0 + (c0 + 2.5) * step, whole.y0 + (r0 + 2.5) * step,
-            whole.x0 + (c1 - 2.5) * step, whole.y0 + (r1 - 2.5) * step)
 
 
 def output_tile_names(source: CloudSource, folder: str) -> List[str]:

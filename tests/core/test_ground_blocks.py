@@ -230,3 +230,14 @@ def test_blocks_of_a_cloud_too_large_for_one_grid():
     assert lat is not None and lat.nx * lat.ny < 2_000 * 2_000
     box = plan.box(key)
     assert lat.x0 <= box[0] and lat.x0 + lat.nx * lat.step >= box[2]
+
+
+def test_blocks_write_the_same_file_with_one_thread_or_two(hilly, tmp_path, monkeypatch):
+    outputs = []
+    for threads in (1, 2):
+        monkeypatch.setattr(blocks, "CHUNK_THREADS", threads)
+        out = str(tmp_path / f"g{threads}.laz")
+        ground.run_ground_filter(hilly["single"], out, "csf", "builtin", block_m=SMALL_BLOCK_M, chunk_points=7_000)
+        outputs.append(laspy.read(out).points.array)
+    assert len(outputs[0]) == len(laspy.read(hilly["single"]).points)
+    assert np.array_equal(outputs[0], outputs[1])
