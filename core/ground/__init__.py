@@ -26,7 +26,10 @@ The built-in engine never holds the cloud in memory. Pass 1 streams the points i
 grid (SMRF: lowest point per cell; CSF: the point nearest to each cloth node, which is
 all the cloth simulation looks at), the grid is processed tile by tile with an overlap
 buffer, and pass 2 streams the points again, classifies them against the ground surface
-of their tile and writes them. Memory grows with the crop area, not the point count.
+of their tile and writes them. A cloud wider or longer than a block (512 m, a drive) goes
+block by block (:mod:`.blocks`): each chunk is reduced in pass 1 to what the grids keep of
+it, and each block's grid covers the block and its halo only, so the memory follows a block,
+not the drive; the classes are the same.
 
 Ground is class 2. Other classes are kept unless ``reset_classes``: points the filter
 finds off-ground that were class 2 become 1 (unclassified); with ``reset_classes`` every
@@ -36,8 +39,10 @@ are classified; the others keep their class.
 Modules: ``lattice`` (the world-aligned grid and tiles both built-in methods use),
 ``smrf`` and ``csf`` (the methods), ``params`` (method/engine names, parameter sets),
 ``pdal`` (pipelines, finding and running PDAL, the PDAL engine), ``pdal_tiles`` (PDAL on
-tiles, each with its halo), ``engine`` (the built-in engine on files, the engine choice and
-the entry points) and ``tiled`` (one output tile per input tile).
+tiles, each with its halo), ``gridsteps`` (the steps the built-in engine's runs share),
+``engine`` (the built-in engine on files, the engine choice and the entry points),
+``blocks`` (the built-in engine block by block) and ``tiled`` (one output tile per input
+tile).
 """
 from .csf import CSF_BUFFER_M, CSF_TILE_M, CsfGrid, CsfParams, run_csf_cloth
 from .engine import GroundResult, classify_ground, classify_ground_arrays, run_ground_filter
