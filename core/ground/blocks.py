@@ -32,8 +32,17 @@ from ..cloudsource import BBoxXY, conform
 from ..drivewindows import Spool, map_in_order
 from ..errors import SILENT, Progress
 from ..pointcloud import CloudWriter, CropRegion
-from .csf import CSF_TILE_M, NODE_CANDIDATE_DTYPE, CsfGrid, CsfParams, node_candidates
-from .gridsteps import CHUNK_THREADS, classified, cropped, halo_m, make_grid, returns_mask, tile_grid
+from .csf import NODE_CANDIDATE_DTYPE, CsfParams, node_candidates
+from .gridsteps import (
+    CHUNK_THREADS,
+    classified,
+    cropped,
+    csf_square_nodes,
+    halo_m,
+    make_grid,
+    returns_mask,
+    tile_grid,
+)
 from .lattice import BLOCK_M, MAX_PAGED_CELLS, BoundsXY, Lattice, OutsideGridError, Window, on_lattice
 from .params import Params, grid_step_m
 from .smrf import CELL_CANDIDATE_DTYPE, cell_candidates
@@ -58,7 +67,7 @@ def grid_reach_m(params: Params, tile_size_m: Optional[float] = None,
     step = grid_step_m(params)
     halo = halo_m(params, tile_buffer_m)
     if isinstance(params, CsfParams):
-        square_m = CsfGrid((0.0, 0.0, 1.0, 1.0), 0.0, params, tile_size_m=tile_size_m or CSF_TILE_M).tile_nodes * step
+        square_m = csf_square_nodes(params, tile_size_m, tile_buffer_m)[0] * step
         halo = square_m * (1 + math.ceil(halo / square_m))
     return halo + (NEEDED_STEPS + 3.0) * step
 
@@ -209,8 +218,10 @@ def classify_by_blocks(read: Callable[[Progress], Iterator[Any]], plan: BlockPla
         x, y = np.asarray(pts.x), np.asarray(pts.y)
         codes = plan.keys_of(x, y)
         one_block = codes.min() == codes.max()
-        own = codes[:1] if one_block else np.unique(codes)
-        owners = [plan.key_of_code(c) for c in own]
+        order = None if one_block else np.argsort(codes, kind="stable")   # the rows by block
+        by_block = codes if order is None else codes[order]
+        starts = np.flatnonzero(np.r_[True, by_block[1:] != by_block[:-1], True])
+        owners = [plan.key_of_code(c) for c in by_block[starts[:-1]]]
         reps = []
         z = np.asarray(pts.z)
         if eligible.all():
@@ -224,11 +235,9 @@ def classify_by_blocks(read: Callable[[Progress], Iterator[Any]], plan: BlockPla
             reps.extend(block_candidates(owners, one_block, xe[a:b], ye[a:b], ze[a:b], codes_e[a:b]))
         n_eligible = len(xe)
         del x, y, xe, ye, ze, codes_e
-        if not one_block:
-            order = np.argsort(codes, kind="stable")
-            rows, codes = rows[order], codes[order]
-        starts = np.flatnonzero(np.r_[True, codes[1:] != codes[:-1], True])
-        pieces = [(plan.key_of_code(codes[a]), rows[a:b]) for a, b in zip(starts[:-1], starts[1:])]
+        if order is not None:
+            rows = rows[order]
+        pieces = [(key, rows[a:b]) for key, a, b in zip(owners, starts[:-1], starts[1:])]
         return pieces, reps, n_eligible
 
     def block_candidates(owners: List[BlockKey], one_block: bool, x: np.ndarray, y: np.ndarray, z: np.ndarray,

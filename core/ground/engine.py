@@ -234,13 +234,12 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
     spool_folder = os.path.dirname(output_path)
     has_work = bounds is not None and source.point_count > 0
     room = has_work and room_to_spool(source.point_count, header.point_format.size, spool_folder)
-    if room and block_m and bounds is not None:
+    if room and block_m and bounds is not None and max(bounds[2] - bounds[0], bounds[3] - bounds[1]) > block_m:
         from .blocks import BlockPlan
 
         plan = BlockPlan(params, bounds, block_m, tile_size_m, tile_buffer_m)
-        if plan.n_blocks > 1 and max(bounds[2] - bounds[0], bounds[3] - bounds[1]) > block_m:
-            return _builtin_blocks(source, output_path, out_header, plan, params, region, reset_classes,
-                                   chunk_points, progress)
+        return _builtin_blocks(source, output_path, out_header, plan, params, region, reset_classes,
+                               chunk_points, progress)
     grid: Optional[GroundGrid] = None
     if has_work and bounds is not None:
         grid = make_grid(params, bounds, float(source.bounds[2]), tile_size_m, tile_buffer_m)

@@ -97,20 +97,27 @@ def classified(pts: Any, grid: GroundGrid, params: Params, reset_classes: bool,
 #: classified in pass 2); the grid is filled and the output written in reading order.
 CHUNK_THREADS = BLOCK_THREADS
 
+
 def cropped(chunk: Any, region: Optional[CropRegion]) -> Any:
     """The points of ``chunk`` inside ``region`` (all of them without one)."""
     return chunk if region is None else chunk[region.mask(chunk.x, chunk.y)]
+
+
+def csf_square_nodes(params: CsfParams, tile_size_m: Optional[float] = None,
+                     tile_buffer_m: Optional[float] = None) -> Tuple[int, int]:
+    """CSF's squares of cloth as :class:`~.csf.CsfGrid` cuts them: ``(side, buffer)`` in nodes,
+    for squares of ``tile_size_m`` and buffers of ``tile_buffer_m`` (default: CSF's)."""
+    probe = CsfGrid((0.0, 0.0, 1.0, 1.0), 0.0, params, tile_size_m=tile_size_m or CSF_TILE_M,
+                    tile_buffer_m=CSF_BUFFER_M if tile_buffer_m is None else tile_buffer_m)
+    return probe.tile_nodes, probe.halo_nodes
 
 
 def halo_m(params: Params, tile_buffer_m: Optional[float] = None) -> float:
     """How far SMRF's grid reaches beyond the cells it classifies (its halo), or CSF's
     buffer around a square of cloth, in metres."""
     if isinstance(params, CsfParams):
-        grid: Any = CsfGrid((0.0, 0.0, 1.0, 1.0), 0.0, params,
-                            **({} if tile_buffer_m is None else {"tile_buffer_m": tile_buffer_m}))
-        return float(grid.halo_nodes * params.resolution)
-    grid = SmrfGrid((0.0, 0.0, 1.0, 1.0), params)
-    return float(grid.halo_cells * params.cell)
+        return float(csf_square_nodes(params, tile_buffer_m=tile_buffer_m)[1] * params.resolution)
+    return float(SmrfGrid((0.0, 0.0, 1.0, 1.0), params).halo_cells * params.cell)
 
 
 def tile_grid(params: Params, cloud_bounds: BBoxXY, tile_box: BBoxXY,
@@ -127,11 +134,8 @@ def tile_grid(params: Params, cloud_bounds: BBoxXY, tile_box: BBoxXY,
         h = halo_m(params)
         return (max(box[0] - h, x0), max(box[1] - h, y0), min(box[2] + h, x1), min(box[3] + h, y1))
     whole = Lattice.covering(cloud_bounds, params.resolution, max_cells=MAX_PAGED_CELLS)  # its numbers only
-    sizes = {} if tile_buffer_m is None else {"tile_buffer_m": tile_buffer_m}
-    if tile_size_m:
-        sizes["tile_size_m"] = tile_size_m
-    probe: Any = CsfGrid((0.0, 0.0, 1.0, 1.0), 0.0, params, **sizes)
-    core, reach = probe.tile_nodes, -(-probe.halo_nodes // probe.tile_nodes)  # squares of buffer
+    core, buffer_nodes = csf_square_nodes(params, tile_size_m, tile_buffer_m)
+    reach = -(-buffer_nodes // core)  # squares of buffer
     step = whole.step
 
     def span(lo: float, hi: float, origin: float, n: int) -> Tuple[int, int]:

@@ -6,8 +6,7 @@ import os
 import laspy
 import numpy as np
 import pytest
-import shapely
-from helpers.cloudtiles import classes_by_point, hilly_street
+from helpers.cloudtiles import classes_by_point, hilly_street, same_classes_cases, street_crop
 
 from roadsigns.core import cloudsource as cs
 from roadsigns.core import ground
@@ -29,16 +28,9 @@ def by_point(path):
     return classes_by_point([path])
 
 
-@pytest.mark.parametrize("method, params, crop", [
-    ("csf", None, False),
-    ("smrf", None, False),
-    ("csf", ground.CsfParams(resolution=0.3, threshold=0.2), True),  # a step that is no binary fraction
-])
+@pytest.mark.parametrize("method, params, crop", same_classes_cases())
 def test_blocks_give_the_classes_of_one_grid(hilly, tmp_path, method, params, crop):
-    crop_polygons = None
-    if crop:
-        x0, y0, _, _, _, _ = cs.open_cloud(hilly["single"]).bounds
-        crop_polygons = [shapely.box(x0 + 3, y0 + 6, x0 + 80, y0 + 24)]
+    crop_polygons = street_crop(hilly["single"]) if crop else None
     one, cut = str(tmp_path / "one.laz"), str(tmp_path / "blocks.laz")
     whole = ground.run_ground_filter(hilly["single"], one, method, "builtin", params=params,
                                      crop_polygons=crop_polygons, block_m=None)

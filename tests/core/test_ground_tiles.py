@@ -9,9 +9,15 @@ import shutil
 import laspy
 import numpy as np
 import pytest
-import shapely
 from helpers import realpdal
-from helpers.cloudtiles import classes_by_point, hilly_street, split_into_tiles, write_vpc
+from helpers.cloudtiles import (
+    classes_by_point,
+    hilly_street,
+    same_classes_cases,
+    split_into_tiles,
+    street_crop,
+    write_vpc,
+)
 
 from roadsigns.core import cloudsource as cs
 from roadsigns.core import ground
@@ -36,16 +42,9 @@ def agreement(single_out, tile_outs):
     return float((c1 == c2).mean())
 
 
-@pytest.mark.parametrize("method, params, crop", [
-    ("csf", None, False),
-    ("smrf", None, False),
-    ("csf", ground.CsfParams(resolution=0.3, threshold=0.2), True),  # a step that is no binary fraction
-])
+@pytest.mark.parametrize("method, params, crop", same_classes_cases())
 def test_tiles_get_the_classes_of_one_file(hilly, tmp_path, method, params, crop):
-    crop_polygons = None
-    if crop:  # a corridor that leaves two tiles out and cuts through the others
-        x0, y0, _, x1, _, _ = cs.open_cloud(hilly["single"]).bounds
-        crop_polygons = [shapely.box(x0 + 3, y0 + 6, x0 + 80, y0 + 24)]
+    crop_polygons = street_crop(hilly["single"]) if crop else None   # leaves two tiles out
     one = str(tmp_path / "one.laz")
     ground.run_ground_filter(hilly["single"], one, method, "builtin", params=params, crop_polygons=crop_polygons)
     out = tmp_path / "ground"

@@ -83,3 +83,24 @@ def classes_by_point(paths):
     k, c = np.concatenate(keys), np.concatenate(classes)
     order = np.lexsort(k.T[::-1])
     return k[order], c[order]
+
+
+def same_classes_cases():
+    """``(method, params, crop)`` cases for the tests that compare a cut run (tiles, blocks)
+    with one run over the file: CSF and SMRF at their defaults, and a cropped CSF with a cloth
+    step that is no binary fraction."""
+    from roadsigns.core import ground
+
+    return [("csf", None, False), ("smrf", None, False),
+            ("csf", ground.CsfParams(resolution=0.3, threshold=0.2), True)]
+
+
+def street_crop(single):
+    """The crop polygons of those cases: a corridor along the street of :func:`hilly_street`
+    that leaves two of its tiles out and cuts through the others."""
+    import shapely
+
+    from roadsigns.core import cloudsource
+
+    x0, y0 = cloudsource.open_cloud(single).bounds[:2]
+    return [shapely.box(x0 + 3, y0 + 6, x0 + 80, y0 + 24)]
