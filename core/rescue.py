@@ -21,7 +21,7 @@ from typing import Optional, Sequence, Tuple
 import numpy as np
 
 from .sheeting import sheeting_fraction
-from .signcodes import OTHER_CODE, unlisted_code_class
+from .signcodes import BACK_CODE, NO_SIGN_NAMES, OTHER_CODE, unlisted_code_class
 
 #: Default of detectsigns' RESCUE_CONFIDENCE: the lowest detector score of a candidate. 0.2
 #: since the wider detector (27 November): at 0.05 its candidates cost precision on
@@ -56,6 +56,11 @@ class RescueRule:
     see facades, whose dark windows they may box (models/README.md, "Overhead panels read").
     Elsewhere a detection read ``other`` stays: a sign whose legend the table lacks (a
     foreign no-parking sign) reads ``other`` too.
+
+    ``drop_backs``: a detection (anywhere) whose best reading is ``back``
+    (:data:`.signcodes.BACK_CODE`) with at least ``min_back_score`` is dropped: the detector
+    boxes the plain grey backs of signs for their shape, and a sign's face is seen from the
+    stations on its other side (models/README.md, "The backs of signs read").
     """
     min_class_score: float = 0.9
     min_box_px: float = 12.0
@@ -63,6 +68,8 @@ class RescueRule:
     small_min_score: float = 0.35
     min_sheeting: float = 0.05
     drop_lone_upward_other: bool = True
+    drop_backs: bool = True
+    min_back_score: float = 0.5
 
 
 DEFAULT_RULE = RescueRule()
@@ -79,20 +86,21 @@ def worth_reading(box_px: np.ndarray, sheeting: np.ndarray, scores: np.ndarray,
     return (side >= rule.min_box_px) & scored_enough & (np.asarray(sheeting, float) >= rule.min_sheeting)
 
 
-#: :func:`code_classes`' mark for the column of ``other``, and for a code of a class the
-#: detector lacks (or that the codes table does not hold).
+#: :func:`code_classes`' mark for the column of ``other`` (and of ``back``), and for a code
+#: of a class the detector lacks (or that the codes table does not hold).
 OTHER_COLUMN, UNMAPPED_COLUMN = -2, -1
 
 
 def code_classes(names: Sequence[str], table, class_names: Sequence[str]) -> np.ndarray:
     """Per classifier column (``names``), the class of its code as an index into
     ``class_names`` (the detector's); :data:`UNMAPPED_COLUMN` for a code of a class the
-    detector lacks (or not in the codes ``table``), :data:`OTHER_COLUMN` for ``other``. An
+    detector lacks (or not in the codes ``table``), :data:`OTHER_COLUMN` for ``other`` and
+    ``back`` (:data:`.signcodes.NO_SIGN_NAMES`). An
     ``unlisted:`` name (a sign of a class whose code the table lacks,
     :func:`.signcodes.unlisted_code`) counts for its class."""
     out = np.full(len(names), OTHER_COLUMN, np.int64)
     for k, name in enumerate(names):
-        if name != OTHER_CODE:
+        if name not in NO_SIGN_NAMES:
             klass = unlisted_code_class(name) or class_of_code(name, table, class_names)
             out[k] = list(class_names).index(klass) if klass is not None and klass in class_names else UNMAPPED_COLUMN
     return out
@@ -143,7 +151,8 @@ def second_look(classifier, pano: np.ndarray, found, class_names: Sequence[str],
     is :func:`confirmed` becomes a detection of that class (:func:`class_reading`; its own
     class for codes of classes the detector lacks) and keeps its detector score and its best
     code; the others are dropped. A detection an upward view found alone is dropped when its
-    code reads ``other`` (``rule.drop_lone_upward_other``). ``fit_tall``: a candidate is judged
+    code reads ``other`` (``rule.drop_lone_upward_other``), and any detection or candidate
+    that reads ``back`` (``rule.drop_backs``). ``fit_tall``: a candidate is judged
     (:func:`worth_reading`) on the network's box, then fitted as the detections were
     (:func:`.detector.fit_tall_boxes`) and read on the fitted box: a sign seen edge-on fills
     the network's box only in part (fitted before the judging, such a box fell under
@@ -168,6 +177,11 @@ def second_look(classifier, pano: np.ndarray, found, class_names: Sequence[str],
         overhead_other = found.lone_upward & (np.array(found.code, dtype=object) == OTHER_CODE)
         if overhead_other.any():
             keep = ~overhead_other
+            found, probabilities = found.subset(keep), probabilities[keep]
+    if rule.drop_backs:
+        back = (np.array(found.code, dtype=object) == BACK_CODE) & (found.code_score >= rule.min_back_score)
+        if back.any():
+            keep = ~back
             found, probabilities = found.subset(keep), probabilities[keep]
     if not found.candidate.any():
         return found

@@ -11,8 +11,9 @@ Three pieces, used by the chain in this order:
   ``code;name;class``, then one row per code.
 * the **classifier** (:class:`CodeClassifier`): an ONNX model taking square RGB crops;
   the format is in ``models/README.md`` ("Sign-code classifier: the format"). Its answer
-  :data:`OTHER_CODE` means "no code it knows" (or no sign at all), an :func:`unlisted_code`
-  "a sign of this class whose code the table lacks".
+  :data:`OTHER_CODE` means "no code it knows" (or no sign at all), :data:`BACK_CODE` "the
+  back of a sign" (a plain panel facing away), an :func:`unlisted_code` "a sign of this class
+  whose code the table lacks".
 * the **crops** (:func:`cut_crop`) and the **vote** (:func:`vote`).
 
 Conventions: panoramas are ``H x W x 3`` uint8 **BGR** arrays (OpenCV's order, as
@@ -43,6 +44,15 @@ SIGN_CLASSES = ("warning", "prohibitory", "mandatory", "information", "stop", "y
 #: The classifier's name for "no code of the table" (or no sign at all); never in a table.
 OTHER_CODE = "other"
 
+#: The classifier's name for the back of a sign: a plain panel (grey metal, mounting rails,
+#: the pole in front of it) whose face looks away from the camera; never in a table. The
+#: second look drops a detection that reads it (``core/rescue.py``): the sign's face is seen
+#: from the stations on its other side.
+BACK_CODE = "back"
+
+#: The classifier's names that are no code and count for no sign class.
+NO_SIGN_NAMES = (OTHER_CODE, BACK_CODE)
+
 #: Prefix of the names a classifier may answer for "a sign of this class whose code the
 #: table lacks" (``unlisted:prohibitory``: a foreign no-parking sign, a limit no code has).
 #: Such a reading gives no code, but it tells a sign of that class from a look-alike (the
@@ -64,9 +74,9 @@ def unlisted_code_class(name: str) -> Optional[str]:
 
 
 def is_code(name: str) -> bool:
-    """Whether a classifier's answer is a code of the table: not empty, not
-    :data:`OTHER_CODE`, not an :func:`unlisted_code`."""
-    return bool(name) and name != OTHER_CODE and not name.startswith(UNLISTED_CODE_PREFIX)
+    """Whether a classifier's answer is a code of the table: not empty, not one of
+    :data:`NO_SIGN_NAMES`, not an :func:`unlisted_code`."""
+    return bool(name) and name not in NO_SIGN_NAMES and not name.startswith(UNLISTED_CODE_PREFIX)
 
 
 #: Fraction of the box's longer angular side added on each side of a crop.
@@ -140,7 +150,7 @@ def read_codes_table(path: str) -> CodesTable:
     :class:`InputError` naming the file, the line (1-based, comment and blank lines
     counted) and what was expected, for: an unreadable or non-UTF-8 file, a missing or
     other header, a row without exactly three fields, an empty code or name, the code
-    :data:`OTHER_CODE`, a code twice (both lines named), a class not in
+    :data:`NO_SIGN_NAMES`, a code twice (both lines named), a class not in
     :data:`SIGN_CLASSES`, and a table without rows. Blanks around fields are dropped and
     classes are read case-insensitively; empty fields after the third (a semicolon at the
     end of the line) are allowed.
@@ -186,7 +196,7 @@ def read_codes_table(path: str) -> CodesTable:
         if not code:
             raise InputError("Sign codes table {path}, line {line}: the code is empty",
                              path=path, line=line_no)
-        if code.lower() == OTHER_CODE or code.lower().startswith(UNLISTED_CODE_PREFIX):
+        if code.lower() in NO_SIGN_NAMES or code.lower().startswith(UNLISTED_CODE_PREFIX):
             raise InputError("Sign codes table {path}, line {line}: the code {code} is reserved "
                              "for signs the classifier cannot read and must not be in the table",
                              path=path, line=line_no, code=code)
@@ -227,7 +237,8 @@ def softmax(x: np.ndarray) -> np.ndarray:
 class CodeClassifier:
     """A sign-code classifier (ONNX, format in ``models/README.md``) in an onnxruntime session.
 
-    ``table``: the codes its names must come from (besides :data:`OTHER_CODE`); ``threads``:
+    ``table``: the codes its names must come from (besides :data:`NO_SIGN_NAMES` and
+    :func:`unlisted_code` names); ``threads``:
     onnxruntime intra-op threads (0 = its default). Attributes: ``names`` (output order),
     ``input_px`` (the crop side S), ``crop_margin`` (metadata, else
     :data:`DEFAULT_CROP_MARGIN`), ``max_batch`` (:data:`DEFAULT_MAX_BATCH` when the batch is
@@ -287,7 +298,7 @@ class CodeClassifier:
         if twice:
             raise InputError("The model {path} names {names} more than once in its metadata "
                              "'names'", path=self.model_path, names=", ".join(twice))
-        unknown = [n for n in names if n != OTHER_CODE and not unlisted_code_class(n) and n not in self.table]
+        unknown = [n for n in names if n not in NO_SIGN_NAMES and not unlisted_code_class(n) and n not in self.table]
         if unknown:
             shown = ", ".join(unknown[:5]) + (" and {} more".format(len(unknown) - 5)
                                               if len(unknown) > 5 else "")
@@ -376,7 +387,7 @@ class CodeClassifier:
         return ("{}: {} codes{}{}, input {} x {} px RGB crops (margin {:g}), {}, batch {}, "
                 "providers {}".format(os.path.basename(self.model_path), n_codes,
                                       ", {} classes of signs without a code".format(n_classes) if n_classes else "",
-                                      " and '{}'".format(OTHER_CODE) if OTHER_CODE in self.names else "",
+                                      "".join(" and '{}'".format(n) for n in NO_SIGN_NAMES if n in self.names),
                                       self.input_px, self.input_px, self.crop_margin,
                                       self.output_kind, self.max_batch,
                                       ", ".join(self.session.get_providers())))
@@ -647,7 +658,7 @@ def decide_code(winner: str, support: float, n_views: int, klass: str,
                 confidence: float = DEFAULT_CODE_CONFIDENCE) -> CodeVote:
     """What a sign keeps of the code :func:`code_support` voted, with its class ``klass``.
 
-    ``code`` and ``code_name`` are empty when the winner is :data:`OTHER_CODE` or an
+    ``code`` and ``code_name`` are empty when the winner is one of :data:`NO_SIGN_NAMES` or an
     :func:`unlisted_code` (:func:`is_code`), nothing was read (``winner`` empty) or the
     support is below ``confidence`` (``code_score`` and ``code_views`` still describe the
     winner). **Class check**, for a kept code whose class in

@@ -26,9 +26,12 @@ Sources (``models/README.md``, "Sign-code classifier"):
   are one code in any country take that code, :data:`FAMILY_CODES`) and signs of the
   shapes with legends no code in the table has (weight and height limits, other numbers,
   letters); information panels of either kind are ``other``;
+- ``back``: the backs of signs, as ``back`` (``signcodes.BACK_CODE``): the back faces of the
+  training scenes' panoramas (:func:`back_crops`) and procedural ones (``data.hard_negative``'s
+  ``sign_back``: a grey plate of a sign's shape, rails, the pole in front);
 - ``other``: street backgrounds, procedural look-alikes (``data.hard_negative``: traffic
-  lights, shop signs, red-ringed logos, mirrors, roundels, sign backs), the generator's
-  billboards, and boxes mostly off a sign;
+  lights, shop signs, red-ringed logos, mirrors, roundels), the generator's billboards, and
+  boxes mostly off a sign;
 - ``mined``: ``other`` crops of what the bundled detector boxes on no sign in the training
   scenes' panoramas (its second look's candidates: billboard decals, windows, bins), the
   look-alikes the classifier must turn down (:func:`mined_negatives`).
@@ -72,7 +75,12 @@ MIN_PANO_BOX_PX = 10
 #: every this-many-th training track of each class (offset 1) is validation
 VAL_EVERY = 9
 #: share of each source in a batch
-MIX = {"gtsrb": 0.40, "drawn": 0.12, "pano": 0.18, "unlisted": 0.12, "other": 0.15, "mined": 0.03}
+MIX = {"gtsrb": 0.40, "drawn": 0.12, "pano": 0.18, "unlisted": 0.12, "other": 0.15, "mined": 0.03, "back": 0.05}
+#: share of the ``back`` draws that are the training scenes' rendered backs (where present);
+#: the rest are procedural (``data.hard_negative``'s ``sign_back``)
+RENDERED_BACK_SHARE = 0.6
+#: the look-alikes ``other`` draws from ``data.hard_negative`` (its sign backs are ``back``)
+OTHER_NEGATIVE_KINDS = tuple(k for k in data.NEGATIVE_MAKERS if k != "sign_back")
 #: the detector whose boxes on no sign of the training scenes are mined (:func:`mined_negatives`)
 MINED_DETECTOR = os.path.join(REPO_ROOT, "models", "roadsigns-int8.onnx")
 #: a mined box overlapping any sign's box (either face, hidden parts included) by more than
@@ -117,9 +125,11 @@ def read_table_codes(path: str = TABLE_PATH):
 
 def classifier_names(path: str = TABLE_PATH):
     """The classifier's names: the table's codes, a sign of each of :data:`UNLISTED_CLASSES`
-    whose code the table lacks (``signcodes.unlisted_code``), ``other`` last."""
+    whose code the table lacks (``signcodes.unlisted_code``), ``back`` (the back of a sign,
+    ``signcodes.BACK_CODE``), ``other`` last."""
     signcodes = import_roadsigns("roadsigns.core.signcodes")
-    return read_table_codes(path) + [signcodes.unlisted_code(c) for c in UNLISTED_CLASSES] + [OTHER]
+    return (read_table_codes(path) + [signcodes.unlisted_code(c) for c in UNLISTED_CLASSES]
+            + [signcodes.BACK_CODE, OTHER])
 
 
 def gtsrb_codes(path: str = GTSRB_CODES_PATH):
@@ -262,18 +272,11 @@ def drawn_codes(names):
             if code in index and (var in tx.VARIANTS.get(cls, ()) or var.isdigit())]
 
 
-def pano_crops(scene_dirs, names, cache_path: str):
-    """Native-density crops (up to 96 px) of the front faces in generated panoramas, with the
-    code of each sign from ``scene.json``: list of (crop BGR, label index, shorter side of the
-    sign's box in panorama pixels). Cached."""
-    if os.path.isfile(cache_path):
-        z = np.load(cache_path, allow_pickle=True)
-        if "min_side" in z:
-            return list(zip(z["crops"], z["labels"], z["min_side"]))
-    signcodes = import_roadsigns("roadsigns.core.signcodes")
+def scene_faces(scene_dirs, facing: str):
+    """``(panorama BGR, sign record of scene.json, sign's code)`` of every ``facing`` face
+    (``front`` or ``back``) in the ``scene_dirs``' panoramas that is at most 30 % hidden and
+    at least :data:`MIN_PANO_BOX_PX` on its box's shorter side."""
     tx = data.import_textures()
-    index = {n: k for k, n in enumerate(names)}
-    crops, labels, sides = [], [], []
     for scene_dir in scene_dirs:
         with open(os.path.join(scene_dir, "scene.json")) as f:
             scene = json.load(f)
@@ -284,17 +287,49 @@ def pano_crops(scene_dirs, names, cache_path: str):
                 continue
             for s in meta["signs"]:
                 b = s.get("visible_box")
-                if s["facing"] != "front" or b is None or s["occlusion"] > 0.3:
+                if s["facing"] != facing or b is None or s["occlusion"] > 0.3:
                     continue
                 if min(b[2] - b[0], b[3] - b[1]) < MIN_PANO_BOX_PX:
                     continue
-                crop = signcodes.cut_crop(pano, (b[0], b[1], b[2] + 1, b[3] + 1), margin=CACHED_MARGIN,
-                                          max_side_px=128)
-                crops.append(cv2.cvtColor(crop, cv2.COLOR_RGB2BGR))
-                labels.append(index.get(code[s["sign_id"]], index[OTHER]))
-                sides.append(float(min(b[2] - b[0], b[3] - b[1]) + 1))
-    np.savez(cache_path, crops=np.array(crops, dtype=object), labels=np.array(labels), min_side=np.array(sides))
-    return list(zip(crops, labels, sides))
+                yield pano, s, code[s["sign_id"]]
+
+
+def native_crop(pano: np.ndarray, visible_box) -> np.ndarray:
+    """A cached native-density crop (BGR) round a scene's inclusive ``visible_box``."""
+    signcodes = import_roadsigns("roadsigns.core.signcodes")
+    b = visible_box
+    crop = signcodes.cut_crop(pano, (b[0], b[1], b[2] + 1, b[3] + 1), margin=CACHED_MARGIN, max_side_px=128)
+    return cv2.cvtColor(crop, cv2.COLOR_RGB2BGR)
+
+
+def back_crops(scene_dirs, cache_path: str):
+    """Native-density crops (as :func:`pano_crops`) of the back faces in generated
+    panoramas: list of crops (BGR). Cached."""
+    if os.path.isfile(cache_path):
+        return list(np.load(cache_path, allow_pickle=True)["crops"])
+    crops = [native_crop(pano, s["visible_box"]) for pano, s, _ in scene_faces(scene_dirs, "back")]
+    np.savez(cache_path, crops=np.array(crops, dtype=object))
+    return crops
+
+
+def pano_crops(scene_dirs, names, cache_path: str):
+    """Native-density crops (up to 96 px) of the front faces in generated panoramas, with the
+    code of each sign from ``scene.json``: list of (crop BGR, label index in ``names``, shorter
+    side of the sign's box in panorama pixels). Cached with the codes, so that classifiers of
+    other names share the cache."""
+    z = np.load(cache_path, allow_pickle=True) if os.path.isfile(cache_path) else None
+    if z is not None and "codes" in z:
+        crops, codes, sides = list(z["crops"]), [str(c) for c in z["codes"]], list(z["min_side"])
+    else:
+        crops, codes, sides = [], [], []
+        for pano, s, code in scene_faces(scene_dirs, "front"):
+            b = s["visible_box"]
+            crops.append(native_crop(pano, b))
+            codes.append(code)
+            sides.append(float(min(b[2] - b[0], b[3] - b[1]) + 1))
+        np.savez(cache_path, crops=np.array(crops, dtype=object), codes=np.array(codes), min_side=np.array(sides))
+    index = {n: k for k, n in enumerate(names)}
+    return [(c, index.get(code, index[OTHER]), side) for c, code, side in zip(crops, codes, sides)]
 
 
 def cached_box(crop: np.ndarray):
@@ -437,8 +472,10 @@ class Sampler:
     """Draws labelled training crops (``CROP_PX`` square, BGR) from every source."""
 
     def __init__(self, names, seed: int = 0, pano_cache: str = "", mined_cache: str = "",
-                 far_share: float = FAR_SHARE, mix: Optional[Dict[str, float]] = None):
-        """``far_share``: as :data:`FAR_SHARE`; ``mix``: shares that replace :data:`MIX`'s."""
+                 far_share: float = FAR_SHARE, mix: Optional[Dict[str, float]] = None, back_cache: str = ""):
+        """``far_share``: as :data:`FAR_SHARE`; ``mix``: shares that replace :data:`MIX`'s;
+        ``back_cache``: where the rendered backs are cached (:func:`back_crops`; none: only
+        procedural backs). A classifier without a ``back`` name gets no ``back`` draws."""
         unknown = set(mix or {}) - set(MIX)
         if unknown:
             raise ValueError(f"no source {', '.join(sorted(unknown))} in the mix (sources: {', '.join(MIX)})")
@@ -447,6 +484,9 @@ class Sampler:
         self.mix = dict(MIX, **(mix or {}))
         self.other = self.names.index(OTHER)
         signcodes = import_roadsigns("roadsigns.core.signcodes")
+        self.back = self.names.index(signcodes.BACK_CODE) if signcodes.BACK_CODE in self.names else None
+        if self.back is None:
+            self.mix.pop("back", None)
         self.unlisted = {c: self.names.index(signcodes.unlisted_code(c)) if c in UNLISTED_CLASSES else self.other
                          for c in data.CLASSES}
         self.rng = np.random.default_rng(seed)
@@ -478,6 +518,7 @@ class Sampler:
             print(f"codes: training scene {d} missing, its panoramas left out", flush=True)
         self.pano = pano_crops(present, self.names, pano_cache) if pano_cache else []
         self.mined = mined_negatives(present, mined_cache) if mined_cache else []
+        self.backs = back_crops(present, back_cache) if back_cache and self.back is not None else []
 
     # backgrounds
     def background(self, side: int) -> np.ndarray:
@@ -549,7 +590,7 @@ class Sampler:
     def _other_composite(self):
         r = self.rng.random()
         if r < 0.7:
-            patch, _ = data.hard_negative(self.rng, self.background(128))
+            patch, _ = data.hard_negative(self.rng, self.background(128), OTHER_NEGATIVE_KINDS)
         else:
             patch = cv2.cvtColor(self.tx.billboard_texture(self.rng, 256), cv2.COLOR_RGBA2BGRA)
         image, box = self.composite(patch, self.rng.uniform(14, 100))
@@ -586,6 +627,21 @@ class Sampler:
     def from_mined(self):
         crop = self.mined[int(self.rng.integers(len(self.mined)))]
         return far_camera(crop_square(crop, cached_box(crop), **self.jitter()), self.rng, 0.5), self.other
+
+    def _back_composite(self):
+        patch, _ = data.hard_negative(self.rng, kinds=("sign_back",))
+        image, box = self.composite(patch, self.rng.uniform(14, 100))
+        image = data.degrade(np.dstack([image, np.full(image.shape[:2], 255, np.uint8)]), self.rng)[..., :3]
+        return image, box, self.back
+
+    def from_back(self):
+        """The back of a sign: a rendered one of the training scenes (:data:`RENDERED_BACK_SHARE`)
+        or a procedural one pasted on a street."""
+        if self.backs and self.rng.random() < RENDERED_BACK_SHARE:
+            crop = self.backs[int(self.rng.integers(len(self.backs)))]
+            return far_camera(crop_square(crop, cached_box(crop), **self.jitter()), self.rng, 0.5), self.back
+        image, box, label = self.pooled("back", self._back_composite)
+        return far_camera(crop_square(image, box, **self.jitter()), self.rng, 0.7), label
 
     def from_other(self):
         r = self.rng.random()
@@ -798,7 +854,8 @@ def train(out_path: str, minutes: float, work: str, threads: int = 1, batch: int
     set_crop_px(crop_px or CROP_PX)
     pano_cache = os.path.join(work, "pano-train.npz") if use_pano else ""  # native density: any CROP_PX
     mined_cache = os.path.join(work, "mined-train.npz") if use_pano else ""
-    options = {"far_share": far_share, "mix": mix}   # the Sampler's, in the feeders too
+    back_cache = os.path.join(work, "back-train.npz") if use_pano else ""
+    options = {"far_share": far_share, "mix": mix, "back_cache": back_cache}   # the Sampler's, in the feeders too
     sampler = Sampler(names, seed, pano_cache, mined_cache, **options)
     torch.manual_seed(seed)
     if state is not None and "rng" in state:
@@ -814,7 +871,8 @@ def train(out_path: str, minutes: float, work: str, threads: int = 1, batch: int
             log(f"codes: only the rows of {', '.join(n for n, c in zip(names, copied) if not c)} are trained")
     val_x, val_y, _ = heldout_gtsrb(names, "val")
     log(f"codes: {len(names)} names, {len(sampler.gtsrb)} GTSRB train crops, {len(sampler.drawn)} drawn, "
-        f"{len(sampler.pano)} panorama crops, {len(sampler.mined)} mined look-alikes; "
+        f"{len(sampler.pano)} panorama crops, {len(sampler.mined)} mined look-alikes, "
+        f"{len(sampler.backs)} rendered backs; "
         f"validation {len(val_y)} crops; {CROP_PX} px crops; device {dev}")
     feeder = BatchFeeder(names, seed, pano_cache, mined_cache, options, batch, workers) if workers else None
     stop = {"now": False}
@@ -948,6 +1006,14 @@ def panorama_figures(probabilities, names, work: str) -> dict:
     for key, keep in (("", np.ones(len(py), bool)), ("_min_size", sides >= chain_min_box_px())):
         figures["heldout_panorama_accuracy" + key] = round(float(np.mean(predicted[keep] == py[keep])), 4)
         figures["heldout_panorama_crops" + key] = int(keep.sum())
+    back = import_roadsigns("roadsigns.core.signcodes").BACK_CODE
+    if back in names:   # the backs of the same panoramas read as backs; their faces that are not
+        backs = back_crops(held_out_scenes(), os.path.join(work, "back-heldout.npz"))
+        if backs:
+            read = np.asarray(probabilities(np.stack([crop_square(c, cached_box(c)) for c in backs]))).argmax(axis=1)
+            figures["heldout_backs_read_back"] = round(float(np.mean(read == names.index(back))), 4)
+            figures["heldout_backs"] = len(backs)
+        figures["heldout_faces_read_back"] = round(float(np.mean(predicted == names.index(back))), 4)
     return figures
 
 

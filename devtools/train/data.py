@@ -781,6 +781,8 @@ def _printed_roundel(rng):
 
 
 def _sign_back(rng):
+    """The back of a sign: a plain grey plate of one of the signs' shapes, its mounting rails,
+    and mostly the pole in front of it (a sign's pole stands behind its face)."""
     shape = ["circle", "triangle_up", "triangle_down", "octagon", "square", "diamond"][int(rng.integers(6))]
     w = 96
     h = w if shape != "square" or rng.random() < 0.5 else int(w * rng.uniform(0.5, 0.8))
@@ -789,6 +791,13 @@ def _sign_back(rng):
     img[..., 3] = shape_mask(shape, w, h)
     for y in (h // 3, 2 * h // 3):  # mounting rails
         img[y - 3:y + 3, w // 4:3 * w // 4, :3] = int(grey * 0.6)
+    if rng.random() < 0.7:  # the pole, over the plate's whole height and past its edges
+        half = max(2, int(w * rng.uniform(0.03, 0.07)))
+        pole = int(np.clip(grey * rng.uniform(0.5, 1.2), 40, 230))
+        x = w // 2 + int(rng.integers(-w // 10, w // 10 + 1))
+        top = 0 if rng.random() < 0.5 else int(h * rng.uniform(0.1, 0.5))
+        img[top:, x - half:x + half, :3] = pole
+        img[top:, x - half:x + half, 3] = 255
     return img
 
 
@@ -840,9 +849,11 @@ NEGATIVE_MAKERS = {"traffic_light": _traffic_light, "tail_lights": _tail_lights,
                    "lattice": _lattice}
 
 
-def hard_negative(rng, background=None):
-    """One procedurally drawn look-alike (BGRA) and its kind."""
-    kind = list(NEGATIVE_MAKERS)[int(rng.integers(len(NEGATIVE_MAKERS)))]
+def hard_negative(rng, background=None, kinds=None):
+    """One procedurally drawn look-alike (BGRA) and its kind, drawn from ``kinds`` (names of
+    :data:`NEGATIVE_MAKERS`; default all)."""
+    kinds = list(NEGATIVE_MAKERS) if kinds is None else list(kinds)
+    kind = kinds[int(rng.integers(len(kinds)))]
     maker = NEGATIVE_MAKERS[kind]
     patch = maker(rng, background) if kind == "convex_mirror" else maker(rng)
     return patch, kind

@@ -38,3 +38,25 @@ def test_hard_negative_draws_every_kind():
     rng = np.random.default_rng(0)
     kinds = {data.hard_negative(rng)[1] for _ in range(300)}
     assert kinds == set(data.NEGATIVE_MAKERS)
+
+
+def test_hard_negative_draws_only_the_kinds_asked_for():
+    rng = np.random.default_rng(1)
+    assert {data.hard_negative(rng, kinds=("sign_back",))[1] for _ in range(20)} == {"sign_back"}
+    others = tuple(k for k in data.NEGATIVE_MAKERS if k != "sign_back")
+    assert {data.hard_negative(rng, kinds=others)[1] for _ in range(300)} == set(others)
+
+
+def test_a_signs_back_is_a_plain_grey_plate_mostly_with_its_pole_in_front():
+    """No sheeting colour anywhere: a plate of one grey, its rails of a darker one and, in
+    most draws, the pole across it in a third grey."""
+    rng = np.random.default_rng(8)
+    with_pole = 0
+    for _ in range(40):
+        patch = data._sign_back(rng)
+        drawn = patch[..., :3][patch[..., 3] > 0].astype(int)
+        assert (drawn.max(axis=1) - drawn.min(axis=1)).max() <= 12   # grey: channels within a few levels
+        greys = len(np.unique(drawn, axis=0))
+        assert greys <= 3
+        with_pole += greys == 3
+    assert 0.5 * 40 <= with_pole <= 0.9 * 40

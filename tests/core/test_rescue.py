@@ -265,3 +265,42 @@ def test_a_candidate_is_judged_on_the_networks_box_and_read_and_kept_fitted(clas
     fitted_first = DT.fit_tall_boxes(pano, DT.detect_panorama(WideSliverDetector(), pano, views, 0.5,
                                                               candidate_confidence=0.2, fit_tall=False))
     assert len(rescue.second_look(ReadsStop(), pano, fitted_first, CLASSES, rule)) == 0
+
+
+GREEN = (40, 200, 40)  # BGR: what the classifier with a ``back`` name reads as the back of a sign
+
+
+def test_a_detection_read_as_the_back_of_a_sign_is_dropped(tmp_path, classifier):
+    """A sure detection whose crop reads ``back`` (the classifier's name for a sign's plain
+    back, :data:`.signcodes.BACK_CODE`) is dropped; a sure one read as a sign stays. A weak
+    ``back`` reading (under ``min_back_score``) keeps the box, and so does a rule without
+    ``drop_backs``. ``back`` confirms no candidate: it counts for no class."""
+    names = ("DE:206", "DE:215", SC.BACK_CODE, "other")
+    weights = np.array([[10.0, 0.0, 0.0, 0.0],      # R -> stop
+                        [0.0, 0.0, 10.0, 0.0],      # G -> back
+                        [0.0, 10.0, 0.0, 0.0]])     # B -> roundabout
+    with_back = SC.CodeClassifier(make_classifier(tmp_path / "back.onnx", names=names, weights=weights,
+                                                  bias=np.array([0.0, 0.0, 0.0, 5.0])), classifier.table)
+
+    class SureBlobs(ColourBlobDetector):
+        SCORES = {RED: 0.9, GREEN: 0.9, BLUE: 0.2}
+
+    views = ViewSet.ring(8, 0.0, 80.0, (320, 192))
+    pano = paint_discs([(0.0, 0.0, 4.0, RED), (90.0, 0.0, 4.0, GREEN), (-90.0, 0.0, 4.0, BLUE)], 2048)
+    found = DT.detect_panorama(SureBlobs(), pano, views, 0.5, candidate_confidence=0.1)
+    assert len(found) == 3 and found.candidate.sum() == 1
+
+    def codes_by_yaw(rule):
+        copy = found.subset(np.arange(len(found)))      # second_look sets the codes in place
+        kept = rescue.second_look(with_back, pano, copy, CLASSES, rule)
+        yaws = (((kept.u0 + kept.u1) / 2 / 2048) * 360.0 - 180.0).round().astype(int)
+        return dict(zip(yaws.tolist(), kept.code))
+
+    assert RULE.drop_backs
+    assert codes_by_yaw(RULE) == {0: "DE:206", -90: "DE:215"}
+    assert codes_by_yaw(replace(RULE, drop_backs=False)) == {0: "DE:206", 90: SC.BACK_CODE, -90: "DE:215"}
+    back_probability = with_back.probabilities([with_back.cut_crop(pano, found.boxes()[k]) for k in range(3)])[:, 2]
+    assert 0.5 < back_probability.max() < 0.99
+    assert codes_by_yaw(replace(RULE, min_back_score=0.99)) == {0: "DE:206", 90: SC.BACK_CODE, -90: "DE:215"}
+    columns = rescue.code_classes(names, classifier.table, CLASSES)
+    assert columns[2] == columns[3] == rescue.OTHER_COLUMN

@@ -72,6 +72,7 @@ HEADER = "code;name;class\n"
      "unknown class octagon for DE:206; expected one of warning, prohibitory, mandatory, information, stop, yield"),
     (HEADER + "other;no code;warning\n", "line 2", "the code other is reserved"),
     (HEADER + "unlisted:warning;a warning;warning\n", "line 2", "the code unlisted:warning is reserved"),
+    (HEADER + "DE:206;stop;stop\nback;a sign's back;stop\n", "line 3", "the code back is reserved"),
     ("# c\n" + HEADER + "# no rows\n", "", "holds no codes"),
     ("# c\n\n", "", "is empty: expected the header code;name;class"),
 ])
@@ -217,6 +218,11 @@ def test_a_classifier_may_answer_signs_whose_code_the_table_lacks(tmp_path, tabl
     clf = sc.CodeClassifier(path, table)
     assert clf.names == tuple(names)
     assert clf.describe().startswith("k.onnx: 1 codes, 2 classes of signs without a code and 'other'")
+    names.insert(3, sc.BACK_CODE)   # the back of a sign, since 3 December
+    path = make_classifier(tmp_path / "b.onnx", meta={"names": json.dumps(names)},
+                           weights=np.zeros((3, len(names))), bias=np.zeros(len(names)))
+    assert sc.CodeClassifier(path, table).describe().startswith(
+        "b.onnx: 1 codes, 2 classes of signs without a code and 'other' and 'back'")
     names[1] = "unlisted:octagon"
     path = make_classifier(tmp_path / "bad.onnx", meta={"names": json.dumps(names)},
                            weights=np.zeros((3, len(names))), bias=np.zeros(len(names)))
@@ -225,7 +231,8 @@ def test_a_classifier_may_answer_signs_whose_code_the_table_lacks(tmp_path, tabl
 
 
 def test_only_codes_of_the_table_are_codes():
-    assert [sc.is_code(n) for n in ("DE:206", "other", "", "unlisted:stop")] == [True, False, False, False]
+    assert [sc.is_code(n) for n in ("DE:206", "other", "", "unlisted:stop", "back")] == [True, False, False, False,
+                                                                                         False]
     assert [sc.unlisted_code_class(n) for n in ("unlisted:stop", "unlisted:octagon", "DE:206", "stop")] == [
         "stop", None, None, None]
     assert sc.unlisted_code_class(sc.unlisted_code("yield")) == "yield"
