@@ -63,6 +63,7 @@ def accuracy_report(codes, truth):
         per_code[t] = {"n": int(m.sum()), "accuracy": float(right[m].mean())}
     return {"n": int(len(truth)), "accuracy": float(right.mean()) if len(truth) else float("nan"),
             "read_as_other": int((codes == signcodes.OTHER_CODE).sum()),
+            "read_as_back": int((codes == signcodes.BACK_CODE).sum()),
             "confusions": [[t, c, n] for (t, c), n in wrong.most_common(12)],
             "worst_codes": sorted(([k, v["n"], round(v["accuracy"], 3)] for k, v in per_code.items()
                                    if v["accuracy"] < 1.0), key=lambda r: r[2])[:8]}
@@ -194,8 +195,8 @@ def main(argv=None):
             v = r.get(key)
             if not v or not v.get("n"):
                 continue
-            print("  {:36s} accuracy {:.4f} of {:5d}  read as other {:3d}  worst {}".format(
-                key, v["accuracy"], v["n"], v["read_as_other"], v["worst_codes"][:4]))
+            print("  {:36s} accuracy {:.4f} of {:5d}  read as other {:3d}, as back {:3d}  worst {}".format(
+                key, v["accuracy"], v["n"], v["read_as_other"], v["read_as_back"], v["worst_codes"][:4]))
             if v["confusions"]:
                 print("  {:36s} confusions {}".format("", v["confusions"][:6]))
         s = r["speed"]

@@ -40,7 +40,10 @@ measures several models in one run, on the same images, timed alternately.
    panoramas have upward views, so the photographs are measured once for both ``on``s).
    ``on+zoom``: the second look after detectsigns' zoomed look (``ZOOMED_LOOK``,
    ``core/zoomlook.py``): small boxes under the confidence detected again at a higher pixel
-   density, on panoramas and photographs alike.
+   density, on panoramas and photographs alike. ``on+zoom+edge``: the edge-on look's too (the
+   plugin's path). ``on+zoom+edge-keep-backs``: that path without dropping the boxes the
+   classifier reads as the back of a sign (``RescueRule.drop_backs``; only a classifier with
+   a ``back`` name reads any).
 6. ``--fit-tall`` (default ``on``): detectsigns' fit of boxes much taller than wide (signs
    seen nearly edge-on) to the columns that show sheeting colours (``core/sheeting.py``);
    ``--fit-tall on off`` measures with and without it in the same run.
@@ -380,13 +383,15 @@ class PanoramaBench:
 #: The second looks ``--second-look`` can measure: None is none (the detector alone).
 SECOND_LOOKS = {"off": None, "on": rescue_mod.DEFAULT_RULE,
                 "on-keep-overhead-other": replace(rescue_mod.DEFAULT_RULE, drop_lone_upward_other=False),
-                "on+zoom": rescue_mod.DEFAULT_RULE, "on+zoom+edge": rescue_mod.DEFAULT_RULE}
+                "on+zoom": rescue_mod.DEFAULT_RULE, "on+zoom+edge": rescue_mod.DEFAULT_RULE,
+                "on+zoom+edge-keep-backs": replace(rescue_mod.DEFAULT_RULE, drop_backs=False)}
 LOOK_LABELS = {"off": "", "on": " +2nd", "on-keep-overhead-other": " +2nd keep", "on+zoom": " +zoom+2nd",
-               "on+zoom+edge": " +edge+zoom+2nd"}
+               "on+zoom+edge": " +edge+zoom+2nd", "on+zoom+edge-keep-backs": " +edge+zoom+2nd keep backs"}
 #: The looks that run detectsigns' zoomed looks before the second look, and their rules:
 #: ``on+zoom`` the small boxes' alone, ``on+zoom+edge`` the edge-on look's too.
 ZOOMED_LOOKS = {"on+zoom": zoomlook_mod.DEFAULT_ZOOM,
-                "on+zoom+edge": (zoomlook_mod.DEFAULT_EDGE_ON, zoomlook_mod.DEFAULT_ZOOM)}
+                "on+zoom+edge": (zoomlook_mod.DEFAULT_EDGE_ON, zoomlook_mod.DEFAULT_ZOOM),
+                "on+zoom+edge-keep-backs": (zoomlook_mod.DEFAULT_EDGE_ON, zoomlook_mod.DEFAULT_ZOOM)}
 
 
 #: View sets ``--views`` can measure (each a function of the detector's input size):
