@@ -117,7 +117,7 @@
         <translation>Ejecuta un detector de señales ONNX en cada panorama; un rayo por señal detectada.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="254" />
+        <location filename="../algorithms/detectsigns.py" line="256" />
         <source>Panorama stations</source>
         <translation>Estaciones de panorama</translation>
     </message>
@@ -152,107 +152,107 @@
         <translation>Se descartan las detecciones con una puntuación inferior a este valor (0-1).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="114" />
+        <location filename="../algorithms/detectsigns.py" line="116" />
         <source>Smallest sign kept (panorama pixels)</source>
         <translation>Señal más pequeña conservada (píxeles de panorama)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="114" />
+        <location filename="../algorithms/detectsigns.py" line="116" />
         <source>Detections whose box is shorter than this on its shorter side are dropped: signs that small are boxed a few pixels off and their class is unsure, and the drive sees them again, larger, from the next stations. 0 keeps every detection.</source>
         <translation>Se descartan las detecciones cuyo recuadro tiene el lado menor por debajo de este valor: en señales tan pequeñas el recuadro se desvía unos píxeles y la clase es dudosa, y el recorrido las vuelve a ver, más grandes, desde las estaciones siguientes. 0 conserva todas las detecciones.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="120" />
+        <location filename="../algorithms/detectsigns.py" line="122" />
         <source>Class names file (optional)</source>
         <translation>Archivo de nombres de clase (opcional)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="120" />
+        <location filename="../algorithms/detectsigns.py" line="122" />
         <source>One class name per line, in the model's class order; needed when the model has no names in its metadata and no labels file beside it.</source>
         <translation>Un nombre de clase por línea, en el orden de clases del modelo; necesario cuando el modelo no tiene nombres en sus metadatos ni un archivo de etiquetas a su lado.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="120" />
+        <location filename="../algorithms/detectsigns.py" line="122" />
         <source>Text files (*.txt);;All files (*.*)</source>
         <translation>Archivos de texto (*.txt);;Todos los archivos (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="125" />
+        <location filename="../algorithms/detectsigns.py" line="127" />
         <source>Ray length (m)</source>
         <translation>Longitud del rayo (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="125" />
+        <location filename="../algorithms/detectsigns.py" line="127" />
         <source>Length of each detection ray from the panorama centre, in metres.</source>
         <translation>Longitud de cada rayo de detección desde el centro del panorama, en metros.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="129" />
+        <location filename="../algorithms/detectsigns.py" line="131" />
         <source>Also look upwards (overhead and gantry signs)</source>
         <translation>Mirar también hacia arriba (señales elevadas y de pórtico)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="222" />
+        <location filename="../algorithms/detectsigns.py" line="224" />
         <source>CPU threads (0: all)</source>
         <translation>Hilos de CPU (0: todos)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="222" />
+        <location filename="../algorithms/detectsigns.py" line="224" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>Hilos que onnxruntime puede usar en la CPU; 0 le permite usar todos los núcleos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="228" />
+        <location filename="../algorithms/detectsigns.py" line="230" />
         <source>Detections</source>
         <translation>Detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="232" />
+        <location filename="../algorithms/detectsigns.py" line="234" />
         <source>Number of detections</source>
         <translation>Número de detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="233" />
+        <location filename="../algorithms/detectsigns.py" line="235" />
         <source>Panoramas skipped</source>
         <translation>Panoramas omitidos</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="247" />
+        <location filename="../algorithms/detectsigns.py" line="249" />
         <source>ONNX model not found: {}</source>
         <translation>No se encontró el modelo ONNX: {}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="266" />
+        <location filename="../algorithms/detectsigns.py" line="268" />
         <source>{} panoramas, {} views each</source>
         <translation>{} panoramas, {} vistas cada uno</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="302" />
+        <location filename="../algorithms/detectsigns.py" line="304" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>Se omitieron {} panorama(s) que no se pudieron leer.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="318" />
+        <location filename="../algorithms/detectsigns.py" line="320" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} detecciones en {} panoramas ({} omitidos).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="310" />
+        <location filename="../algorithms/detectsigns.py" line="312" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>No se detectó ninguna señal: la capa de detecciones está vacía.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="228" />
+        <location filename="../algorithms/detectsigns.py" line="230" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>Capa LineStringZ, un rayo por detección, con det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views y los campos de pose de la estación.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="226" />
+        <location filename="../algorithms/detectsigns.py" line="228" />
         <source>in a crop around each detection, voted later across the views of each sign by Refine and merge signs</source>
         <translation>en un recorte alrededor de cada detección; «Refinar y fusionar señales» vota después entre las vistas de cada señal</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="139" />
+        <location filename="../algorithms/detectsigns.py" line="141" />
         <source>Look ahead and behind more closely (small, far signs)</source>
         <translation>Mirar hacia delante y hacia atrás con más detalle (señales pequeñas y lejanas)</translation>
     </message>
@@ -262,22 +262,22 @@
         <translation>Segunda mirada desde la confianza</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="281" />
+        <location filename="../algorithms/detectsigns.py" line="283" />
         <source>Second look: boxes scored from {} to {} are kept where the sign-code classifier reads a code.</source>
         <translation>Segunda mirada: los recuadros puntuados de {} a {} se conservan donde el clasificador de códigos de señal lee un código.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="139" />
+        <location filename="../algorithms/detectsigns.py" line="141" />
         <source>Adds two views of 53° straight ahead and behind, with 1.5 times the pixels per degree of the horizon views (at a 4096 px panorama's own density), for signs far along the road. Real signs need the pixels: on real street photographs at the horizon views' density the detector found 0.82 of the signs (GTSDB 500-599) and 0.54 of 376 held-out real signs pasted as distant ones; with these views 0.93 and 0.69, precision within 0.01. On held-out generated panoramas: 0.906 of the signs per panorama instead of 0.879. They cost 1.24 times the detection time. On by default; turn it off only for speed on drives with panoramas close together (every sign is then seen from many stations).</source>
         <translation>Añade dos vistas de 53° justo delante y detrás, con 1,5 veces los píxeles por grado de las vistas del horizonte (la densidad propia de un panorama de 4096 px), para las señales lejanas a lo largo de la vía. Las señales reales necesitan esos píxeles: en fotografías reales de calles, a la densidad de las vistas del horizonte, el detector encontró 0,82 de las señales (GTSDB 500-599) y 0,54 de 376 señales reales reservadas pegadas como señales lejanas; con estas vistas, 0,93 y 0,69, con una precisión que varía menos de 0,01. En panoramas generados reservados: 0,906 de las señales por panorama en lugar de 0,879. Cuestan 1,24 veces el tiempo de detección. Activado por defecto; desactívelo solo por velocidad en recorridos con panoramas muy próximos (cada señal se ve entonces desde muchas estaciones).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="322" />
+        <location filename="../algorithms/detectsigns.py" line="324" />
         <source>Sign codes read in {} of the {} detections (the others: other, or a sign whose code the table lacks).</source>
         <translation>Códigos de señal leídos en {} de las {} detecciones (las demás: other, o una señal cuyo código no está en la tabla).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="129" />
+        <location filename="../algorithms/detectsigns.py" line="131" />
         <source>Adds two views tilted 35° up, over the road ahead and behind, for gantry and overhead signs close to the vehicle, above the horizon views. On by default: on five held-out test streets they raised the gantry panels found in a single panorama from 86 % to 91 % for 1.2 times the detection time. A box these views cut at their left or right edge is dropped unless another view finds the same sign: signs beside the road are seen whole in the horizon views. With the second look, a box these views find alone and the sign-code classifier reads as no sign ('other': a facade's dark window, say) is dropped too. Switch it off to save that time where a drive has no overhead signs.</source>
         <translation>Añade dos vistas inclinadas 35° hacia arriba, sobre la calzada hacia delante y hacia atrás, para las señales de pórtico y elevadas cercanas al vehículo, por encima de las vistas horizontales. Activado por defecto: en cinco calles de prueba no usadas en el ajuste elevaron los paneles de pórtico encontrados en un solo panorama del 86 % al 91 %, con 1,2 veces el tiempo de detección. Un recuadro que estas vistas cortan en su borde izquierdo o derecho se descarta salvo que otra vista encuentre la misma señal: las señales al borde de la calzada se ven enteras en las vistas horizontales. Con la segunda mirada, también se descarta un recuadro que solo estas vistas encuentran y en el que el clasificador de códigos de señal no lee ninguna señal («other»: la ventana oscura de una fachada, por ejemplo). Desactívelo para ahorrar ese tiempo en recorridos sin señales elevadas.</translation>
     </message>
@@ -287,79 +287,79 @@
         <translation>Corta el panorama equirrectangular de cada estación en vistas en perspectiva superpuestas (un anillo horizontal, dos vistas más cercanas hacia delante y hacia atrás, y dos vistas hacia arriba para las señales elevadas), ejecuta el detector ONNX en cada vista, devuelve los recuadros a píxeles del panorama y fusiona la misma señal encontrada en dos vistas. Un recuadro mucho más alto que ancho (una señal junto a la que se pasa de cerca, vista casi de canto, que el detector encuadra con el doble de ancho que su cara) se estrecha a las columnas que muestran colores de señal (rojo, azul o amarillo saturados).&lt;br&gt;&lt;br&gt;El &lt;b&gt;modelo&lt;/b&gt; es el incluido si se deja vacío, o su propia exportación ONNX: Ultralytics YOLOv8/11 ([1, 4+nc, N]), YOLOv5/7 ([1, N, 5+nc]) o un modelo con NMS integrado ([1, N, 6]). Los nombres de clase provienen de los metadatos del modelo (&lt;i&gt;names&lt;/i&gt; de Ultralytics) o de un archivo de etiquetas (un nombre por línea).&lt;br&gt;&lt;br&gt;Salida: una línea por detección desde el centro del panorama a lo largo del rayo que pasa por el centro del recuadro, de &lt;i&gt;Longitud del rayo&lt;/i&gt; de largo, con el recuadro (u0, v0, u1, v1 en píxeles del panorama; a través de la costura de ±180°, u1 supera el ancho) y la pose de la estación. Un panorama que no se puede leer se omite con una advertencia y se contabiliza.&lt;br&gt;&lt;br&gt;&lt;b&gt;Códigos de señal&lt;/b&gt;: un segundo modelo ONNX, pequeño (el clasificador de códigos de señal incluido, o el suyo propio), lee lo que dice cada señal detectada a partir de un recorte rectificado del panorama alrededor de su recuadro, con la resolución propia del panorama: &lt;i&gt;code&lt;/i&gt; (como DE:274[50], límite de velocidad 50, de la tabla de códigos; &lt;i&gt;other&lt;/i&gt; cuando no conoce ninguno) y &lt;i&gt;code_score&lt;/i&gt; (su probabilidad). «Refinar y fusionar señales» los somete a votación entre las vistas de cada señal. El formato del clasificador está en models/README.md (sección &lt;i&gt;Sign-code classifier: the format&lt;/i&gt;).</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="98" />
-        <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a class of signs in it with a probability of at least {score} (the probabilities of the codes of that class added up: a speed limit whose digits are unsure is still a prohibitory sign), its box is at least {px} px on its shorter side (under {small_px} px only from a detector score of {small_score}) and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes that class and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.958 of the signs at a precision of 0.971, against 0.803 at 0.966 without it, for under 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
-        <translation>Los recuadros que el detector puntúa desde este valor hasta la confianza mínima reciben una segunda mirada: se conserva uno cuando el clasificador de códigos de señal lee en él una clase de señales con una probabilidad de al menos {score} (las probabilidades de los códigos de esa clase sumadas: un límite de velocidad cuyas cifras no son seguras sigue siendo una señal de prohibición), su recuadro mide al menos {px} px en su lado más corto (por debajo de {small_px} px, solo con una puntuación del detector de al menos {small_score}) y al menos un {share:.0%} de él son colores de señal (rojo, azul o amarillo saturados); entonces toma esa clase y conserva su propia puntuación. En fotografías reales de calles (GTSDB 500-599), con la confianza mínima por defecto, encuentra 0,958 de las señales con una precisión de 0,971, frente a 0,803 con 0,966 sin ella, por menos de un 5 % del tiempo de detección. Necesita que se lean los códigos de señal; un valor igual o superior a la confianza mínima la desactiva.</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="174" />
+        <location filename="../algorithms/detectsigns.py" line="176" />
         <source>Look again, closer, at small boxes scored under the minimum confidence</source>
         <translation>Volver a mirar, más de cerca, las cajas pequeñas puntuadas por debajo de la confianza mínima</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="174" />
+        <location filename="../algorithms/detectsigns.py" line="176" />
         <source>A box of at most {px} px that the detector scores from {score} up to the minimum confidence is cut again from the panorama at a higher pixel density (the box {box_px} px across) and detected once more; it is kept when the detector then scores it at the minimum confidence or more, with that score, class and box. All of a panorama's such boxes go through the detector together, in one extra run. It finds far signs, 15-25 px across: on 376 held-out real signs pasted into street photographs the signs found rose from 0.79 to 0.87 (those 14-20 px high from 0.34 to 0.59) at a precision of 0.96; on real street photographs (GTSDB 500-599) the recall stayed at 0.958 and the precision went from 0.971 to 0.958. It costs 1.05-1.09 times the detection time. On by default.</source>
         <translation>Una caja de {px} px como máximo que el detector puntúa desde {score} hasta la confianza mínima se recorta de nuevo del panorama con una densidad de píxeles mayor (la caja mide {box_px} px) y se detecta otra vez; se conserva cuando el detector la puntúa entonces con la confianza mínima o más, con esa puntuación, clase y caja. Todas esas cajas de un panorama pasan juntas por el detector, en una sola ejecución adicional. Encuentra señales lejanas, de 15-25 px: en 376 señales reales reservadas, pegadas en fotografías de calles, las señales encontradas subieron de 0,79 a 0,87 (las de 14-20 px de alto, de 0,34 a 0,59) con una precisión de 0,96; en fotografías reales de calles (GTSDB 500-599) la exhaustividad se mantuvo en 0,958 y la precisión pasó de 0,971 a 0,958. Cuesta entre 1,05 y 1,09 veces el tiempo de detección. Activado por defecto.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="294" />
+        <location filename="../algorithms/detectsigns.py" line="296" />
         <source>Zoomed look: boxes of at most {} px scored from {} to {} are detected again at a higher pixel density.</source>
         <translation>Mirada de cerca: las cajas de {} px como máximo puntuadas entre {} y {} se detectan de nuevo con una densidad de píxeles mayor.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="150" />
+        <location filename="../algorithms/detectsigns.py" line="152" />
         <source>Horizon views</source>
         <translation>Vistas del horizonte</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="150" />
+        <location filename="../algorithms/detectsigns.py" line="152" />
         <source>{n} views of {width:g}°</source>
         <translation>{n} vistas de {width:g}°</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="150" />
+        <location filename="../algorithms/detectsigns.py" line="152" />
         <source>{n} views of {width:g}°, turned {yaw:g}°</source>
         <translation>{n} vistas de {width:g}°, giradas {yaw:g}°</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="150" />
+        <location filename="../algorithms/detectsigns.py" line="152" />
         <source>One band of {width} × {height} px</source>
         <translation>Una banda de {width} × {height} px</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="188" />
+        <location filename="../algorithms/detectsigns.py" line="190" />
         <source>Look again, stretched across, at tall boxes of signs seen edge-on</source>
         <translation>Volver a mirar, estiradas a lo ancho, las cajas altas de señales vistas de canto</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="288" />
+        <location filename="../algorithms/detectsigns.py" line="290" />
         <source>Edge-on look: boxes at least {} times as tall as wide scored from {} to {} are detected again stretched {} times across.</source>
         <translation>Mirada de canto: las cajas al menos {} veces más altas que anchas puntuadas de {} a {} se detectan de nuevo estiradas {} veces a lo ancho.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="188" />
+        <location filename="../algorithms/detectsigns.py" line="190" />
         <source>A sign passed close by is seen far off its face's normal, and the view squeezes it to a sliver that the detector scores low. A box at least {ratio} times as tall as wide, of at most {px} px, that the detector scores from {score} up to the minimum confidence is cut again from the panorama (its height {box_px} px) and stretched {stretch} times across, so that the sign's face is about as wide as tall again, and detected once more; it is kept when the detector then scores it at the minimum confidence or more. Its tiles go into the zoomed look's detector runs, and a box both looks take keeps the higher score. On five held-out generated streets it found 701 of 734 signs in single panoramas, against 697 without it (signs seen more than 70° off their face's normal: 27 of 45 against 23), with one false box fewer, in 1.02 to 1.03 times the processor time; real signs of street photographs squeezed across to 0.3 of their width are scored 0.5 or more in 44 of 50 cases stretched, against 11 as they are. On the real street photographs themselves it changed nothing. On by default.</source>
         <translation>Una señal junto a la que se pasa muy cerca se ve muy lejos de la normal de su cara, y la vista la comprime en una franja estrecha a la que el detector da una puntuación baja. Una caja al menos {ratio} veces más alta que ancha, de {px} px como máximo, que el detector puntúa desde {score} hasta la confianza mínima se recorta de nuevo de la panorámica (su altura a {box_px} px), se estira {stretch} veces a lo ancho, de modo que la cara de la señal vuelve a ser casi tan ancha como alta, y se detecta una vez más; se conserva cuando el detector la puntúa entonces con la confianza mínima o más. Sus recortes van en las mismas ejecuciones del detector que los de la mirada ampliada, y una caja que toman ambas miradas conserva la puntuación más alta. En cinco calles generadas reservadas encontró 701 de 734 señales en panorámicas sueltas, frente a 697 sin ella (señales vistas a más de 70° de la normal de su cara: 27 de 45 frente a 23), con una caja falsa menos, en 1,02 a 1,03 veces el tiempo de procesador; señales reales de fotografías de calle comprimidas a lo ancho a 0,3 de su anchura se puntúan con 0,5 o más en 44 de 50 casos estiradas, frente a 11 tal como están. En las propias fotografías de calle reales no cambió nada. Activada por defecto.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="207" />
+        <location filename="../algorithms/detectsigns.py" line="209" />
         <source>Detect in a panorama at least every (m)</source>
         <translation>Detectar en un panorama al menos cada (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="207" />
+        <location filename="../algorithms/detectsigns.py" line="209" />
         <source>Detects in as few panoramas as leave no more than this distance between one panorama detected in and the next; the ones between are skipped (not read, no detections). The first and the last panorama are always detected in, and a drive whose panoramas stand this far apart or more keeps every one. A sign stays in view over many stations, so skipping saves detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. On two held-out streets with a panorama every 1.25 m, one every 5 m found the same 87 signs as one every 2.5 m, in 0.55 times the detection time; the median position error went from 11 to 13 mm, and one sign, read in 3 of its 7 views instead of 13 of 19, was left without a code. 0 detects in every panorama.</source>
         <translation>Detecta en tan pocos panoramas como permitan que entre un panorama detectado y el siguiente no haya más que esta distancia; los intermedios se omiten (no se leen, sin detecciones). El primer y el último panorama se detectan siempre, y un recorrido cuyos panoramas distan esto o más los conserva todos. Una señal permanece visible desde muchas estaciones, así que omitir ahorra tiempo de detección en proporción, pero cada señal se ve desde menos estaciones: menos rayos para situarla, y una señal visible solo desde unas pocas estaciones (pequeña, u oculta tras árboles o vehículos) puede perderse. Medido en dos calles de prueba reservadas con un panorama cada 5 m: todos los panoramas encontraron las 46 y 45 señales; cada 10 m (uno de cada dos) se perdieron 2 de cada una, cada 15 m 11 de 46. En dos calles reservadas con un panorama cada 1,25 m, uno cada 5 m encontró las mismas 87 señales que uno cada 2,5 m, en 0,55 veces el tiempo de detección; la mediana del error de posición pasó de 11 a 13 mm, y una señal, leída en 3 de sus 7 vistas en lugar de 13 de 19, quedó sin código. 0 detecta en todos los panoramas.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="272" />
+        <location filename="../algorithms/detectsigns.py" line="274" />
         <source>Detecting in {} of the {} panoramas: one at least every {} m of the drive, the ones between skipped.</source>
         <translation>Detectando en {} de los {} panoramas: uno al menos cada {} m del recorrido, los intermedios omitidos.</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="150" />
+        <location filename="../algorithms/detectsigns.py" line="152" />
         <source>How many views of 80° across the horizon ring has. 8 views overlap by 35°. 6 views overlap by 20° and are turned by 30°, so that their seams ahead and behind fall inside the fore-and-aft views: the detection takes 0.8-0.87 times the time. In single panoramas of five held-out test streets, 6 views found 0.946 of the signs at a precision of 0.988, against 0.948 at 0.982 with 8: they lose a few signs 14-20 px high and a few very close ones that no longer fit whole into one view. Through the whole chain, on three held-out streets with a panorama every 5 m, both rings found all 137 signs, with no false sign and positions within 3 mm of each other in median; on the first 100 m of a test drive with a panorama every 1.2 m, the ring of 6 added one false sign (seen in one panorama and scored just over the minimum confidence, flagged for review) to the 6 true ones. The third choice sees the horizon as one equirectangular band of 3264 × 448 px (8.5 px a degree, ±26° of elevation), which the detector runs on whole: it needs a model whose input size is free, as the bundled detector's is. In single panoramas of fifteen held-out test streets it found 2,632 of 2,778 signs at a precision of 0.976, against 2,638 at 0.968 for the ring of 8, in 0.81 times the processor time; through the whole chain on fourteen held-out streets it found all 632 signs, as the ring does, but with one false sign (a logo printed on a billboard) and three sign codes fewer. 8 by default; 6 and the band trade a little accuracy for speed.</source>
         <translation>Cuántas vistas de 80° de ancho tiene el anillo del horizonte. 8 vistas se solapan 35°. 6 vistas se solapan 20° y están giradas 30°, de modo que sus uniones delante y detrás caen dentro de las vistas hacia delante y hacia atrás: la detección tarda 0,8-0,87 veces el tiempo. En panoramas sueltos de cinco calles de prueba reservadas, 6 vistas encontraron 0,946 de las señales con una precisión de 0,988, frente a 0,948 con 0,982 con 8: pierden algunas señales de 14-20 px de alto y algunas muy cercanas que ya no caben enteras en una vista. En la cadena completa, en tres calles reservadas con un panorama cada 5 m, ambos anillos encontraron las 137 señales, sin ninguna falsa y con posiciones a menos de 3 mm entre sí en la mediana; en los primeros 100 m de un recorrido de prueba con un panorama cada 1,2 m, el anillo de 6 añadió una señal falsa (vista en un solo panorama y puntuada justo por encima de la confianza mínima, marcada para revisión) a las 6 verdaderas. La tercera opción ve el horizonte como una sola banda equirrectangular de 3264 × 448 px (8,5 px por grado, ±26° de elevación), que el detector procesa entera: necesita un modelo cuyo tamaño de entrada sea libre, como el del detector incluido. En panoramas sueltos de quince calles de prueba reservadas encontró 2632 de 2778 señales con una precisión de 0,976, frente a 2638 con 0,968 del anillo de 8, en 0,81 veces el tiempo de procesador; en toda la cadena, en catorce calles reservadas, encontró las 632 señales, como el anillo, pero con una señal falsa (un logotipo impreso en una valla publicitaria) y tres códigos de señal menos. 8 por defecto; 6 y la banda cambian un poco de exactitud por velocidad.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="98" />
+        <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a class of signs in it with a probability of at least {score} (the probabilities of the codes of that class added up: a speed limit whose digits are unsure is still a prohibitory sign), its box is at least {px} px on its shorter side (under {small_px} px only from a detector score of {small_score}) and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes that class and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.958 of the signs at a precision of 0.971, against 0.803 at 0.966 without it, for under 5 % of the detection time. The second look also drops any box the classifier reads as the back of a sign (a plain grey plate facing away: its face is seen from the stations on the other side). Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
+        <translation>Los recuadros que el detector puntúa desde este valor hasta la confianza mínima reciben una segunda mirada: se conserva uno cuando el clasificador de códigos de señal lee en él una clase de señales con una probabilidad de al menos {score} (las probabilidades de los códigos de esa clase sumadas: un límite de velocidad cuyas cifras no son seguras sigue siendo una señal de prohibición), su recuadro mide al menos {px} px en su lado más corto (por debajo de {small_px} px, solo con una puntuación del detector de al menos {small_score}) y al menos un {share:.0%} de él son colores de señal (rojo, azul o amarillo saturados); entonces toma esa clase y conserva su propia puntuación. En fotografías reales de calles (GTSDB 500-599), con la confianza mínima por defecto, encuentra 0,958 de las señales con una precisión de 0,971, frente a 0,803 con 0,966 sin ella, por menos de un 5 % del tiempo de detección. La segunda mirada también descarta cualquier recuadro que el clasificador lea como el reverso de una señal (una placa gris lisa vuelta de espaldas: su cara se ve desde las estaciones del otro lado). Necesita que se lean los códigos de señal; un valor igual o superior a la confianza mínima la desactiva.</translation>
     </message>
 </context>
 <context>
@@ -2716,7 +2716,7 @@
         <translation>{what} {index}: sin posición (x, y, z)</translation>
     </message>
     <message>
-        <location filename="../core/ground/blocks.py" line="296" />
+        <location filename="../core/ground/blocks.py" line="304" />
         <source>Classifying the ground block by block: block {n} of {count}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Clasificando el terreno bloque a bloque: bloque {n} de {count}</translation>
@@ -2728,113 +2728,113 @@
         <translation>El CSF integrado necesita el paquete de Python cloth-simulation-filter (módulo CSF): {detail}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="86" />
-        <source>Unknown return type {kinds} in '{returns}'</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>Tipo de retorno desconocido {kinds} en '{returns}'</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/engine.py" line="351" />
+        <location filename="../core/ground/engine.py" line="270" />
         <source>Not enough free disk space in {folder} to keep the points between the two passes: the cloud is read twice</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay espacio libre suficiente en el disco en {folder} para guardar los puntos entre las dos pasadas: la nube se lee dos veces</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="425" />
+        <location filename="../core/ground/engine.py" line="344" />
         <location filename="../core/pointcloud.py" line="274" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la salida debe terminar en .las o .laz</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="437" />
-        <location filename="../core/ground/tiled.py" line="153" />
+        <location filename="../core/ground/engine.py" line="356" />
+        <location filename="../core/ground/tiled.py" line="106" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SRC de la nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="510" />
+        <location filename="../core/ground/engine.py" line="429" />
         <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró PDAL: se usa el motor integrado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="560" />
+        <location filename="../core/ground/engine.py" line="479" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay polígonos de recorte: se ignora el búfer de recorte</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="224" />
+        <location filename="../core/ground/engine.py" line="154" />
         <source>Classifying and writing the points: part {n} of {count}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Clasificando y escribiendo los puntos: parte {n} de {count}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="364" />
-        <location filename="../core/ground/engine.py" line="391" />
+        <location filename="../core/ground/engine.py" line="283" />
+        <location filename="../core/ground/engine.py" line="310" />
         <source>No point of {path} has the returns '{returns}': nothing was classified</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} tiene los retornos '{returns}': no se clasificó nada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="431" />
+        <location filename="../core/ground/engine.py" line="350" />
         <source>The output {path} must not be the input file</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La salida {path} no puede ser el archivo de entrada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="439" />
-        <location filename="../core/ground/tiled.py" line="155" />
+        <location filename="../core/ground/engine.py" line="358" />
+        <location filename="../core/ground/tiled.py" line="108" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene sistema de referencia de coordenadas: indique el SRC de la nube (nunca se adivina)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="497" />
+        <location filename="../core/ground/engine.py" line="416" />
         <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: el motor integrado, más rápido que PDAL en las mediciones para {method} (y procesa la nube en flujo continuo con memoria acotada)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="502" />
+        <location filename="../core/ground/engine.py" line="421" />
         <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, porque el {method} integrado necesita el paquete de Python cloth-simulation-filter, que no está instalado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="508" />
+        <location filename="../core/ground/engine.py" line="427" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se pidió PDAL, pero no se encontró ni el módulo de Python pdal ni un ejecutable pdal (PATH, carpeta bin de QGIS)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="512" />
+        <location filename="../core/ground/engine.py" line="431" />
         <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, más rápido que el motor integrado en las mediciones para {method}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="547" />
+        <location filename="../core/ground/engine.py" line="466" />
         <source>No point of {path} is left after the crop: {output} has no points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No queda ningún punto de {path} tras el recorte: {output} no tiene puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="388" />
-        <location filename="../core/ground/engine.py" line="360" />
-        <location filename="../core/ground/tiled.py" line="286" />
+        <location filename="../core/ground/engine.py" line="307" />
+        <location filename="../core/ground/engine.py" line="279" />
+        <location filename="../core/ground/tiled.py" line="239" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo está dañado ({detail})</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="462" />
-        <location filename="../core/ground/tiled.py" line="186" />
+        <location filename="../core/ground/engine.py" line="381" />
+        <location filename="../core/ground/tiled.py" line="139" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>PDAL falló; se usó el motor integrado en su lugar: {error}</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/gridsteps.py" line="36" />
+        <source>Unknown return type {kinds} in '{returns}'</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>Tipo de retorno desconocido {kinds} en '{returns}'</translation>
     </message>
     <message>
         <location filename="../core/ground/lattice.py" line="209" />
@@ -2896,37 +2896,37 @@
         <translation>No se puede leer {path}: el archivo está truncado o dañado ({detail})</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="219" />
+        <location filename="../core/ground/tiled.py" line="172" />
         <source>{n} tiles written to {folder}, listed in {vpc}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{n} teselas escritas en {folder}, enumeradas en {vpc}</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="145" />
+        <location filename="../core/ground/tiled.py" line="98" />
         <source>The virtual point cloud's name {name} must be a file name ending in .vpc</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El nombre de la nube de puntos virtual {name} debe ser un nombre de archivo terminado en .vpc</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="117" />
+        <location filename="../core/ground/tiled.py" line="70" />
         <source>The output folder {folder} holds the input tile {tile}: choose another folder (the output folder is replaced as a whole)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La carpeta de salida {folder} contiene la tesela de entrada {tile}: elija otra carpeta (la carpeta de salida se reemplaza por completo)</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="120" />
+        <location filename="../core/ground/tiled.py" line="73" />
         <source>Two tiles of {path} have the same file name, {name} ({first} and {second}): the output tiles are named as the input tiles, so their names must differ</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Dos teselas de {path} tienen el mismo nombre de archivo, {name} ({first} y {second}): las teselas de salida se nombran como las de entrada, por lo que sus nombres deben ser distintos</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="216" />
+        <location filename="../core/ground/tiled.py" line="169" />
         <source>No point of {path} is left after the crop: {output} lists no tile</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No queda ningún punto de {path} tras el recorte: {output} no enumera ninguna tesela</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="205" />
+        <location filename="../core/ground/tiled.py" line="158" />
         <source>No point of the tile {tile} lies inside the crop area: no output tile for it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de la tesela {tile} está dentro del área de recorte: no hay tesela de salida para ella</translation>
@@ -3305,139 +3305,139 @@
         <translation>{count} señal(es) no tienen puntos de suelo (clase 2) a menos de {radius} m: su altura se mide desde {source}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="206" />
+        <location filename="../core/signcodes.py" line="216" />
         <source>Sign codes table {path} is empty: expected the header {expected} and one row per code</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La tabla de códigos de señal {path} está vacía: se esperaba la cabecera {expected} y una fila por código</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="209" />
+        <location filename="../core/signcodes.py" line="219" />
         <source>Sign codes table {path} holds no codes: expected one row per code after the header {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La tabla de códigos de señal {path} no contiene códigos: se esperaba una fila por código tras la cabecera {expected}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="418" />
+        <location filename="../core/signcodes.py" line="429" />
         <source>The box {box} is not four finite pixel coordinates u0, v0, u1, v1</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El recuadro {box} no son cuatro coordenadas de píxel finitas u0, v0, u1, v1</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="152" />
+        <location filename="../core/signcodes.py" line="162" />
         <source>Sign codes table not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró la tabla de códigos de señal: {path}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="154" />
+        <location filename="../core/signcodes.py" line="164" />
         <source>Cannot read the sign codes table {path}: it is not UTF-8 text (byte {position}); save it as UTF-8</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer la tabla de códigos de señal {path}: no es texto UTF-8 (byte {position}); guárdela como UTF-8</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="157" />
+        <location filename="../core/signcodes.py" line="167" />
         <source>Cannot read the sign codes table {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer la tabla de códigos de señal {path}: {error}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="182" />
+        <location filename="../core/signcodes.py" line="192" />
         <source>Sign codes table {path}, line {line}: expected 3 fields separated by semicolons ({expected}), found {count}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: se esperaban 3 campos separados por punto y coma ({expected}), se encontraron {count}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="187" />
+        <location filename="../core/signcodes.py" line="197" />
         <source>Sign codes table {path}, line {line}: the code is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: el código está vacío</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="190" />
+        <location filename="../core/signcodes.py" line="200" />
         <source>Sign codes table {path}, line {line}: the code {code} is reserved for signs the classifier cannot read and must not be in the table</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: el código {code} está reservado para las señales que el clasificador no puede leer y no debe figurar en la tabla</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="194" />
+        <location filename="../core/signcodes.py" line="204" />
         <source>Sign codes table {path}, line {line}: the name of {code} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: el nombre de {code} está vacío</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="197" />
+        <location filename="../core/signcodes.py" line="207" />
         <source>Sign codes table {path}, lines {first} and {line}: the code {code} is there twice</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, líneas {first} y {line}: el código {code} aparece dos veces</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="200" />
+        <location filename="../core/signcodes.py" line="210" />
         <source>Sign codes table {path}, line {line}: unknown class {found} for {code}; expected one of {classes}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: clase desconocida {found} para {code}; se esperaba una de {classes}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="246" />
+        <location filename="../core/signcodes.py" line="257" />
         <source>The model {path} is a {task} model; reading sign codes needs a classify model (metadata task = classify)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} es un modelo de {task}; la lectura de códigos de señal necesita un modelo de clasificación (metadatos task = classify)</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="256" />
+        <location filename="../core/signcodes.py" line="267" />
         <source>The model {path} takes an input {name} of shape {shape} and type {type}; supported: float [batch, 3, S, S] (RGB crops S x S pixels, values 0..1)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} recibe una entrada {name} de forma {shape} y tipo {type}; admitido: float [batch, 3, S, S] (recortes RGB de S x S píxeles, valores 0..1)</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="274" />
+        <location filename="../core/signcodes.py" line="285" />
         <source>The model {path} has an output of shape {shape} for a batch of {batch}; supported: [batch, C] with C = {count}, its number of names</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} tiene una salida de forma {shape} para un lote de {batch}; admitida: [batch, C] con C = {count}, su número de nombres</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="282" />
+        <location filename="../core/signcodes.py" line="293" />
         <source>The model {path} names no codes: its metadata needs 'names', a JSON list of the sign codes in output order (such as ["DE:206", "other"])</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} no nombra ningún código: sus metadatos necesitan 'names', una lista JSON de los códigos de señal en el orden de salida (como ["DE:206", "other"])</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="288" />
+        <location filename="../core/signcodes.py" line="299" />
         <source>The model {path} names {names} more than once in its metadata 'names'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} nombra {names} más de una vez en sus metadatos 'names'</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="294" />
+        <location filename="../core/signcodes.py" line="305" />
         <source>The model {path} answers codes that are not in the sign codes table {table}: {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} responde códigos que no están en la tabla de códigos de señal {table}: {names}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="302" />
+        <location filename="../core/signcodes.py" line="313" />
         <source>The model {path} has the metadata output = {found}; expected {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} tiene en sus metadatos output = {found}; se esperaba {expected}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="315" />
+        <location filename="../core/signcodes.py" line="326" />
         <source>The model {path} has the metadata crop_margin = {found}; expected a number from 0 to 2 (the fraction of the box's longer side added on each side)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} tiene en sus metadatos crop_margin = {found}; se esperaba un número de 0 a 2 (la fracción del lado mayor del recuadro que se añade a cada lado)</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="170" />
+        <location filename="../core/signcodes.py" line="180" />
         <source>Sign codes table {path}, line {line}: cannot split the line into fields ({error})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: no se puede dividir la línea en campos ({error})</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="176" />
+        <location filename="../core/signcodes.py" line="186" />
         <source>Sign codes table {path}, line {line}: expected the header {expected}, found {found}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Tabla de códigos de señal {path}, línea {line}: se esperaba la cabecera {expected}, se encontró {found}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="271" />
+        <location filename="../core/signcodes.py" line="282" />
         <source>The model {path} failed on a blank {side} x {side} crop: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El modelo {path} falló con un recorte en blanco de {side} x {side}: {error}</translation>

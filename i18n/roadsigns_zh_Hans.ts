@@ -117,7 +117,7 @@
         <translation>在每张全景图上运行 ONNX 标志检测器；每个检测到的标志生成一条射线。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="254" />
+        <location filename="../algorithms/detectsigns.py" line="256" />
         <source>Panorama stations</source>
         <translation>全景站点</translation>
     </message>
@@ -152,107 +152,107 @@
         <translation>得分低于此值（0-1）的检测将被丢弃。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="114" />
+        <location filename="../algorithms/detectsigns.py" line="116" />
         <source>Smallest sign kept (panorama pixels)</source>
         <translation>保留的最小标志（全景像素）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="114" />
+        <location filename="../algorithms/detectsigns.py" line="116" />
         <source>Detections whose box is shorter than this on its shorter side are dropped: signs that small are boxed a few pixels off and their class is unsure, and the drive sees them again, larger, from the next stations. 0 keeps every detection.</source>
         <translation>检测框短边小于此值的检测将被丢弃：这么小的标志框会偏差几个像素，类别也不可靠，而车辆在后续站点会以更大的尺寸再次看到它们。0 保留所有检测。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="120" />
+        <location filename="../algorithms/detectsigns.py" line="122" />
         <source>Class names file (optional)</source>
         <translation>类别名称文件（可选）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="120" />
+        <location filename="../algorithms/detectsigns.py" line="122" />
         <source>One class name per line, in the model's class order; needed when the model has no names in its metadata and no labels file beside it.</source>
         <translation>每行一个类别名称，按模型的类别顺序排列；当模型元数据中没有名称且旁边没有标签文件时需要提供。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="120" />
+        <location filename="../algorithms/detectsigns.py" line="122" />
         <source>Text files (*.txt);;All files (*.*)</source>
         <translation>文本文件 (*.txt);;所有文件 (*.*)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="125" />
+        <location filename="../algorithms/detectsigns.py" line="127" />
         <source>Ray length (m)</source>
         <translation>射线长度 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="125" />
+        <location filename="../algorithms/detectsigns.py" line="127" />
         <source>Length of each detection ray from the panorama centre, in metres.</source>
         <translation>每条检测射线从全景图中心起算的长度，单位为米。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="129" />
+        <location filename="../algorithms/detectsigns.py" line="131" />
         <source>Also look upwards (overhead and gantry signs)</source>
         <translation>同时向上看（悬挂式和门架式标志）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="222" />
+        <location filename="../algorithms/detectsigns.py" line="224" />
         <source>CPU threads (0: all)</source>
         <translation>CPU 线程数（0：全部）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="222" />
+        <location filename="../algorithms/detectsigns.py" line="224" />
         <source>Threads onnxruntime may use on the CPU; 0 lets it use every core.</source>
         <translation>onnxruntime 在 CPU 上可使用的线程数；0 表示使用所有核心。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="228" />
+        <location filename="../algorithms/detectsigns.py" line="230" />
         <source>Detections</source>
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="232" />
+        <location filename="../algorithms/detectsigns.py" line="234" />
         <source>Number of detections</source>
         <translation>检测数量</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="233" />
+        <location filename="../algorithms/detectsigns.py" line="235" />
         <source>Panoramas skipped</source>
         <translation>跳过的全景图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="247" />
+        <location filename="../algorithms/detectsigns.py" line="249" />
         <source>ONNX model not found: {}</source>
         <translation>未找到 ONNX 模型：{}</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="266" />
+        <location filename="../algorithms/detectsigns.py" line="268" />
         <source>{} panoramas, {} views each</source>
         <translation>{} 张全景图，每张 {} 个视图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="302" />
+        <location filename="../algorithms/detectsigns.py" line="304" />
         <source>Skipped {} panorama(s) that could not be read.</source>
         <translation>跳过了 {} 张无法读取的全景图。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="318" />
+        <location filename="../algorithms/detectsigns.py" line="320" />
         <source>{} detections in {} panoramas ({} skipped).</source>
         <translation>{} 个检测，来自 {} 张全景图（跳过 {} 张）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="310" />
+        <location filename="../algorithms/detectsigns.py" line="312" />
         <source>No sign was detected: the detections layer is empty.</source>
         <translation>未检测到任何标志：检测图层为空。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="228" />
+        <location filename="../algorithms/detectsigns.py" line="230" />
         <source>LineStringZ layer, one ray per detection, with det_id, station_id, image, class, score, code, code_score, u0, v0, u1, v1, n_views and the station's pose fields.</source>
         <translation>LineStringZ 图层，每个检测一条射线，包含字段 det_id、station_id、image、class、score、code、code_score、u0、v0、u1、v1、n_views 以及站点的位姿字段。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="226" />
+        <location filename="../algorithms/detectsigns.py" line="228" />
         <source>in a crop around each detection, voted later across the views of each sign by Refine and merge signs</source>
         <translation>在每个检测结果周围的裁剪图中读取，之后由“精化与合并标志”在每个标志的各视图间投票</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="139" />
+        <location filename="../algorithms/detectsigns.py" line="141" />
         <source>Look ahead and behind more closely (small, far signs)</source>
         <translation>更仔细地向前和向后看（小而远的标志）</translation>
     </message>
@@ -262,22 +262,22 @@
         <translation>二次检查起始置信度</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="281" />
+        <location filename="../algorithms/detectsigns.py" line="283" />
         <source>Second look: boxes scored from {} to {} are kept where the sign-code classifier reads a code.</source>
         <translation>二次检查：评分在 {} 到 {} 之间、且标志代码分类器读出代码的框被保留。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="139" />
+        <location filename="../algorithms/detectsigns.py" line="141" />
         <source>Adds two views of 53° straight ahead and behind, with 1.5 times the pixels per degree of the horizon views (at a 4096 px panorama's own density), for signs far along the road. Real signs need the pixels: on real street photographs at the horizon views' density the detector found 0.82 of the signs (GTSDB 500-599) and 0.54 of 376 held-out real signs pasted as distant ones; with these views 0.93 and 0.69, precision within 0.01. On held-out generated panoramas: 0.906 of the signs per panorama instead of 0.879. They cost 1.24 times the detection time. On by default; turn it off only for speed on drives with panoramas close together (every sign is then seen from many stations).</source>
         <translation>在正前方和正后方各添加一个 53° 的视图，其每度像素数为地平线视图的 1.5 倍（即 4096 px 全景图自身的密度），用于沿道路远处的标志。真实标志需要这些像素：在真实街道照片上，按地平线视图的密度，检测器找到了 0.82 的标志（GTSDB 500-599）和作为远处标志粘贴的 376 个保留真实标志中的 0.54；加上这些视图后为 0.93 和 0.69，精度变化不超过 0.01。在保留的生成全景图上：每幅全景图找到 0.906 的标志，而不是 0.879。其代价是 1.24 倍的检测时间。默认开启；仅在全景站点很密的行驶采集中为了速度而关闭（此时每个标志都会从许多全景站点被看到）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="322" />
+        <location filename="../algorithms/detectsigns.py" line="324" />
         <source>Sign codes read in {} of the {} detections (the others: other, or a sign whose code the table lacks).</source>
         <translation>{} 个检测读出了标志代码（共 {} 个检测；其余为 other，或代码表中没有其代码的标志）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="129" />
+        <location filename="../algorithms/detectsigns.py" line="131" />
         <source>Adds two views tilted 35° up, over the road ahead and behind, for gantry and overhead signs close to the vehicle, above the horizon views. On by default: on five held-out test streets they raised the gantry panels found in a single panorama from 86 % to 91 % for 1.2 times the detection time. A box these views cut at their left or right edge is dropped unless another view finds the same sign: signs beside the road are seen whole in the horizon views. With the second look, a box these views find alone and the sign-code classifier reads as no sign ('other': a facade's dark window, say) is dropped too. Switch it off to save that time where a drive has no overhead signs.</source>
         <translation>增加两个上仰 35° 的视图，分别朝向前方和后方的道路上空，用于车辆附近、位于水平视图上方的门架式和悬挂式标志。默认勾选：在五条未参与调参的测试街道上，单张全景图中找到的门架标志牌从 86 % 提高到 91 %，检测时间为原来的 1.2 倍。这些视图在其左右边缘截断的检测框会被丢弃，除非另一个视图找到了同一个标志：道路两侧的标志在水平视图中是完整可见的。启用二次确认时，仅由这些视图找到、且标志代码分类器判读为非标志（“other”，例如建筑立面上的深色窗户）的检测框也会被丢弃。对于没有悬挂式标志的行驶采集，可取消勾选以节省这部分时间。</translation>
     </message>
@@ -287,79 +287,79 @@
         <translation>将每个站点的等距柱状全景图切分为相互重叠的透视视图（一圈水平视图、前后方向各一个更近的视图，以及前后各一个用于悬挂式标志的上视视图），在每个视图上运行 ONNX 检测器，将检测框映射回全景图像素，并合并在两个视图中找到的同一标志。高度远大于宽度的检测框（近距离经过、几乎从侧面看到的标志，检测器给出的框约为其标志面宽度的两倍）会收窄到显示标志颜色（饱和的红色、蓝色或黄色）的列。&lt;br&gt;&lt;br&gt;&lt;b&gt;模型&lt;/b&gt;留空时使用内置模型，也可以是您自己导出的 ONNX 模型：Ultralytics YOLOv8/11（[1, 4+nc, N]）、YOLOv5/7（[1, N, 5+nc]）或内置 NMS 的模型（[1, N, 6]）。类别名称来自模型元数据（Ultralytics &lt;i&gt;names&lt;/i&gt;）或标签文件（每行一个名称）。&lt;br&gt;&lt;br&gt;输出：每个检测一条线，从全景图中心沿穿过检测框中心的射线延伸，长度为&lt;i&gt;射线长度&lt;/i&gt;，附带检测框（u0、v0、u1、v1，单位为全景图像素；跨越 ±180° 接缝时 u1 大于图像宽度）和站点位姿。无法读取的全景图将被跳过，并给出警告和计数。&lt;br&gt;&lt;br&gt;&lt;b&gt;标志代码&lt;/b&gt;：第二个小型 ONNX 模型（内置的标志代码分类器或您自己的分类器）从全景图中围绕检测框、按全景图原始分辨率截取的校正裁剪图像中读取每个检测到的标志的内容：&lt;i&gt;code&lt;/i&gt;（例如 DE:274[50]，即限速 50，取自代码表；不认识时为 &lt;i&gt;other&lt;/i&gt;）和 &lt;i&gt;code_score&lt;/i&gt;（其概率）。“精化与合并标志”在每个标志的各视图之间对其进行投票。分类器的格式见 models/README.md（&lt;i&gt;Sign-code classifier: the format&lt;/i&gt; 一节）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="98" />
-        <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a class of signs in it with a probability of at least {score} (the probabilities of the codes of that class added up: a speed limit whose digits are unsure is still a prohibitory sign), its box is at least {px} px on its shorter side (under {small_px} px only from a detector score of {small_score}) and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes that class and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.958 of the signs at a precision of 0.971, against 0.803 at 0.966 without it, for under 5 % of the detection time. Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
-        <translation>检测器评分介于此值与最低置信度之间的框会接受二次检查：当标志代码分类器以至少 {score} 的概率在框中读出一类标志（该类别各代码的概率之和：数字不确定的限速标志仍是禁令标志）、框的短边至少 {px} 像素（短于 {small_px} 像素时，检测器评分须至少为 {small_score}）且至少 {share:.0%} 的像素为标志颜色（饱和的红、蓝或黄色）时，该框被保留；它随后采用该类别并保留自身的评分。在真实街道照片（GTSDB 500-599）上，使用默认的最低置信度时，它找到 0.958 的标志，精确率为 0.971；不使用时为 0.803，精确率为 0.966。代价不到检测时间的 5 %。需要读取标志代码；取值等于或高于最低置信度时关闭此功能。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/detectsigns.py" line="174" />
+        <location filename="../algorithms/detectsigns.py" line="176" />
         <source>Look again, closer, at small boxes scored under the minimum confidence</source>
         <translation>对低于最低置信度的小框放大再看一次</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="174" />
+        <location filename="../algorithms/detectsigns.py" line="176" />
         <source>A box of at most {px} px that the detector scores from {score} up to the minimum confidence is cut again from the panorama at a higher pixel density (the box {box_px} px across) and detected once more; it is kept when the detector then scores it at the minimum confidence or more, with that score, class and box. All of a panorama's such boxes go through the detector together, in one extra run. It finds far signs, 15-25 px across: on 376 held-out real signs pasted into street photographs the signs found rose from 0.79 to 0.87 (those 14-20 px high from 0.34 to 0.59) at a precision of 0.96; on real street photographs (GTSDB 500-599) the recall stayed at 0.958 and the precision went from 0.971 to 0.958. It costs 1.05-1.09 times the detection time. On by default.</source>
         <translation>检测器评分在 {score} 到最低置信度之间、且不超过 {px} px 的框，会以更高的像素密度从全景图中重新裁切（框宽 {box_px} px）并再次检测；若检测器此时的评分达到最低置信度或更高，则保留该框，并采用这次的评分、类别和框。一幅全景图中所有这样的框会一起送入检测器，只需额外运行一次。它能找到 15-25 px 的远处标志：在粘贴到街景照片中的 376 个预留真实标志上，检出率从 0.79 提高到 0.87（高 14-20 px 的从 0.34 提高到 0.59），精度为 0.96；在真实街景照片（GTSDB 500-599）上，召回率保持 0.958，精度从 0.971 变为 0.958。检测时间约为原来的 1.05-1.09 倍。默认开启。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="294" />
+        <location filename="../algorithms/detectsigns.py" line="296" />
         <source>Zoomed look: boxes of at most {} px scored from {} to {} are detected again at a higher pixel density.</source>
         <translation>放大再看：不超过 {} px、评分在 {} 到 {} 之间的框会以更高的像素密度再次检测。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="150" />
+        <location filename="../algorithms/detectsigns.py" line="152" />
         <source>Horizon views</source>
         <translation>地平线视图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="150" />
+        <location filename="../algorithms/detectsigns.py" line="152" />
         <source>{n} views of {width:g}°</source>
         <translation>{n} 个 {width:g}° 视图</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="150" />
+        <location filename="../algorithms/detectsigns.py" line="152" />
         <source>{n} views of {width:g}°, turned {yaw:g}°</source>
         <translation>{n} 个 {width:g}° 视图，旋转 {yaw:g}°</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="150" />
+        <location filename="../algorithms/detectsigns.py" line="152" />
         <source>One band of {width} × {height} px</source>
         <translation>一条 {width} × {height} 像素的条带</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="188" />
+        <location filename="../algorithms/detectsigns.py" line="190" />
         <source>Look again, stretched across, at tall boxes of signs seen edge-on</source>
         <translation>对侧面看到的标志的高框横向拉伸后再看一次</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="288" />
+        <location filename="../algorithms/detectsigns.py" line="290" />
         <source>Edge-on look: boxes at least {} times as tall as wide scored from {} to {} are detected again stretched {} times across.</source>
         <translation>侧面查看：高度至少为宽度 {} 倍、得分在 {} 到 {} 之间的框横向拉伸 {} 倍后再检测一次。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="188" />
+        <location filename="../algorithms/detectsigns.py" line="190" />
         <source>A sign passed close by is seen far off its face's normal, and the view squeezes it to a sliver that the detector scores low. A box at least {ratio} times as tall as wide, of at most {px} px, that the detector scores from {score} up to the minimum confidence is cut again from the panorama (its height {box_px} px) and stretched {stretch} times across, so that the sign's face is about as wide as tall again, and detected once more; it is kept when the detector then scores it at the minimum confidence or more. Its tiles go into the zoomed look's detector runs, and a box both looks take keeps the higher score. On five held-out generated streets it found 701 of 734 signs in single panoramas, against 697 without it (signs seen more than 70° off their face's normal: 27 of 45 against 23), with one false box fewer, in 1.02 to 1.03 times the processor time; real signs of street photographs squeezed across to 0.3 of their width are scored 0.5 or more in 44 of 50 cases stretched, against 11 as they are. On the real street photographs themselves it changed nothing. On by default.</source>
         <translation>车辆从近处经过的标志，其视线远离标志面的法线，视图将其压缩成一条窄条，检测器给出的得分很低。高度至少为宽度 {ratio} 倍、最长边不超过 {px} px、检测器得分在 {score} 到最低置信度之间的框，会从全景图中重新裁切（其高度为 {box_px} px），并横向拉伸 {stretch} 倍，使标志面重新接近宽高相等，然后再检测一次；如果检测器此时的得分达到最低置信度或更高，则保留该框。其切片与放大查看的切片放入同一次检测器运行中，两种查看都选中的框保留较高的得分。在五条留出的生成街道上，单张全景图中找到了 734 个标志中的 701 个，不使用时为 697 个（偏离标志面法线超过 70° 的标志：45 个中找到 27 个，不使用时为 23 个），误检框少一个，处理器时间为 1.02 至 1.03 倍；真实街道照片中的标志横向压缩到其宽度的 0.3 后，拉伸后 50 个中有 44 个得分达到 0.5 或以上，未拉伸时为 11 个。在真实街道照片本身上没有任何变化。默认开启。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="207" />
+        <location filename="../algorithms/detectsigns.py" line="209" />
         <source>Detect in a panorama at least every (m)</source>
         <translation>至少每隔多少米在一幅全景图中检测（米）</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="207" />
+        <location filename="../algorithms/detectsigns.py" line="209" />
         <source>Detects in as few panoramas as leave no more than this distance between one panorama detected in and the next; the ones between are skipped (not read, no detections). The first and the last panorama are always detected in, and a drive whose panoramas stand this far apart or more keeps every one. A sign stays in view over many stations, so skipping saves detection time in proportion, but each sign is then seen from fewer stations: fewer rays to place it, and a sign visible from only a few stations (small, or hidden behind trees or vehicles) may be missed. Measured on two held-out test streets with a panorama every 5 m: every panorama found all 46 and 45 signs; 10 m (every other one) lost 2 of each, 15 m lost 11 of 46. On two held-out streets with a panorama every 1.25 m, one every 5 m found the same 87 signs as one every 2.5 m, in 0.55 times the detection time; the median position error went from 11 to 13 mm, and one sign, read in 3 of its 7 views instead of 13 of 19, was left without a code. 0 detects in every panorama.</source>
         <translation>只在尽可能少的全景图中检测，使相邻两幅被检测的全景图之间的距离不超过此值；其间的全景图被跳过（不读取，无检测结果）。第一幅和最后一幅全景图总会被检测；若全景图之间的间距已达到或超过此值，则全部保留。一个标志在许多测站中都可见，因此跳过可按比例节省检测时间，但每个标志被看到的测站会减少：用于定位的射线更少，仅在少数测站可见的标志（较小，或被树木、车辆遮挡）可能被漏检。在两条留出的测试街道上（每 5 米一幅全景图）测得：使用全部全景图可找到全部 46 和 45 个标志；每 10 米（隔一幅）各漏检 2 个，每 15 米漏检 46 个中的 11 个。在两条每 1.25 米一幅全景图的留出街道上，每 5 米检测一幅与每 2.5 米检测一幅找到的是同样的 87 个标志，检测时间为其 0.55 倍；位置误差中位数从 11 毫米增至 13 毫米，另有一个标志因只在其 7 个视图中的 3 个被读出（而非 19 个中的 13 个）而没有代码。0 表示在每幅全景图中检测。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="272" />
+        <location filename="../algorithms/detectsigns.py" line="274" />
         <source>Detecting in {} of the {} panoramas: one at least every {} m of the drive, the ones between skipped.</source>
         <translation>正在 {} 幅全景图中检测（共 {} 幅）：沿行驶路线至少每 {} 米一幅，其间的跳过。</translation>
     </message>
     <message>
-        <location filename="../algorithms/detectsigns.py" line="150" />
+        <location filename="../algorithms/detectsigns.py" line="152" />
         <source>How many views of 80° across the horizon ring has. 8 views overlap by 35°. 6 views overlap by 20° and are turned by 30°, so that their seams ahead and behind fall inside the fore-and-aft views: the detection takes 0.8-0.87 times the time. In single panoramas of five held-out test streets, 6 views found 0.946 of the signs at a precision of 0.988, against 0.948 at 0.982 with 8: they lose a few signs 14-20 px high and a few very close ones that no longer fit whole into one view. Through the whole chain, on three held-out streets with a panorama every 5 m, both rings found all 137 signs, with no false sign and positions within 3 mm of each other in median; on the first 100 m of a test drive with a panorama every 1.2 m, the ring of 6 added one false sign (seen in one panorama and scored just over the minimum confidence, flagged for review) to the 6 true ones. The third choice sees the horizon as one equirectangular band of 3264 × 448 px (8.5 px a degree, ±26° of elevation), which the detector runs on whole: it needs a model whose input size is free, as the bundled detector's is. In single panoramas of fifteen held-out test streets it found 2,632 of 2,778 signs at a precision of 0.976, against 2,638 at 0.968 for the ring of 8, in 0.81 times the processor time; through the whole chain on fourteen held-out streets it found all 632 signs, as the ring does, but with one false sign (a logo printed on a billboard) and three sign codes fewer. 8 by default; 6 and the band trade a little accuracy for speed.</source>
         <translation>地平线环包含多少个宽 80° 的视图。8 个视图相互重叠 35°。6 个视图相互重叠 20°，并旋转 30°，使前后方向的接缝落在前后视图之内：检测时间为 0.8-0.87 倍。在五条留出测试街道的单张全景中，6 个视图找到 0.946 的标志，精度 0.988；8 个视图为 0.948，精度 0.982：6 个视图会漏掉少数高 14-20 像素的标志和少数很近、已无法完整落入一个视图的标志。在整条处理链中，在三条每 5 米一张全景的留出街道上，两种环都找到了全部 137 个标志，没有误报，位置中位数相差不到 3 毫米；在一段每 1.2 米一张全景的测试行驶的前 100 米，6 个视图的环在 6 个真实标志之外多出一个误报（只在一张全景中看到，得分刚超过最低置信度，已标记待复核）。第三个选项把地平线视为一条 3264 × 448 像素的等距柱状条带（每度 8.5 像素，仰角 ±26°），检测器整条处理：它需要输入尺寸不固定的模型，随附的检测器即是如此。在十五条留出测试街道的单张全景中，它在 2,778 个标志中找到 2,632 个，精度 0.976；8 个视图的环找到 2,638 个，精度 0.968，而处理器时间为 0.81 倍；在整条处理链中，在十四条留出街道上，它与环一样找到了全部 632 个标志，但多了一个误报（印在广告牌上的标志图案），少读出三个标志代码。默认为 8；6 和条带以少许精度换取速度。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/detectsigns.py" line="98" />
+        <source>Boxes the detector scores from this value up to the minimum confidence get a second look: one is kept when the sign-code classifier reads a class of signs in it with a probability of at least {score} (the probabilities of the codes of that class added up: a speed limit whose digits are unsure is still a prohibitory sign), its box is at least {px} px on its shorter side (under {small_px} px only from a detector score of {small_score}) and at least {share:.0%} of it is sign colours (saturated red, blue or yellow); it then takes that class and keeps its own score. On real street photographs (GTSDB 500-599) at the default minimum confidence this finds 0.958 of the signs at a precision of 0.971, against 0.803 at 0.966 without it, for under 5 % of the detection time. The second look also drops any box the classifier reads as the back of a sign (a plain grey plate facing away: its face is seen from the stations on the other side). Needs the sign codes to be read; a value at or above the minimum confidence switches it off.</source>
+        <translation>检测器评分介于此值与最低置信度之间的框会接受二次检查：当标志代码分类器以至少 {score} 的概率在框中读出一类标志（该类别各代码的概率之和：数字不确定的限速标志仍是禁令标志）、框的短边至少 {px} 像素（短于 {small_px} 像素时，检测器评分须至少为 {small_score}）且至少 {share:.0%} 的像素为标志颜色（饱和的红、蓝或黄色）时，该框被保留；它随后采用该类别并保留自身的评分。在真实街道照片（GTSDB 500-599）上，使用默认的最低置信度时，它找到 0.958 的标志，精确率为 0.971；不使用时为 0.803，精确率为 0.966。代价不到检测时间的 5 %。第二次查看还会丢弃分类器读为标志背面的任何框（背向相机的素灰色板：其正面可从另一侧的站点看到）。需要读取标志代码；取值等于或高于最低置信度时关闭此功能。</translation>
     </message>
 </context>
 <context>
@@ -2716,7 +2716,7 @@
         <translation>{what} {index}：没有位置（x, y, z）</translation>
     </message>
     <message>
-        <location filename="../core/ground/blocks.py" line="296" />
+        <location filename="../core/ground/blocks.py" line="304" />
         <source>Classifying the ground block by block: block {n} of {count}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>正在逐个区块分类地面：第 {n} 个区块，共 {count} 个</translation>
@@ -2728,113 +2728,113 @@
         <translation>内置 CSF 需要 Python 包 cloth-simulation-filter（模块 CSF）：{detail}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="86" />
-        <source>Unknown return type {kinds} in '{returns}'</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>'{returns}' 中有未知的回波类型 {kinds}</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/engine.py" line="351" />
+        <location filename="../core/ground/engine.py" line="270" />
         <source>Not enough free disk space in {folder} to keep the points between the two passes: the cloud is read twice</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{folder} 中的可用磁盘空间不足，无法在两遍处理之间保存点：点云将被读取两次</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="425" />
+        <location filename="../core/ground/engine.py" line="344" />
         <location filename="../core/pointcloud.py" line="274" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：输出文件必须以 .las 或 .laz 结尾</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="437" />
-        <location filename="../core/ground/tiled.py" line="153" />
+        <location filename="../core/ground/engine.py" line="356" />
+        <location filename="../core/ground/tiled.py" line="106" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>点云坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="510" />
+        <location filename="../core/ground/engine.py" line="429" />
         <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到 PDAL：使用内置引擎</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="560" />
+        <location filename="../core/ground/engine.py" line="479" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有裁剪多边形：忽略裁剪缓冲区</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="224" />
+        <location filename="../core/ground/engine.py" line="154" />
         <source>Classifying and writing the points: part {n} of {count}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>正在分类并写出点：第 {n} 部分，共 {count} 部分</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="364" />
-        <location filename="../core/ground/engine.py" line="391" />
+        <location filename="../core/ground/engine.py" line="283" />
+        <location filename="../core/ground/engine.py" line="310" />
         <source>No point of {path} has the returns '{returns}': nothing was classified</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中没有回波为 '{returns}' 的点：未分类任何点</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="431" />
+        <location filename="../core/ground/engine.py" line="350" />
         <source>The output {path} must not be the input file</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>输出 {path} 不能是输入文件</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="439" />
-        <location filename="../core/ground/tiled.py" line="155" />
+        <location filename="../core/ground/engine.py" line="358" />
+        <location filename="../core/ground/tiled.py" line="108" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有坐标参考系：请给出点云的坐标参考系（从不猜测）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="497" />
+        <location filename="../core/ground/engine.py" line="416" />
         <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：内置引擎，对 {method} 实测比 PDAL 更快（且以有限内存流式处理点云）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="502" />
+        <location filename="../core/ground/engine.py" line="421" />
         <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：PDAL，因为内置 {method} 需要 Python 包 cloth-simulation-filter，而该包未安装</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="508" />
+        <location filename="../core/ground/engine.py" line="427" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>要求使用 PDAL，但既没有找到 pdal Python 模块，也没有找到 pdal 可执行文件（PATH、QGIS 的 bin 文件夹）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="512" />
+        <location filename="../core/ground/engine.py" line="431" />
         <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：PDAL，对 {method} 实测比内置引擎更快</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="547" />
+        <location filename="../core/ground/engine.py" line="466" />
         <source>No point of {path} is left after the crop: {output} has no points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>裁剪后 {path} 没有剩余的点：{output} 中没有点</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="388" />
-        <location filename="../core/ground/engine.py" line="360" />
-        <location filename="../core/ground/tiled.py" line="286" />
+        <location filename="../core/ground/engine.py" line="307" />
+        <location filename="../core/ground/engine.py" line="279" />
+        <location filename="../core/ground/tiled.py" line="239" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件已损坏（{detail}）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="462" />
-        <location filename="../core/ground/tiled.py" line="186" />
+        <location filename="../core/ground/engine.py" line="381" />
+        <location filename="../core/ground/tiled.py" line="139" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>PDAL 运行失败，已改用内置引擎：{error}</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/gridsteps.py" line="36" />
+        <source>Unknown return type {kinds} in '{returns}'</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>'{returns}' 中有未知的回波类型 {kinds}</translation>
     </message>
     <message>
         <location filename="../core/ground/lattice.py" line="209" />
@@ -2896,37 +2896,37 @@
         <translation>无法读取 {path}：文件被截断或已损坏（{detail}）</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="219" />
+        <location filename="../core/ground/tiled.py" line="172" />
         <source>{n} tiles written to {folder}, listed in {vpc}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>已将 {n} 个分块写入 {folder}，并列于 {vpc} 中</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="145" />
+        <location filename="../core/ground/tiled.py" line="98" />
         <source>The virtual point cloud's name {name} must be a file name ending in .vpc</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>虚拟点云的名称 {name} 必须是以 .vpc 结尾的文件名</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="117" />
+        <location filename="../core/ground/tiled.py" line="70" />
         <source>The output folder {folder} holds the input tile {tile}: choose another folder (the output folder is replaced as a whole)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>输出文件夹 {folder} 中包含输入分块 {tile}：请选择其他文件夹（输出文件夹会被整体替换）</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="120" />
+        <location filename="../core/ground/tiled.py" line="73" />
         <source>Two tiles of {path} have the same file name, {name} ({first} and {second}): the output tiles are named as the input tiles, so their names must differ</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中有两个分块的文件名相同，均为 {name}（{first} 和 {second}）：输出分块与输入分块同名，因此它们的名称必须不同</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="216" />
+        <location filename="../core/ground/tiled.py" line="169" />
         <source>No point of {path} is left after the crop: {output} lists no tile</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>裁剪后 {path} 中没有剩余的点：{output} 未列出任何分块</translation>
     </message>
     <message>
-        <location filename="../core/ground/tiled.py" line="205" />
+        <location filename="../core/ground/tiled.py" line="158" />
         <source>No point of the tile {tile} lies inside the crop area: no output tile for it</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>分块 {tile} 中没有点位于裁剪区域内：不为其生成输出分块</translation>
@@ -3305,139 +3305,139 @@
         <translation>{count} 个标志在 {radius} 米内没有地面点（类别 2）：其高度从{source}起算</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="206" />
+        <location filename="../core/signcodes.py" line="216" />
         <source>Sign codes table {path} is empty: expected the header {expected} and one row per code</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path} 为空：应有表头 {expected}，且每个代码一行</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="209" />
+        <location filename="../core/signcodes.py" line="219" />
         <source>Sign codes table {path} holds no codes: expected one row per code after the header {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path} 中没有代码：表头 {expected} 之后应每个代码一行</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="418" />
+        <location filename="../core/signcodes.py" line="429" />
         <source>The box {box} is not four finite pixel coordinates u0, v0, u1, v1</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>检测框 {box} 不是四个有限的像素坐标 u0、v0、u1、v1</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="152" />
+        <location filename="../core/signcodes.py" line="162" />
         <source>Sign codes table not found: {path}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到标志代码表：{path}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="154" />
+        <location filename="../core/signcodes.py" line="164" />
         <source>Cannot read the sign codes table {path}: it is not UTF-8 text (byte {position}); save it as UTF-8</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取标志代码表 {path}：不是 UTF-8 文本（第 {position} 字节）；请另存为 UTF-8</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="157" />
+        <location filename="../core/signcodes.py" line="167" />
         <source>Cannot read the sign codes table {path}: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取标志代码表 {path}：{error}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="182" />
+        <location filename="../core/signcodes.py" line="192" />
         <source>Sign codes table {path}, line {line}: expected 3 fields separated by semicolons ({expected}), found {count}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：应有 3 个以分号分隔的字段（{expected}），实际为 {count} 个</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="187" />
+        <location filename="../core/signcodes.py" line="197" />
         <source>Sign codes table {path}, line {line}: the code is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：代码为空</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="190" />
+        <location filename="../core/signcodes.py" line="200" />
         <source>Sign codes table {path}, line {line}: the code {code} is reserved for signs the classifier cannot read and must not be in the table</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：代码 {code} 保留给分类器无法识别的标志，不得出现在表中</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="194" />
+        <location filename="../core/signcodes.py" line="204" />
         <source>Sign codes table {path}, line {line}: the name of {code} is empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：{code} 的名称为空</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="197" />
+        <location filename="../core/signcodes.py" line="207" />
         <source>Sign codes table {path}, lines {first} and {line}: the code {code} is there twice</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {first} 行和第 {line} 行：代码 {code} 出现了两次</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="200" />
+        <location filename="../core/signcodes.py" line="210" />
         <source>Sign codes table {path}, line {line}: unknown class {found} for {code}; expected one of {classes}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：{code} 的类别 {found} 未知；应为以下之一：{classes}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="246" />
+        <location filename="../core/signcodes.py" line="257" />
         <source>The model {path} is a {task} model; reading sign codes needs a classify model (metadata task = classify)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 是 {task} 模型；读取标志代码需要分类模型（元数据 task = classify）</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="256" />
+        <location filename="../core/signcodes.py" line="267" />
         <source>The model {path} takes an input {name} of shape {shape} and type {type}; supported: float [batch, 3, S, S] (RGB crops S x S pixels, values 0..1)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 的输入 {name} 形状为 {shape}，类型为 {type}；支持：float [batch, 3, S, S]（S x S 像素的 RGB 裁剪图像，值为 0..1）</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="274" />
+        <location filename="../core/signcodes.py" line="285" />
         <source>The model {path} has an output of shape {shape} for a batch of {batch}; supported: [batch, C] with C = {count}, its number of names</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 在批大小为 {batch} 时的输出形状为 {shape}；支持：[batch, C]，其中 C = {count}，即其名称数量</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="282" />
+        <location filename="../core/signcodes.py" line="293" />
         <source>The model {path} names no codes: its metadata needs 'names', a JSON list of the sign codes in output order (such as ["DE:206", "other"])</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 未给出任何代码：其元数据需要 'names'，即按输出顺序排列的标志代码 JSON 列表（例如 ["DE:206", "other"]）</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="288" />
+        <location filename="../core/signcodes.py" line="299" />
         <source>The model {path} names {names} more than once in its metadata 'names'</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 在其元数据 'names' 中多次给出 {names}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="294" />
+        <location filename="../core/signcodes.py" line="305" />
         <source>The model {path} answers codes that are not in the sign codes table {table}: {names}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 给出的代码不在标志代码表 {table} 中：{names}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="302" />
+        <location filename="../core/signcodes.py" line="313" />
         <source>The model {path} has the metadata output = {found}; expected {expected}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 的元数据 output = {found}；应为 {expected}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="315" />
+        <location filename="../core/signcodes.py" line="326" />
         <source>The model {path} has the metadata crop_margin = {found}; expected a number from 0 to 2 (the fraction of the box's longer side added on each side)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 的元数据 crop_margin = {found}；应为 0 到 2 之间的数字（在每一侧添加的边距占检测框长边的比例）</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="170" />
+        <location filename="../core/signcodes.py" line="180" />
         <source>Sign codes table {path}, line {line}: cannot split the line into fields ({error})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：无法将该行拆分为字段（{error}）</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="176" />
+        <location filename="../core/signcodes.py" line="186" />
         <source>Sign codes table {path}, line {line}: expected the header {expected}, found {found}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>标志代码表 {path}，第 {line} 行：应为表头 {expected}，实际为 {found}</translation>
     </message>
     <message>
-        <location filename="../core/signcodes.py" line="271" />
+        <location filename="../core/signcodes.py" line="282" />
         <source>The model {path} failed on a blank {side} x {side} crop: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>模型 {path} 在一张 {side} x {side} 的空白裁剪图像上运行失败：{error}</translation>
