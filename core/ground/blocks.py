@@ -9,7 +9,7 @@ Conventions:
 * A block's ground grid covers its box as a tile's does (:func:`.gridsteps.tile_grid`): whole
   squares of the whole-cloud run's CSF tiling with their buffers, or SMRF's halo, so that
   its points get the classes a run over the whole cloud gives them.
-* Pass 1 reads the cloud once (cropped, in a pool of :data:`~.engine.CHUNK_THREADS`): each
+* Pass 1 reads the cloud once (cropped, in a pool of :data:`~.gridsteps.CHUNK_THREADS`): each
   point is spooled to its block's file, uncompressed, with the output's scales and offsets;
   each chunk's eligible returns are reduced, on the grid of every block they fall on, to what
   that grid keeps of them (CSF: the nearest point per cloth node, :func:`.csf.node_candidates`;

@@ -255,7 +255,8 @@ class CsfGrid:
         # several chunks' candidates at once: the first nearest of each node's, in their order
         pick = group_first(candidates["node"], d2)
         if len(pick) < len(candidates):
-            candidates, d2 = candidates[np.sort(pick)], d2[np.sort(pick)]
+            first = np.sort(pick)    # in their reading order
+            candidates, d2 = candidates[first], d2[first]
         rows, cols = np.divmod(candidates["node"], self.lattice.nx)
         old_du = self.rep_du.get(rows, cols)
         old_dv = self.rep_dv.get(rows, cols)

@@ -33,7 +33,7 @@ import os
 import tempfile
 from dataclasses import dataclass, field
 from functools import partial
-from typing import TYPE_CHECKING, Any, Callable, Dict, Iterable, Iterator, List, Optional, Tuple, Union
+from typing import Any, Callable, Dict, Iterable, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -49,14 +49,12 @@ from ..pointcloud import (
     iter_chunks,
     output_header,
 )
+from .blocks import BlockPlan, classify_by_blocks
 from .csf import csf_available
 from .gridsteps import CHUNK_THREADS, classified, cropped, eligible_xyz, make_grid
 from .lattice import BLOCK_M, BoundsXY, GroundGrid, OutsideGridError
 from .params import AUTO_ENGINES, Params, engine_name, method_name, method_params
 from .pdal import PdalError, PdalRunner, find_pdal_runner, run_pdal_engine
-
-if TYPE_CHECKING:  # blocks imports this module
-    from .blocks import BlockPlan
 
 
 @dataclass
@@ -227,6 +225,9 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
                     reset_classes: bool, chunk_points: int, tile_size_m: Optional[float],
                     tile_buffer_m: Optional[float], block_m: Optional[float],
                     progress: Progress) -> Tuple[int, int, List[str]]:
+    """The built-in engine into ``output_path``: one grid over the cloud in two passes
+    (:func:`two_passes`), or block by block (:mod:`.blocks`) when the cloud is larger than
+    ``block_m`` and its points can be spooled. ``(points written, ground points, warnings)``."""
     warnings: List[str] = []
     bounds = grid_bounds(source.bounds_xy, region)
     area = None if region is None else region.geometry
@@ -234,16 +235,37 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
     spool_folder = os.path.dirname(output_path)
     has_work = bounds is not None and source.point_count > 0
     room = has_work and room_to_spool(source.point_count, header.point_format.size, spool_folder)
+    run: Optional[Callable[[CloudWriter], Tuple[int, int]]] = None
     if room and block_m and bounds is not None and max(bounds[2] - bounds[0], bounds[3] - bounds[1]) > block_m:
-        from .blocks import BlockPlan
-
-        plan = BlockPlan(params, bounds, block_m, tile_size_m, tile_buffer_m)
-        return _builtin_blocks(source, output_path, out_header, plan, params, region, reset_classes,
-                               chunk_points, progress)
-    grid: Optional[GroundGrid] = None
-    if has_work and bounds is not None:
+        run = partial(_run_blocks, source, BlockPlan(params, bounds, block_m, tile_size_m, tile_buffer_m),
+                      params, region, reset_classes, chunk_points, spool_folder, progress)
+    elif has_work and bounds is not None:
         grid = make_grid(params, bounds, float(source.bounds[2]), tile_size_m, tile_buffer_m)
+        if not room:
+            progress.info("Not enough free disk space in {folder} to keep the points between the two passes: "
+                          "the cloud is read twice", folder=spool_folder)
+        run = partial(_run_two_passes, source, grid, params, region, area, reset_classes, chunk_points,
+                      spool_folder if room else None, progress)
+    n_eligible = n_ground = 0
+    with CloudWriter(output_path, out_header) as writer:
+        if run is not None:
+            try:
+                n_eligible, n_ground = run(writer)
+            except OutsideGridError as e:
+                raise InputError("Cannot read {path}: the file is corrupt ({detail})",
+                                 path=source.path, detail=str(e))
+        n_out = writer.point_count
+    if n_out and not n_eligible:
+        warnings.append(Message("No point of {path} has the returns '{returns}': nothing was "
+                                "classified", path=source.path, returns=params.returns))
+    return n_out, n_ground, warnings
 
+
+def _run_two_passes(source: CloudSource, grid: GroundGrid, params: Params, region: Optional[CropRegion],
+                    area: Any, reset_classes: bool, chunk_points: int, spool_folder: Optional[str],
+                    progress: Progress, writer: CloudWriter) -> Tuple[int, int]:
+    """One grid over the whole cloud (:func:`two_passes`), the cloud read twice when
+    ``spool_folder`` is None: ``(eligible points, ground points)``."""
     # the crop of each chunk by its first point's cloud index, when the cloud is read a second
     # time (which may skip chunks wholly outside the area: CloudSource remembers chunk bounds)
     masks: Dict[int, np.ndarray] = {}
@@ -266,50 +288,21 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
             masks[key] = np.packbits(region.mask(chunk.x, chunk.y))
         return chunk[np.unpackbits(masks[key], count=len(chunk)).astype(bool)]
 
-    if grid is not None and not room:
-        progress.info("Not enough free disk space in {folder} to keep the points between the two passes: "
-                      "the cloud is read twice", folder=spool_folder)
-    n_eligible = n_ground = 0
-    with CloudWriter(output_path, out_header) as writer:
-        if grid is not None:
-            try:
-                n_eligible, n_ground = two_passes(read, grid, params, reset_classes, writer,
-                                                  spool_folder if room else None, progress)
-            except OutsideGridError as e:
-                raise InputError("Cannot read {path}: the file is corrupt ({detail})",
-                                 path=source.path, detail=str(e))
-        n_out = writer.point_count
-    if n_out and not n_eligible:
-        warnings.append(Message("No point of {path} has the returns '{returns}': nothing was "
-                                "classified", path=source.path, returns=params.returns))
-    return n_out, n_ground, warnings
+    return two_passes(read, grid, params, reset_classes, writer, spool_folder, progress)
 
 
-def _builtin_blocks(source: CloudSource, output_path: str, out_header: Any, plan: "BlockPlan", params: Params,
-                    region: Optional[CropRegion], reset_classes: bool, chunk_points: int,
-                    progress: Progress) -> Tuple[int, int, List[str]]:
-    """:func:`_builtin_engine` block by block (:mod:`.blocks`): a cloud larger than a block."""
-    from .blocks import classify_by_blocks
-
+def _run_blocks(source: CloudSource, plan: BlockPlan, params: Params, region: Optional[CropRegion],
+                reset_classes: bool, chunk_points: int, spool_folder: str, progress: Progress,
+                writer: CloudWriter) -> Tuple[int, int]:
+    """Block by block (:func:`.blocks.classify_by_blocks`): ``(eligible points, ground points)``."""
     area = None if region is None else region.geometry
 
     def read(reading: Progress) -> Iterator[Any]:
         for _, chunk in source.iter_indexed_chunks(chunk_points, reading, area=area):
             yield chunk
 
-    warnings: List[str] = []
-    with CloudWriter(output_path, out_header) as writer:
-        try:
-            n_eligible, n_ground = classify_by_blocks(
-                read, plan, params, float(source.bounds[2]), reset_classes, writer, os.path.dirname(output_path),
-                chunk_points, region, progress)
-        except OutsideGridError as e:
-            raise InputError("Cannot read {path}: the file is corrupt ({detail})", path=source.path, detail=str(e))
-        n_out = writer.point_count
-    if n_out and not n_eligible:
-        warnings.append(Message("No point of {path} has the returns '{returns}': nothing was "
-                                "classified", path=source.path, returns=params.returns))
-    return n_out, n_ground, warnings
+    return classify_by_blocks(read, plan, params, float(source.bounds[2]), reset_classes, writer, spool_folder,
+                              chunk_points, region, progress)
 
 
 # --------------------------------------------------------------------------------------
