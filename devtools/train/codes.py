@@ -59,7 +59,7 @@ from . import data
 
 CROP_PX = 32
 CROP_MARGIN = 0.15
-#: the margin of the cached native crops (:func:`pano_crops`, :func:`mined_negatives`): room
+#: the margin of the cached native crops (:func:`face_crops`, :func:`mined_negatives`): room
 #: for the jitter round the chain's margin
 CACHED_MARGIN = CROP_MARGIN + 0.1
 OTHER = "other"
@@ -272,10 +272,10 @@ def drawn_codes(names):
             if code in index and (var in tx.VARIANTS.get(cls, ()) or var.isdigit())]
 
 
-def scene_faces(scene_dirs, facing: str):
-    """``(panorama BGR, sign record of scene.json, sign's code)`` of every ``facing`` face
-    (``front`` or ``back``) in the ``scene_dirs``' panoramas that is at most 30 % hidden and
-    at least :data:`MIN_PANO_BOX_PX` on its box's shorter side."""
+def scene_faces(scene_dirs):
+    """``(panorama BGR, sign record of scene.json, sign's code)`` of every face (front or back,
+    the record's ``facing``) in the ``scene_dirs``' panoramas that is at most 30 % hidden and
+    at least :data:`MIN_PANO_BOX_PX` on its box's shorter side; each panorama read once."""
     tx = data.import_textures()
     for scene_dir in scene_dirs:
         with open(os.path.join(scene_dir, "scene.json")) as f:
@@ -287,49 +287,49 @@ def scene_faces(scene_dirs, facing: str):
                 continue
             for s in meta["signs"]:
                 b = s.get("visible_box")
-                if s["facing"] != facing or b is None or s["occlusion"] > 0.3:
+                if b is None or s["occlusion"] > 0.3:
                     continue
                 if min(b[2] - b[0], b[3] - b[1]) < MIN_PANO_BOX_PX:
                     continue
                 yield pano, s, code[s["sign_id"]]
 
 
-def native_crop(pano: np.ndarray, visible_box) -> np.ndarray:
-    """A cached native-density crop (BGR) round a scene's inclusive ``visible_box``."""
+def face_crops(scene_dirs, cache_path: str):
+    """Native-density crops (BGR, up to 128 px) of the faces in generated panoramas, read in one
+    pass and cached: the fronts as ``(crop, code, shorter side of the sign's box in panorama
+    pixels)``, and the backs' crops. The cache holds codes, not a classifier's label indices, so
+    classifiers of other names share it."""
+    z = np.load(cache_path, allow_pickle=True) if os.path.isfile(cache_path) else None
+    if z is not None and "back_crops" in z:
+        fronts = list(zip(z["crops"], [str(c) for c in z["codes"]], z["min_side"]))
+        return fronts, list(z["back_crops"])
     signcodes = import_roadsigns("roadsigns.core.signcodes")
-    b = visible_box
-    crop = signcodes.cut_crop(pano, (b[0], b[1], b[2] + 1, b[3] + 1), margin=CACHED_MARGIN, max_side_px=128)
-    return cv2.cvtColor(crop, cv2.COLOR_RGB2BGR)
+    fronts, backs = [], []
+    for pano, s, code in scene_faces(scene_dirs):
+        b = s["visible_box"]
+        crop = signcodes.cut_crop(pano, (b[0], b[1], b[2] + 1, b[3] + 1), margin=CACHED_MARGIN, max_side_px=128)
+        crop = cv2.cvtColor(crop, cv2.COLOR_RGB2BGR)
+        if s["facing"] == "front":
+            fronts.append((crop, code, float(min(b[2] - b[0], b[3] - b[1]) + 1)))
+        else:
+            backs.append(crop)
+    np.savez(cache_path, crops=np.array([c for c, _, _ in fronts], dtype=object),
+             codes=np.array([c for _, c, _ in fronts]), min_side=np.array([m for _, _, m in fronts]),
+             back_crops=np.array(backs, dtype=object))
+    return fronts, backs
 
 
 def back_crops(scene_dirs, cache_path: str):
-    """Native-density crops (as :func:`pano_crops`) of the back faces in generated
-    panoramas: list of crops (BGR). Cached."""
-    if os.path.isfile(cache_path):
-        return list(np.load(cache_path, allow_pickle=True)["crops"])
-    crops = [native_crop(pano, s["visible_box"]) for pano, s, _ in scene_faces(scene_dirs, "back")]
-    np.savez(cache_path, crops=np.array(crops, dtype=object))
-    return crops
+    """The back faces' crops of :func:`face_crops` (a list of BGR crops)."""
+    return face_crops(scene_dirs, cache_path)[1]
 
 
 def pano_crops(scene_dirs, names, cache_path: str):
-    """Native-density crops (up to 96 px) of the front faces in generated panoramas, with the
-    code of each sign from ``scene.json``: list of (crop BGR, label index in ``names``, shorter
-    side of the sign's box in panorama pixels). Cached with the codes, so that classifiers of
-    other names share the cache."""
-    z = np.load(cache_path, allow_pickle=True) if os.path.isfile(cache_path) else None
-    if z is not None and "codes" in z:
-        crops, codes, sides = list(z["crops"]), [str(c) for c in z["codes"]], list(z["min_side"])
-    else:
-        crops, codes, sides = [], [], []
-        for pano, s, code in scene_faces(scene_dirs, "front"):
-            b = s["visible_box"]
-            crops.append(native_crop(pano, b))
-            codes.append(code)
-            sides.append(float(min(b[2] - b[0], b[3] - b[1]) + 1))
-        np.savez(cache_path, crops=np.array(crops, dtype=object), codes=np.array(codes), min_side=np.array(sides))
+    """The front faces of :func:`face_crops`, labelled for a classifier answering ``names``:
+    list of (crop BGR, label index in ``names``, shorter side of the sign's box in panorama
+    pixels); a code ``names`` lacks is ``other``."""
     index = {n: k for k, n in enumerate(names)}
-    return [(c, index.get(code, index[OTHER]), side) for c, code, side in zip(crops, codes, sides)]
+    return [(c, index.get(code, index[OTHER]), side) for c, code, side in face_crops(scene_dirs, cache_path)[0]]
 
 
 def cached_box(crop: np.ndarray):
@@ -472,10 +472,11 @@ class Sampler:
     """Draws labelled training crops (``CROP_PX`` square, BGR) from every source."""
 
     def __init__(self, names, seed: int = 0, pano_cache: str = "", mined_cache: str = "",
-                 far_share: float = FAR_SHARE, mix: Optional[Dict[str, float]] = None, back_cache: str = ""):
+                 far_share: float = FAR_SHARE, mix: Optional[Dict[str, float]] = None):
         """``far_share``: as :data:`FAR_SHARE`; ``mix``: shares that replace :data:`MIX`'s;
-        ``back_cache``: where the rendered backs are cached (:func:`back_crops`; none: only
-        procedural backs). A classifier without a ``back`` name gets no ``back`` draws."""
+        ``pano_cache``: where the training scenes' faces are cached (:func:`face_crops`; none:
+        no fronts from them, and only procedural backs). A classifier without a ``back`` name
+        gets no ``back`` draws."""
         unknown = set(mix or {}) - set(MIX)
         if unknown:
             raise ValueError(f"no source {', '.join(sorted(unknown))} in the mix (sources: {', '.join(MIX)})")
@@ -518,7 +519,7 @@ class Sampler:
             print(f"codes: training scene {d} missing, its panoramas left out", flush=True)
         self.pano = pano_crops(present, self.names, pano_cache) if pano_cache else []
         self.mined = mined_negatives(present, mined_cache) if mined_cache else []
-        self.backs = back_crops(present, back_cache) if back_cache and self.back is not None else []
+        self.backs = back_crops(present, pano_cache) if pano_cache and self.back is not None else []
 
     # backgrounds
     def background(self, side: int) -> np.ndarray:
@@ -854,8 +855,7 @@ def train(out_path: str, minutes: float, work: str, threads: int = 1, batch: int
     set_crop_px(crop_px or CROP_PX)
     pano_cache = os.path.join(work, "pano-train.npz") if use_pano else ""  # native density: any CROP_PX
     mined_cache = os.path.join(work, "mined-train.npz") if use_pano else ""
-    back_cache = os.path.join(work, "back-train.npz") if use_pano else ""
-    options = {"far_share": far_share, "mix": mix, "back_cache": back_cache}   # the Sampler's, in the feeders too
+    options = {"far_share": far_share, "mix": mix}   # the Sampler's, in the feeders too
     sampler = Sampler(names, seed, pano_cache, mined_cache, **options)
     torch.manual_seed(seed)
     if state is not None and "rng" in state:
@@ -1008,7 +1008,7 @@ def panorama_figures(probabilities, names, work: str) -> dict:
         figures["heldout_panorama_crops" + key] = int(keep.sum())
     back = import_roadsigns("roadsigns.core.signcodes").BACK_CODE
     if back in names:   # the backs of the same panoramas read as backs; their faces that are not
-        backs = back_crops(held_out_scenes(), os.path.join(work, "back-heldout.npz"))
+        backs = back_crops(held_out_scenes(), os.path.join(work, "pano-heldout.npz"))
         if backs:
             read = np.asarray(probabilities(np.stack([crop_square(c, cached_box(c)) for c in backs]))).argmax(axis=1)
             figures["heldout_backs_read_back"] = round(float(np.mean(read == names.index(back))), 4)

@@ -1,8 +1,8 @@
 """devtools.train.codes: the faces of generated panoramas that train the sign-code classifier.
-The front faces are cut with their codes, the back faces as the backs of signs (``back``);
-the caches hold codes, not a classifier's label indices, so classifiers of other names share
-them. A tiny scene is written here: one panorama, a front face, a back face, a small one and
-a hidden one."""
+The front faces are cut with their codes, the back faces as the backs of signs (``back``), in
+one reading of the panoramas; the cache holds codes, not a classifier's label indices, so
+classifiers of other names share it. A tiny scene is written here: one panorama, a front
+face, a back face, a small one and a hidden one."""
 import json
 
 import cv2
@@ -47,8 +47,8 @@ def test_front_faces_keep_their_codes_and_back_faces_are_backs(tmp_path):
     # another classifier's names, the same cache: the label follows the code
     again = codes.pano_crops([scene], ["other", "back", "DE:206"], cache)
     assert [label for _, label, _ in again] == [2]
-    backs = codes.back_crops([scene], str(tmp_path / "back.npz"))
+    backs = codes.back_crops([scene], cache)                          # the same reading's backs
     assert len(backs) == 1
     centre = backs[0][backs[0].shape[0] // 2, backs[0].shape[1] // 2].astype(int)
     assert np.abs(centre - 150).max() < 20                            # the grey back, not the red face
-    assert len(codes.back_crops([], str(tmp_path / "back.npz"))) == 1  # read from its cache
+    assert len(codes.back_crops([], cache)) == 1                      # read from the cache
