@@ -444,6 +444,12 @@ VIEW_SETS = {
     "default+up-60": lambda size: (panorama_mod.ViewSet.default(size_px=size)
                                    + views_at(size, (60.0, -60.0), panorama_mod.UPWARD_PITCH_DEG,
                                               panorama_mod.UPWARD_HFOV_DEG)),
+    # the same turned pair stretched 1.5 x across (90 deg across, 84 deg up and down), as the
+    # gantry panels passed under were boxed whole when looked at head-on (models/README.md,
+    # "The gantry panels passed under, looked at head-on")
+    "default+up-60-stretched": lambda size: (panorama_mod.ViewSet.default(size_px=size)
+                                             + views_at(size, (60.0, -60.0), panorama_mod.UPWARD_PITCH_DEG,
+                                                        panorama_mod.UPWARD_HFOV_DEG, stretch=1.5)),
     # the plugin's views and two side views stretched across (side_views; measured 2 December,
     # not taken: models/README.md, "Side views stretched across, and upward views turned 60°")
     "default+side": lambda size: panorama_mod.ViewSet.default(size_px=size) + side_views(size),
