@@ -445,8 +445,9 @@ VIEW_SETS = {
                                    + views_at(size, (60.0, -60.0), panorama_mod.UPWARD_PITCH_DEG,
                                               panorama_mod.UPWARD_HFOV_DEG)),
     # the same turned pair stretched 1.5 x across (90 deg across, 84 deg up and down), as the
-    # gantry panels passed under were boxed whole when looked at head-on (models/README.md,
-    # "The gantry panels passed under, looked at head-on")
+    # gantry panels passed under were boxed whole when looked at head-on (measured 3 December,
+    # not taken: models/README.md, "What the held-out streets' misses are, and the turned pair
+    # stretched")
     "default+up-60-stretched": lambda size: (panorama_mod.ViewSet.default(size_px=size)
                                              + views_at(size, (60.0, -60.0), panorama_mod.UPWARD_PITCH_DEG,
                                                         panorama_mod.UPWARD_HFOV_DEG, stretch=1.5)),
