@@ -476,16 +476,17 @@ def _footprint_cells(frusta: Frusta, rows: np.ndarray, cell_m: float, present: O
             yield k, i[hit], j[hit]
 
 
-def _frustum_members(xyz, det: Detections, k: int, frusta: Frusta, R: np.ndarray,
+def _frustum_members(xyz, det: Detections, k: int, frusta: Frusta, f: int, R: np.ndarray,
                      max_range_m: float, min_range_m: float) -> np.ndarray:
-    """Rows of ``xyz`` inside detection ``k``'s frustum (grown box, range window)."""
-    inside = np.all((xyz >= frusta.lo_world[k]) & (xyz <= frusta.hi_world[k]), axis=1)
+    """Rows of ``xyz`` inside detection ``k``'s frustum (grown box, range window), row ``f``
+    of ``frusta``."""
+    inside = np.all((xyz >= frusta.lo_world[f]) & (xyz <= frusta.hi_world[f]), axis=1)
     rows = np.flatnonzero(inside)
     if rows.size == 0:
         return rows
     W, H = det.pano_size_px[k]
     u, v, rng = geometry.world_to_pixel(xyz[rows], det.centre_world[k], R[k], W, H)
-    a, b = box_coordinates(u, v, frusta.boxes_px[k], W)
+    a, b = box_coordinates(u, v, frusta.boxes_px[f], W)
     keep = (a >= 0) & (a <= 1) & (b >= 0) & (b <= 1) & (rng >= min_range_m) & (rng <= max_range_m)
     return rows[keep]
 
@@ -585,7 +586,6 @@ def project_detections(detections: Detections, cloud: Union[str, CloudSource, Ti
         result.warnings.append(progress.warning("No detections to project; the candidates are empty"))
         return result
     det.validate()
-    frusta = Frusta.build(det, max_range_m, params.margin_deg, params.margin_frac)
     if isinstance(cloud, TiledIndex):
         index, source = build_index(cloud, None, params.tile_size_m)
         result.n_indexed, result.n_tiles = len(index), len(index.tile_keys)
@@ -596,11 +596,13 @@ def project_detections(detections: Detections, cloud: Union[str, CloudSource, Ti
         cloud_source = open_cloud(cloud)
         source = cloud_source.path
         reading, searching = progress.sub(0.0, 0.5), progress.sub(0.5, 1.0)
-        blocks = drive_blocks(det, frusta, cloud_source, max_range_m, params, reading)
+        blocks = drive_blocks(det, cloud_source, max_range_m, params, reading)
     R, rays = det.R_world_from_pano(), det.centre_rays_world()  # once, not per block
 
     def project(block: Tuple[np.ndarray, TiledIndex]) -> Tuple[int, int, int]:
         rows, index = block                   # each block fills its own rows of result
+        # the block's own frusta (row j is detection rows[j]): none of the drive's is held
+        frusta = Frusta.build(det.take(rows), max_range_m, params.margin_deg, params.margin_frac)
         _project_block(det, rows, index, frusta, R, rays, max_range_m, params, result, keep_point_index)
         return len(rows), len(index), len(index.tile_keys)
 
@@ -638,7 +640,7 @@ def station_track(det: Detections) -> Optional[Track]:
     return Track(xyz[moving]) if moving.sum() >= 2 else None
 
 
-def drive_blocks(det: Detections, frusta: Frusta, cloud: Union[str, CloudSource], max_range_m: float,
+def drive_blocks(det: Detections, cloud: Union[str, CloudSource], max_range_m: float,
                  params: ProjectionParams, progress: Progress = SILENT,
                  chunk_points: int = DEFAULT_CHUNK_POINTS) -> Iterator[Tuple[np.ndarray, TiledIndex]]:
     """``(detection rows, index of the points their frusta may hold)`` block by block.
@@ -646,7 +648,8 @@ def drive_blocks(det: Detections, frusta: Frusta, cloud: Union[str, CloudSource]
     One streaming read of the cloud (of the tiles, or COPC nodes, that the footprints'
     cover meets, :meth:`Frusta.cover`: a drive through a tiled city reads the tiles along it) keeps the
     non-ground points in the cells of :data:`FRUSTUM_CELL_M` that a frustum's footprint
-    touches (:func:`frustum_cells`; the exact frustum test comes later, per detection) and
+    touches (:func:`drive_reach`; the exact frustum test comes later, per detection, in its
+    block's own frusta) and
     spools each to the slice of :data:`SLICE_M` metres of drive holding its arc length along
     the drive (the track through the stations, :mod:`.drivewindows`). The chunks (of
     ``chunk_points``) are read in this thread, worked on ``params.block_threads`` at a time
@@ -658,13 +661,14 @@ def drive_blocks(det: Detections, frusta: Frusta, cloud: Union[str, CloudSource]
     length, since the densest stretch of a longer drive is denser. :class:`InputError` when
     the cloud has points inside the frusta but none of class 2.
     """
-    cells = frustum_cells(frusta, FRUSTUM_CELL_M)
     track = station_track(det)
     axis = DriveAxis(track) if track is not None else None
     length_m = axis.length_m if axis is not None else 0.0
     slices = make_windows(length_m, min(SLICE_M, params.block_m))
     inner_edges_m = np.array([w.s1_m for w in slices[:-1]])
     owner_s = axis.locate(det.centre_world)[0] if axis is not None else np.zeros(len(det))
+    drive_order = np.argsort(owner_s, kind="stable")
+    cells, cover = drive_reach(det, drive_order, max_range_m, params)
     owner_slice = np.searchsorted(inner_edges_m, owner_s, side="right")
     n_ground = n_inside = 0
     source = open_cloud(cloud)
@@ -684,8 +688,8 @@ def drive_blocks(det: Detections, frusta: Frusta, cloud: Union[str, CloudSource]
         return int(inside.sum()), int(ground.sum()), rows, np.searchsorted(inner_edges_m, s_m, side="right")
 
     with Spool({"points": SPOOL_DTYPE}, prefix="roadsigns-projection-") as spool:
-        drive_order = np.argsort(owner_s, kind="stable")
-        chunks = source.iter_indexed_chunks(chunk_points, progress, area=frusta.cover(drive_order))
+        chunks = source.iter_indexed_chunks(chunk_points, progress, area=cover)
+        del cover                # planned: the drive's shapes are not held through the reading
         for inside_n, ground_n, rows, where in map_in_order(chunk_rows, chunks, params.block_threads,
                                                             progress.check):
             n_inside += inside_n
@@ -716,6 +720,25 @@ def drive_blocks(det: Detections, frusta: Frusta, cloud: Union[str, CloudSource]
             del xyz, index       # not kept in this frame while the block is worked on
             yield rows_k, block
             del block
+
+
+def drive_reach(det: Detections, drive_order: np.ndarray, max_range_m: float, params: ProjectionParams,
+                batch: int = FRUSTA_BATCH) -> Tuple[np.ndarray, np.ndarray]:
+    """``(cells, cover)`` of the whole drive: the sorted keys of the cells of
+    :data:`FRUSTUM_CELL_M` that some detection's footprint touches (:func:`frustum_cells`) and
+    the convex hulls covering the footprints, :data:`COVER_GROUP` detections a hull in
+    ``drive_order`` (:meth:`Frusta.cover`). The frusta are built ``batch`` detections at a
+    time in that order and let go: none of the drive's is held (each block builds its own)."""
+    batch = max(COVER_GROUP, batch // COVER_GROUP * COVER_GROUP)   # whole groups: the cover's hulls as one build's
+    cells = np.zeros(0, np.int64)
+    hulls = [np.empty(0, dtype=object)]
+    for b0 in range(0, len(drive_order), batch):
+        frusta = Frusta.build(det.take(drive_order[b0:b0 + batch]), max_range_m, params.margin_deg,
+                              params.margin_frac, batch=batch)
+        cells = np.union1d(cells, frustum_cells(frusta, FRUSTUM_CELL_M))
+        hulls.append(frusta.cover(np.arange(len(frusta)), group=COVER_GROUP))
+        del frusta
+    return cells, np.concatenate(hulls)
 
 
 def slice_blocks(slices: List[Window], owner_slice: np.ndarray, counts: np.ndarray, reach_m: float,
@@ -786,20 +809,22 @@ def _project_block(det: Detections, rows: np.ndarray, index: TiledIndex, frusta:
                    rays: np.ndarray, max_range_m: float, params: ProjectionParams,
                    result: ProjectionResult, keep_point_index: bool) -> None:
     """Project the detections ``rows`` into ``index`` (non-ground points only), filling
-    their rows of ``result``: one detection at a time, its frustum tested on each tile its
+    their rows of ``result``; ``frusta``: theirs, row ``j`` that of detection ``rows[j]``
+    (:meth:`Frusta.build` of ``det.take(rows)``). One detection at a time, its frustum tested on each tile its
     footprint crosses (views of the index's arrays, no copies), its surface searched among
     the points inside. Nothing a detection allocates outlives it, so the heap a block leaves
     does not depend on how its detections' tiles interleave."""
     if len(index) == 0:
         return
     present = set(index.tile_keys)
-    for k, i, j in _footprint_cells(frusta, rows, index.tile_size_m, present):
+    for f, i, j in _footprint_cells(frusta, np.arange(len(rows)), index.tile_size_m, present):
+        k = int(rows[f])
         parts = []
         for key in zip(i.tolist(), j.tolist()):
             start, end = index.tile_rows(key)
             result.tiles_visited[k] += 1
             result.points_tested[k] += end - start
-            inside = _frustum_members(index.xyz_world[start:end], det, k, frusta, R, max_range_m,
+            inside = _frustum_members(index.xyz_world[start:end], det, k, frusta, f, R, max_range_m,
                                       params.min_range_m)
             if inside.size:
                 parts.append(start + inside)

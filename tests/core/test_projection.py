@@ -174,6 +174,23 @@ def test_the_cover_holds_every_footprint_in_a_shape_a_group(detections):
     assert shapely.union_all(cover).area < 0.9 * shapely.box(*shapely.total_bounds(footprints)).area
 
 
+def test_the_drives_reach_is_made_from_frusta_built_a_batch_at_a_time(detections, monkeypatch):
+    """drive_reach builds the frusta a batch at a time in drive order and keeps none: the
+    cells and the cover are those of the whole drive's frusta, built at once, whatever the
+    batch (rounded up to whole groups of the cover)."""
+    params = P.ProjectionParams()
+    whole = P.Frusta.build(detections, 30.0, params.margin_deg, params.margin_frac)
+    order = np.argsort(detections.centre_world[:, 0], kind="stable")[::-1]
+    monkeypatch.setattr(P, "COVER_GROUP", 4)
+    assert len(detections) > 12
+    for batch in (len(detections), 8, 3):
+        cells, cover = P.drive_reach(detections, order, 30.0, params, batch=batch)
+        assert np.array_equal(cells, P.frustum_cells(whole, P.FRUSTUM_CELL_M))
+        expected = whole.cover(order, group=4)
+        assert len(cover) == len(expected) == -(-len(detections) // 4)
+        assert all(shapely.equals(a, b) for a, b in zip(cover, expected)), batch
+
+
 def test_a_block_is_worked_one_detection_at_a_time(detections, las_path, result, monkeypatch):
     """Within a block, each detection tests its own tiles (views of the index, never a copied
     query) and is searched right after them, so nothing one detection allocates waits on
@@ -240,8 +257,7 @@ def test_block_by_block_projection_equals_one_index(scene, detections, las_path,
                                                      "classification": scene.classification},
                                    tile_size_m=5.0)
     whole = P.project_detections(detections, index)
-    blocks = list(P.drive_blocks(detections, P.Frusta.build(detections, 30.0, 0.25, 0.1), las_path, 30.0,
-                                 dataclasses.replace(P.ProjectionParams(), block_m=20.0)))
+    blocks = list(P.drive_blocks(detections, las_path, 30.0, dataclasses.replace(P.ProjectionParams(), block_m=20.0)))
     assert len(blocks) >= 4
     assert sorted(np.concatenate([rows for rows, _ in blocks]).tolist()) == list(range(len(detections)))
     assert max(len(block) for _, block in blocks) < 0.8 * sum(len(block) for _, block in blocks)
@@ -263,13 +279,11 @@ def test_the_reading_pass_in_threads_gives_the_same_blocks(detections, las_path)
     """The read's chunks are worked on in a pool of threads and spooled in reading order:
     with one thread and with two (many small chunks), the blocks hold the same points in
     the same order."""
-    frusta = P.Frusta.build(detections, 30.0, 0.25, 0.1)
     blocks = {}
     for threads in (1, 2):
         params = dataclasses.replace(P.ProjectionParams(), block_m=20.0, block_threads=threads)
         blocks[threads] = [(rows, block.xyz_world.copy(), block.point_index.copy())
-                           for rows, block in P.drive_blocks(detections, frusta, las_path, 30.0, params,
-                                                             chunk_points=3_000)]
+                           for rows, block in P.drive_blocks(detections, las_path, 30.0, params, chunk_points=3_000)]
     assert len(blocks[1]) == len(blocks[2]) >= 4
     assert sum(len(xyz) for _, xyz, _ in blocks[1]) > 10 * 3_000
     for (rows1, xyz1, index1), (rows2, xyz2, index2) in zip(blocks[1], blocks[2]):
@@ -308,10 +322,9 @@ def test_projection_with_few_points_a_block_equals_one_block(detections, las_pat
     np.testing.assert_allclose(small.xyz_world, result.xyz_world, atol=1e-9, equal_nan=True)
     for a, b in zip(small.point_index, result.point_index):
         assert np.array_equal(np.sort(a), np.sort(b))
-    frusta = P.Frusta.build(detections, 30.0, 0.25, 0.1)
-    capped = list(P.drive_blocks(detections, frusta, las_path, 30.0,
+    capped = list(P.drive_blocks(detections, las_path, 30.0,
                                  dataclasses.replace(P.ProjectionParams(), block_max_points=20_000)))
-    plain = list(P.drive_blocks(detections, frusta, las_path, 30.0, P.ProjectionParams()))
+    plain = list(P.drive_blocks(detections, las_path, 30.0, P.ProjectionParams()))
     assert len(capped) > len(plain)          # the 160 m drive's blocks cut short by their points
 
 
