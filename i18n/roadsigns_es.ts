@@ -1528,69 +1528,69 @@
         <translation>Encuentra la superficie de cada señal detectada en la nube LiDAR: un candidato por detección.</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="26" />
-        <source>For each detection, the viewing frustum of its box (the rays through the box edges, widened by a small margin for calibration error) is searched from the panorama centre out to the maximum range. The non-ground points inside it are clustered and the first dense, near-vertical planar surface along the box-centre ray is taken (the sign, not the wall behind it; poles and convex mirrors are passed over). The cloud is read once into a tiled index restricted to the frusta, and each tile is tested against every detection that crosses it.&lt;br&gt;&lt;br&gt;Output: one point per detection at the candidate surface, with the detection's fields, the range, the point count, the plane normal (normal_e, normal_n, normal_u), a quality score in 0-1 and a status: &lt;i&gt;ok&lt;/i&gt;, &lt;i&gt;no_points&lt;/i&gt; (nothing in the frustum, e.g. out of the scanner's reach) or &lt;i&gt;no_surface&lt;/i&gt;; those two keep no geometry. The cloud must be ground-classified (run Ground filter first).</source>
-        <translation>Para cada detección se recorre el frustum de visión de su recuadro (los rayos por los bordes del recuadro, ampliados con un pequeño margen por el error de calibración) desde el centro del panorama hasta el alcance máximo. Los puntos que no son suelo dentro de él se agrupan y se toma la primera superficie plana densa y casi vertical a lo largo del rayo por el centro del recuadro (la señal, no la pared de detrás; los postes y los espejos convexos se descartan). La nube se lee una sola vez en un índice por teselas restringido a los frustums, y cada tesela se prueba contra cada detección que la atraviesa.&lt;br&gt;&lt;br&gt;Salida: un punto por detección en la superficie candidata, con los campos de la detección, la distancia, el número de puntos, la normal del plano (normal_e, normal_n, normal_u), una puntuación de calidad en 0-1 y un estado: &lt;i&gt;ok&lt;/i&gt;, &lt;i&gt;no_points&lt;/i&gt; (nada en el frustum, p. ej. fuera del alcance del escáner) o &lt;i&gt;no_surface&lt;/i&gt;; estos dos no tienen geometría. La nube debe tener el suelo clasificado (ejecute antes «Filtro de suelo y recorte de nube de puntos»).</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/projectdetections.py" line="68" />
+        <location filename="../algorithms/projectdetections.py" line="70" />
         <source>Detections</source>
         <translation>Detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="41" />
+        <location filename="../algorithms/projectdetections.py" line="43" />
         <source>The output of Detect signs: one ray per detection with its box and station pose.</source>
         <translation>La salida de «Detectar señales en panoramas»: un rayo por detección con su recuadro y la pose de la estación.</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="44" />
+        <location filename="../algorithms/projectdetections.py" line="46" />
         <source>Ground-classified point cloud (LAS/LAZ)</source>
         <translation>Nube de puntos con suelo clasificado (LAS/LAZ)</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="44" />
+        <location filename="../algorithms/projectdetections.py" line="46" />
         <source>The cloud with ground as class 2 (the output of Ground filter), in the detections' CRS.</source>
         <translation>La nube con el suelo como clase 2 (la salida de «Filtro de suelo y recorte de nube de puntos»), en el SRC de las detecciones.</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="47" />
+        <location filename="../algorithms/projectdetections.py" line="49" />
         <source>Maximum range (m)</source>
         <translation>Alcance máximo (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="47" />
+        <location filename="../algorithms/projectdetections.py" line="49" />
         <source>Search each frustum up to this distance from the panorama centre, in metres.</source>
         <translation>Busca en cada frustum hasta esta distancia desde el centro del panorama, en metros.</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="54" />
+        <location filename="../algorithms/projectdetections.py" line="56" />
         <source>Sign candidates</source>
         <translation>Candidatos de señal</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="54" />
+        <location filename="../algorithms/projectdetections.py" line="56" />
         <source>PointZ layer, one candidate per detection (no geometry where no surface was found).</source>
         <translation>Capa PointZ, un candidato por detección (sin geometría donde no se encontró superficie).</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="66" />
+        <location filename="../algorithms/projectdetections.py" line="68" />
         <source>The detections</source>
         <translation>Las detecciones</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="88" />
+        <location filename="../algorithms/projectdetections.py" line="90" />
         <source>{} detections: {} with a surface in the cloud, {} without</source>
         <translation>{} detecciones: {} con superficie en la nube, {} sin ella</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="50" />
+        <location filename="../algorithms/projectdetections.py" line="52" />
         <source>Cloud CRS (when the file has none)</source>
         <translation>SRC de la nube (si el archivo no tiene)</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="50" />
+        <location filename="../algorithms/projectdetections.py" line="52" />
         <source>The cloud's CRS when the file records none (it must be the detections' CRS); it overrides a CRS in the file. The CRS is never guessed.</source>
         <translation>El SRC de la nube cuando el archivo no registra ninguno (debe ser el SRC de las detecciones); sustituye al SRC del archivo. El SRC nunca se adivina.</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/projectdetections.py" line="26" />
+        <source>For each detection, the viewing frustum of its box (the rays through the box edges, widened by a small margin for calibration error) is searched from the panorama centre out to the maximum range. The non-ground points inside it are clustered and the first dense, near-vertical planar surface along the box-centre ray is taken (the sign, not the wall behind it; poles and convex mirrors are passed over). The cloud is read once (only the tiles under some frustum); the points under the frusta are kept on disk and worked through block by block along the drive, so the memory follows a block, not the drive. Within a block, each detection tests only the small tiles its frustum crosses.&lt;br&gt;&lt;br&gt;Output: one point per detection at the candidate surface, with the detection's fields, the range, the point count, the plane normal (normal_e, normal_n, normal_u), a quality score in 0-1 and a status: &lt;i&gt;ok&lt;/i&gt;, &lt;i&gt;no_points&lt;/i&gt; (nothing in the frustum, e.g. out of the scanner's reach) or &lt;i&gt;no_surface&lt;/i&gt;; those two keep no geometry. The cloud must be ground-classified (run Ground filter first).</source>
+        <translation>Para cada detección se recorre el frustum de visión de su recuadro (los rayos por los bordes del recuadro, ampliados con un pequeño margen por el error de calibración) desde el centro del panorama hasta el alcance máximo. Los puntos que no son suelo dentro de él se agrupan y se toma la primera superficie plana densa y casi vertical a lo largo del rayo por el centro del recuadro (la señal, no la pared de detrás; los postes y los espejos convexos se descartan). La nube se lee una sola vez (solo las teselas bajo algún frustum); los puntos bajo los frustums se guardan en disco y se procesan bloque a bloque a lo largo del recorrido, de modo que la memoria depende de un bloque y no del recorrido. Dentro de un bloque, cada detección prueba solo las pequeñas teselas que atraviesa su frustum.&lt;br&gt;&lt;br&gt;Salida: un punto por detección en la superficie candidata, con los campos de la detección, la distancia, el número de puntos, la normal del plano (normal_e, normal_n, normal_u), una puntuación de calidad en 0-1 y un estado: &lt;i&gt;ok&lt;/i&gt;, &lt;i&gt;no_points&lt;/i&gt; (nada en el frustum, p. ej. fuera del alcance del escáner) o &lt;i&gt;no_surface&lt;/i&gt;; estos dos no tienen geometría. La nube debe tener el suelo clasificado (ejecute antes «Filtro de suelo y recorte de nube de puntos»).</translation>
     </message>
 </context>
 <context>
@@ -2728,103 +2728,101 @@
         <translation>El CSF integrado necesita el paquete de Python cloth-simulation-filter (módulo CSF): {detail}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="270" />
-        <source>Not enough free disk space in {folder} to keep the points between the two passes: the cloud is read twice</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>No hay espacio libre suficiente en el disco en {folder} para guardar los puntos entre las dos pasadas: la nube se lee dos veces</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/engine.py" line="344" />
+        <location filename="../core/ground/engine.py" line="337" />
         <location filename="../core/pointcloud.py" line="274" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede escribir {path}: la salida debe terminar en .las o .laz</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="356" />
+        <location filename="../core/ground/engine.py" line="349" />
         <location filename="../core/ground/tiled.py" line="106" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>SRC de la nube de puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="429" />
+        <location filename="../core/ground/engine.py" line="422" />
         <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se encontró PDAL: se usa el motor integrado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="479" />
+        <location filename="../core/ground/engine.py" line="472" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay polígonos de recorte: se ignora el búfer de recorte</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="154" />
+        <location filename="../core/ground/engine.py" line="152" />
         <source>Classifying and writing the points: part {n} of {count}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Clasificando y escribiendo los puntos: parte {n} de {count}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="283" />
-        <location filename="../core/ground/engine.py" line="310" />
+        <location filename="../core/ground/engine.py" line="259" />
         <source>No point of {path} has the returns '{returns}': nothing was classified</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Ningún punto de {path} tiene los retornos '{returns}': no se clasificó nada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="350" />
+        <location filename="../core/ground/engine.py" line="343" />
         <source>The output {path} must not be the input file</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>La salida {path} no puede ser el archivo de entrada</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="358" />
+        <location filename="../core/ground/engine.py" line="351" />
         <location filename="../core/ground/tiled.py" line="108" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene sistema de referencia de coordenadas: indique el SRC de la nube (nunca se adivina)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="416" />
+        <location filename="../core/ground/engine.py" line="409" />
         <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: el motor integrado, más rápido que PDAL en las mediciones para {method} (y procesa la nube en flujo continuo con memoria acotada)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="421" />
+        <location filename="../core/ground/engine.py" line="414" />
         <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, porque el {method} integrado necesita el paquete de Python cloth-simulation-filter, que no está instalado</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="427" />
+        <location filename="../core/ground/engine.py" line="420" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Se pidió PDAL, pero no se encontró ni el módulo de Python pdal ni un ejecutable pdal (PATH, carpeta bin de QGIS)</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="431" />
+        <location filename="../core/ground/engine.py" line="424" />
         <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Automático: PDAL, más rápido que el motor integrado en las mediciones para {method}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="466" />
+        <location filename="../core/ground/engine.py" line="459" />
         <source>No point of {path} is left after the crop: {output} has no points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No queda ningún punto de {path} tras el recorte: {output} no tiene puntos</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="307" />
-        <location filename="../core/ground/engine.py" line="279" />
+        <location filename="../core/ground/engine.py" line="245" />
+        <source>Not enough free disk space in {folder} to keep the points between the two passes: the cloud is read twice</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>No hay espacio libre suficiente en el disco en {folder} para guardar los puntos entre las dos pasadas: la nube se lee dos veces</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="255" />
         <location filename="../core/ground/tiled.py" line="239" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No se puede leer {path}: el archivo está dañado ({detail})</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="381" />
+        <location filename="../core/ground/engine.py" line="374" />
         <location filename="../core/ground/tiled.py" line="139" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -3118,26 +3116,26 @@
         <translation>Ningún punto de {path} está dentro del área de recorte; {output} está vacío</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="620" />
+        <location filename="../core/projection.py" line="622" />
         <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{ok} de {count} detecciones encontraron una superficie en la nube ({no_points} sin puntos, {no_surface} sin superficie plana)</translation>
     </message>
     <message>
         <location filename="../core/projection.py" line="438" />
-        <location filename="../core/projection.py" line="698" />
+        <location filename="../core/projection.py" line="702" />
         <source>{source} has no ground points (class 2) where the signs are: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{source} no tiene puntos de suelo (clase 2) donde están las señales: ejecute primero roadsigns:groundfilter sobre ella (o clasifique el suelo con otra herramienta)</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="580" />
+        <location filename="../core/projection.py" line="581" />
         <source>The maximum range must exceed {min} m, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>El alcance máximo debe superar {min} m; se recibió {value} m</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="614" />
+        <location filename="../core/projection.py" line="616" />
         <source>Searching the detections' surfaces: {n} of {count}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>Buscando las superficies de las detecciones: {n} de {count}</translation>
@@ -3167,13 +3165,13 @@
         <translation>Al índice de puntos le falta {names}</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="585" />
+        <location filename="../core/projection.py" line="586" />
         <source>No detections to project; the candidates are empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>No hay detecciones que proyectar; los candidatos están vacíos</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="616" />
+        <location filename="../core/projection.py" line="618" />
         <source>{path} has no point inside the detections' frusta; no candidate found</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} no tiene puntos dentro de los troncos de visión de las detecciones; no se encontró ningún candidato</translation>

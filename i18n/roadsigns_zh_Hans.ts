@@ -1528,69 +1528,69 @@
         <translation>在激光雷达点云中找到每个检测到的标志的表面：每个检测一个候选。</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="26" />
-        <source>For each detection, the viewing frustum of its box (the rays through the box edges, widened by a small margin for calibration error) is searched from the panorama centre out to the maximum range. The non-ground points inside it are clustered and the first dense, near-vertical planar surface along the box-centre ray is taken (the sign, not the wall behind it; poles and convex mirrors are passed over). The cloud is read once into a tiled index restricted to the frusta, and each tile is tested against every detection that crosses it.&lt;br&gt;&lt;br&gt;Output: one point per detection at the candidate surface, with the detection's fields, the range, the point count, the plane normal (normal_e, normal_n, normal_u), a quality score in 0-1 and a status: &lt;i&gt;ok&lt;/i&gt;, &lt;i&gt;no_points&lt;/i&gt; (nothing in the frustum, e.g. out of the scanner's reach) or &lt;i&gt;no_surface&lt;/i&gt;; those two keep no geometry. The cloud must be ground-classified (run Ground filter first).</source>
-        <translation>对每个检测，从全景图中心出发直到最大距离，搜索其检测框的视锥（穿过检测框边缘的射线，并为标定误差略微放宽）。对视锥内的非地面点进行聚类，取沿检测框中心射线的第一个密集、近似竖直的平面表面（即标志本身，而非其后的墙体；杆和凸面镜会被跳过）。点云只读取一次，建立仅限于这些视锥的分块索引，每个分块只与穿过它的检测进行测试。&lt;br&gt;&lt;br&gt;输出：每个检测在候选表面处一个点，包含检测的字段、距离、点数、平面法向量（normal_e、normal_n、normal_u）、0-1 的质量分数以及状态：&lt;i&gt;ok&lt;/i&gt;、&lt;i&gt;no_points&lt;/i&gt;（视锥内没有点，例如超出扫描仪的测程）或 &lt;i&gt;no_surface&lt;/i&gt;；后两者没有几何。点云必须已完成地面分类（请先运行“地面滤波与点云裁剪”）。</translation>
-    </message>
-    <message>
-        <location filename="../algorithms/projectdetections.py" line="68" />
+        <location filename="../algorithms/projectdetections.py" line="70" />
         <source>Detections</source>
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="41" />
+        <location filename="../algorithms/projectdetections.py" line="43" />
         <source>The output of Detect signs: one ray per detection with its box and station pose.</source>
         <translation>“在全景图中检测标志”的输出：每个检测一条射线，附带其检测框和站点位姿。</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="44" />
+        <location filename="../algorithms/projectdetections.py" line="46" />
         <source>Ground-classified point cloud (LAS/LAZ)</source>
         <translation>已地面分类的点云（LAS/LAZ）</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="44" />
+        <location filename="../algorithms/projectdetections.py" line="46" />
         <source>The cloud with ground as class 2 (the output of Ground filter), in the detections' CRS.</source>
         <translation>地面为类别 2 的点云（“地面滤波与点云裁剪”的输出），与检测结果位于同一坐标参考系。</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="47" />
+        <location filename="../algorithms/projectdetections.py" line="49" />
         <source>Maximum range (m)</source>
         <translation>最大距离 (m)</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="47" />
+        <location filename="../algorithms/projectdetections.py" line="49" />
         <source>Search each frustum up to this distance from the panorama centre, in metres.</source>
         <translation>在距全景图中心此距离（米）以内搜索每个视锥。</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="54" />
+        <location filename="../algorithms/projectdetections.py" line="56" />
         <source>Sign candidates</source>
         <translation>标志候选</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="54" />
+        <location filename="../algorithms/projectdetections.py" line="56" />
         <source>PointZ layer, one candidate per detection (no geometry where no surface was found).</source>
         <translation>PointZ 图层，每个检测一个候选（未找到表面时无几何）。</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="66" />
+        <location filename="../algorithms/projectdetections.py" line="68" />
         <source>The detections</source>
         <translation>检测结果</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="88" />
+        <location filename="../algorithms/projectdetections.py" line="90" />
         <source>{} detections: {} with a surface in the cloud, {} without</source>
         <translation>{} 个检测：{} 个在点云中找到表面，{} 个未找到</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="50" />
+        <location filename="../algorithms/projectdetections.py" line="52" />
         <source>Cloud CRS (when the file has none)</source>
         <translation>点云坐标参考系（文件中没有时）</translation>
     </message>
     <message>
-        <location filename="../algorithms/projectdetections.py" line="50" />
+        <location filename="../algorithms/projectdetections.py" line="52" />
         <source>The cloud's CRS when the file records none (it must be the detections' CRS); it overrides a CRS in the file. The CRS is never guessed.</source>
         <translation>文件中没有记录坐标参考系时点云的坐标参考系（必须与检测的坐标参考系相同）；它会覆盖文件中的坐标参考系。坐标参考系从不猜测。</translation>
+    </message>
+    <message>
+        <location filename="../algorithms/projectdetections.py" line="26" />
+        <source>For each detection, the viewing frustum of its box (the rays through the box edges, widened by a small margin for calibration error) is searched from the panorama centre out to the maximum range. The non-ground points inside it are clustered and the first dense, near-vertical planar surface along the box-centre ray is taken (the sign, not the wall behind it; poles and convex mirrors are passed over). The cloud is read once (only the tiles under some frustum); the points under the frusta are kept on disk and worked through block by block along the drive, so the memory follows a block, not the drive. Within a block, each detection tests only the small tiles its frustum crosses.&lt;br&gt;&lt;br&gt;Output: one point per detection at the candidate surface, with the detection's fields, the range, the point count, the plane normal (normal_e, normal_n, normal_u), a quality score in 0-1 and a status: &lt;i&gt;ok&lt;/i&gt;, &lt;i&gt;no_points&lt;/i&gt; (nothing in the frustum, e.g. out of the scanner's reach) or &lt;i&gt;no_surface&lt;/i&gt;; those two keep no geometry. The cloud must be ground-classified (run Ground filter first).</source>
+        <translation>对每个检测，从全景图中心出发直到最大距离，搜索其检测框的视锥（穿过检测框边缘的射线，并为标定误差略微放宽）。对视锥内的非地面点进行聚类，取沿检测框中心射线的第一个密集、近似竖直的平面表面（即标志本身，而非其后的墙体；杆和凸面镜会被跳过）。点云只读取一次（仅读取位于某个视锥之下的瓦片）；视锥下的点暂存于磁盘，并沿行驶路线逐块处理，因此内存取决于一个块的大小，而非整条路线。在一个块内，每个检测只测试其视锥穿过的小分块。&lt;br&gt;&lt;br&gt;输出：每个检测在候选表面处一个点，包含检测的字段、距离、点数、平面法向量（normal_e、normal_n、normal_u）、0-1 的质量分数以及状态：&lt;i&gt;ok&lt;/i&gt;、&lt;i&gt;no_points&lt;/i&gt;（视锥内没有点，例如超出扫描仪的测程）或 &lt;i&gt;no_surface&lt;/i&gt;；后两者没有几何。点云必须已完成地面分类（请先运行“地面滤波与点云裁剪”）。</translation>
     </message>
 </context>
 <context>
@@ -2728,103 +2728,101 @@
         <translation>内置 CSF 需要 Python 包 cloth-simulation-filter（模块 CSF）：{detail}</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="270" />
-        <source>Not enough free disk space in {folder} to keep the points between the two passes: the cloud is read twice</source>
-        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
-        <translation>{folder} 中的可用磁盘空间不足，无法在两遍处理之间保存点：点云将被读取两次</translation>
-    </message>
-    <message>
-        <location filename="../core/ground/engine.py" line="344" />
+        <location filename="../core/ground/engine.py" line="337" />
         <location filename="../core/pointcloud.py" line="274" />
         <source>Cannot write {path}: the output must end in .las or .laz</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法写入 {path}：输出文件必须以 .las 或 .laz 结尾</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="356" />
+        <location filename="../core/ground/engine.py" line="349" />
         <location filename="../core/ground/tiled.py" line="106" />
         <source>point cloud CRS</source>
         <extracomment>A word filled into {what}, {role} or {kind} of messages (a kind of file or CRS, or 'is duplicated'): write it to fit those messages' translations, lowercase.</extracomment>
         <translation>点云坐标参考系</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="429" />
+        <location filename="../core/ground/engine.py" line="422" />
         <source>PDAL not found: using the built-in engine</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>未找到 PDAL：使用内置引擎</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="479" />
+        <location filename="../core/ground/engine.py" line="472" />
         <source>No crop polygons: the crop buffer is ignored</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有裁剪多边形：忽略裁剪缓冲区</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="154" />
+        <location filename="../core/ground/engine.py" line="152" />
         <source>Classifying and writing the points: part {n} of {count}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>正在分类并写出点：第 {n} 部分，共 {count} 部分</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="283" />
-        <location filename="../core/ground/engine.py" line="310" />
+        <location filename="../core/ground/engine.py" line="259" />
         <source>No point of {path} has the returns '{returns}': nothing was classified</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 中没有回波为 '{returns}' 的点：未分类任何点</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="350" />
+        <location filename="../core/ground/engine.py" line="343" />
         <source>The output {path} must not be the input file</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>输出 {path} 不能是输入文件</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="358" />
+        <location filename="../core/ground/engine.py" line="351" />
         <location filename="../core/ground/tiled.py" line="108" />
         <source>{path} has no coordinate reference system: give the cloud's CRS (it is never guessed)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 没有坐标参考系：请给出点云的坐标参考系（从不猜测）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="416" />
+        <location filename="../core/ground/engine.py" line="409" />
         <source>Auto: the built-in engine, measured faster than PDAL for {method} (and it streams the cloud in bounded memory)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：内置引擎，对 {method} 实测比 PDAL 更快（且以有限内存流式处理点云）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="421" />
+        <location filename="../core/ground/engine.py" line="414" />
         <source>Auto: PDAL, as the built-in {method} needs the Python package cloth-simulation-filter, which is not installed</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：PDAL，因为内置 {method} 需要 Python 包 cloth-simulation-filter，而该包未安装</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="427" />
+        <location filename="../core/ground/engine.py" line="420" />
         <source>PDAL was asked for, but neither the pdal Python module nor a pdal executable was found (PATH, QGIS's bin folder)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>要求使用 PDAL，但既没有找到 pdal Python 模块，也没有找到 pdal 可执行文件（PATH、QGIS 的 bin 文件夹）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="431" />
+        <location filename="../core/ground/engine.py" line="424" />
         <source>Auto: PDAL, measured faster than the built-in engine for {method}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>自动：PDAL，对 {method} 实测比内置引擎更快</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="466" />
+        <location filename="../core/ground/engine.py" line="459" />
         <source>No point of {path} is left after the crop: {output} has no points</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>裁剪后 {path} 没有剩余的点：{output} 中没有点</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="307" />
-        <location filename="../core/ground/engine.py" line="279" />
+        <location filename="../core/ground/engine.py" line="245" />
+        <source>Not enough free disk space in {folder} to keep the points between the two passes: the cloud is read twice</source>
+        <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
+        <translation>{folder} 中的可用磁盘空间不足，无法在两遍处理之间保存点：点云将被读取两次</translation>
+    </message>
+    <message>
+        <location filename="../core/ground/engine.py" line="255" />
         <location filename="../core/ground/tiled.py" line="239" />
         <source>Cannot read {path}: the file is corrupt ({detail})</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>无法读取 {path}：文件已损坏（{detail}）</translation>
     </message>
     <message>
-        <location filename="../core/ground/engine.py" line="381" />
+        <location filename="../core/ground/engine.py" line="374" />
         <location filename="../core/ground/tiled.py" line="139" />
         <source>PDAL failed, the built-in engine was used instead: {error}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
@@ -3118,26 +3116,26 @@
         <translation>{path} 中没有点位于裁剪区域内；{output} 为空</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="620" />
+        <location filename="../core/projection.py" line="622" />
         <source>{ok} of {count} detections found a surface in the cloud ({no_points} without points, {no_surface} without a planar surface)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{count} 个检测结果中有 {ok} 个在点云中找到了表面（{no_points} 个没有点，{no_surface} 个没有平面）</translation>
     </message>
     <message>
         <location filename="../core/projection.py" line="438" />
-        <location filename="../core/projection.py" line="698" />
+        <location filename="../core/projection.py" line="702" />
         <source>{source} has no ground points (class 2) where the signs are: run roadsigns:groundfilter on it first (or classify the ground with another tool)</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{source} 在标志所在区域没有地面点（类别 2）：请先对其运行 roadsigns:groundfilter（或用其他工具进行地面分类）</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="580" />
+        <location filename="../core/projection.py" line="581" />
         <source>The maximum range must exceed {min} m, got {value} m</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>最大距离必须大于 {min} m，实际为 {value} m</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="614" />
+        <location filename="../core/projection.py" line="616" />
         <source>Searching the detections' surfaces: {n} of {count}</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>正在搜索检测的表面：{n} / {count}</translation>
@@ -3167,13 +3165,13 @@
         <translation>点索引缺少 {names}</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="585" />
+        <location filename="../core/projection.py" line="586" />
         <source>No detections to project; the candidates are empty</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>没有要投影的检测结果；候选为空</translation>
     </message>
     <message>
-        <location filename="../core/projection.py" line="616" />
+        <location filename="../core/projection.py" line="618" />
         <source>{path} has no point inside the detections' frusta; no candidate found</source>
         <extracomment>Message: keep every {field} exactly as written; they are filled in afterwards.</extracomment>
         <translation>{path} 在检测结果的视锥内没有点；未找到候选</translation>
