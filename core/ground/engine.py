@@ -238,7 +238,7 @@ def _builtin_engine(source: CloudSource, output_path: str, params: Params,
     run: Optional[Callable[[CloudWriter], Tuple[int, int]]] = None
     if room and block_m and bounds is not None and max(bounds[2] - bounds[0], bounds[3] - bounds[1]) > block_m:
         run = partial(_run_blocks, source, BlockPlan(params, bounds, block_m, tile_size_m, tile_buffer_m),
-                      params, region, reset_classes, chunk_points, spool_folder, progress)
+                      params, region, area, reset_classes, chunk_points, spool_folder, progress)
     elif has_work and bounds is not None:
         grid = make_grid(params, bounds, float(source.bounds[2]), tile_size_m, tile_buffer_m)
         if not room:
@@ -292,11 +292,10 @@ def _run_two_passes(source: CloudSource, grid: GroundGrid, params: Params, regio
 
 
 def _run_blocks(source: CloudSource, plan: BlockPlan, params: Params, region: Optional[CropRegion],
-                reset_classes: bool, chunk_points: int, spool_folder: str, progress: Progress,
+                area: Any, reset_classes: bool, chunk_points: int, spool_folder: str, progress: Progress,
                 writer: CloudWriter) -> Tuple[int, int]:
-    """Block by block (:func:`.blocks.classify_by_blocks`): ``(eligible points, ground points)``."""
-    area = None if region is None else region.geometry
-
+    """Block by block (:func:`.blocks.classify_by_blocks`; ``area``: the region's shape, which
+    chooses the tiles and chunks read): ``(eligible points, ground points)``."""
     def read(reading: Progress) -> Iterator[Any]:
         for _, chunk in source.iter_indexed_chunks(chunk_points, reading, area=area):
             yield chunk

@@ -328,8 +328,14 @@ def pano_crops(scene_dirs, names, cache_path: str):
     """The front faces of :func:`face_crops`, labelled for a classifier answering ``names``:
     list of (crop BGR, label index in ``names``, shorter side of the sign's box in panorama
     pixels); a code ``names`` lacks is ``other``."""
+    return labelled_fronts(face_crops(scene_dirs, cache_path)[0], names)
+
+
+def labelled_fronts(fronts, names):
+    """:func:`face_crops`' fronts ``(crop, code, side)`` as ``(crop, label index in names,
+    side)``; a code ``names`` lacks is ``other``."""
     index = {n: k for k, n in enumerate(names)}
-    return [(c, index.get(code, index[OTHER]), side) for c, code, side in face_crops(scene_dirs, cache_path)[0]]
+    return [(c, index.get(code, index[OTHER]), side) for c, code, side in fronts]
 
 
 def cached_box(crop: np.ndarray):
@@ -517,9 +523,10 @@ class Sampler:
         present = [d for d in TRAIN_SCENES if os.path.isfile(os.path.join(d, "scene.json"))]
         for d in sorted(set(TRAIN_SCENES) - set(present)):
             print(f"codes: training scene {d} missing, its panoramas left out", flush=True)
-        self.pano = pano_crops(present, self.names, pano_cache) if pano_cache else []
+        fronts, backs = face_crops(present, pano_cache) if pano_cache else ([], [])   # one read of the cache
+        self.pano = labelled_fronts(fronts, self.names)
         self.mined = mined_negatives(present, mined_cache) if mined_cache else []
-        self.backs = back_crops(present, pano_cache) if pano_cache and self.back is not None else []
+        self.backs = backs if self.back is not None else []
 
     # backgrounds
     def background(self, side: int) -> np.ndarray:

@@ -2,8 +2,8 @@
 ``back`` (core.signcodes.BACK_CODE), which the second look drops, and the faces of signs as
 something else. On the generated panoramas of a scene it never trained on (preset tiny, seed
 8; it trains on seeds from 100 up), every sign face at most 30 % hidden and at least 14 px
-(detectsigns' smallest box) on its box's shorter side is cut as the chain cuts a detection's
-box, and read. Without the bundled classifier the test is skipped, and fails under CI=true.
+on its box's shorter side is cut as the chain cuts a detection's box, and read. Without the
+bundled classifier the test is skipped, and fails under CI=true.
 """
 import json
 import os
