@@ -23,6 +23,7 @@ PACKAGES = {
     "shapely": "shapely>=2",
     "laspy": "laspy[lazrs]",
     "lazrs": "laspy[lazrs]",
+    "threadpoolctl": "threadpoolctl",
 }
 
 

@@ -18,7 +18,7 @@ import os
 import sys
 import types
 from dataclasses import dataclass
-from typing import Any, Callable, Iterator, List, Optional
+from typing import Any, ContextManager, Iterator, List, Optional
 
 import numpy as np
 
@@ -96,33 +96,19 @@ def _flush_c_streams() -> None:
         pass
 
 
-_OMP_SET_NUM_THREADS: List[Optional[Callable[[int], Any]]] = []  # [function or None], looked up once
+def _one_openmp_thread() -> ContextManager[Any]:
+    """Every OpenMP runtime loaded held to one thread in the calling thread, and given back its
+    setting after (threadpoolctl).
 
+    The CSF wheel's OpenMP loops race (two runs on the same points can give cloths differing
+    by 0.1 m); one OpenMP thread makes it deterministic. The library's OpenMP calls bind to
+    the first runtime the process loaded with global symbols, which is not always the one
+    its wheel bundles (after torch, in a QGIS where another plugin imported it, they bind to
+    torch's), so each one loaded is held, not only the wheel's. OpenMP settings are per
+    calling thread (QGIS runs algorithms in worker threads): entered around every run."""
+    from threadpoolctl import threadpool_limits
 
-def _pin_csf_to_one_thread(csf_module: types.ModuleType) -> None:
-    """The CSF wheel's OpenMP loops race (two runs on the same points can give cloths
-    differing by 0.1 m); one OpenMP thread makes it deterministic. The wheel bundles its
-    own OpenMP runtime, so this touches no other library. OpenMP settings are per
-    calling thread (QGIS runs algorithms in worker threads): called before every run."""
-    if not _OMP_SET_NUM_THREADS:
-        import ctypes
-        import glob
-
-        found: Optional[Callable[[int], Any]] = None
-        here = os.path.dirname(os.path.abspath(csf_module.__file__ or os.curdir))
-        for pattern in ("cloth_simulation_filter.libs/*omp*", ".dylibs/*omp*",
-                        "cloth_simulation_filter/.dylibs/*omp*", "*omp*.dll"):
-            for lib in glob.glob(os.path.join(here, pattern)):
-                try:
-                    found = ctypes.CDLL(lib).omp_set_num_threads
-                    break
-                except (OSError, AttributeError):
-                    continue
-            if found is not None:
-                break
-        _OMP_SET_NUM_THREADS.append(found)
-    if _OMP_SET_NUM_THREADS[0] is not None:
-        _OMP_SET_NUM_THREADS[0](1)
+    return threadpool_limits(limits=1, user_api="openmp")
 
 
 def _csf_module() -> types.ModuleType:
@@ -131,7 +117,6 @@ def _csf_module() -> types.ModuleType:
     except ImportError as e:
         raise InputError("The built-in CSF needs the Python package cloth-simulation-filter "
                          "(module CSF): {detail}", detail=str(e))
-    _pin_csf_to_one_thread(CSF)
     return CSF
 
 
@@ -157,7 +142,7 @@ def run_csf_cloth(xyz: np.ndarray, params: CsfParams) -> np.ndarray:
     csf.params.interations = int(params.iterations)
     # do_cloth_export runs the whole simulation itself (do_filtering would run it a second
     # time only to classify the points, which CsfGrid.classify does): the same cloth
-    with _native_stdout_silenced():
+    with _native_stdout_silenced(), _one_openmp_thread():
         csf.setPointCloud(np.ascontiguousarray(xyz, dtype=np.float64))
         cloth = csf.do_cloth_export()
     return np.asarray(cloth, dtype=np.float64).reshape(-1, 3)
