@@ -34,8 +34,11 @@ from .writebehind import WriteBehind
 
 #: Spacing of the densified track used to locate points on the drive, metres.
 AXIS_STEP_M = 0.5
-#: Rows buffered in memory, all windows together, before they are appended to the files.
-SPOOL_FLUSH_ROWS = 1_000_000
+#: Bytes of rows buffered in memory, all windows together, before they are appended to the
+#: files. Small beside a chunk's arrays: a drive too short to fill the buffer would otherwise
+#: peak lower than a long one only because its buffer never filled (32 MB of 1 M projection
+#: rows were 13 MB of the 9 x drive's heap peak over 1 x, bench/README.md).
+SPOOL_FLUSH_BYTES = 4 * 2**20
 
 
 @dataclass
@@ -270,11 +273,11 @@ class Spool:
     """Rows of structured dtypes appended per key (``kind``, integer index) to files in a
     temporary folder, and read back whole.
 
-    ``dtypes``: the dtype of each kind. At most ``flush_rows`` rows wait in memory (then
+    ``dtypes``: the dtype of each kind. At most ``flush_bytes`` of rows wait in memory (then
     they are appended to their files); :meth:`read` flushes first. Use as a context manager
     (the folder is deleted on exit, or by :meth:`close`). ``background``: the files are
     written on a thread of their own while the caller goes on (:class:`.writebehind.WriteBehind`;
-    one flush at a time, so up to twice ``flush_rows`` rows in memory; a write's error is
+    one flush at a time, so up to twice ``flush_bytes`` in memory; a write's error is
     raised by the next flush, :meth:`read` or :meth:`discard`). Rows given to :meth:`append`
     must not change after, either way. The first :meth:`read` ends the writing pass: the
     memory that pass freed (the cloud's chunks) is given back to the system then
@@ -283,12 +286,12 @@ class Spool:
     """
 
     def __init__(self, dtypes: Dict[str, np.dtype], folder: Optional[str] = None,
-                 flush_rows: int = SPOOL_FLUSH_ROWS, prefix: str = "roadsigns-spool-", background: bool = False):
+                 flush_bytes: int = SPOOL_FLUSH_BYTES, prefix: str = "roadsigns-spool-", background: bool = False):
         self.dtypes = {k: np.dtype(v) for k, v in dtypes.items()}
         self.folder = tempfile.mkdtemp(prefix=prefix, dir=folder)
-        self.flush_rows = int(flush_rows)
+        self.flush_bytes = int(flush_bytes)
         self._pending: Dict[Tuple[str, int], List[np.ndarray]] = {}
-        self._pending_rows = 0
+        self._pending_bytes = 0
         self._behind = WriteBehind("roadsigns-spool-write") if background else None
         self._read_back = False
 
@@ -298,16 +301,17 @@ class Spool:
     def append(self, kind: str, index: int, rows: np.ndarray) -> None:
         """Append ``rows`` (dtype of ``kind``) to the file of ``(kind, index)``."""
         if len(rows):
-            self._pending.setdefault((kind, index), []).append(np.asarray(rows, dtype=self.dtypes[kind]))
-            self._pending_rows += len(rows)
-            if self._pending_rows >= self.flush_rows:
+            rows = np.asarray(rows, dtype=self.dtypes[kind])
+            self._pending.setdefault((kind, index), []).append(rows)
+            self._pending_bytes += rows.nbytes
+            if self._pending_bytes >= self.flush_bytes:
                 self.flush()
 
     def flush(self) -> None:
         """Append the rows waiting in memory to their files (in the background: start to)."""
         if not self._pending:
             return
-        pending, self._pending, self._pending_rows = self._pending, {}, 0
+        pending, self._pending, self._pending_bytes = self._pending, {}, 0
         if self._behind is not None:
             self._behind.submit(self._write, pending)
         else:
@@ -389,8 +393,8 @@ class WindowSpool(Spool):
     a row goes to every window whose core range grown by ``margin_m`` holds it."""
 
     def __init__(self, windows: List[Window], margin_m: float, dtypes: Dict[str, np.dtype],
-                 folder: Optional[str] = None, flush_rows: int = SPOOL_FLUSH_ROWS):
-        super().__init__(dtypes, folder, flush_rows, prefix="roadsigns-windows-")
+                 folder: Optional[str] = None, flush_bytes: int = SPOOL_FLUSH_BYTES):
+        super().__init__(dtypes, folder, flush_bytes, prefix="roadsigns-windows-")
         self.windows = windows
         self.margin_m = float(margin_m)
         self._lo = np.array([w.s0_m for w in windows]) - self.margin_m

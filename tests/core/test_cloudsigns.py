@@ -409,14 +409,14 @@ def test_map_in_order_keeps_order_bounds_the_work_in_flight_and_cancels():
 def test_window_spool_bounds_memory_and_duplicates_margins(tmp_path):
     windows = make_windows(100.0, 20.0)
     dtype = np.dtype([("s", "f8")])
-    with WindowSpool(windows, 5.0, {"p": dtype}, folder=str(tmp_path), flush_rows=100) as spool:
+    with WindowSpool(windows, 5.0, {"p": dtype}, folder=str(tmp_path), flush_bytes=100 * dtype.itemsize) as spool:
         s_all = np.arange(0.0, 100.0, 0.1)
         for k in range(0, len(s_all), 50):
             s = s_all[k:k + 50]
             rows = np.zeros(len(s), dtype)
             rows["s"] = s
             spool.add("p", s, rows)
-            assert spool._pending_rows < 100 + 2 * 50      # flushed once past the limit
+            assert spool._pending_bytes < (100 + 2 * 50) * dtype.itemsize     # flushed once past the limit
         spool.flush()
         for w in windows:
             got = spool.read("p", w.index)["s"]

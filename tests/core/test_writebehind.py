@@ -69,7 +69,7 @@ def test_spool_reads_back_every_row_in_order(tmp_path, background):
     rng = np.random.default_rng(1)
     dtype = np.dtype([("x", "f8"), ("k", "i4")])
     parts = {k: [] for k in range(3)}
-    with Spool({"p": dtype}, folder=str(tmp_path), flush_rows=50, background=background) as spool:
+    with Spool({"p": dtype}, folder=str(tmp_path), flush_bytes=50 * dtype.itemsize, background=background) as spool:
         for step in range(40):
             k = int(rng.integers(3))
             rows = np.zeros(int(rng.integers(1, 30)), dtype)
@@ -91,7 +91,7 @@ def test_spool_reads_back_every_row_in_order(tmp_path, background):
 
 def test_spool_raises_a_background_writes_error(tmp_path):
     dtype = np.dtype([("x", "f8")])
-    spool = Spool({"p": dtype}, folder=str(tmp_path), flush_rows=1, background=True)
+    spool = Spool({"p": dtype}, folder=str(tmp_path), flush_bytes=1, background=True)
     os.rmdir(spool.folder)  # the next append cannot be written
     spool.append("p", 0, np.zeros(3, dtype))
     with pytest.raises(FileNotFoundError):
