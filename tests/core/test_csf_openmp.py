@@ -66,7 +66,7 @@ def test_csf_runs_on_one_thread_of_whichever_openmp_it_binds_to(tmp_path):
                          timeout=120, check=False)
     assert run.returncode == 0, run.stderr[-3000:]
     out = json.loads(run.stdout.strip().splitlines()[-1])
-    assert other in out["before"] and out["before"][other] == 4       # the runtime CSF binds to
+    assert out["before"].get(other) == 4      # loaded first, globally: CSF binds to it (LD_DEBUG=bindings)
     assert len(out["during"]) == 2
     for during in out["during"]:
         assert other in during
