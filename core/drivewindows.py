@@ -368,7 +368,7 @@ class Spool:
 
     def discard(self, kind: str, index: int) -> None:
         """Delete the rows of ``(kind, index)`` (read them first)."""
-        self._pending.pop((kind, index), None)
+        self._pending_bytes -= sum(part.nbytes for part in self._pending.pop((kind, index), []))
         if self._behind is not None:
             self._behind.wait()
         with contextlib.suppress(FileNotFoundError):

@@ -89,6 +89,18 @@ def test_spool_reads_back_every_row_in_order(tmp_path, background):
     assert not os.path.exists(folder)
 
 
+def test_rows_discarded_before_a_flush_no_longer_count_towards_it(tmp_path):
+    dtype = np.dtype([("x", "f8")])
+    with Spool({"p": dtype}, folder=str(tmp_path), flush_bytes=100 * dtype.itemsize) as spool:
+        spool.append("p", 0, np.zeros(60, dtype))
+        spool.append("p", 1, np.zeros(30, dtype))
+        spool.discard("p", 0)
+        assert spool._pending_bytes == 30 * dtype.itemsize
+        spool.append("p", 1, np.zeros(60, dtype))     # 90 rows wait: under the 100, not written yet
+        assert not os.path.exists(spool._path("p", 1))
+        assert spool.count("p", 1) == 90 and spool.count("p", 0) == 0
+
+
 def test_spool_raises_a_background_writes_error(tmp_path):
     dtype = np.dtype([("x", "f8")])
     spool = Spool({"p": dtype}, folder=str(tmp_path), flush_bytes=1, background=True)
