@@ -16,11 +16,13 @@ carries at most 64 MiB, the repository included. So the run is two calls on one 
      street, and ``run.sh``.
 
 2. Call 1 (carry ``.devdata/a``): ``bash .devdata/a/stash.sh`` puts part a in ``/root/rsi-a``,
-   installs the wheels there, and times a training step on random data with every CUDA path
-   of the run (``--check-cuda``).
+   installs the wheels there, and (``CHECK=1``) times a training step on random data with
+   every CUDA path of the run (``--check-cuda``).
 3. Call 2 at once (carry ``.devdata/b``; the machine stays warm 30 s only):
-   ``MINUTES=5 bash .devdata/b/run.sh`` (a call runs 10 minutes at most: the streets take
-   about 3, the set-up and the export 1). It puts the data where the scripts read it
+   ``BUDGET_S=480 bash .devdata/b/run.sh`` (a call runs 10 minutes at most, and a session
+   has 15 minutes of device time, the machine's start included). The script keeps to
+   ``BUDGET_S`` seconds from its start: it begins no street after ``RENDER_S`` (240) and
+   trains for what is left less ``EXPORT_S`` (75). It puts the data where the scripts read it
    (``../shared/data``; it refuses where that exists: on the same machine again, remove
    ``../shared`` and ``/tmp/w`` first), adds part a when the machine still has it (else it
    trains on part b's frames alone and says so), renders the six ``default`` training streets
@@ -93,12 +95,14 @@ python3 -m pip install -q --no-index --no-deps --no-compile --no-cache-dir --upg
   "$HERE"/whl/*.whl
 nvidia-smi --query-gpu=name,memory.total --format=csv
 cd "$HERE/../.."
-python3 -m devtools.train.device_run --check-cuda
+[ "${CHECK:-0}" = 1 ] && python3 -m devtools.train.device_run --check-cuda
+true
 """
 
 RUN_SH = r"""#!/bin/bash
 # Call 2 of a device training run (written by devtools/train/device_run.py).
 set -x
+T0=$(date +%s)
 HERE="$(cd "$(dirname "$0")" && pwd)"
 cd "$HERE/../.."
 [ -e ../shared/data ] && { echo "../shared/data exists: this script is for the bare device machine"; exit 1; }
@@ -112,15 +116,23 @@ W=/tmp/w; mkdir -p $W/scenes && cp -r "$HERE"/scenes/* $W/scenes/
 [ -d /root/rsi-a/site ] || echo "NO PYPROJ: the default streets cannot be generated, only the tiny one trains"
 # the streets first, one after another, each with every core (rendered beside the training they
 # took 8.5 minutes each and joined only as it ended; not nproc, which obeys OMP_NUM_THREADS)
+# the call's whole budget (BUDGET_S, from this script's start): no street is begun after
+# RENDER_S, and the training gets what is left less EXPORT_S for stopping, the export and the copy
 for s in @SEEDS@; do
+  [ $(( $(date +%s) - T0 )) -gt ${RENDER_S:-240} ] && { echo "street $s not rendered: past ${RENDER_S:-240} s"; continue; }
   [ -d /root/rsi-a/site ] && PYTHONPATH=/root/rsi-a/site \
   python3 -m devtools.scenegen --preset default --seed $s --no-lidar --no-masks --out $W/scenes/default-$s \
     --jobs $(getconf _NPROCESSORS_ONLN) > $OUT/scenegen-$s.log 2>&1
+  echo "street $s rendered at $(( $(date +%s) - T0 )) s"
 done
 grep -h "panoramas:" $OUT/scenegen-*.log
-timeout -s TERM $(( ${MINUTES:-7} * 60 + 90 )) python3 -m devtools.train --device cuda --init models/roadsigns.onnx \
+TRAIN_S=$(( ${BUDGET_S:-500} - ($(date +%s) - T0) - ${EXPORT_S:-75} ))
+[ $TRAIN_S -lt 60 ] && { echo "only $TRAIN_S s left for training: stopped"; exit 1; }
+MINUTES=$(python3 -c "print(round($TRAIN_S / 60, 2))")
+echo "training for $MINUTES minutes"
+timeout -s TERM $(( TRAIN_S + 45 )) python3 -m devtools.train --device cuda --init models/roadsigns.onnx \
   --no-generate --scenes $W/scenes --train-scenes @TRAIN_SCENES@ --work $W --out $OUT/roadsigns-gpu.onnx \
-  --minutes ${MINUTES:-7} --validate-every 1.5 --checkpoint-every 1.5 --val-images @VAL@ --workers @WORKERS@ \
+  --minutes $MINUTES --validate-every 1.5 --checkpoint-every 1.5 --val-images @VAL@ --workers @WORKERS@ \
   --batch 32 --lr 3e-4 --warmup 100 --ema-decay 0.998 --small-share 0.3 --large-share 0.3 --tall-share 0.25 2>&1 \
   | grep -v -i '^\[ WARN\|UserWarning\|tensor.detach' | tee $OUT/train.log
 cp $W/history.json $OUT/ 2>/dev/null
