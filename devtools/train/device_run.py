@@ -22,8 +22,9 @@ carries at most 64 MiB, the repository included. So the run is two calls on one 
    ``BUDGET_S=480 bash .devdata/b/run.sh`` (a call runs 10 minutes at most, and a session
    has 15 minutes of device time, the machine's start included). The script keeps to
    ``BUDGET_S`` seconds from its start: it begins no street after ``RENDER_S`` (240) and
-   trains for what is left less ``EXPORT_S`` (75). It puts the data where the scripts read it
-   (``../shared/data``; it refuses where that exists: on the same machine again, remove
+   trains (``--until``) for what is left less ``EXPORT_S`` (90). A third call on the same warm
+   machine goes on with ``--resume /tmp/w/last.pt`` (without it the run starts afresh).
+   It puts the data where the scripts read it (``../shared/data``; it refuses where that exists: on the same machine again, remove
    ``../shared`` and ``/tmp/w`` first), adds part a when the machine still has it (else it
    trains on part b's frames alone and says so), renders the six ``default`` training streets
    first (each with every core: ``scenegen --jobs``), and trains from the bundled float file
@@ -126,13 +127,15 @@ for s in @SEEDS@; do
   echo "street $s rendered at $(( $(date +%s) - T0 )) s"
 done
 grep -h "panoramas:" $OUT/scenegen-*.log
-TRAIN_S=$(( ${BUDGET_S:-500} - ($(date +%s) - T0) - ${EXPORT_S:-75} ))
-[ $TRAIN_S -lt 60 ] && { echo "only $TRAIN_S s left for training: stopped"; exit 1; }
-MINUTES=$(python3 -c "print(round($TRAIN_S / 60, 2))")
-echo "training for $MINUTES minutes"
-timeout -s TERM $(( TRAIN_S + 45 )) python3 -m devtools.train --device cuda --init models/roadsigns.onnx \
+# the training's own deadline (--until: it stops there, validates and exports the best), counted
+# after its set-up (loading the data and cutting the views took about a minute on 28 November);
+# `timeout` only as the last resort: it signals the batch workers too, and a run it stops exports nothing
+DEADLINE=$(( T0 + ${BUDGET_S:-500} - ${EXPORT_S:-90} ))
+[ $(( DEADLINE - $(date +%s) )) -lt 90 ] && { echo "only $(( DEADLINE - $(date +%s) )) s left: stopped"; exit 1; }
+echo "training until $(date -u -d @$DEADLINE +%H:%M:%S), $(( DEADLINE - $(date +%s) )) s from now, set-up included"
+timeout -s TERM $(( DEADLINE - $(date +%s) + 60 )) python3 -m devtools.train --device cuda --init models/roadsigns.onnx \
   --no-generate --scenes $W/scenes --train-scenes @TRAIN_SCENES@ --work $W --out $OUT/roadsigns-gpu.onnx \
-  --minutes $MINUTES --validate-every 1.5 --checkpoint-every 1.5 --val-images @VAL@ --workers @WORKERS@ \
+  --minutes 600 --until $(date -u -d @$DEADLINE +%Y-%m-%dT%H:%M:%S) --validate-every 1.5 --checkpoint-every 1.5 --val-images @VAL@ --workers @WORKERS@ \
   --batch 32 --lr 3e-4 --warmup 100 --ema-decay 0.998 --small-share 0.3 --large-share 0.3 --tall-share 0.25 2>&1 \
   | grep -v -i '^\[ WARN\|UserWarning\|tensor.detach' | tee $OUT/train.log
 cp $W/history.json $OUT/ 2>/dev/null
