@@ -26,8 +26,8 @@ carries at most 64 MiB, the repository included. So the run is two calls on one 
    machine goes on with ``--resume /tmp/w/last.pt`` (without it the run starts afresh).
    It puts the data where the scripts read it (``../shared/data``; it refuses where that
    exists: on the same machine again, remove ``../shared`` and ``/tmp/w`` first), adds part a
-   when the machine still has it (else it trains on part b's frames alone and says so), renders the six ``default`` training streets
-   first (each with every core: ``scenegen --jobs``), and trains from the bundled float file
+   when the machine still has it (else it trains on part b's frames alone and says so), renders
+   the six ``default`` training streets first (each with every core: ``scenegen --jobs``), and trains from the bundled float file
    on CUDA with :data:`WORKERS` batch workers. ``$OUT`` gets the log,
    ``history.json``, and the best and the last checkpoint exported (``roadsigns-gpu.onnx``,
    ``roadsigns-last.onnx``: ``--init`` goes on from either; a checkpoint with its optimiser
@@ -120,7 +120,7 @@ W=/tmp/w; mkdir -p $W/scenes && cp -r "$HERE"/scenes/* $W/scenes/
 # the call's whole budget (BUDGET_S, from this script's start): no street is begun after
 # RENDER_S, and the training gets what is left less EXPORT_S for stopping, the export and the copy
 for s in @SEEDS@; do
-  [ $(( $(date +%s) - T0 )) -gt ${RENDER_S:-240} ] && { echo "street $s not rendered: past ${RENDER_S:-240} s"; continue; }
+  [ $(( $(date +%s) - T0 )) -gt ${RENDER_S:-240} ] && { echo "street $s not rendered: too late"; continue; }
   [ -d /root/rsi-a/site ] && PYTHONPATH=/root/rsi-a/site \
   python3 -m devtools.scenegen --preset default --seed $s --no-lidar --no-masks --out $W/scenes/default-$s \
     --jobs $(getconf _NPROCESSORS_ONLN) > $OUT/scenegen-$s.log 2>&1
@@ -133,9 +133,11 @@ grep -h "panoramas:" $OUT/scenegen-*.log
 DEADLINE=$(( T0 + ${BUDGET_S:-500} - ${EXPORT_S:-90} ))
 [ $(( DEADLINE - $(date +%s) )) -lt 90 ] && { echo "only $(( DEADLINE - $(date +%s) )) s left: stopped"; exit 1; }
 echo "training until $(date -u -d @$DEADLINE +%H:%M:%S), $(( DEADLINE - $(date +%s) )) s from now, set-up included"
-timeout -s TERM $(( DEADLINE - $(date +%s) + 60 )) python3 -m devtools.train --device cuda --init models/roadsigns.onnx \
+timeout -s TERM $(( DEADLINE - $(date +%s) + 60 )) \
+  python3 -m devtools.train --device cuda --init models/roadsigns.onnx \
   --no-generate --scenes $W/scenes --train-scenes @TRAIN_SCENES@ --work $W --out $OUT/roadsigns-gpu.onnx \
-  --minutes 600 --until $(date -u -d @$DEADLINE +%Y-%m-%dT%H:%M:%S) --validate-every 1.5 --checkpoint-every 1.5 --val-images @VAL@ --workers @WORKERS@ \
+  --minutes 600 --until $(date -u -d @$DEADLINE +%Y-%m-%dT%H:%M:%S) \
+  --validate-every 1.5 --checkpoint-every 1.5 --val-images @VAL@ --workers @WORKERS@ \
   --batch 32 --lr 3e-4 --warmup 100 --ema-decay 0.998 --small-share 0.3 --large-share 0.3 --tall-share 0.25 2>&1 \
   | grep -v -i '^\[ WARN\|UserWarning\|tensor.detach' | tee $OUT/train.log
 cp $W/history.json $OUT/ 2>/dev/null
