@@ -27,8 +27,9 @@ carries at most 64 MiB, the repository included. So the run is two calls on one 
    It puts the data where the scripts read it (``../shared/data``; it refuses where that
    exists: on the same machine again, remove ``../shared`` and ``/tmp/w`` first), adds part a
    when the machine still has it (else it trains on part b's frames alone and says so), renders
-   the six ``default`` training streets first (each with every core: ``scenegen --jobs``), and trains from the bundled float file
-   on CUDA with :data:`WORKERS` batch workers. ``$OUT`` gets the log,
+   the six ``default`` training streets first (each with every core: ``scenegen --jobs``), and
+   trains from the bundled float file on CUDA with :data:`WORKERS` batch workers. ``$OUT`` gets
+   the log,
    ``history.json``, and the best and the last checkpoint exported (``roadsigns-gpu.onnx``,
    ``roadsigns-last.onnx``: ``--init`` goes on from either; a checkpoint with its optimiser
    is over the 16 MiB a returned file may have).
