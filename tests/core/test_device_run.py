@@ -2,6 +2,8 @@
 on a small made-up data folder: every frame lands once, each part within a call's bytes."""
 import csv
 import os
+import re
+import subprocess
 
 import cv2
 import numpy as np
@@ -70,10 +72,15 @@ def test_every_frame_lands_once_every_third_in_part_b_and_the_scripts_are_whole(
         assert size == device_run.tree_bytes(str(out / part)) <= packed["budget"]
     assert {f"whl/{n}-1.0-py3-none-any.whl" for n in device_run.WHEEL_NAMES} <= a
     run_sh = (out / "b" / "run.sh").read_text()
-    assert "@" not in run_sh and os.access(out / "b" / "run.sh", os.X_OK)
+    # every @PLACEHOLDER@ filled (`date -d @SECONDS` is the script's own)
+    assert not re.search(r"@[A-Z_]+@", run_sh) and os.access(out / "b" / "run.sh", os.X_OK)
     for seed in device_run.DEFAULT_SEEDS:
         assert f"default:{seed}" in run_sh
     assert "--check-cuda" in (out / "a" / "stash.sh").read_text()
+    # the training keeps to its own deadline, so a run at its budget still exports
+    assert "--until" in run_sh and "--minutes 600" in run_sh
+    for script in (out / "a" / "stash.sh", out / "b" / "run.sh"):
+        assert subprocess.run(["bash", "-n", str(script)], capture_output=True).returncode == 0, script
     assert {f"scenes/{name}/scene.json" for name in device_run.TINY_SCENES} <= b
     for name in device_run.HELD_OUT_SCENES:   # the second held-out set is never trained on
         preset, seed = name.split("-")
