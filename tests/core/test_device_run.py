@@ -78,7 +78,7 @@ def test_every_frame_lands_once_every_third_in_part_b_and_the_scripts_are_whole(
         assert f"default:{seed}" in run_sh
     assert "--check-cuda" in (out / "a" / "stash.sh").read_text()
     # the training keeps to its own deadline, so a run at its budget still exports
-    assert "--until" in run_sh and "--minutes 600" in run_sh
+    assert re.search(r"python3 -m devtools\.train [^#]*--minutes 600 --until \$\(date", run_sh)
     for script in (out / "a" / "stash.sh", out / "b" / "run.sh"):
         assert subprocess.run(["bash", "-n", str(script)], capture_output=True).returncode == 0, script
     assert {f"scenes/{name}/scene.json" for name in device_run.TINY_SCENES} <= b
