@@ -21,8 +21,9 @@ carries at most 64 MiB, the repository included. So the run is two calls on one 
 3. Call 2 at once (carry ``.devdata/b``; the machine stays warm 30 s only):
    ``BUDGET_S=570 bash .devdata/b/run.sh`` (a call runs 10 minutes at most, and a session
    has 15 minutes of device time, the machine's start included: on 4 December call 1 and the
-   start took 41 s, call 2's transfers about 30 s, and the six streets 4.5 minutes, which left
-   about 3.5 minutes of training at 25 steps a second). The script keeps to
+   start took 41 s, call 2's transfers about 30 s, the six streets 4.5 minutes and the
+   training's set-up 80 s, which leaves about 3 minutes of training at 25 steps a second).
+   The script keeps to
    ``BUDGET_S`` seconds from its start: it begins no street after ``RENDER_S`` (240) and
    trains (``--until``) for what is left less ``EXPORT_S`` (90). A third call on the same warm
    machine goes on with ``--resume /tmp/w/last.pt`` (without it the run starts afresh).
