@@ -18,24 +18,22 @@ carries at most 64 MiB, the repository included. So the run is two calls on one 
 2. Call 1 (carry ``.devdata/a``): ``bash .devdata/a/stash.sh`` puts part a in ``/root/rsi-a``,
    installs the wheels there, and (``CHECK=1``) times a training step on random data with
    every CUDA path of the run (``--check-cuda``).
-3. Call 2 at once (carry ``.devdata/b``; the machine stays warm 30 s only):
-   ``BUDGET_S=570 bash .devdata/b/run.sh`` (a call runs 10 minutes at most, and a session
-   has 15 minutes of device time, the machine's start included: on 4 December call 1 and the
-   start took 41 s, call 2's transfers about 30 s, the six streets 4.5 minutes and the
-   training's set-up 80 s, which leaves about 3 minutes of training at 25 steps a second).
-   The script keeps to
-   ``BUDGET_S`` seconds from its start: it begins no street after ``RENDER_S`` (240) and
-   trains (``--until``) for what is left less ``EXPORT_S`` (90). A third call on the same warm
-   machine goes on with ``--resume /tmp/w/last.pt`` (without it the run starts afresh).
-   It puts the data where the scripts read it (``../shared/data``; it refuses where that
-   exists: on the same machine again, remove ``../shared`` and ``/tmp/w`` first), adds part a
-   when the machine still has it (else it trains on part b's frames alone and says so), renders
-   the six ``default`` training streets first (each with every core: ``scenegen --jobs``), and
-   trains from the bundled float file on CUDA with :data:`WORKERS` batch workers. ``$OUT`` gets
-   the log,
-   ``history.json``, and the best and the last checkpoint exported (``roadsigns-gpu.onnx``,
-   ``roadsigns-last.onnx``: ``--init`` goes on from either; a checkpoint with its optimiser
-   is over the 16 MiB a returned file may have).
+3. Call 2 at once (carry ``.devdata/b``; the machine stays warm 30 s only): ``BUDGET_S=590 bash
+   .devdata/b/run.sh`` with ``timeout_s`` 600 (a call runs 10 minutes at most, and a session has
+   15 minutes of device time, the machine's start included: on 4 December call 1 and the start
+   took 41 s, call 2's transfers about 30 s, the six streets 4.5 minutes and the training's
+   set-up 80 s, which leaves about 3 minutes of training at 25 steps a second). The script keeps
+   to ``BUDGET_S`` seconds from its start: it begins no street after ``RENDER_S`` (240) and
+   trains (``--until``) for what is left less ``EXPORT_S`` (60). A third call on the same warm
+   machine goes on with ``--resume /tmp/w/last.pt`` (without it the run starts afresh). It puts
+   the data where the scripts read it (``../shared/data``; it refuses where that exists: on the
+   same machine again, remove ``../shared`` and ``/tmp/w`` first), adds part a when the machine
+   still has it (else it trains on part b's frames alone and says so), renders the six
+   ``default`` training streets first (each with every core: ``scenegen --jobs``), and trains
+   from the bundled float file on CUDA with :data:`WORKERS` batch workers. ``$OUT`` gets the
+   log, ``history.json``, and the best and the last checkpoint exported (``roadsigns-gpu.onnx``,
+   ``roadsigns-last.onnx``: ``--init`` goes on from either; a checkpoint with its optimiser is
+   over the 16 MiB a returned file may have).
 
 The flags are the bundled file's run (models/README.md, "Bundled on 28 November, tenth
 session") on seven training streets (:data:`DEFAULT_SEEDS`, :data:`TINY_SCENES`), with batch 32.
@@ -134,7 +132,7 @@ grep -h "panoramas:" $OUT/scenegen-*.log
 # the training's own deadline (--until: it stops there, validates and exports the best), counted
 # after its set-up (loading the data and cutting the views took about a minute on 28 November);
 # `timeout` only as the last resort: it signals the batch workers too, and a run it stops exports nothing
-DEADLINE=$(( T0 + ${BUDGET_S:-500} - ${EXPORT_S:-90} ))
+DEADLINE=$(( T0 + ${BUDGET_S:-500} - ${EXPORT_S:-60} ))
 [ $(( DEADLINE - $(date +%s) )) -lt 90 ] && { echo "only $(( DEADLINE - $(date +%s) )) s left: stopped"; exit 1; }
 echo "training until $(date -u -d @$DEADLINE +%H:%M:%S), $(( DEADLINE - $(date +%s) )) s from now, set-up included"
 timeout -s TERM $(( DEADLINE - $(date +%s) + 60 )) \
