@@ -98,8 +98,7 @@ python3 -m pip install -q --no-index --no-deps --no-compile --no-cache-dir --upg
   "$HERE"/whl/*.whl
 nvidia-smi --query-gpu=name,memory.total --format=csv
 cd "$HERE/../.."
-[ "${CHECK:-0}" = 1 ] && python3 -m devtools.train.device_run --check-cuda
-true
+if [ "${CHECK:-0}" = 1 ]; then python3 -m devtools.train.device_run --check-cuda; fi
 """
 
 RUN_SH = r"""#!/bin/bash
@@ -118,9 +117,8 @@ export PYTHONUNBUFFERED=1 OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREA
 W=/tmp/w; mkdir -p $W/scenes && cp -r "$HERE"/scenes/* $W/scenes/
 [ -d /root/rsi-a/site ] || echo "NO PYPROJ: the default streets cannot be generated, only the tiny one trains"
 # the streets first, one after another, each with every core (rendered beside the training they
-# took 8.5 minutes each and joined only as it ended; not nproc, which obeys OMP_NUM_THREADS)
-# the call's whole budget (BUDGET_S, from this script's start): no street is begun after
-# RENDER_S, and the training gets what is left less EXPORT_S for stopping, the export and the copy
+# took 8.5 minutes each and joined only as it ended; not nproc, which obeys OMP_NUM_THREADS),
+# none begun after RENDER_S seconds of the call's budget (BUDGET_S, from this script's start)
 for s in @SEEDS@; do
   [ $(( $(date +%s) - T0 )) -gt ${RENDER_S:-240} ] && { echo "street $s not rendered: too late"; continue; }
   [ -d /root/rsi-a/site ] && PYTHONPATH=/root/rsi-a/site \
@@ -132,10 +130,11 @@ grep -h "panoramas:" $OUT/scenegen-*.log
 # the training's own deadline (--until: it stops there, validates and exports the best), counted
 # after its set-up (loading the data and cutting the views took about a minute on 28 November);
 # `timeout` only as the last resort: it signals the batch workers too, and a run it stops exports nothing
-DEADLINE=$(( T0 + ${BUDGET_S:-500} - ${EXPORT_S:-60} ))
-[ $(( DEADLINE - $(date +%s) )) -lt 90 ] && { echo "only $(( DEADLINE - $(date +%s) )) s left: stopped"; exit 1; }
-echo "training until $(date -u -d @$DEADLINE +%H:%M:%S), $(( DEADLINE - $(date +%s) )) s from now, set-up included"
-timeout -s TERM $(( DEADLINE - $(date +%s) + 60 )) \
+DEADLINE=$(( T0 + ${BUDGET_S:-590} - ${EXPORT_S:-60} ))
+LEFT=$(( DEADLINE - $(date +%s) ))
+[ $LEFT -lt 90 ] && { echo "only $LEFT s left: stopped"; exit 1; }
+echo "training until $(date -u -d @$DEADLINE +%H:%M:%S), $LEFT s from now, set-up included"
+timeout -s TERM $(( LEFT + 60 )) \
   python3 -m devtools.train --device cuda --init models/roadsigns.onnx \
   --no-generate --scenes $W/scenes --train-scenes @TRAIN_SCENES@ --work $W --out $OUT/roadsigns-gpu.onnx \
   --minutes 600 --until $(date -u -d @$DEADLINE +%Y-%m-%dT%H:%M:%S) \
