@@ -4,6 +4,8 @@
 #   make lint   ruff (pycodestyle, pyflakes, isort, pep8-naming) and mypy on core/
 VENV ?= .venv
 PY := $(VENV)/bin/python
+# make test's pytest-xdist workers, each given whole test files (0: none, the tests run in-process)
+TEST_WORKERS ?= 2
 export QT_QPA_PLATFORM := offscreen
 export PROJ_DATA := /usr/share/proj
 
@@ -13,7 +15,7 @@ setup:
 	bash scripts/setup.sh
 
 test: setup
-	$(PY) -m pytest
+	$(PY) -m pytest -n $(TEST_WORKERS) --dist loadfile
 
 test-core: setup
 	$(PY) -m pytest tests/core

@@ -16,10 +16,19 @@ if os.path.isdir("/usr/share/proj"):  # pyproj inside a venv looks under the ven
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.append(REPO_ROOT)  # dev tools: ``import devtools.trajsample``
 
-#: The session's own temporary folder (``TMPDIR`` for this process and every ``qgis_process``
+#: The run's own temporary folder (``TMPDIR`` for this process and every ``qgis_process``
 #: it starts), so :func:`pytest_sessionfinish` can tell what the tests left behind. Removed at
-#: the end when nothing was left.
-SESSION_TMP = tempfile.mkdtemp(prefix="roadsigns-tests-")
+#: the end when nothing was left. Under pytest-xdist (``make test`` runs two workers) the
+#: controller makes it and passes it on in ``RUN_TMP_ENV``; each worker takes a sub-folder
+#: named by its id and reports what was left in it (:func:`pytest_testnodedown`).
+RUN_TMP_ENV = "ROADSIGNS_TESTS_TMP"
+_WORKER_ID = os.environ.get("PYTEST_XDIST_WORKER")
+if _WORKER_ID and os.environ.get(RUN_TMP_ENV):
+    SESSION_TMP = os.path.join(os.environ[RUN_TMP_ENV], _WORKER_ID)
+    os.makedirs(SESSION_TMP, exist_ok=True)
+else:
+    SESSION_TMP = tempfile.mkdtemp(prefix="roadsigns-tests-")
+    os.environ[RUN_TMP_ENV] = SESSION_TMP
 os.environ["TMPDIR"] = SESSION_TMP
 tempfile.tempdir = None  # gettempdir() reads TMPDIR again
 
@@ -31,14 +40,32 @@ sys.path.insert(0, PLUGIN_PATH)
 sys.path.append(os.path.join(REPO_ROOT, "tests"))  # shared test helpers: ``import helpers.contract``
 
 
+#: What the xdist workers left in their folders (``<worker id>/<name>``), as they reported it.
+_LEFT_BY_WORKERS = []
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_testnodedown(node, error):
+    """xdist's controller: a worker is done; keep what it reported left behind."""
+    output = getattr(node, "workeroutput", {}) or {}
+    _LEFT_BY_WORKERS.extend(os.path.join(node.workerinput["workerid"], name)
+                            for name in output.get("roadsigns_left_behind", []))
+
+
 def pytest_sessionfinish(session, exitstatus):
     """Fail the run when the plugin left a temporary folder of its own (``roadsigns-*``: window
     spools, block spools, half-written outputs) in the temporary folder of the tests or of the
     ``qgis_process`` runs they started: cancelled and failed runs must clean up too. The dev
-    tools' own folders (plugin path, profiles) are removed when the process exits."""
+    tools' own folders (plugin path, profiles) are removed when the process exits. An xdist
+    worker hands its list to the controller, which fails the run."""
     ours = set(_devtools_temp_folders())
     left = sorted(name for name in os.listdir(SESSION_TMP)
                   if name.startswith("roadsigns-") and os.path.join(SESSION_TMP, name) not in ours)
+    worker_output = getattr(session.config, "workeroutput", None)
+    if worker_output is not None:
+        worker_output["roadsigns_left_behind"] = left
+        return
+    left += _LEFT_BY_WORKERS
     if left:
         sys.stderr.write("\nTemporary folders left behind in {}: {}\n".format(SESSION_TMP, ", ".join(left)))
         session.exitstatus = pytest.ExitCode.TESTS_FAILED
