@@ -9,6 +9,7 @@ import os
 
 import numpy as np
 import pytest
+from helpers.scenes import seam_iou
 from osgeo import ogr
 
 from devtools import REPO_ROOT
@@ -24,19 +25,6 @@ MIN_ON_SIGN_SHARE = 0.9   # of detections lying on a true sign (front face)
 CODES_TABLE = read_codes_table(os.path.join(REPO_ROOT, "models", "sign-codes-de.csv"))
 
 pytestmark = pytest.mark.skipif(not os.path.isfile(BUNDLED), reason="no bundled model")
-
-
-def seam_iou(a, b, width):
-    """IoU of two panorama boxes u0, v0, u1, v1, columns compared modulo the width."""
-    best = 0.0
-    for shift in (-width, 0.0, width):
-        iw = min(a[2] + shift, b[2]) - max(a[0] + shift, b[0])
-        ih = min(a[3], b[3]) - max(a[1], b[1])
-        if iw > 0 and ih > 0:
-            inter = iw * ih
-            union = (a[2] - a[0]) * (a[3] - a[1]) + (b[2] - b[0]) * (b[3] - b[1]) - inter
-            best = max(best, inter / union)
-    return best
 
 
 def read_as_its_class(detection):

@@ -14,7 +14,7 @@ skipped, and fails under CI=true.
 import os
 
 import pytest
-from helpers.scenes import render_scene, scene_inputs
+from helpers.scenes import render_scene, scene_inputs, seam_iou
 from osgeo import ogr
 
 from devtools import REPO_ROOT
@@ -33,17 +33,6 @@ def require_bundled():
                 pytest.fail("CI=true but {}: CI must test the bundled sign-code classifier".format(reason),
                             pytrace=False)
             pytest.skip(reason)
-
-
-def seam_iou(a, b, width):
-    best = 0.0
-    for shift in (-width, 0.0, width):
-        iw = min(a[2] + shift, b[2]) - max(a[0] + shift, b[0])
-        ih = min(a[3], b[3]) - max(a[1], b[1])
-        if iw > 0 and ih > 0:
-            inter = iw * ih
-            best = max(best, inter / ((a[2] - a[0]) * (a[3] - a[1]) + (b[2] - b[0]) * (b[3] - b[1]) - inter))
-    return best
 
 
 @pytest.fixture(scope="module")
