@@ -18,7 +18,7 @@ test: setup
 	$(PY) -m pytest -n $(TEST_WORKERS) --dist loadfile
 
 test-core: setup
-	$(PY) -m pytest tests/core
+	$(PY) -m pytest -n $(TEST_WORKERS) --dist loadfile tests/core
 
 lint: setup
 	$(VENV)/bin/ruff check .
