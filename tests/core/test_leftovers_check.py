@@ -13,8 +13,6 @@ import pytest
 
 TESTS_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 LEFT_NAME = "roadsigns-left-here"
-#: tests/conftest.py's RUN_TMP_ENV (importing it would run that conftest a second time)
-RUN_TMP_ENV = "ROADSIGNS_TESTS_TMP"
 TEST_FILE = textwrap.dedent("""
     import os
     import tempfile
@@ -32,8 +30,8 @@ def run_pytest(tmp_path, workers: int, leave: bool):
     test_file.write_text(TEST_FILE.format(leave=leave, name=LEFT_NAME))
     run_tmp = tmp_path / "tmp"
     run_tmp.mkdir()
-    env = {k: v for k, v in os.environ.items()
-           if k != RUN_TMP_ENV and not k.startswith("PYTEST_")}   # not the outer run's worker
+    # not a worker of the outer run (without PYTEST_XDIST_WORKER the run makes its own folder)
+    env = {k: v for k, v in os.environ.items() if not k.startswith("PYTEST_")}
     env.update(TMPDIR=str(run_tmp), PYTHONPATH=TESTS_DIR)
     p = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "conftest", "-p", "no:cacheprovider",
                         "-n", str(workers), "--rootdir", str(tmp_path), str(test_file)],

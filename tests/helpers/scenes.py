@@ -51,13 +51,9 @@ def render_scene(out_dir, preset="tiny", seed=1, *options, jobs=2):
 
 def seam_iou(a, b, width):
     """IoU of two panorama boxes ``u0, v0, u1, v1`` (px), columns compared modulo the
-    panorama's ``width`` (a box may run past the seam)."""
-    best = 0.0
-    for shift in (-width, 0.0, width):
-        iw = min(a[2] + shift, b[2]) - max(a[0] + shift, b[0])
-        ih = min(a[3], b[3]) - max(a[1], b[1])
-        if iw > 0 and ih > 0:
-            inter = iw * ih
-            union = (a[2] - a[0]) * (a[3] - a[1]) + (b[2] - b[0]) * (b[3] - b[1]) - inter
-            best = max(best, inter / union)
-    return best
+    panorama's ``width`` (a box may run past the seam): the best of ``a`` shifted by a
+    width either way (devtools.train.metrics.iou_matrix)."""
+    from devtools.train.metrics import iou_matrix
+
+    return max(float(iou_matrix([a[0] + shift, a[1], a[2] + shift, a[3]], b)[0, 0])
+               for shift in (-width, 0.0, width))
