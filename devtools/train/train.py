@@ -7,7 +7,7 @@ import json
 import math
 import os
 import time
-from typing import List
+from typing import Dict, List, Tuple
 
 import cv2
 import numpy as np
@@ -110,6 +110,8 @@ class DataMix:
         self.work_dir = work_dir
         self.views, self.val_views, self.scenes = [], [], set()
         self.tall_views: List[int] = []   # indices into self.views of those with a sign seen edge-on
+        #: a generated view's path -> (its scene's decoded views, its row there): data.view_store
+        self.view_pixels: Dict[str, Tuple[np.ndarray, int]] = {}
         print(f"[train] {len(self.gtsdb)} GTSDB scenes, {len(self.gtsrb)} GTSRB crops of {len(set(tracks))} "
               f"training tracks, {len(self.drawn)} drawn signs, {len(self.faces)} faces of many countries, "
               f"{len(self.distractors)} distractors, {len(self.hard)} mined false alarms", flush=True)
@@ -154,6 +156,9 @@ class DataMix:
             val = data.scene_view_samples(folder, cache + "-val", keep_empty=0.3, rng=self.rng,
                                           image_filter=lambda k: k >= last)
             self.tall_views += [len(self.views) + k for k, row in enumerate(train) if len(data.tall_boxes(row[1]))]
+            store = data.view_store(cache + "-train", [row[0] for row in train], build=cut)
+            if store is not None:
+                self.view_pixels.update({row[0]: (store, k) for k, row in enumerate(train)})
             self.views += train
             self.val_views += val
             self.scenes.add(folder)
@@ -163,9 +168,14 @@ class DataMix:
     def _load(self, row) -> Sample:
         path, boxes, classes = row[0], row[1], row[2]
         ignore = row[3] if len(row) > 3 else np.zeros((0, 4), np.float32)
-        real = path.startswith(data.DATA_DIR)  # GTSDB scenes stay decoded in memory
-        return Sample(self.cache.get(path).copy() if real else cv2.imread(path),
-                      boxes.copy(), classes.copy(), ignore.copy())
+        if path.startswith(data.DATA_DIR):      # GTSDB scenes stay decoded in memory
+            image = self.cache.get(path).copy()
+        elif path in self.view_pixels:          # a generated view, decoded once for the run
+            store, k = self.view_pixels[path]
+            image = np.array(store[k])
+        else:
+            image = cv2.imread(path)
+        return Sample(image, boxes.copy(), classes.copy(), ignore.copy())
 
     def _crop(self, sample: Sample, scale: float, on_sign: float, around=None) -> Sample:
         """A crop at ``scale``: near the box ``around`` if given, else near one of the sample's
