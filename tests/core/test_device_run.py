@@ -76,6 +76,9 @@ def test_every_frame_lands_once_every_third_in_part_b_and_the_scripts_are_whole(
     assert not re.search(r"@[A-Z_]+@", run_sh) and os.access(out / "b" / "run.sh", os.X_OK)
     for seed in device_run.DEFAULT_SEEDS:
         assert f"default:{seed}" in run_sh
+    for seed in device_run.MORE_SEEDS:          # the bundled file's own streets by default
+        assert f"default:{seed}" not in run_sh
+    assert "--tall-share 0 " in run_sh
     assert "--check-cuda" in (out / "a" / "stash.sh").read_text()
     # the training keeps to its own deadline, so a run at its budget still exports
     assert re.search(r"python3 -m devtools\.train [^#]*--minutes 600 --until \$\(date", run_sh)
@@ -126,3 +129,16 @@ def test_missing_wheels_are_named_with_the_command_that_fetches_them(made_up, tm
     data, scenes, _ = made_up
     with pytest.raises(SystemExit, match="pip download"):
         device_run.pack(str(tmp_path / "out"), str(data), str(scenes), str(tmp_path / "no-wheels"))
+
+
+def test_the_second_gpu_runs_streets_and_mix_can_be_packed_and_held_out_streets_cannot(made_up, tmp_path):
+    data, scenes, wheels = made_up
+    out = tmp_path / "out"
+    six = device_run.DEFAULT_SEEDS + device_run.MORE_SEEDS
+    device_run.pack(str(out), str(data), str(scenes), str(wheels), seeds=six, tall_share=0.25)
+    run_sh = (out / "b" / "run.sh").read_text()
+    assert "for s in " + " ".join(map(str, six)) + "; do" in run_sh
+    assert all(f"default:{seed}" in run_sh for seed in six)
+    assert "--tall-share 0.25 " in run_sh
+    with pytest.raises(SystemExit, match="103: held out"):
+        device_run.pack(str(out), str(data), str(scenes), str(wheels), seeds=(100, 103))
