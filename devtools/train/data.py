@@ -307,8 +307,9 @@ def scene_view_samples(scene_dir: str, cache_dir: str, keep_empty: float = 0.2, 
     """Cut every panorama of a generated scene into the plugin's default views and keep the
     views that show a sign (and a share ``keep_empty`` of the others, as negatives).
 
-    Views are written as JPEG files to ``cache_dir``; returns a list of (path, boxes,
-    classes, ignore). Cached: a second call reads ``cache_dir/labels.json``.
+    Views are written as JPEG files to ``cache_dir``, their decoded pixels to
+    :func:`view_store`'s file, and then the index ``labels.json``; returns a list of (path,
+    boxes, classes, ignore). Cached: a second call reads the index.
     """
     index = os.path.join(cache_dir, "labels.json")
     if os.path.isfile(index):
@@ -335,6 +336,7 @@ def scene_view_samples(scene_dir: str, cache_dir: str, keep_empty: float = 0.2, 
             name = f"{os.path.splitext(meta['image'])[0]}_v{j:02d}.jpg"
             cv2.imwrite(os.path.join(cache_dir, name), image, [cv2.IMWRITE_JPEG_QUALITY, 93])
             rows.append([name, boxes.tolist(), classes.tolist(), ignore.tolist()])
+    view_store(cache_dir, [os.path.join(cache_dir, r[0]) for r in rows])   # before the index: see it, see both
     with open(index, "w") as f:
         json.dump(rows, f)
     return scene_view_samples(scene_dir, cache_dir)
@@ -549,8 +551,8 @@ def jitter_matrix(saturation: float, contrast: float, brightness: float, gain) -
 
 def colour_jitter(image: np.ndarray, rng) -> np.ndarray:
     """Saturation, contrast, brightness and a colour cast (one :func:`jitter_matrix`), blur,
-    and Gaussian noise (OpenCV's generator, seeded from ``rng``: a seed still gives the same
-    crops, at a third of the time of ``rng.normal``)."""
+    and Gaussian noise (OpenCV's generator, seeded from ``rng``, so a seed gives the same crop
+    every time; a third of the time of ``rng.normal``)."""
     matrix = None
     if rng.random() < 0.8:
         matrix = jitter_matrix(rng.uniform(0.5, 1.4), rng.uniform(0.65, 1.35), rng.uniform(-40, 40),

@@ -7,7 +7,7 @@ import json
 import math
 import os
 import time
-from typing import Dict, List, Tuple
+from typing import Dict, List, Set, Tuple
 
 import cv2
 import numpy as np
@@ -112,6 +112,8 @@ class DataMix:
         self.tall_views: List[int] = []   # indices into self.views of those with a sign seen edge-on
         #: a generated view's path -> (its scene's decoded views, its row there): data.view_store
         self.view_pixels: Dict[str, Tuple[np.ndarray, int]] = {}
+        self._scene_views: Dict[str, Tuple[str, list]] = {}   # folder -> (its views' folder, rows)
+        self._views_mapped: Set[str] = set()
         print(f"[train] {len(self.gtsdb)} GTSDB scenes, {len(self.gtsrb)} GTSRB crops of {len(set(tracks))} "
               f"training tracks, {len(self.drawn)} drawn signs, {len(self.faces)} faces of many countries, "
               f"{len(self.distractors)} distractors, {len(self.hard)} mined false alarms", flush=True)
@@ -142,7 +144,10 @@ class DataMix:
         False: only load scenes whose views are cut already (a worker process: the main
         process cuts, so two processes never write one cache)."""
         for folder in folders:
-            if folder in self.scenes or not os.path.isfile(os.path.join(folder, "scene.json")):
+            if folder in self.scenes:
+                self._map_views(folder, build=cut)   # a store another process has made since
+                continue
+            if not os.path.isfile(os.path.join(folder, "scene.json")):
                 continue
             with open(os.path.join(folder, "scene.json")) as f:
                 n = len(json.load(f)["images"])
@@ -156,14 +161,26 @@ class DataMix:
             val = data.scene_view_samples(folder, cache + "-val", keep_empty=0.3, rng=self.rng,
                                           image_filter=lambda k: k >= last)
             self.tall_views += [len(self.views) + k for k, row in enumerate(train) if len(data.tall_boxes(row[1]))]
-            store = data.view_store(cache + "-train", [row[0] for row in train], build=cut)
-            if store is not None:
-                self.view_pixels.update({row[0]: (store, k) for k, row in enumerate(train)})
+            self._scene_views[folder] = (cache + "-train", train)
+            self._map_views(folder, build=cut)
             self.views += train
             self.val_views += val
             self.scenes.add(folder)
             print(f"[train] scene {folder}: {len(train)} training views, {len(val)} validation views "
                   f"({time.perf_counter() - t0:.0f} s)", flush=True)
+
+    def _map_views(self, folder: str, build: bool) -> None:
+        """Read the training views of ``folder`` from their decoded store
+        (:func:`.data.view_store`) once it is there; ``build``: make it if it is missing (the
+        main process: a worker waits for it and reads the JPEGs meanwhile)."""
+        if folder in self._views_mapped:
+            return
+        cache_dir, rows = self._scene_views[folder]
+        store = data.view_store(cache_dir, [row[0] for row in rows], build=build)
+        if store is not None:
+            self.view_pixels.update({row[0]: (store, k) for k, row in enumerate(rows)})
+        if store is not None or build:      # made, or views no store can hold: not tried again
+            self._views_mapped.add(folder)
 
     def _load(self, row) -> Sample:
         path, boxes, classes = row[0], row[1], row[2]

@@ -79,3 +79,28 @@ def test_the_mix_leaves_out_missing_frames_and_their_mined_false_alarms(tmp_path
     nothing.gtsdb, nothing.hard = [(str(tmp_path / "99999.jpg"), None, None)], []
     with pytest.raises(SystemExit, match="no GTSDB training frame"):
         nothing._drop_missing_frames()
+
+
+def test_a_worker_reads_the_views_from_their_store_once_the_main_process_has_made_it(tmp_path):
+    import cv2
+
+    from devtools.train.data import view_store
+
+    rng = np.random.default_rng(2)
+    rows = []
+    for k in range(3):
+        path = str(tmp_path / f"v{k}.jpg")
+        cv2.imwrite(path, rng.integers(0, 256, (32, 48, 3), dtype=np.uint8))
+        rows.append((path, np.zeros((0, 4), np.float32), np.zeros(0, np.int64)))
+    worker = object.__new__(T.DataMix)
+    worker.view_pixels, worker._views_mapped = {}, set()
+    worker._scene_views = {"scene": (str(tmp_path), rows)}
+    worker._map_views("scene", build=False)              # not made yet: the JPEGs meanwhile
+    assert worker.view_pixels == {} and "scene" not in worker._views_mapped
+    assert np.array_equal(worker._load(rows[1]).image, cv2.imread(rows[1][0]))
+    view_store(str(tmp_path), [row[0] for row in rows])  # the main process makes it
+    worker._map_views("scene", build=False)
+    assert set(worker.view_pixels) == {row[0] for row in rows}
+    for row in rows:
+        image = worker._load(row).image
+        assert np.array_equal(image, cv2.imread(row[0])) and image.flags.writeable
