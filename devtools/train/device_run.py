@@ -147,7 +147,7 @@ LEFT=$(( DEADLINE - $(date +%s) ))
 [ $LEFT -lt 90 ] && { echo "only $LEFT s left: stopped"; exit 1; }
 echo "training until $(date -u -d @$DEADLINE +%H:%M:%S), $LEFT s from now, set-up included"
 timeout -s TERM $(( LEFT + 60 )) \
-  python3 -m devtools.train --device cuda --init models/roadsigns.onnx \
+  python3 -m devtools.train --device ${DEVICE:-cuda} --init models/roadsigns.onnx \
   --no-generate --scenes $W/scenes --train-scenes @TRAIN_SCENES@ --work $W --out $OUT/roadsigns-gpu.onnx \
   --minutes 600 --until $(date -u -d @$DEADLINE +%Y-%m-%dT%H:%M:%S) \
   --validate-every 1.5 --checkpoint-every 1.5 --val-images @VAL@ --workers @WORKERS@ \
