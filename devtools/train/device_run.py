@@ -152,7 +152,7 @@ timeout -s TERM $(( LEFT + 60 )) \
   --minutes 600 --until $(date -u -d @$DEADLINE +%Y-%m-%dT%H:%M:%S) \
   --validate-every 1.5 --checkpoint-every 1.5 --val-images @VAL@ --workers @WORKERS@ \
   --batch 32 --lr 3e-4 --warmup 100 --ema-decay 0.998 --small-share 0.3 --large-share 0.3 --tall-share @TALL@ 2>&1 \
-  | grep -v -i '^\[ WARN\|UserWarning\|tensor.detach' | tee $OUT/train.log
+  | grep --line-buffered -v -i '^\[ WARN\|UserWarning\|tensor.detach' | tee $OUT/train.log
 cp $W/history.json $OUT/ 2>/dev/null
 python3 -m devtools.train --export-only $W/last.pt --out $OUT/roadsigns-last.onnx 2>&1 | tail -1
 ls -la $OUT
