@@ -302,10 +302,33 @@ def view_labels(view, image_meta: dict, sign_class: dict, pano_w: int, pano_h: i
     return _arr(boxes), np.array(classes, np.int64), _arr(ignore)
 
 
+def _cut_panorama(task):
+    """One panorama of :func:`scene_view_samples`: its views that show a sign (and a share
+    ``keep_empty`` of the others, drawn from its own generator) written as JPEG files to
+    ``cache_dir``; their rows ``[name, boxes, classes, ignore]``."""
+    scene_dir, cache_dir, meta, sign_class, keep_empty, seed = task
+    panorama = import_roadsigns("roadsigns.core.panorama")
+    rng = np.random.default_rng(seed)
+    views = panorama.ViewSet.training(size_px=640)
+    pano = panorama.read_panorama(os.path.join(scene_dir, "images", meta["image"]))
+    H, W = pano.shape[:2]
+    rows = []
+    for j, (view, image) in enumerate(zip(views, views.cut_all(pano))):
+        boxes, classes, ignore = view_labels(view, meta, sign_class, W, H)
+        if len(boxes) == 0 and rng.random() > keep_empty:
+            continue
+        name = f"{os.path.splitext(meta['image'])[0]}_v{j:02d}.jpg"
+        cv2.imwrite(os.path.join(cache_dir, name), image, [cv2.IMWRITE_JPEG_QUALITY, 93])
+        rows.append([name, boxes.tolist(), classes.tolist(), ignore.tolist()])
+    return rows
+
+
 def scene_view_samples(scene_dir: str, cache_dir: str, keep_empty: float = 0.2, rng=None,
-                       image_filter=None):
+                       image_filter=None, jobs: int = 1):
     """Cut every panorama of a generated scene into the plugin's default views and keep the
-    views that show a sign (and a share ``keep_empty`` of the others, as negatives).
+    views that show a sign (and a share ``keep_empty`` of the others, as negatives: each
+    panorama draws them from its own generator, seeded from ``rng`` and its number, so the
+    views kept do not depend on ``jobs``, the processes the panoramas are cut in).
 
     Views are written as JPEG files to ``cache_dir``, their decoded pixels to
     :func:`view_store`'s file, and then the index ``labels.json``; returns a list of (path,
@@ -316,26 +339,23 @@ def scene_view_samples(scene_dir: str, cache_dir: str, keep_empty: float = 0.2, 
         with open(index) as f:
             rows = json.load(f)
         return [(os.path.join(cache_dir, r[0]), _arr(r[1]), np.array(r[2], np.int64), _arr(r[3])) for r in rows]
-    panorama = import_roadsigns("roadsigns.core.panorama")
     rng = rng or np.random.default_rng(0)
     with open(os.path.join(scene_dir, "scene.json")) as f:
         scene = json.load(f)
     sign_class = {s["sign_id"]: s["class"] for s in scene["signs"]}
-    views = panorama.ViewSet.training(size_px=640)
     os.makedirs(cache_dir, exist_ok=True)
-    rows = []
-    for k, meta in enumerate(scene["images"]):
-        if image_filter is not None and not image_filter(k):
-            continue
-        pano = panorama.read_panorama(os.path.join(scene_dir, "images", meta["image"]))
-        H, W = pano.shape[:2]
-        for j, (view, image) in enumerate(zip(views, views.cut_all(pano))):
-            boxes, classes, ignore = view_labels(view, meta, sign_class, W, H)
-            if len(boxes) == 0 and rng.random() > keep_empty:
-                continue
-            name = f"{os.path.splitext(meta['image'])[0]}_v{j:02d}.jpg"
-            cv2.imwrite(os.path.join(cache_dir, name), image, [cv2.IMWRITE_JPEG_QUALITY, 93])
-            rows.append([name, boxes.tolist(), classes.tolist(), ignore.tolist()])
+    scene_seed = int(rng.integers(2 ** 31 - 1))
+    tasks = [(scene_dir, cache_dir, meta, sign_class, keep_empty, [scene_seed, k])
+             for k, meta in enumerate(scene["images"]) if image_filter is None or image_filter(k)]
+    if jobs > 1 and len(tasks) > 1:
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+
+        with ProcessPoolExecutor(min(jobs, len(tasks)), mp_context=multiprocessing.get_context("fork")) as pool:
+            per_panorama = list(pool.map(_cut_panorama, tasks))
+    else:
+        per_panorama = [_cut_panorama(task) for task in tasks]
+    rows = [row for part in per_panorama for row in part]
     view_store(cache_dir, [os.path.join(cache_dir, r[0]) for r in rows])   # before the index: see it, see both
     with open(index, "w") as f:
         json.dump(rows, f)

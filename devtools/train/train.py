@@ -83,8 +83,9 @@ class DataMix:
     def __init__(self, crop_px: int, work_dir: str, seed: int = 0, mandatory_boost: float = MANDATORY_BOOST,
                  source_weights=None, small_share: float = 0.0, faces: int = FACES,
                  mined_path: str = mine.MINED_PATH, large_share: float = 0.0, view_scales=None,
-                 tall_share: float = 0.0):
+                 tall_share: float = 0.0, cut_jobs: int = 1):
         self.crop_px = crop_px
+        self.cut_jobs = cut_jobs        # processes a scene's panoramas are cut in (data.scene_view_samples)
         self.view_scales = tuple(view_scales or VIEW_CROP_SCALES)
         self.small_share = small_share
         self.large_share = large_share
@@ -157,9 +158,10 @@ class DataMix:
                 continue
             t0 = time.perf_counter()
             last = n - min(VAL_PANORAMAS_PER_SCENE, n // 6)
-            train = data.scene_view_samples(folder, cache + "-train", rng=self.rng, image_filter=lambda k: k < last)
+            train = data.scene_view_samples(folder, cache + "-train", rng=self.rng, image_filter=lambda k: k < last,
+                                            jobs=self.cut_jobs)
             val = data.scene_view_samples(folder, cache + "-val", keep_empty=0.3, rng=self.rng,
-                                          image_filter=lambda k: k >= last)
+                                          image_filter=lambda k: k >= last, jobs=self.cut_jobs)
             self.tall_views += [len(self.views) + k for k, row in enumerate(train) if len(data.tall_boxes(row[1]))]
             self._scene_views[folder] = (cache + "-train", train)
             self._map_views(folder, build=cut)
@@ -613,8 +615,11 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
     os.makedirs(work_dir, exist_ok=True)
     t_start = time.perf_counter()
     scene_folders = ensure_scenes(scene_root, specs=scenes or TRAIN_SCENES, generate=generate_scenes)
+    # the views are cut in forked processes only where OpenCV's thread pool is off (with batch
+    # workers, above): forked after that pool has started, a child can hang
     mix = DataMix(crop_px, work_dir, seed, source_weights=source_weights, small_share=small_share, faces=faces,
-                  large_share=large_share, view_scales=view_scales, tall_share=tall_share)
+                  large_share=large_share, view_scales=view_scales, tall_share=tall_share,
+                  cut_jobs=len(os.sched_getaffinity(0)) if workers > 0 else 1)
     mix.add_scenes(scene_folders)
     # GTSDB 500-599 picks the best checkpoint; views and pasted held-out tracks are watched
     val_sets = {"gtsdb_500_599": data.read_gtsdb(data.GTSDB_HELDOUT_IDS)[:val_images],

@@ -84,3 +84,27 @@ def test_views_of_two_sizes_get_no_store_and_leave_nothing(tmp_path):
     paths = _write_views(str(tmp_path), [(48, 64), (48, 64), (40, 64)])
     assert view_store(str(tmp_path), paths) is None
     assert sorted(os.listdir(tmp_path)) == ["v0.jpg", "v1.jpg", "v2.jpg"]
+
+
+def test_a_scene_cut_in_two_processes_gives_the_views_one_gives(tmp_path):
+    from devtools.scenegen import generate_scene
+    from devtools.train.data import scene_view_samples
+
+    scene = str(tmp_path / "scene")
+    generate_scene("tiny", 6, scene, lidar=False, pano_width=1024)
+    cut = {}
+    for jobs in (1, 2):
+        folder = str(tmp_path / f"views-{jobs}")
+        rows = scene_view_samples(scene, folder, rng=np.random.default_rng(4), jobs=jobs)
+        cut[jobs] = (folder, rows)
+    (one, rows_one), (two, rows_two) = cut[1], cut[2]
+    assert len(rows_one) >= 8 and sum(len(r[1]) for r in rows_one) > 0
+    assert [os.path.basename(r[0]) for r in rows_one] == [os.path.basename(r[0]) for r in rows_two]
+    for a, b in zip(rows_one, rows_two):
+        assert all(np.array_equal(x, y) for x, y in zip(a[1:], b[1:]))
+        with open(a[0], "rb") as fa, open(b[0], "rb") as fb:
+            assert fa.read() == fb.read()
+    assert np.array_equal(np.load(os.path.join(one, VIEW_STORE_NAME)), np.load(os.path.join(two, VIEW_STORE_NAME)))
+    # the index is the cache: a second call reads it and cuts nothing
+    again = scene_view_samples(scene, one, rng=np.random.default_rng(99), jobs=2)
+    assert [r[0] for r in again] == [r[0] for r in rows_one]
