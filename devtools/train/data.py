@@ -324,15 +324,16 @@ def _cut_panorama(task):
 
 
 def scene_view_samples(scene_dir: str, cache_dir: str, keep_empty: float = 0.2, rng=None,
-                       image_filter=None, jobs: int = 1):
+                       image_filter=None, jobs: int = 1, store: bool = True):
     """Cut every panorama of a generated scene into the plugin's default views and keep the
     views that show a sign (and a share ``keep_empty`` of the others, as negatives: each
     panorama draws them from its own generator, seeded from ``rng`` and its number, so the
     views kept do not depend on ``jobs``, the processes the panoramas are cut in).
 
     Views are written as JPEG files to ``cache_dir``, their decoded pixels to
-    :func:`view_store`'s file, and then the index ``labels.json``; returns a list of (path,
-    boxes, classes, ignore). Cached: a second call reads the index.
+    :func:`view_store`'s file (``store``: views that training crops are drawn from), and then
+    the index ``labels.json``; returns a list of (path, boxes, classes, ignore). Cached: a
+    second call reads the index.
     """
     index = os.path.join(cache_dir, "labels.json")
     if os.path.isfile(index):
@@ -356,7 +357,8 @@ def scene_view_samples(scene_dir: str, cache_dir: str, keep_empty: float = 0.2, 
     else:
         per_panorama = [_cut_panorama(task) for task in tasks]
     rows = [row for part in per_panorama for row in part]
-    view_store(cache_dir, [os.path.join(cache_dir, r[0]) for r in rows])   # before the index: see it, see both
+    if store:                        # before the index: a process that sees the index sees the store
+        view_store(cache_dir, [os.path.join(cache_dir, r[0]) for r in rows])
     with open(index, "w") as f:
         json.dump(rows, f)
     return scene_view_samples(scene_dir, cache_dir)
@@ -384,17 +386,20 @@ def view_store(cache_dir: str, paths, build: bool = True):
         if first is None:
             raise OSError(f"cannot read {paths[0]}")
         partial = target + ".partial.npy"
-        store = np.lib.format.open_memmap(partial, mode="w+", dtype=np.uint8, shape=(len(paths),) + first.shape)
-        for k, path in enumerate(paths):
-            image = first if k == 0 else cv2.imread(path, cv2.IMREAD_COLOR)
-            if image is None or image.shape != first.shape:
-                del store
+        try:
+            store = np.lib.format.open_memmap(partial, mode="w+", dtype=np.uint8,
+                                              shape=(len(paths),) + first.shape)
+            for k, path in enumerate(paths):
+                image = first if k == 0 else cv2.imread(path, cv2.IMREAD_COLOR)
+                if image is None or image.shape != first.shape:
+                    return None
+                store[k] = image
+            store.flush()
+            del store
+            os.replace(partial, target)
+        finally:
+            if os.path.exists(partial):       # views of two sizes, or a failed write: nothing left
                 os.remove(partial)
-                return None
-            store[k] = image
-        store.flush()
-        del store
-        os.replace(partial, target)
     store = np.load(target, mmap_mode="r")
     return store if len(store) == len(paths) else None
 

@@ -161,7 +161,7 @@ class DataMix:
             train = data.scene_view_samples(folder, cache + "-train", rng=self.rng, image_filter=lambda k: k < last,
                                             jobs=self.cut_jobs)
             val = data.scene_view_samples(folder, cache + "-val", keep_empty=0.3, rng=self.rng,
-                                          image_filter=lambda k: k >= last, jobs=self.cut_jobs)
+                                          image_filter=lambda k: k >= last, jobs=self.cut_jobs, store=False)
             self.tall_views += [len(self.views) + k for k, row in enumerate(train) if len(data.tall_boxes(row[1]))]
             self._scene_views[folder] = (cache + "-train", train)
             self._map_views(folder, build=cut)

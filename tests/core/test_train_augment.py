@@ -4,6 +4,7 @@ import os
 
 import cv2
 import numpy as np
+import pytest
 
 from devtools.train.data import VIEW_STORE_NAME, colour_jitter, jitter_matrix, view_store
 
@@ -80,9 +81,19 @@ def test_the_view_store_holds_the_decoded_jpegs(tmp_path):
     assert view_store(str(tmp_path), paths[:3]) is None                      # not these rows' store
 
 
-def test_views_of_two_sizes_get_no_store_and_leave_nothing(tmp_path):
+def test_views_of_two_sizes_or_a_failed_write_get_no_store_and_leave_nothing(tmp_path, monkeypatch):
     paths = _write_views(str(tmp_path), [(48, 64), (48, 64), (40, 64)])
     assert view_store(str(tmp_path), paths) is None
+    assert sorted(os.listdir(tmp_path)) == ["v0.jpg", "v1.jpg", "v2.jpg"]
+
+    def unreadable(path, flags=None):
+        raise OSError("disk gone")
+
+    good = paths[:2]
+    first = cv2.imread(good[0])
+    monkeypatch.setattr(cv2, "imread", lambda path, flags=None: first if path == good[0] else unreadable(path))
+    with pytest.raises(OSError, match="disk gone"):
+        view_store(str(tmp_path), good)
     assert sorted(os.listdir(tmp_path)) == ["v0.jpg", "v1.jpg", "v2.jpg"]
 
 
@@ -105,6 +116,8 @@ def test_a_scene_cut_in_two_processes_gives_the_views_one_gives(tmp_path):
         with open(a[0], "rb") as fa, open(b[0], "rb") as fb:
             assert fa.read() == fb.read()
     assert np.array_equal(np.load(os.path.join(one, VIEW_STORE_NAME)), np.load(os.path.join(two, VIEW_STORE_NAME)))
+    unstored = scene_view_samples(scene, str(tmp_path / "views-val"), rng=np.random.default_rng(4), store=False)
+    assert len(unstored) == len(rows_one) and not os.path.exists(str(tmp_path / "views-val" / VIEW_STORE_NAME))
     # the index is the cache: a second call reads it and cuts nothing
     again = scene_view_samples(scene, one, rng=np.random.default_rng(99), jobs=2)
     assert [r[0] for r in again] == [r[0] for r in rows_one]
