@@ -25,8 +25,10 @@ carries at most 64 MiB, the repository included. So the run is two calls on one 
    80 s, which left about 3 minutes of training at 25 steps a second; the three streets of the
    default take about 2.2 minutes, which leaves about 5). The script keeps
    to ``BUDGET_S`` seconds from its start: it begins no street after ``RENDER_S`` (240) and
-   trains (``--until``) for what is left less ``EXPORT_S`` (60). A third call on the same warm
-   machine goes on with ``--resume /tmp/w/last.pt`` (without it the run starts afresh). It puts
+   trains (``--until``) for what is left less ``EXPORT_S`` (60), through
+   ``devtools/train/device_train.sh``. A third call on the same warm machine goes on from the
+   last checkpoint with call 2's flags: ``RESUME=1 BUDGET_S=590 bash
+   devtools/train/device_train.sh``, carrying nothing (the script is in the repository). run.sh puts
    the data where the scripts read it (``../shared/data``; it refuses where that exists: on the
    same machine again, remove ``../shared`` and ``/tmp/w`` first), adds part a when the machine
    still has it (else it trains on part b's frames alone and says so), renders the
@@ -139,23 +141,13 @@ for s in @SEEDS@; do
   echo "street $s rendered at $(( $(date +%s) - T0 )) s"
 done
 grep -h "panoramas:" $OUT/scenegen-*.log
-# the training's own deadline (--until: it stops there, validates and exports the best), counted
-# after its set-up (loading the data and cutting the views took about a minute on 28 November);
-# `timeout` only as the last resort: it signals the batch workers too, and a run it stops exports nothing
-DEADLINE=$(( T0 + ${BUDGET_S:-590} - ${EXPORT_S:-60} ))
-LEFT=$(( DEADLINE - $(date +%s) ))
-[ $LEFT -lt 90 ] && { echo "only $LEFT s left: stopped"; exit 1; }
-echo "training until $(date -u -d @$DEADLINE +%H:%M:%S), $LEFT s from now, set-up included"
-timeout -s TERM $(( LEFT + 60 )) \
-  python3 -m devtools.train --device ${DEVICE:-cuda} --init models/roadsigns.onnx \
-  --no-generate --scenes $W/scenes --train-scenes @TRAIN_SCENES@ --work $W --out $OUT/roadsigns-gpu.onnx \
-  --minutes 600 --until $(date -u -d @$DEADLINE +%Y-%m-%dT%H:%M:%S) \
-  --validate-every 1.5 --checkpoint-every 1.5 --val-images @VAL@ --workers @WORKERS@ \
-  --batch 32 --lr 3e-4 --warmup 100 --ema-decay 0.998 --small-share 0.3 --large-share 0.3 --tall-share @TALL@ 2>&1 \
-  | grep --line-buffered -v -i '^\[ WARN\|UserWarning\|tensor.detach' | tee $OUT/train.log
-cp $W/history.json $OUT/ 2>/dev/null
-python3 -m devtools.train --export-only $W/last.pt --out $OUT/roadsigns-last.onnx 2>&1 | tail -1
-ls -la $OUT
+# the training (devtools/train/device_train.sh, which a third call runs alone with RESUME=1) with
+# these flags, to this script's budget; counted after its set-up (loading the data and cutting the views)
+echo "--device ${DEVICE:-cuda} --init models/roadsigns.onnx --no-generate --scenes $W/scenes \
+  --train-scenes @TRAIN_SCENES@ --work $W --minutes 600 --validate-every 1.5 --checkpoint-every 1.5 \
+  --val-images @VAL@ --workers @WORKERS@ --batch 32 --lr 3e-4 --warmup 100 --ema-decay 0.998 \
+  --small-share 0.3 --large-share 0.3 --tall-share @TALL@" > $W/train.args
+T0=$T0 W=$W bash devtools/train/device_train.sh
 """
 
 

@@ -78,11 +78,18 @@ def test_every_frame_lands_once_every_third_in_part_b_and_the_scripts_are_whole(
         assert f"default:{seed}" in run_sh
     for seed in device_run.MORE_SEEDS:          # the bundled file's own streets by default
         assert f"default:{seed}" not in run_sh
-    assert "--tall-share 0 " in run_sh
+    assert '--tall-share 0" > $W/train.args' in run_sh
     assert "--check-cuda" in (out / "a" / "stash.sh").read_text()
-    # the training keeps to its own deadline, so a run at its budget still exports
-    assert re.search(r"python3 -m devtools\.train [^#]*--minutes 600 --until \$\(date", run_sh)
-    for script in (out / "a" / "stash.sh", out / "b" / "run.sh"):
+    # the training keeps to its own deadline, so a run at its budget still exports; its flags are
+    # written down for a third call, which goes on from the last checkpoint with them
+    assert re.search(r"--minutes 600 [^#]*> \$W/train\.args\nT0=\$T0 W=\$W bash devtools/train/device_train\.sh",
+                     run_sh)
+    train_sh = open(os.path.join(device_run.REPO_ROOT, "devtools", "train", "device_train.sh")).read()
+    assert re.search(r"python3 -m devtools\.train \$\(cat \"\$W/train\.args\"\) \$RESUME_ARGS [^#]*"
+                     r"--until \$\(date", train_sh)
+    assert 'RESUME_ARGS="--resume $W/last.pt"' in train_sh
+    for script in (out / "a" / "stash.sh", out / "b" / "run.sh",
+                   os.path.join(device_run.REPO_ROOT, "devtools", "train", "device_train.sh")):
         assert subprocess.run(["bash", "-n", str(script)], capture_output=True).returncode == 0, script
     assert {f"scenes/{name}/scene.json" for name in device_run.TINY_SCENES} <= b
     for name in device_run.HELD_OUT_SCENES:   # the second held-out set is never trained on
@@ -139,6 +146,6 @@ def test_the_second_gpu_runs_streets_and_mix_can_be_packed_and_held_out_streets_
     run_sh = (out / "b" / "run.sh").read_text()
     assert "for s in " + " ".join(map(str, six)) + "; do" in run_sh
     assert all(f"default:{seed}" in run_sh for seed in six)
-    assert "--tall-share 0.25 " in run_sh
+    assert '--tall-share 0.25" > $W/train.args' in run_sh
     with pytest.raises(SystemExit, match="103: held out"):
         device_run.pack(str(out), str(data), str(scenes), str(wheels), seeds=(100, 103))
