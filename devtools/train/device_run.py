@@ -27,8 +27,9 @@ carries at most 64 MiB, the repository included. So the run is two calls on one 
    to ``BUDGET_S`` seconds from its start: it begins no street after ``RENDER_S`` (240) and
    trains (``--until``) for what is left less ``EXPORT_S`` (60), through
    ``devtools/train/device_train.sh``. A third call on the same warm machine goes on from the
-   last checkpoint with call 2's flags: ``RESUME=1 BUDGET_S=590 bash
-   devtools/train/device_train.sh``, carrying nothing (the script is in the repository). run.sh puts
+   last checkpoint with call 2's flags: ``RESUME=1 BUDGET_S=200 bash
+   devtools/train/device_train.sh`` (``BUDGET_S``: what the lease has left), carrying nothing
+   (the script is in the repository). run.sh puts
    the data where the scripts read it (``../shared/data``; it refuses where that exists: on the
    same machine again, remove ``../shared`` and ``/tmp/w`` first), adds part a when the machine
    still has it (else it trains on part b's frames alone and says so), renders the

@@ -2,7 +2,7 @@
 # The training of a device run (devtools/train/device_run.py). Call 2's run.sh ends with it; a
 # third call on the same warm machine runs it alone with RESUME=1 to go on from the last
 # checkpoint (nothing to carry: this file travels with the repository):
-#   RESUME=1 BUDGET_S=590 bash devtools/train/device_train.sh
+#   RESUME=1 BUDGET_S=200 bash devtools/train/device_train.sh    (BUDGET_S: what the lease has left)
 # The training's flags are call 2's ($W/train.args, written by run.sh). It keeps to BUDGET_S
 # seconds from T0 (run.sh's start, else its own), EXPORT_S of them for the exports: the
 # training stops at its own deadline (--until), validates and exports the best checkpoint;
