@@ -55,3 +55,17 @@ def import_roadsigns(module: str = "roadsigns"):
     except ImportError:
         sys.path.insert(0, plugin_path())
         return importlib.import_module(module)
+
+
+def forked_map(function, items, jobs: int = 1) -> list:
+    """``[function(item) for item in items]``, in ``jobs`` forked processes when ``jobs`` > 1
+    (results in the items' order). Forked: the children start from this process's state (a
+    renderer, a scene), so ``function`` may read module globals set before the call; fork only
+    where no thread pool (OpenCV's, torch's) has started in this process."""
+    items = list(items)
+    if jobs > 1 and len(items) > 1:
+        import multiprocessing
+
+        with multiprocessing.get_context("fork").Pool(min(jobs, len(items))) as pool:
+            return pool.map(function, items)
+    return [function(item) for item in items]

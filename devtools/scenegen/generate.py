@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import csv
 import json
-import multiprocessing
 import os
 import time
 
@@ -17,6 +16,7 @@ import cv2
 import numpy as np
 import pyproj
 
+from .. import forked_map
 from . import roadsigns_geometry
 from . import textures as tx
 from .layout import CLASS_CODES, REFLECTANCE, build_scene
@@ -269,11 +269,7 @@ def generate_scene(preset="tiny", seed=1, out_dir="scene", crs="projected", pano
                           images=paths["images"], masks=paths.get("masks"), width=p.pano_width,
                           origin=frames.origin, centres={s.sign_id: s.panel.centre for s in scene.signs})
         try:
-            if jobs > 1:
-                with multiprocessing.get_context("fork").Pool(jobs) as pool:
-                    images_meta = pool.map(render_panorama, range(len(names)))
-            else:
-                images_meta = [render_panorama(i) for i in range(len(names))]
+            images_meta = forked_map(render_panorama, range(len(names)), jobs)
         finally:
             PANORAMAS.clear()
         lap("panoramas")

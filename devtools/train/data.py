@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 import cv2
 import numpy as np
 
-from .. import REPO_ROOT, import_roadsigns
+from .. import REPO_ROOT, forked_map, import_roadsigns
 
 #: The six default classes, in the model's class order (shared/CONTRACT.md).
 CLASSES = ("warning", "prohibitory", "mandatory", "information", "stop", "yield")
@@ -348,15 +348,7 @@ def scene_view_samples(scene_dir: str, cache_dir: str, keep_empty: float = 0.2, 
     scene_seed = int(rng.integers(2 ** 31 - 1))
     tasks = [(scene_dir, cache_dir, meta, sign_class, keep_empty, [scene_seed, k])
              for k, meta in enumerate(scene["images"]) if image_filter is None or image_filter(k)]
-    if jobs > 1 and len(tasks) > 1:
-        import multiprocessing
-        from concurrent.futures import ProcessPoolExecutor
-
-        with ProcessPoolExecutor(min(jobs, len(tasks)), mp_context=multiprocessing.get_context("fork")) as pool:
-            per_panorama = list(pool.map(_cut_panorama, tasks))
-    else:
-        per_panorama = [_cut_panorama(task) for task in tasks]
-    rows = [row for part in per_panorama for row in part]
+    rows = [row for part in forked_map(_cut_panorama, tasks, jobs) for row in part]
     if store:                        # before the index: a process that sees the index sees the store
         view_store(cache_dir, [os.path.join(cache_dir, r[0]) for r in rows])
     with open(index, "w") as f:
