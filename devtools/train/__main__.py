@@ -70,6 +70,12 @@ def main(argv=None):
                          "wider than --init's, the start is widened keeping its function")
     ap.add_argument("--fpn", type=int, default=None, help="the pyramid's width (default: the start's, or 64)")
     ap.add_argument("--head", type=int, default=None, help="the head's width (default: the start's, or 32)")
+    ap.add_argument("--teacher", default=None, metavar="MODEL",
+                    help="distil from this detector (.onnx, e.g. models/roadsigns.onnx, or a .pt checkpoint): "
+                         "the network also learns what the teacher computes on each batch, as a smaller "
+                         "student (--widths, --fpn, --head) of it does; name it again on --resume")
+    ap.add_argument("--distill-weight", type=float, default=None,
+                    help="weight of the distillation loss beside the targets' (default train.DISTILL_WEIGHT)")
     ap.add_argument("--no-export", action="store_true", help="do not export at the end")
     ap.add_argument("--export-only", metavar="CKPT", help="only export this checkpoint (.pt) to --out")
     ap.add_argument("--operating-point", type=float, default=None, metavar="SCORE",
@@ -78,7 +84,7 @@ def main(argv=None):
     ap.add_argument("--maps-to", type=float, default=None, metavar="SCORE",
                     help="with --export-only: the exported score the operating point becomes (default 0.4)")
     a = ap.parse_args(argv)
-    from .train import FACES, export_checkpoint, train
+    from .train import DISTILL_WEIGHT, FACES, export_checkpoint, train
     if a.export_only:
         export_checkpoint(a.export_only, a.out, operating_point=a.operating_point, maps_to=a.maps_to)
         return 0
@@ -91,7 +97,8 @@ def main(argv=None):
           view_scales=a.view_scales, scenes=a.train_scenes,
           arch={k: v for k, v in (("widths", tuple(int(c) for c in a.widths.split(",")) if a.widths else None),
                                   ("fpn", a.fpn), ("head", a.head)) if v is not None} or None,
-          source_weights=a.source_weights, workers=a.workers)
+          source_weights=a.source_weights, workers=a.workers, teacher=a.teacher,
+          distill_weight=DISTILL_WEIGHT if a.distill_weight is None else a.distill_weight)
     return 0
 
 

@@ -424,6 +424,49 @@ def regression_loss(regression, ind, reg, mask):
     return err[..., :2].sum() / mask.sum().clamp(min=1.0), err[..., 2:].sum() / mask.sum().clamp(min=1.0)
 
 
+#: Weight of the distillation loss beside the targets' losses (``train(teacher=...)``).
+DISTILL_WEIGHT = 1.0
+#: Where the teacher's heatmap reaches this score (any class), the student also learns the
+#: teacher's box offsets and log sizes.
+DISTILL_MIN_TEACHER_SCORE = 0.1
+
+
+def distillation_loss(student_logits, student_regression, teacher_logits, teacher_regression, valid,
+                      min_teacher_score: float = DISTILL_MIN_TEACHER_SCORE):
+    """Knowledge distillation from a teacher with the same outputs (a wider :class:`SignNet`):
+    the Bernoulli KL divergence of the student's per-class centre heatmap from the teacher's,
+    summed over the cells that are not ignored (``valid``, as the focal loss takes it) and
+    divided by the teacher's sure cells (score >= 0.5, at least 1), plus the L1 distance to the
+    teacher's box offsets and log sizes, averaged over the cells where the teacher's heatmap
+    reaches ``min_teacher_score``. Zero where the student computes what the teacher does;
+    the teacher's outputs take no gradient."""
+    teacher = torch.sigmoid(teacher_logits.detach()).clamp(1e-4, 1 - 1e-4)
+    kl = (teacher * (torch.log(teacher) - F.logsigmoid(student_logits))
+          + (1.0 - teacher) * (torch.log(1.0 - teacher) - F.logsigmoid(-student_logits)))
+    sure = (teacher >= 0.5).float().sum().clamp(min=1.0)
+    heat_loss = (kl * valid.unsqueeze(1)).sum() / sure
+    cells = (teacher.amax(dim=1, keepdim=True) >= min_teacher_score).float()
+    box_err = (student_regression - teacher_regression.detach()).abs() * cells
+    box_loss = box_err.sum() / (cells.sum() * student_regression.shape[1]).clamp(min=1.0)
+    return heat_loss + box_loss
+
+
+def load_teacher(path: str, calibration_batches, device) -> SignNet:
+    """The network of an exported detector (``.onnx``, its batch norms recovered on
+    ``calibration_batches``: :func:`recover_from_onnx`) or of a checkpoint (``.pt``, its EMA
+    weights), in eval mode on ``device``, frozen."""
+    if path.endswith(".onnx"):
+        teacher = recover_from_onnx(SignNet(len(CLASSES), **onnx_arch(path)), path, calibration_batches)
+    else:
+        start = torch.load(path, map_location="cpu", weights_only=False)
+        teacher = SignNet(len(CLASSES), **checkpoint_arch(start))
+        teacher.load_state_dict(start["model"])
+    teacher = teacher.eval().to(device)
+    for p in teacher.parameters():
+        p.requires_grad_(False)
+    return teacher
+
+
 # --- validation ------------------------------------------------------------------------------
 
 def _pad_to(image, multiple=32):
@@ -592,7 +635,8 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
           init: str = None, device: str = "auto", checkpoint_every_min: float = 10.0, until: str = None,
           warmup_steps: int = 300, amp: bool = True, scenes=None, export: bool = True,
           ema_decay: float = 0.998, source_weights=None, small_share: float = 0.0, faces: int = FACES,
-          arch=None, large_share: float = 0.0, view_scales=None, workers: int = 0, tall_share: float = 0.0):
+          arch=None, large_share: float = 0.0, view_scales=None, workers: int = 0, tall_share: float = 0.0,
+          teacher: str = None, distill_weight: float = DISTILL_WEIGHT):
     """Train (or go on training) for ``minutes`` of training time in all (a resumed run
     counts the time already spent), or until the wall-clock time ``until``; validate every
     ``validate_every_min`` (best by AP50 on GTSDB 500-599), checkpoint every
@@ -601,7 +645,10 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
     the default); wider than ``init``'s, the start is widened keeping its function
     (:func:`model.widened`). A resumed run keeps its checkpoint's. ``workers`` > 0: the
     batches are drawn in that many processes (:class:`BatchStream`; what keeps a GPU fed),
-    else in this one."""
+    else in this one. ``teacher`` (an exported ``.onnx`` or a ``.pt`` checkpoint, e.g. the bundled
+    detector): the network also learns what the teacher computes on each batch
+    (:func:`distillation_loss`, weighted ``distill_weight``), as a smaller student of it does;
+    a resumed run needs it named again."""
     import signal
 
     if workers > 0:
@@ -632,12 +679,15 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
     loader = (batch_loader(mix, scene_folders, batch_size, seed, state.get("step", 0) if state else 0, workers,
                            pin=dev.type == "cuda")
               if workers > 0 else None)
+    def calibration_batches():  # for an exported file's batch norms (recover_from_onnx)
+        return [batch_tensors([mix.sample() for _ in range(batch_size)], crop_px, len(CLASSES))[0]
+                for _ in range(6)]
+
     if state is not None:
         net = SignNet(len(CLASSES), **checkpoint_arch(state))
         net.load_state_dict(state.get("net", state["model"]))
     elif init and init.endswith(".onnx"):
-        calib = [batch_tensors([mix.sample() for _ in range(batch_size)], crop_px, len(CLASSES))[0]
-                 for _ in range(6)]
+        calib = calibration_batches()
         net = SignNet(len(CLASSES), **onnx_arch(init))
         try:
             recover_from_onnx(net, init, calib)
@@ -661,6 +711,13 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
     net.to(dev)
     if dev.type == "cuda":
         net = net.to(memory_format=torch.channels_last)
+    teacher_net = None
+    if teacher:
+        teacher_net = load_teacher(teacher, calibration_batches() if teacher.endswith(".onnx") else [], dev)
+        if dev.type == "cuda":
+            teacher_net = teacher_net.to(memory_format=torch.channels_last)
+        print(f"[train] distilling from {teacher} ({sum(p.numel() for p in teacher_net.parameters())} parameters, "
+              f"weight {distill_weight})", flush=True)
     ema = copy.deepcopy(net).eval()
     if state is not None:
         ema.load_state_dict(state["model"])
@@ -751,6 +808,13 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
         l_heat = focal_loss(logits.float(), heat, valid)
         l_off, l_size = regression_loss(regression.float(), ind, reg, mask)
         loss = l_heat + l_off + l_size
+        l_distill = torch.zeros(())
+        if teacher_net is not None:
+            with torch.no_grad(), torch.autocast(device_type=dev.type, dtype=torch.float16, enabled=use_amp):
+                t_logits, t_regression = teacher_net(x)
+            l_distill = distillation_loss(logits.float(), regression.float(), t_logits.float(), t_regression.float(),
+                                          valid)
+            loss = loss + distill_weight * l_distill
         opt.zero_grad(set_to_none=True)
         if scaler is not None:
             scaler.scale(loss).backward()
@@ -773,7 +837,8 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
         step += 1
         if step % 50 == 0:
             print(f"[train] step {step} {elapsed / 60:.1f} min loss {np.mean(losses[-50:]):.3f} "
-                  f"(heat {float(l_heat):.3f} off {float(l_off):.3f} size {float(l_size):.3f})", flush=True)
+                  f"(heat {float(l_heat):.3f} off {float(l_off):.3f} size {float(l_size):.3f}"
+                  + (f" distill {float(l_distill.detach()):.3f})" if teacher_net is not None else ")"), flush=True)
 
     if not export:
         return None
