@@ -837,7 +837,8 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
         step += 1
         if step % 50 == 0:
             print(f"[train] step {step} {elapsed / 60:.1f} min loss {np.mean(losses[-50:]):.3f} "
-                  f"(heat {float(l_heat):.3f} off {float(l_off):.3f} size {float(l_size):.3f}"
+                  f"(heat {float(l_heat.detach()):.3f} off {float(l_off.detach()):.3f} "
+                  f"size {float(l_size.detach()):.3f}"
                   + (f" distill {float(l_distill.detach()):.3f})" if teacher_net is not None else ")"), flush=True)
 
     if not export:
