@@ -679,6 +679,7 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
     loader = (batch_loader(mix, scene_folders, batch_size, seed, state.get("step", 0) if state else 0, workers,
                            pin=dev.type == "cuda")
               if workers > 0 else None)
+
     def calibration_batches():  # for an exported file's batch norms (recover_from_onnx)
         return [batch_tensors([mix.sample() for _ in range(batch_size)], crop_px, len(CLASSES))[0]
                 for _ in range(6)]
