@@ -451,17 +451,27 @@ def distillation_loss(student_logits, student_regression, teacher_logits, teache
     return heat_loss + box_loss
 
 
-def load_teacher(path: str, calibration_batches, device) -> SignNet:
-    """The network of an exported detector (``.onnx``, its batch norms recovered on
-    ``calibration_batches``: :func:`recover_from_onnx`) or of a checkpoint (``.pt``, its EMA
-    weights), in eval mode on ``device``, frozen."""
-    if path.endswith(".onnx"):
-        teacher = recover_from_onnx(SignNet(len(CLASSES), **onnx_arch(path)), path, calibration_batches)
-    else:
+def load_network(path: str, calibration_batches, arch=None) -> SignNet:
+    """The network of an exported detector (``.onnx``, its batch norms recovered on the batches
+    ``calibration_batches()`` returns: :func:`recover_from_onnx`; ``arch``: its widths where the
+    file records none) or of a checkpoint (``.pt``, its EMA weights)."""
+    if not path.endswith(".onnx"):
         start = torch.load(path, map_location="cpu", weights_only=False)
-        teacher = SignNet(len(CLASSES), **checkpoint_arch(start))
-        teacher.load_state_dict(start["model"])
-    teacher = teacher.eval().to(device)
+        net = SignNet(len(CLASSES), **checkpoint_arch(start))
+        net.load_state_dict(start["model"])
+        return net
+    net = SignNet(len(CLASSES), **onnx_arch(path))
+    try:
+        return recover_from_onnx(net, path, calibration_batches())
+    except ValueError as e:
+        if not arch:
+            raise ValueError(f"{e}: give the exported file's widths (--widths, --fpn, --head)") from e
+        return recover_from_onnx(SignNet(len(CLASSES), **dict(ARCH_DEFAULT, **arch)), path, calibration_batches())
+
+
+def load_teacher(path: str, calibration_batches, device) -> SignNet:
+    """:func:`load_network`'s network of ``path``, in eval mode on ``device``, frozen."""
+    teacher = load_network(path, calibration_batches).eval().to(device)
     for p in teacher.parameters():
         p.requires_grad_(False)
     return teacher
@@ -680,28 +690,21 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
                            pin=dev.type == "cuda")
               if workers > 0 else None)
 
-    def calibration_batches():  # for an exported file's batch norms (recover_from_onnx)
-        return [batch_tensors([mix.sample() for _ in range(batch_size)], crop_px, len(CLASSES))[0]
-                for _ in range(6)]
+    calibration: List[torch.Tensor] = []
+
+    def calibration_batches():  # for an exported file's batch norms (recover_from_onnx), drawn once
+        if not calibration:
+            calibration.extend(batch_tensors([mix.sample() for _ in range(batch_size)], crop_px, len(CLASSES))[0]
+                               for _ in range(6))
+        return calibration
 
     if state is not None:
         net = SignNet(len(CLASSES), **checkpoint_arch(state))
         net.load_state_dict(state.get("net", state["model"]))
-    elif init and init.endswith(".onnx"):
-        calib = calibration_batches()
-        net = SignNet(len(CLASSES), **onnx_arch(init))
-        try:
-            recover_from_onnx(net, init, calib)
-        except ValueError as e:
-            if not arch:
-                raise ValueError(f"{e}: give the exported file's widths (--widths, --fpn, --head)") from e
-            net = SignNet(len(CLASSES), **dict(ARCH_DEFAULT, **arch))
-            recover_from_onnx(net, init, calib)
-        print(f"[train] weights recovered from {init}", flush=True)
     elif init:
-        start = torch.load(init, map_location="cpu", weights_only=False)
-        net = SignNet(len(CLASSES), **checkpoint_arch(start))
-        net.load_state_dict(start["model"])
+        net = load_network(init, calibration_batches, arch)
+        if init.endswith(".onnx"):
+            print(f"[train] weights recovered from {init}", flush=True)
     else:
         net = SignNet(len(CLASSES), **(arch or {}))
     want = dict(net.arch, **(arch or {}))
@@ -714,7 +717,7 @@ def train(out_path: str, minutes: float, work_dir: str, scene_root: str, generat
         net = net.to(memory_format=torch.channels_last)
     teacher_net = None
     if teacher:
-        teacher_net = load_teacher(teacher, calibration_batches() if teacher.endswith(".onnx") else [], dev)
+        teacher_net = load_teacher(teacher, calibration_batches, dev)
         if dev.type == "cuda":
             teacher_net = teacher_net.to(memory_format=torch.channels_last)
         print(f"[train] distilling from {teacher} ({sum(p.numel() for p in teacher_net.parameters())} parameters, "

@@ -88,7 +88,7 @@ def test_the_teacher_is_the_network_of_the_exported_file_or_checkpoint(tmp_path,
     else:
         torch.save({"model": net.state_dict(), "arch": net.arch}, path)
     calibration = [torch.rand(4, 3, 64, 64) for _ in range(3)]
-    teacher = T.load_teacher(path, calibration, torch.device("cpu"))
+    teacher = T.load_teacher(path, lambda: calibration, torch.device("cpu"))
     assert not teacher.training and not any(p.requires_grad for p in teacher.parameters())
     assert teacher.arch == net.arch
     got_logits, got_regression = outputs(teacher, x)
